@@ -1,0 +1,100 @@
+"""The exception hierarchy of cpn-verify. Imports `cpn.diagnostics` only."""
+
+from __future__ import annotations
+
+from cpn.diagnostics import Diagnostic, Severity, Span
+
+
+class CpnError(Exception):
+    """Base class of every error cpn-verify raises on purpose."""
+
+    exit_status = 70
+
+    def render(self) -> str:
+        return f"error: {self}"
+
+
+class ConfigurationError(CpnError):
+    """Bad options given to the API or the command line."""
+
+    exit_status = 64
+
+    def render(self) -> str:
+        return f"error: {self}"
+
+
+class ModelError(CpnError):
+    """A model file is malformed or ill-typed; holds every diagnostic found in one run."""
+
+    exit_status = 65
+
+    def __init__(self, diagnostics: list[Diagnostic], sources: dict[str, str] | None = None):
+        self.diagnostics = sorted(diagnostics, key=Diagnostic.sort_key)
+        self.sources = dict(sources or {})
+        first = self.diagnostics[0] if self.diagnostics else None
+        super().__init__(f"{first.span}: {first.message}" if first and first.span else (first.message if first else ""))
+
+    @property
+    def errors(self) -> list[Diagnostic]:
+        return [d for d in self.diagnostics if d.severity is Severity.ERROR]
+
+    def render(self) -> str:
+        parts = []
+        for d in self.diagnostics:
+            src = self.sources.get(d.span.file) if d.span else None
+            parts.append(d.render(src))
+        n = len(self.errors)
+        parts.append(f"{n} error{'s' if n != 1 else ''} found")
+        return "\n\n".join(parts[:-1]) + "\n" + parts[-1]
+
+
+class ModelSyntaxError(ModelError):
+    pass
+
+
+class ModelNameError(ModelError):
+    pass
+
+
+class ModelTypeError(ModelError):
+    pass
+
+
+class EvaluationError(CpnError):
+    """An inscription, guard or initial marking raised an error while the net was evaluated."""
+
+    exit_status = 65
+
+    def __init__(self, message: str, span: Span | None = None, element: str | None = None,
+                 binding: dict | None = None, hint: str | None = None, source: str | None = None):
+        self.message = message
+        self.span = span
+        self.element = element
+        self.binding = binding
+        self.hint = hint
+        self.source = source
+        self.trace: list[str] = []
+        super().__init__(f"{span}: {message}" if span else message)
+
+    def diagnostic(self) -> Diagnostic:
+        return Diagnostic("E0401", self.message, self.span, hint=self.hint)
+
+    def render(self) -> str:
+        text = self.diagnostic().render(self.source)
+        if self.trace:
+            text += f"\nnote: reached after {len(self.trace)} steps from the initial marking:\n"
+            text += "\n".join(f"  {i}. {step}" for i, step in enumerate(self.trace, 1))
+        return text
+
+
+class ExplorationLimitReached(CpnError):
+    exit_status = 2
+
+
+class InternalError(CpnError):
+    """A bug in cpn-verify."""
+
+    exit_status = 70
+
+    def render(self) -> str:
+        return f"error: internal error: {self} (this is a bug in cpn-verify, please report it)"

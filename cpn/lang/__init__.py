@@ -1,0 +1,1 @@
+"""The model language: grammar, parser, AST, name resolution and type checking."""

@@ -1,0 +1,178 @@
+"""Parsing `.cpnet` text into the AST, reporting every syntax error of a file in one run.
+
+Imports lark, `cpn.lang.ast`, `cpn.lang.transform`, `cpn.lang.syntax_errors` and layer 0.
+"""
+
+from __future__ import annotations
+
+import functools
+import re
+from importlib import resources
+
+from lark import Lark
+from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+
+from cpn.diagnostics import Diagnostic, Span
+from cpn.errors import ModelSyntaxError
+from cpn.lang import ast as A
+from cpn.lang.syntax_errors import SYNTAX_ERRORS, TERMINAL_NAMES
+from cpn.lang.transform import ToAst
+
+MAX_SYNTAX_ERRORS: int = 50
+
+_STMT_START = re.compile(
+    r"^[ \t]*(net|colset|var|val|fun|place|port|trans|arc|inhibitor|reset|module|instance)\b|^[ \t]*\}",
+    re.MULTILINE,
+)
+
+
+@functools.lru_cache(maxsize=None)
+def _parser() -> Lark:
+    text = resources.files("cpn.lang").joinpath("grammar.lark").read_text(encoding="utf-8")
+    return Lark(text, parser="lalr", propagate_positions=True, maybe_placeholders=True)
+
+
+def _expected_text(exc: UnexpectedInput) -> str:
+    expected = getattr(exc, "expected", None) or getattr(exc, "allowed", None) or set()
+    names = sorted({TERMINAL_NAMES.get(t, None) or _pretty_terminal(t) for t in expected})
+    names = [n for n in names if n]
+    if not names:
+        return ""
+    if len(names) > 6:
+        names = names[:6] + ["..."]
+    return ", ".join(names)
+
+
+def _pretty_terminal(name: str) -> str | None:
+    try:
+        term = _parser().get_terminal(name)
+    except KeyError:
+        return None
+    pattern = term.pattern
+    if pattern.type == "str":
+        return f"'{pattern.value}'"
+    return None
+
+
+def _found(exc: UnexpectedInput, text: str) -> str:
+    if isinstance(exc, UnexpectedToken):
+        tok = exc.token
+        if tok.type == "$END":
+            return "the end of the file"
+        return f"'{tok}'"
+    if isinstance(exc, UnexpectedCharacters):
+        return f"'{text[exc.pos_in_stream]}'" if exc.pos_in_stream < len(text) else "the end of the file"
+    return "the end of the file"
+
+
+def _diagnose(exc: UnexpectedInput, text: str, filename: str) -> Diagnostic:
+    line = getattr(exc, "line", None)
+    col = getattr(exc, "column", None)
+    if isinstance(exc, UnexpectedToken) and exc.token.type == "$END" or line in (None, -1):
+        lines = text.splitlines() or [""]
+        line, col = len(lines), len(lines[-1]) + 1
+    span = Span(filename, line, col, line, col)
+    found = _found(exc, text)
+    label = None
+    try:
+        label = exc.match_examples(_parser().parse, {i: ex for i, (_, msg, _, ex) in enumerate(SYNTAX_ERRORS)
+                                    if not msg.startswith("expected ';'")},
+                                   use_accepts=True)
+    except Exception:  # noqa: BLE001 - matching is best effort
+        label = None
+    if isinstance(exc, UnexpectedToken) and exc.token == "=" and getattr(exc, "token_history", None):
+        prev = exc.token_history[-1] if exc.token_history else None
+        if prev is not None and str(prev) == "=":
+            label = next(i for i, row in enumerate(SYNTAX_ERRORS) if row[1].startswith("'=='"))
+    missing_semi = _missing_semicolon(exc, text, filename)
+    if missing_semi is not None:
+        return missing_semi
+    if label is not None:
+        code, message, hint, _ = SYNTAX_ERRORS[label]
+        return Diagnostic(code, f"{message}, found {found}", span, hint=hint, params={"found": found})
+    if isinstance(exc, UnexpectedCharacters):
+        ch = text[exc.pos_in_stream] if exc.pos_in_stream < len(text) else ""
+        if ch == '"':
+            return Diagnostic("E0102", "unterminated string", span, hint="Close the string with '\"' on the same line.")
+        if text.startswith("(*", exc.pos_in_stream):
+            return Diagnostic("E0102", "unterminated comment", span, hint="Close the comment with '*)'.")
+        return Diagnostic("E0101", f"unexpected character {found}", span,
+                          hint="Remove it, or put it inside a string or a comment.", params={"found": found})
+    expected = _expected_text(exc)
+    msg = f"unexpected {found}" + (f", expected {expected}" if expected else "")
+    return Diagnostic("E0101", msg, span, params={"found": found})
+
+
+def _missing_semicolon(exc: UnexpectedInput, text: str, filename: str) -> Diagnostic | None:
+    """A statement keyword at the start of a line after a line without ';': the classic missing ';'."""
+    line = getattr(exc, "line", None)
+    if not isinstance(line, int) or line < 2:
+        return None
+    lines = text.splitlines()
+    if line > len(lines):
+        return None
+    m = _STMT_START.match(lines[line - 1])
+    if not m or not m.group(1):
+        return None
+    prev = line - 1
+    while prev >= 1 and not lines[prev - 1].strip():
+        prev -= 1
+    if prev < 1:
+        return None
+    tail = re.sub(r"\(\*.*?\*\)|//.*$", "", lines[prev - 1]).rstrip()
+    if not tail or tail.endswith((";", "{", "}")):
+        return None
+    kw = m.group(1)
+    col = m.start(1) + 1
+    return Diagnostic(
+        "E0101",
+        f"expected ';' after the declaration on line {prev}, found '{kw}'",
+        Span(filename, line, col, line, col + len(kw) - 1),
+        hint=f"Each declaration ends with ';'. Add one at the end of line {prev}.",
+        params={"found": kw, "line": prev},
+    )
+
+
+def _offset(text: str, line: int, col: int) -> int:
+    lines = text.splitlines(keepends=True)
+    return sum(len(x) for x in lines[: line - 1]) + col - 1
+
+
+def parse(text: str, filename: str = "<string>") -> A.Model:
+    """Parse `.cpnet` source text into an `ast.Model`.
+
+    Raises `ModelSyntaxError` with one diagnostic per erroneous statement (at most one per line).
+    """
+    parser = _parser()
+    diags: list[Diagnostic] = []
+    work = text
+    seen_lines: set[int] = set()
+    while True:
+        try:
+            tree = parser.parse(work)
+            break
+        except UnexpectedInput as exc:
+            d = _diagnose(exc, work, filename)
+            if d.span.line not in seen_lines:
+                seen_lines.add(d.span.line)
+                diags.append(d)
+            if isinstance(exc, UnexpectedEOF) or (isinstance(exc, UnexpectedToken) and exc.token.type == "$END"):
+                tree = None
+                break
+            if len(diags) >= MAX_SYNTAX_ERRORS:
+                tree = None
+                break
+            # blank out the erroneous statement (keeping positions) and parse again
+            pos = _offset(work, d.span.line, d.span.col)
+            start = work.rfind(";", 0, pos) + 1
+            m = _STMT_START.search(work, pos + 1)
+            nxt = m.start() if m else len(work)
+            if nxt <= start:
+                tree = None
+                break
+            blank = re.sub(r"[^\n]", " ", work[start:nxt])
+            work = work[:start] + blank + work[nxt:]
+    if diags:
+        raise ModelSyntaxError(diags, {filename: text})
+    decls = ToAst(filename).transform(tree)
+    return A.Model(filename, text, decls)

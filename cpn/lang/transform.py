@@ -1,0 +1,434 @@
+"""The lark `Transformer` from parse trees to `cpn.lang.ast`; the only module that knows rule names."""
+
+from __future__ import annotations
+
+from lark import Token, Transformer, v_args
+
+from cpn.diagnostics import Span
+from cpn.lang import ast as A
+
+
+def _unescape(text: str) -> str:
+    out = []
+    i = 0
+    while i < len(text):
+        c = text[i]
+        if c == "\\" and i + 1 < len(text):
+            n = text[i + 1]
+            out.append({"n": "\n", "t": "\t", "\\": "\\", '"': '"'}.get(n, n))
+            i += 2
+        else:
+            out.append(c)
+            i += 1
+    return "".join(out)
+
+
+class ToAst(Transformer):
+    def __init__(self, filename: str):
+        super().__init__(visit_tokens=False)
+        self.file = filename
+
+    # -- positions
+    def span(self, meta) -> Span:
+        if getattr(meta, "empty", False) or not hasattr(meta, "line"):
+            return Span(self.file, 0, 0)
+        return Span(self.file, meta.line, meta.column, meta.end_line, max(meta.end_column - 1, meta.column))
+
+    def tspan(self, tok: Token) -> Span:
+        return Span(self.file, tok.line, tok.column, tok.end_line, max(tok.end_column - 1, tok.column))
+
+    # -- statements
+    def start(self, items):
+        return list(items)
+
+    @v_args(meta=True)
+    def net_header(self, meta, items):
+        return A.NetHeader(self.span(meta), items[0][0])
+
+    def name(self, items):
+        tok = items[0]
+        text = _unescape(tok[1:-1]) if tok.type == "STRING" else str(tok)
+        return (text, self.tspan(tok))
+
+    @v_args(meta=True)
+    def colset_decl(self, meta, items):
+        name, body, timed = items
+        return A.ColsetDecl(self.span(meta), str(name), body, timed is not None)
+
+    def _cs(self, meta, kind, **kw):
+        return A.ColsetBody(self.span(meta), kind, **kw)
+
+    @v_args(meta=True)
+    def cs_unit(self, meta, items):
+        return self._cs(meta, "unit")
+
+    @v_args(meta=True)
+    def cs_bool(self, meta, items):
+        return self._cs(meta, "bool")
+
+    @v_args(meta=True)
+    def cs_int(self, meta, items):
+        lo, hi = (items + [None, None])[:2]
+        return self._cs(meta, "int", low=lo, high=hi)
+
+    @v_args(meta=True)
+    def cs_string(self, meta, items):
+        return self._cs(meta, "string")
+
+    @v_args(meta=True)
+    def cs_real(self, meta, items):
+        return self._cs(meta, "real")
+
+    @v_args(meta=True)
+    def cs_time(self, meta, items):
+        return self._cs(meta, "time")
+
+    @v_args(meta=True)
+    def cs_enum(self, meta, items):
+        return self._cs(meta, "enum", names=[str(t) for t in items])
+
+    @v_args(meta=True)
+    def cs_index(self, meta, items):
+        con, lo, hi = items
+        return self._cs(meta, "index", names=[str(con)], low=lo, high=hi)
+
+    @v_args(meta=True)
+    def cs_product(self, meta, items):
+        return self._cs(meta, "product", names=[str(t) for t in items])
+
+    @v_args(meta=True)
+    def cs_record(self, meta, items):
+        return self._cs(meta, "record", fields=list(items))
+
+    def rfield(self, items):
+        return (str(items[0]), str(items[1]))
+
+    @v_args(meta=True)
+    def cs_list(self, meta, items):
+        elem, lo, hi = (items + [None, None])[:3]
+        return self._cs(meta, "list", names=[str(elem)], low=lo, high=hi)
+
+    @v_args(meta=True)
+    def cs_union(self, meta, items):
+        return self._cs(meta, "union", fields=list(items))
+
+    def ufield(self, items):
+        return (str(items[0]), str(items[1]) if items[1] is not None else None)
+
+    @v_args(meta=True)
+    def cs_subset_by(self, meta, items):
+        return self._cs(meta, "subset_by", names=[str(items[0])], pred=items[1])
+
+    @v_args(meta=True)
+    def cs_subset_with(self, meta, items):
+        return self._cs(meta, "subset_with", names=[str(items[0])], pred=items[1])
+
+    @v_args(meta=True)
+    def cs_alias(self, meta, items):
+        return self._cs(meta, "alias", names=[str(items[0])])
+
+    @v_args(meta=True)
+    def var_decl(self, meta, items):
+        names = [(str(t), self.tspan(t)) for t in items[:-1]]
+        cs = items[-1]
+        return A.VarDecl(self.span(meta), names, str(cs), self.tspan(cs))
+
+    @v_args(meta=True)
+    def val_decl(self, meta, items):
+        name, ty, expr = items
+        return A.ValDecl(self.span(meta), A.PVar(self.tspan(name), str(name)), expr, ty)
+
+    @v_args(meta=True)
+    def fun_decl(self, meta, items):
+        return self._fun(meta, items)
+
+    def _fun(self, meta, clauses):
+        names = {c[0] for c in clauses}
+        clause_list = [c[1] for c in clauses]
+        fd = A.FunDecl(self.span(meta), clauses[0][0], clause_list)
+        if len(names) > 1:
+            fd.clauses = clause_list
+            fd.ref = ("mismatched-names", sorted(names))
+        return fd
+
+    @v_args(meta=True)
+    def clause(self, meta, items):
+        name = str(items[0])
+        params = [p for p in items[1:-2]]
+        rty, body = items[-2], items[-1]
+        return (name, A.Clause(self.span(meta), params, body, rty))
+
+    @v_args(meta=True)
+    def place_decl(self, meta, items):
+        (name, nspan), cs, init, fus_kw, fus = items
+        return A.PlaceDecl(self.span(meta), name, nspan, str(cs), self.tspan(cs), init,
+                           fusion=fus[0] if fus else None)
+
+    @v_args(meta=True)
+    def port_decl(self, meta, items):
+        kind, (name, nspan), cs, init = items
+        return A.PlaceDecl(self.span(meta), name, nspan, str(cs), self.tspan(cs), init, port=str(kind))
+
+    @v_args(meta=True)
+    def trans_decl(self, meta, items):
+        (name, nspan), guard, delay, prio = items
+        return A.TransDecl(self.span(meta), name, nspan, guard or [], delay, prio)
+
+    def guard(self, items):
+        return [g for g in items if g is not None]
+
+    def delay(self, items):
+        return items[1]
+
+    def priority(self, items):
+        return items[0]
+
+    @v_args(meta=True)
+    def arc_decl(self, meta, items):
+        (src, sspan), arrow, (dst, dspan), expr = items
+        return A.ArcDecl(self.span(meta), str(arrow), src, sspan, dst, dspan, expr)
+
+    @v_args(meta=True)
+    def inhibitor_decl(self, meta, items):
+        (src, sspan), arrow, (dst, dspan), expr = items
+        return A.ArcDecl(self.span(meta), "inhibitor" if str(arrow) == "->" else "inhibitor?", src, sspan, dst,
+                         dspan, expr)
+
+    @v_args(meta=True)
+    def reset_decl(self, meta, items):
+        (src, sspan), arrow, (dst, dspan) = items
+        return A.ArcDecl(self.span(meta), "reset" if str(arrow) == "->" else "reset?", src, sspan, dst, dspan, None)
+
+    @v_args(meta=True)
+    def module_decl(self, meta, items):
+        name = str(items[0])
+        params = []
+        body = []
+        for it in items[1:]:
+            if isinstance(it, tuple) and len(it) == 3 and isinstance(it[0], str):
+                params.append(it)
+            elif it is not None:
+                body.append(it)
+        return A.ModuleDecl(self.span(meta), name, params, body)
+
+    def param(self, items):
+        return (str(items[0]), str(items[1]), self.tspan(items[0]))
+
+    @v_args(meta=True)
+    def instance_decl(self, meta, items):
+        (name, nspan), mod = items[0], items[1]
+        args, binds = [], []
+        for it in items[2:]:
+            if it is None:
+                continue
+            if it[0] == "arg":
+                args.append(it[1:])
+            else:
+                binds.append(it[1:])
+        return A.InstanceDecl(self.span(meta), name, nspan, str(mod), self.tspan(mod), args, binds)
+
+    def arg(self, items):
+        return ("arg", str(items[0]), items[1], self.tspan(items[0]))
+
+    def bind(self, items):
+        (port, pspan), (sock, sspan) = items
+        return ("bind", port, pspan, sock, sspan)
+
+    # -- types
+    @v_args(meta=True)
+    def ty_name(self, meta, items):
+        return A.TName(self.span(meta), str(items[0]))
+
+    @v_args(meta=True)
+    def ty_post(self, meta, items):
+        return A.TPost(self.span(meta), items[0], str(items[1]))
+
+    @v_args(meta=True)
+    def ty_tuple(self, meta, items):
+        return items[0] if len(items) == 1 else A.TTuple(self.span(meta), list(items))
+
+    # -- expressions
+    @v_args(meta=True)
+    def if_(self, meta, items):
+        return A.If(self.span(meta), *items)
+
+    @v_args(meta=True)
+    def case(self, meta, items):
+        return A.Case(self.span(meta), items[0], items[1])
+
+    @v_args(meta=True)
+    def fn(self, meta, items):
+        return A.Fn(self.span(meta), items[0])
+
+    def match(self, items):
+        return list(items)
+
+    def mrule(self, items):
+        return (items[0], items[1])
+
+    @v_args(meta=True)
+    def orelse(self, meta, items):
+        return A.BinOp(self.span(meta), "orelse", items[0], items[1])
+
+    @v_args(meta=True)
+    def andalso(self, meta, items):
+        return A.BinOp(self.span(meta), "andalso", items[0], items[1])
+
+    @v_args(meta=True)
+    def binop(self, meta, items):
+        left, op, right = items
+        return A.BinOp(self.span(meta), str(op), left, right)
+
+    @v_args(meta=True)
+    def neg(self, meta, items):
+        x = items[0]
+        if isinstance(x, A.Const) and x.kind in ("int", "real"):
+            return A.Const(self.span(meta), -x.value, x.kind)
+        return A.Neg(self.span(meta), x)
+
+    @v_args(meta=True)
+    def app(self, meta, items):
+        return A.App(self.span(meta), items[0], items[1])
+
+    @v_args(meta=True)
+    def int_(self, meta, items):
+        return A.Const(self.span(meta), int(items[0]), "int")
+
+    @v_args(meta=True)
+    def real_(self, meta, items):
+        return A.Const(self.span(meta), float(str(items[0]).replace("~", "-")), "real")
+
+    @v_args(meta=True)
+    def string_(self, meta, items):
+        text = str(items[0])
+        if text.startswith("#"):
+            text = text[1:]
+        return A.Const(self.span(meta), _unescape(text[1:-1]), "string")
+
+    @v_args(meta=True)
+    def ident(self, meta, items):
+        name = str(items[0])
+        if name in ("true", "false"):
+            return A.Const(self.span(meta), name == "true", "bool")
+        return A.Name(self.span(meta), name)
+
+    @v_args(meta=True)
+    def qident(self, meta, items):
+        return A.Name(self.span(meta), str(items[0]))
+
+    @v_args(meta=True)
+    def select(self, meta, items):
+        return A.Select(self.span(meta), str(items[0]))
+
+    @v_args(meta=True)
+    def unit_(self, meta, items):
+        return A.Const(self.span(meta), (), "unit")
+
+    @v_args(meta=True)
+    def annot(self, meta, items):
+        return A.Annot(self.span(meta), items[0], items[1])
+
+    @v_args(meta=True)
+    def tuple_(self, meta, items):
+        return A.TupleE(self.span(meta), list(items))
+
+    @v_args(meta=True)
+    def seq(self, meta, items):
+        return A.Seq(self.span(meta), list(items))
+
+    @v_args(meta=True)
+    def list_(self, meta, items):
+        return A.ListE(self.span(meta), [i for i in items if i is not None])
+
+    @v_args(meta=True)
+    def record_(self, meta, items):
+        return A.RecordE(self.span(meta), [i for i in items if i is not None])
+
+    def efield(self, items):
+        return (str(items[0]), items[1])
+
+    @v_args(meta=True)
+    def let_(self, meta, items):
+        decls = [i for i in items if isinstance(i, A.Decl)]
+        exprs = [i for i in items if not isinstance(i, A.Decl)]
+        body = exprs[0] if len(exprs) == 1 else A.Seq(self.span(meta), exprs)
+        return A.Let(self.span(meta), decls, body)
+
+    @v_args(meta=True)
+    def opfun(self, meta, items):
+        return A.OpFun(self.span(meta), str(items[0]))
+
+    @v_args(meta=True)
+    def lval(self, meta, items):
+        return A.ValDecl(self.span(meta), items[0], items[1])
+
+    @v_args(meta=True)
+    def lfun(self, meta, items):
+        return self._fun(meta, [i for i in items if i is not None])
+
+    # -- patterns
+    @v_args(meta=True)
+    def pannot(self, meta, items):
+        return A.PAnnot(self.span(meta), items[0], items[1])
+
+    @v_args(meta=True)
+    def pas(self, meta, items):
+        return A.PAs(self.span(meta), str(items[0]), items[1])
+
+    @v_args(meta=True)
+    def pconsop(self, meta, items):
+        return A.PCons(self.span(meta), items[0], items[1])
+
+    @v_args(meta=True)
+    def pcon(self, meta, items):
+        return A.PCon(self.span(meta), str(items[0]), items[1])
+
+    @v_args(meta=True)
+    def pwild(self, meta, items):
+        return A.PWild(self.span(meta))
+
+    @v_args(meta=True)
+    def pname(self, meta, items):
+        name = str(items[0])
+        if name in ("true", "false"):
+            return A.PConst(self.span(meta), name == "true", "bool")
+        return A.PVar(self.span(meta), name)
+
+    @v_args(meta=True)
+    def pint(self, meta, items):
+        return A.PConst(self.span(meta), int(items[0]), "int")
+
+    @v_args(meta=True)
+    def pnegint(self, meta, items):
+        return A.PConst(self.span(meta), -int(items[0]), "int")
+
+    @v_args(meta=True)
+    def pstring(self, meta, items):
+        text = str(items[0])
+        if text.startswith("#"):
+            text = text[1:]
+        return A.PConst(self.span(meta), _unescape(text[1:-1]), "string")
+
+    @v_args(meta=True)
+    def punit(self, meta, items):
+        return A.PConst(self.span(meta), (), "unit")
+
+    @v_args(meta=True)
+    def ptuple(self, meta, items):
+        return A.PTuple(self.span(meta), list(items))
+
+    @v_args(meta=True)
+    def plist(self, meta, items):
+        return A.PList(self.span(meta), [i for i in items if i is not None])
+
+    @v_args(meta=True)
+    def precord(self, meta, items):
+        flexible = bool(items) and isinstance(items[-1], Token)
+        fields = [i for i in items if i is not None and not isinstance(i, Token)]
+        return A.PRecord(self.span(meta), fields, flexible)
+
+    def pfield(self, items):
+        if len(items) == 1:
+            tok = items[0]
+            return (str(tok), A.PVar(self.tspan(tok), str(tok)))
+        return (str(items[0]), items[1])
