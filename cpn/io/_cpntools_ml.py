@@ -1,0 +1,119 @@
+"""Lexical helpers for the CPN ML text found in CPN Tools files: names, keywords, impure identifiers.
+
+Nothing here parses CPN ML; the one front end (`cpn.lang`) does. These helpers only look at tokens, to
+decide how to write a name and to refuse what no state space can hold. Imports the standard library only.
+"""
+
+from __future__ import annotations
+
+import re
+
+# A name that can be written without quotes in `.cpnet`.
+IDENT_RE = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
+
+# Words that cannot be bare names: SML reserved words and the `.cpnet` structure keywords.
+KEYWORDS: frozenset[str] = frozenset(
+    """abstype and andalso as case datatype do else end eqtype exception fn fun functor handle if in
+    include infix infixr let local nonfix of op open orelse raise rec sharing sig signature struct
+    structure then type val where while with withtype not div mod
+    colset var net place trans transition arc inhibitor reset module port out io instance fusion priority
+    timed unit bool int real string index product record list union subset by empty true false
+    """.split()
+)
+
+# Functions that draw random values from an infinite or continuous domain (CPN Tools' random
+# distribution library). A net that calls them has no deterministic occurrence graph.
+RANDOM_FUNCTIONS: frozenset[str] = frozenset(
+    """exponential normal uniform erlang gamma beta chisq student weibull rayleigh cauchy lognormal
+    discrete bernoulli binomial poisson""".split()
+)
+
+_TOKEN_RE = re.compile(
+    r"""(?P<comment>\(\*)|(?P<string>"(?:[^"\\]|\\.)*")|(?P<name>[A-Za-z][A-Za-z0-9_']*(?:\.[A-Za-z][A-Za-z0-9_']*)*)
+    |(?P<assign>:=)|(?P<bang>!(?=\s*[A-Za-z(]))|(?P<other>.)""",
+    re.S | re.X,
+)
+
+
+def strip_comments(text: str) -> str:
+    """Replace (nested) ML comments by blanks of the same shape, so positions stay valid."""
+    out = []
+    depth = 0
+    i = 0
+    n = len(text)
+    in_string = False
+    while i < n:
+        two = text[i : i + 2]
+        ch = text[i]
+        if depth == 0 and ch == '"':
+            in_string = not in_string
+            out.append(ch)
+            i += 1
+            continue
+        if in_string:
+            if ch == "\\" and i + 1 < n:
+                out.append(text[i : i + 2])
+                i += 2
+                continue
+            out.append(ch)
+            i += 1
+            continue
+        if two == "(*":
+            depth += 1
+            out.append("  ")
+            i += 2
+            continue
+        if two == "*)" and depth:
+            depth -= 1
+            out.append("  ")
+            i += 2
+            continue
+        out.append(ch if depth == 0 or ch == "\n" else " ")
+        i += 1
+    return "".join(out)
+
+
+def names(text: str) -> list[tuple[str, int]]:
+    """The (possibly qualified) identifiers of a CPN ML text with their offsets, outside strings/comments."""
+    result = []
+    for m in _TOKEN_RE.finditer(strip_comments(text)):
+        if m.lastgroup == "name":
+            result.append((m.group(), m.start()))
+    return result
+
+
+def assigned_refs(text: str) -> set[str]:
+    """Names assigned with `:=` in a text (`x := e`)."""
+    clean = strip_comments(text)
+    return set(re.findall(r"([A-Za-z][A-Za-z0-9_']*)\s*:=", clean))
+
+
+def declared_functions(text: str) -> list[tuple[str, str]]:
+    """(name, body text) for each `fun NAME` / `val NAME` declared in an ML declaration text.
+
+    The body is everything up to the next top-level `fun`/`val` keyword: an over-approximation that is
+    good enough to decide which names a declaration depends on.
+    """
+    clean = strip_comments(text)
+    heads = list(re.finditer(r"\b(fun|val)\s+(?:\(\s*)?([A-Za-z][A-Za-z0-9_']*)", clean))
+    out = []
+    for i, m in enumerate(heads):
+        end = heads[i + 1].start() if i + 1 < len(heads) else len(clean)
+        out.append((m.group(2), clean[m.end() : end]))
+    return out
+
+
+def ml_name(text: str) -> str:
+    """The name CPN Tools gives an element in ML and in its reports: white space becomes `_`.
+
+    CPN Tools writes a place named "Packets<newline>To Send" as `Packets_To_Send` (`Mark.Top'Send_Mes`,
+    `Bind.Page'Take_Chopsticks` in the sample nets' saved queries).
+    """
+    return re.sub(r"\s", "_", text.strip())
+
+
+def quote(name: str) -> str:
+    """`name` as written in `.cpnet`: bare if it is an identifier and no keyword, else quoted."""
+    if IDENT_RE.match(name) and name not in KEYWORDS:
+        return name
+    return '"' + name.replace("\\", "\\\\").replace('"', '\\"') + '"'
