@@ -1,0 +1,254 @@
+"""Breadth-first generation of the occurrence graph: `Explorer(engine, options).run() -> Exploration`.
+
+Imports `cpn.statespace.*` and the standard library only; the engine is used through its protocol
+(docs/internals.md). The driver, the store (`graph.StateGraph`) and the trace builder (`trace`) are
+separate; the frontier is the tail `states[expanded:]` of the store, which BFS fills in order.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from cpn.statespace._memory import current_rss_mb, peak_rss_mb
+from cpn.statespace.graph import StateGraph
+from cpn.statespace.options import ExploreOptions, StopReason
+
+# How many BFS levels without a new untimed marking, and how far past the clock at which the untimed
+# markings stopped changing, before a timed search is declared to grow only because time grows.
+TIME_GROWTH_LEVELS: int = 8
+# The limits (time, memory) and the progress hook are looked at every this many expansions.
+CHECK_EVERY: int = 512
+
+
+@dataclass(frozen=True)
+class Progress:
+    """A snapshot for progress displays."""
+
+    states: int
+    arcs: int
+    queue: int
+    seconds: float
+    memory_mb: float
+
+    @property
+    def states_per_second(self) -> float:
+        return self.states / self.seconds if self.seconds > 0 else 0.0
+
+
+@dataclass
+class Exploration:
+    """The result of one exploration: the graph, why it stopped and what it cost."""
+
+    engine: object
+    graph: StateGraph
+    options: ExploreOptions
+    stop_reason: StopReason
+    seconds: float
+    peak_memory_mb: float
+    predicate_state: int | None = None
+    untimed_states: int | None = None
+    time_growth: dict | None = None
+    levels: int = 0
+    notes: list = field(default_factory=list)
+
+    @property
+    def complete(self) -> bool:
+        return self.stop_reason is StopReason.COMPLETE
+
+    @property
+    def n_states(self) -> int:
+        return self.graph.n_states
+
+    @property
+    def n_arcs(self) -> int:
+        return self.graph.n_arcs
+
+    @property
+    def unexpanded(self) -> int:
+        return self.graph.n_states - self.graph.expanded
+
+
+class Explorer:
+    """A breadth-first search over an engine's states, recording why it stopped.
+
+    Parameters
+    ----------
+    engine : an object with the engine protocol (`initial_state`, `successors`, ...).
+    options : ExploreOptions, the limits.
+    progress : optional callable receiving a `Progress` about every `options.progress_interval` s.
+
+    Examples
+    --------
+    >>> from tests.statespace._toy import pt_net          # doctest: +SKIP
+    >>> Explorer(pt_net([[1, 0]], [[0, 1]], [1, 0])).run().n_states  # doctest: +SKIP
+    2
+    """
+
+    def __init__(self, engine, options: ExploreOptions | None = None,
+                 progress: Callable[[Progress], None] | None = None):
+        self.engine = engine
+        self.options = options or ExploreOptions()
+        self.progress = progress
+
+    def run(self) -> Exploration:
+        engine = self.engine
+        opts = self.options
+        g = StateGraph()
+        states, index = g.states, g.index
+        offsets, dst, bes, parent, parent_be = g.offsets, g.dst, g.bes, g.parent, g.parent_be
+        t0 = time.perf_counter()
+
+        s0 = engine.initial_state()
+        index[s0] = 0
+        states.append(s0)
+        parent.append(-1)
+        parent_be.append(-1)
+
+        pred = opts.stop_predicate
+        max_states = opts.max_states if opts.max_states is not None else 1 << 62
+        max_arcs = opts.max_arcs if opts.max_arcs is not None else 1 << 62
+        deadline = t0 + opts.max_seconds if opts.max_seconds is not None else None
+        max_mem = opts.max_memory_mb
+        progress = self.progress
+        next_progress = t0 + opts.progress_interval
+
+        timed_check = bool(getattr(engine, "is_timed", False)) and opts.detect_time_growth
+        watcher = _TimeGrowthWatcher(engine) if getattr(engine, "is_timed", False) else None
+        if watcher is not None:
+            watcher.level(states, 0, 1)
+
+        stop = StopReason.COMPLETE
+        predicate_state = None
+        if pred is not None and pred(s0):
+            stop, predicate_state = StopReason.PREDICATE, 0
+
+        successors = engine.successors
+        index_get = index.get
+        states_append = states.append
+        parent_append = parent.append
+        pbe_append = parent_be.append
+        dst_append = dst.append
+        bes_append = bes.append
+        off_append = offsets.append
+        head = 0
+        level_end = 1
+        levels = 0
+        n_arcs = 0
+        try:
+            while stop is StopReason.COMPLETE and head < len(states):
+                if head == level_end:
+                    levels += 1
+                    if watcher is not None:
+                        watcher.level(states, level_end, len(states))
+                        if timed_check and watcher.grows_only_by_time():
+                            stop = StopReason.TIME_GROWS
+                            break
+                    level_end = len(states)
+                if not head & (CHECK_EVERY - 1) and head:
+                    now = time.perf_counter()
+                    if deadline is not None and now >= deadline:
+                        stop = StopReason.MAX_SECONDS
+                        break
+                    if max_mem is not None and current_rss_mb() >= max_mem:
+                        stop = StopReason.MAX_MEMORY
+                        break
+                    if progress is not None and now >= next_progress:
+                        next_progress = now + opts.progress_interval
+                        progress(Progress(len(states), n_arcs, len(states) - head, now - t0, current_rss_mb()))
+                if len(states) >= max_states:
+                    stop = StopReason.MAX_STATES
+                    break
+                if n_arcs >= max_arcs:
+                    stop = StopReason.MAX_ARCS
+                    break
+                for be, t in successors(states[head]):
+                    j = index_get(t)
+                    if j is None:
+                        j = len(states)
+                        index[t] = j
+                        states_append(t)
+                        parent_append(head)
+                        pbe_append(be)
+                        if pred is not None and pred(t):
+                            stop, predicate_state = StopReason.PREDICATE, j
+                    dst_append(j)
+                    bes_append(be)
+                n_arcs = len(dst)
+                off_append(n_arcs)
+                head += 1
+        except KeyboardInterrupt:
+            # A half-expanded state keeps no arcs: it is unexpanded. States it discovered stay.
+            del dst[offsets[-1]:]
+            del bes[offsets[-1]:]
+            stop = StopReason.INTERRUPTED
+        seconds = time.perf_counter() - t0
+        if watcher is not None:
+            watcher.level(states, watcher.seen_upto, len(states))
+        if progress is not None:
+            progress(Progress(len(states), len(dst), len(states) - g.expanded, seconds, current_rss_mb()))
+        return Exploration(
+            engine=engine, graph=g, options=opts, stop_reason=stop, seconds=seconds,
+            peak_memory_mb=peak_rss_mb(), predicate_state=predicate_state,
+            untimed_states=len(watcher.untimed) if watcher is not None else None,
+            time_growth=watcher.evidence() if stop is StopReason.TIME_GROWS else None,
+            levels=levels,
+        )
+
+
+class _TimeGrowthWatcher:
+    """Follows, level by level, the distinct untimed markings and the clock of a timed search.
+
+    The search is declared to grow only because time grows when no new untimed marking has appeared
+    for TIME_GROWTH_LEVELS levels and every state of the newest level has a clock beyond twice the
+    largest clock seen when the last new untimed marking appeared (so at least one more full period of
+    the protocol's timing was explored without anything but time changing).
+    """
+
+    def __init__(self, engine):
+        self.untimed_of = engine.untimed
+        self.clock_of = engine.clock
+        self.untimed: set = set()
+        self.seen_upto = 0
+        self.quiet_levels = 0
+        self.max_clock = 0
+        self.clock_at_saturation = 0
+        self.last_min_clock = 0
+
+    def level(self, states, start, end):
+        if start >= end:
+            return
+        before = len(self.untimed)
+        add = self.untimed.add
+        untimed_of, clock_of = self.untimed_of, self.clock_of
+        lo = None
+        hi = self.max_clock
+        for i in range(start, end):
+            s = states[i]
+            add(untimed_of(s))
+            c = clock_of(s)
+            if lo is None or c < lo:
+                lo = c
+            if c > hi:
+                hi = c
+        self.seen_upto = end
+        self.max_clock = hi
+        self.last_min_clock = lo
+        if len(self.untimed) > before:
+            self.quiet_levels = 0
+            self.clock_at_saturation = hi
+        else:
+            self.quiet_levels += 1
+
+    def grows_only_by_time(self) -> bool:
+        return (self.quiet_levels >= TIME_GROWTH_LEVELS
+                and self.last_min_clock > 2 * self.clock_at_saturation + 1)
+
+    def evidence(self) -> dict:
+        return {
+            "untimed_markings": len(self.untimed),
+            "levels_without_new_untimed_marking": self.quiet_levels,
+            "clock_when_untimed_markings_stopped_growing": self.clock_at_saturation,
+            "frontier_min_clock": self.last_min_clock,
+        }

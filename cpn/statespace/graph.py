@@ -1,0 +1,73 @@
+"""The occurrence graph as compact arrays: states, CSR arcs and BFS parent pointers.
+
+Imports the standard library only. Arcs are stored per source state in breadth-first order, so the
+arcs of state i are `dst[offsets[i]:offsets[i+1]]` (destinations) and `bes[...]` (binding elements).
+"""
+
+from __future__ import annotations
+
+from array import array
+from dataclasses import dataclass, field
+
+
+@dataclass
+class StateGraph:
+    """States (engine tuples) numbered 0.. in discovery order; arcs in CSR form.
+
+    Only the first `expanded` states have their arcs; the rest are unexpanded (a limit stopped the
+    search before they were reached). `parent[i]`/`parent_be[i]` give the BFS tree (-1 for state 0),
+    so the path they describe is a shortest path from the initial state.
+    """
+
+    states: list = field(default_factory=list)
+    index: dict = field(default_factory=dict)
+    offsets: array = field(default_factory=lambda: array("q", [0]))
+    dst: array = field(default_factory=lambda: array("i"))
+    bes: array = field(default_factory=lambda: array("i"))
+    parent: array = field(default_factory=lambda: array("i"))
+    parent_be: array = field(default_factory=lambda: array("i"))
+
+    @property
+    def n_states(self) -> int:
+        return len(self.states)
+
+    @property
+    def n_arcs(self) -> int:
+        return len(self.dst)
+
+    @property
+    def expanded(self) -> int:
+        """Number of states whose successors were computed (they are states 0..expanded-1)."""
+        return len(self.offsets) - 1
+
+    def is_expanded(self, i: int) -> bool:
+        return i < len(self.offsets) - 1
+
+    def out_arcs(self, i: int) -> list[tuple[int, int]]:
+        """(binding element, destination) of every arc leaving state i (empty if unexpanded)."""
+        if i >= len(self.offsets) - 1:
+            return []
+        a, b = self.offsets[i], self.offsets[i + 1]
+        return list(zip(self.bes[a:b], self.dst[a:b]))
+
+    def state_id(self, state: tuple) -> int | None:
+        return self.index.get(state)
+
+    def dead_states(self) -> list[int]:
+        """Expanded states with no outgoing arc, in increasing order (unexpanded states excluded)."""
+        off = self.offsets
+        return [i for i in range(len(off) - 1) if off[i] == off[i + 1]]
+
+    def arc_sources(self) -> array:
+        """The source state of every arc, as an array parallel to `dst`."""
+        src = array("i")
+        off = self.offsets
+        for i in range(len(off) - 1):
+            n = off[i + 1] - off[i]
+            if n:
+                src.extend(array("i", [i]) * n)
+        return src
+
+    def nbytes(self) -> int:
+        """Bytes held by the arc and parent arrays (the states themselves are engine tuples)."""
+        return sum(a.itemsize * len(a) for a in (self.offsets, self.dst, self.bes, self.parent, self.parent_be))

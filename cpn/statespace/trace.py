@@ -1,0 +1,81 @@
+"""Shortest traces from the initial state, rebuilt from BFS parent pointers, and their replay.
+
+Imports `cpn.statespace.graph` and the standard library only.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from cpn.statespace.graph import StateGraph
+
+
+@dataclass(frozen=True)
+class Step:
+    """One occurrence: binding element `be` leads from state `source` to state `target`."""
+
+    be: int
+    source: int
+    target: int
+    text: str = ""
+    changes: tuple = ()  # (place name, marking before, marking after) for every place that changed
+
+
+@dataclass(frozen=True)
+class Trace:
+    """A path from the initial state (state 0) to `target`; shortest when built from a BFS."""
+
+    target: int
+    steps: tuple = field(default_factory=tuple)
+
+    def __len__(self) -> int:
+        return len(self.steps)
+
+    def to_json(self) -> list[dict]:
+        return [{"binding_element": s.text, "from": s.source + 1, "to": s.target + 1,
+                 "changes": [{"place": p, "before": a, "after": b} for p, a, b in s.changes]}
+                for s in self.steps]
+
+
+def shortest_trace(graph: StateGraph, target: int, engine=None) -> Trace:
+    """The BFS-tree path to `target`; with an engine, each step carries its text and marking changes."""
+    path = []
+    v = target
+    parent, parent_be = graph.parent, graph.parent_be
+    while v > 0:
+        path.append((parent_be[v], parent[v], v))
+        v = parent[v]
+    path.reverse()
+    steps = []
+    for be, a, b in path:
+        if engine is None:
+            steps.append(Step(be, a, b))
+            continue
+        sa, sb = graph.states[a], graph.states[b]
+        changes = []
+        for p, place in enumerate(engine.places):
+            if p < len(sa) and sa[p] == sb[p]:
+                continue
+            before, after = engine.format_marking(sa, p), engine.format_marking(sb, p)
+            if before != after:
+                changes.append((place.name, before, after))
+        steps.append(Step(be, a, b, engine.format_binding_element(be), tuple(changes)))
+    return Trace(target, tuple(steps))
+
+
+def replay(engine, graph: StateGraph, trace: Trace) -> bool:
+    """Fire the trace's binding elements again from the initial state; True if it reaches its target.
+
+    Each step must be an enabled binding element of the engine at the current state, and lead to the
+    state the graph recorded.
+    """
+    state = engine.initial_state()
+    if graph.states[0] != state:
+        return False
+    for step in trace.steps:
+        nxt = [t for be, t in engine.successors(state) if be == step.be]
+        want = graph.states[step.target]
+        if want not in nxt:
+            return False
+        state = want
+    return state == graph.states[trace.target]
