@@ -663,7 +663,9 @@ class _Translator:
         if len(terms) < 2:
             self._arity(el, terms, 2, where)
             return terms[0] if terms else _Term("empty", is_ms=True)
-        text = " -- ".join(f"({t.as_ms()})" if not t.atomic else t.as_ms() for t in terms)
+        parts = [terms[0].as_ms()]
+        parts += [f"({t.as_ms()})" if (" ++ " in t.text or " -- " in t.text) else t.as_ms() for t in terms[1:]]
+        text = " -- ".join(parts)
         return _Term(text, is_ms=True, sort=expect, atomic=False)
 
     def _step(self, el, where, op):

@@ -1,0 +1,370 @@
+"""`cpn-verify validate DIR`: explore every instance of an external validation corpus and compare.
+
+DIR holds `expected.json` (shared/validation/README.md): per instance a model file, its format and the
+published figures. Each model goes through `cpn.load`, is explored completely, and every published
+figure (states, arcs, token maxima, dead markings, the Model Checking Contest global properties) is
+compared. Exit status: 0 all match, 1 some figure differs (or a model cannot be loaded), 2 nothing
+differs but some state space was cut short by --max-states.
+"""
+
+from __future__ import annotations
+
+import argparse
+import fnmatch
+import importlib.util
+import json
+import os
+import sys
+import time
+from array import array
+from dataclasses import dataclass, field
+
+FIGURES = ("states", "arcs", "max_tokens_per_marking", "max_tokens_in_place", "dead_markings",
+           "deadlock_reachable")
+PROPERTIES = ("OneSafe", "QuasiLiveness", "Liveness", "StableMarking")
+MAX_STATES_DEFAULT = 3_000_000
+
+
+def add_parser(subparsers) -> argparse.ArgumentParser:
+    p = subparsers.add_parser(
+        "validate", help="explore an external validation corpus and compare with its published figures",
+        description=__doc__.split("\n\n")[1], formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("directory", metavar="DIR", help="folder with expected.json and the model files")
+    p.add_argument("--max-states", type=int, default=MAX_STATES_DEFAULT, metavar="N",
+                   help=f"stop exploring an instance after N states (default {MAX_STATES_DEFAULT:,})")
+    p.add_argument("--only", action="append", metavar="NAME",
+                   help="validate only instances whose name matches NAME (a glob; may be repeated)")
+    p.add_argument("--skip-larger-than", type=int, metavar="N",
+                   help="skip instances whose published state count exceeds N")
+    p.add_argument("--json", metavar="FILE", help="also write the results as JSON to FILE")
+    return p
+
+
+# ---------------------------------------------------------------------- exploration
+
+@dataclass
+class Figures:
+    """What one complete (or cut short) exploration found, in expected.json's vocabulary."""
+
+    states: int = 0
+    arcs: int = 0
+    max_tokens_per_marking: int = 0
+    max_tokens_in_place: int = 0  # all tokens of one place
+    max_of_one_colour_in_place: int = 0  # the largest multiplicity of one colour in one place
+    dead_markings: int = 0
+    complete: bool = True
+    properties: dict[str, bool] = field(default_factory=dict)
+
+    @property
+    def deadlock_reachable(self) -> bool:
+        return self.dead_markings > 0
+
+
+def _max_multiplicity(ms) -> int:
+    if not ms:
+        return 0
+    values = getattr(ms, "values", None)
+    if values is not None:
+        return max(values(), default=0)
+    return max((n for _v, n in ms.items()), default=0)
+
+
+def _key(transition) -> str:
+    return getattr(transition, "name", None) or str(transition)
+
+
+def explore_figures(engine, max_states: int = MAX_STATES_DEFAULT) -> Figures:
+    """Breadth-first exploration with the engine protocol (docs/internals.md), and the figures.
+
+    The global properties follow the Model Checking Contest on the net as given (for a coloured net,
+    its coloured places and transitions): OneSafe, no place ever holds two tokens; QuasiLiveness, every
+    transition occurs; Liveness, every transition occurs in every terminal strongly connected component;
+    StableMarking, some place has the same marking in every reachable state.
+    """
+    ntrans = len(engine.transitions)
+    tindex = {_key(t): i for i, t in enumerate(engine.transitions)}
+    be_trans: dict[int, int] = {}
+    s0 = engine.initial_state()
+    index = {s0: 0}
+    queue = [s0]
+    offsets = array("q", [0])
+    dst = array("q")
+    via = array("i")
+    fig = Figures()
+    nplaces = len(engine.places)
+    first_marking = None
+    stable = [True] * nplaces
+    head = 0
+    while head < len(queue):
+        s = queue[head]
+        head += 1
+        counts = engine.token_counts(s)
+        total = sum(counts)
+        if total > fig.max_tokens_per_marking:
+            fig.max_tokens_per_marking = total
+        top = max(counts, default=0)
+        if top > fig.max_tokens_in_place:
+            fig.max_tokens_in_place = top
+        marking = engine.marking(s)
+        for ms in marking:
+            m = _max_multiplicity(ms)
+            if m > fig.max_of_one_colour_in_place:
+                fig.max_of_one_colour_in_place = m
+        if first_marking is None:
+            first_marking = marking
+        else:
+            for p in range(nplaces):
+                if stable[p] and marking[p] != first_marking[p]:
+                    stable[p] = False
+        succs = list(engine.successors(s))
+        if not succs:
+            fig.dead_markings += 1
+        for be, s1 in succs:
+            j = index.get(s1)
+            if j is None:
+                if len(index) >= max_states:
+                    fig.complete = False
+                    continue
+                j = len(index)
+                index[s1] = j
+                queue.append(s1)
+            t = be_trans.get(be)
+            if t is None:
+                t = be_trans[be] = tindex[_key(engine.binding_element(be).transition)]
+            dst.append(j)
+            via.append(t)
+        offsets.append(len(dst))
+    fig.states = len(index)
+    fig.arcs = len(dst)
+    if not fig.complete:
+        return fig
+    fired = set(via)
+    fig.properties["OneSafe"] = fig.max_tokens_in_place <= 1
+    fig.properties["QuasiLiveness"] = len(fired) == ntrans
+    fig.properties["StableMarking"] = any(stable)
+    live = True
+    for comp in terminal_components(fig.states, offsets, dst):
+        seen = {via[k] for v in comp for k in range(offsets[v], offsets[v + 1])}
+        if len(seen) < ntrans:
+            live = False
+            break
+    fig.properties["Liveness"] = live
+    return fig
+
+
+def terminal_components(n: int, offsets, dst) -> list[list[int]]:
+    """The terminal strongly connected components of a graph in CSR form (iterative Tarjan).
+
+    Tarjan, "Depth-first search and linear graph algorithms", SIAM J. Computing 1(2), 1972.
+    """
+    index = [-1] * n
+    low = [0] * n
+    on_stack = [False] * n
+    comp_of = [-1] * n
+    stack: list[int] = []
+    comps: list[list[int]] = []
+    counter = 0
+    for root in range(n):
+        if index[root] != -1:
+            continue
+        work = [(root, offsets[root])]
+        index[root] = low[root] = counter
+        counter += 1
+        stack.append(root)
+        on_stack[root] = True
+        while work:
+            v, k = work[-1]
+            end = offsets[v + 1]
+            descended = False
+            while k < end:
+                w = dst[k]
+                k += 1
+                if index[w] == -1:
+                    work[-1] = (v, k)
+                    index[w] = low[w] = counter
+                    counter += 1
+                    stack.append(w)
+                    on_stack[w] = True
+                    work.append((w, offsets[w]))
+                    descended = True
+                    break
+                if on_stack[w] and index[w] < low[v]:
+                    low[v] = index[w]
+            if descended:
+                continue
+            work.pop()
+            if work:
+                u = work[-1][0]
+                if low[v] < low[u]:
+                    low[u] = low[v]
+            if low[v] == index[v]:
+                comp = []
+                while True:
+                    w = stack.pop()
+                    on_stack[w] = False
+                    comp_of[w] = len(comps)
+                    comp.append(w)
+                    if w == v:
+                        break
+                comps.append(comp)
+    terminal = []
+    for c, comp in enumerate(comps):
+        if all(comp_of[dst[k]] == c for v in comp for k in range(offsets[v], offsets[v + 1])):
+            terminal.append(comp)
+    return terminal
+
+
+# ---------------------------------------------------------------------- comparison
+
+@dataclass
+class Result:
+    name: str
+    format: str
+    status: str  # "match", "mismatch", "partial", "skipped", "error"
+    seconds: float = 0.0
+    expected: dict = field(default_factory=dict)
+    found: dict = field(default_factory=dict)
+    differences: list[str] = field(default_factory=list)
+    reason: str = ""
+
+
+def found_figures(fig: Figures, fmt: str) -> dict:
+    """The figures in expected.json's keys; for coloured PNML, max_tokens_in_place is the contest's."""
+    in_place = fig.max_of_one_colour_in_place if fmt == "pnml-col" else fig.max_tokens_in_place
+    out = {"states": fig.states, "arcs": fig.arcs, "max_tokens_per_marking": fig.max_tokens_per_marking,
+           "max_tokens_in_place": in_place, "dead_markings": fig.dead_markings,
+           "deadlock_reachable": fig.deadlock_reachable}
+    if fig.complete:
+        out["mcc_global_properties"] = dict(fig.properties)
+    return out
+
+
+def compare(expected: dict, found: dict) -> list[str]:
+    """One line per published figure that differs from what was found."""
+    diffs = []
+    for key in FIGURES:
+        if key in expected and key in found and expected[key] != found[key]:
+            diffs.append(f"{key}: expected {expected[key]}, found {found[key]}")
+    props = expected.get("mcc_global_properties") or {}
+    got = found.get("mcc_global_properties") or {}
+    for key in PROPERTIES:
+        if key in props and key in got and props[key] != got[key]:
+            diffs.append(f"{key}: expected {props[key]}, found {got[key]}")
+    return diffs
+
+
+def _importer_available(fmt: str) -> bool:
+    if fmt == "cpntools":
+        return importlib.util.find_spec("cpn.io.cpntools") is not None
+    return True
+
+
+def validate_instance(directory: str, inst: dict, max_states: int) -> Result:
+    import cpn
+
+    res = Result(inst["name"], inst.get("format", "?"), "error", expected=inst)
+    path = os.path.join(directory, inst["file"])
+    t0 = time.perf_counter()
+    try:
+        model = cpn.load(path)
+        engine = model.engine()
+        fig = explore_figures(engine, max_states)
+    except Exception as exc:  # noqa: BLE001 - one broken instance must not stop the table
+        render = getattr(exc, "render", None)
+        res.reason = render() if callable(render) else f"{type(exc).__name__}: {exc}"
+        res.seconds = time.perf_counter() - t0
+        return res
+    res.seconds = time.perf_counter() - t0
+    res.found = found_figures(fig, res.format)
+    res.differences = compare(inst, res.found)
+    if res.differences:
+        res.status = "mismatch"
+    elif not fig.complete:
+        res.status = "partial"
+        res.reason = f"stopped at --max-states={max_states:,}"
+    else:
+        res.status = "match"
+    return res
+
+
+def select(instances: list[dict], only: list[str] | None, skip_larger_than: int | None) -> list[tuple[dict, str]]:
+    """(instance, reason to skip or '') for every instance chosen by --only."""
+    out = []
+    for inst in instances:
+        if only and not any(fnmatch.fnmatchcase(inst["name"], pat) or inst["name"] == pat for pat in only):
+            continue
+        reason = ""
+        if skip_larger_than is not None and inst.get("states", 0) > skip_larger_than:
+            reason = f"{inst['states']:,} states > --skip-larger-than {skip_larger_than:,}"
+        elif not _importer_available(inst.get("format", "")):
+            reason = f"no importer for format '{inst.get('format')}' yet"
+        out.append((inst, reason))
+    return out
+
+
+# ---------------------------------------------------------------------- output
+
+_COLS = [("instance", 36, "<"), ("states", 10, ">"), ("arcs", 10, ">"), ("tok/mark", 8, ">"),
+         ("tok/place", 9, ">"), ("dead", 6, ">"), ("props", 5, ">"), ("result", 8, "<"), ("seconds", 8, ">")]
+
+
+def _row(values: list[str]) -> str:
+    return "  ".join(f"{v:{align}{width}}" for v, (_n, width, align) in zip(values, _COLS)).rstrip()
+
+
+def format_row(r: Result) -> str:
+    f = r.found
+    if not f:
+        return _row([r.name, "-", "-", "-", "-", "-", "-", r.status, f"{r.seconds:.2f}" if r.seconds else "-"])
+    props = r.expected.get("mcc_global_properties") or {}
+    got = f.get("mcc_global_properties") or {}
+    checked = [k for k in PROPERTIES if k in props and k in got]
+    ok = sum(props[k] == got[k] for k in checked)
+    dead = f"{f['dead_markings']}"
+    return _row([r.name, f"{f['states']:,}", f"{f['arcs']:,}", str(f["max_tokens_per_marking"]),
+                 str(f["max_tokens_in_place"]), dead, f"{ok}/{len(checked)}" if checked else "-",
+                 r.status, f"{r.seconds:.2f}"])
+
+
+def run(args) -> int:
+    directory = args.directory
+    spec = os.path.join(directory, "expected.json")
+    try:
+        with open(spec, encoding="utf-8") as fh:
+            corpus = json.load(fh)
+    except (OSError, ValueError) as exc:
+        print(f"error: cannot read {spec}: {exc}", file=sys.stderr)
+        return 64
+    instances = corpus["instances"] if isinstance(corpus, dict) else corpus
+    chosen = select(instances, args.only, args.skip_larger_than)
+    if not chosen:
+        print("error: no instance matches --only", file=sys.stderr)
+        return 64
+    print(_row([n for n, _w, _a in _COLS]))
+    results = []
+    for inst, skip in chosen:
+        if skip:
+            r = Result(inst["name"], inst.get("format", "?"), "skipped", expected=inst, reason=skip)
+        else:
+            r = validate_instance(directory, inst, args.max_states)
+        results.append(r)
+        print(format_row(r), flush=True)
+        for d in r.differences:
+            print(f"    {d}")
+        if r.reason and r.status != "match":
+            for line in r.reason.splitlines()[:12]:
+                print(f"    {line}")
+    counts = {s: sum(r.status == s for r in results) for s in ("match", "mismatch", "error", "partial", "skipped")}
+    total = sum(r.seconds for r in results)
+    print(f"\n{counts['match']} match, {counts['mismatch']} mismatch, {counts['error']} error, "
+          f"{counts['partial']} partial, {counts['skipped']} skipped; {total:.1f} s")
+    if args.json:
+        payload = [{"name": r.name, "format": r.format, "status": r.status, "seconds": round(r.seconds, 3),
+                    "found": r.found, "differences": r.differences, "reason": r.reason} for r in results]
+        with open(args.json, "w", encoding="utf-8") as fh:
+            json.dump({"directory": directory, "max_states": args.max_states, "results": payload}, fh, indent=2)
+    if counts["mismatch"] or counts["error"]:
+        return 1
+    if counts["partial"]:
+        return 2
+    return 0
