@@ -538,7 +538,7 @@ class _Translator:
         for pel in self.cpnet.findall("page"):
             attr = pel.find("pageattr")
             pname = attr.attrs.get("name", "") if attr is not None else ""
-            page = _Page(pel, pel.attrs.get("id", "?"), ml.ml_name(pname) or pel.attrs.get("id", "Page"))
+            page = _Page(pel, pel.attrs.get("id", "?"), self._module_name(pname, pel))
             self.pages[page.id] = page
             seen: dict[str, int] = {}
             for pl in pel.findall("place"):
@@ -573,6 +573,26 @@ class _Translator:
                 page.transs.append(t)
                 self.transs[t.id] = t
             page.arcs = pel.findall("arc")
+
+    def _module_name(self, pname: str, pel: Element) -> str:
+        """A page name as a module name: `.cpnet` module names are identifiers, unique in the net."""
+        name = ml.ml_name(pname) or pel.attrs.get("id", "Page")
+        if not ml.IDENT_RE.match(name) or name in ml.KEYWORDS:
+            new = re.sub(r"[^A-Za-z0-9_]", "_", name)
+            if not new[:1].isalpha():
+                new = "P" + new
+            if new in ml.KEYWORDS:
+                new += "_"
+            self.notes.append(f"page '{pname}' is called '{new}': a module name must be an identifier")
+            name = new
+        taken = {p.name for p in self.pages.values()}
+        if name in taken:
+            i = 2
+            while f"{name}_{i}" in taken:
+                i += 1
+            self.notes.append(f"two pages are named '{name}'; the one at line {pel.line} is called '{name}_{i}'")
+            name = f"{name}_{i}"
+        return name
 
     def _element_name(self, el: Element, kind: str, page: _Page, seen: dict[str, int]) -> str:
         t = el.find("text")
@@ -807,8 +827,8 @@ class _Translator:
                            hint="Make the place a port (In, Out or I/O) in CPN Tools.")
                 continue
             binds.append(f"{ml.quote(port.name)} = {ml.quote(sock.name)}")
-        body = ", ".join(binds)
-        self.out.stmt([(f"instance {ml.quote(t.name)} = {ml.quote(sub.name)}() {{ {body} }};", None)], o, ind)
+        body = " " + ", ".join(binds) + " " if binds else " "
+        self.out.stmt([(f"instance {ml.quote(t.name)} = {ml.quote(sub.name)}() {{{body}}};", None)], o, ind)
 
     def _arc(self, a: Element, page: _Page, ind: str) -> None:
         aid = a.attrs.get("id", "?")
@@ -925,27 +945,36 @@ def translate(path: str) -> str:
     return translate_file(path).text
 
 
-def remap_error(error: ModelError, translation: Translation, generated_name: str | None = None) -> ModelError:
+def remap_error(error: ModelError, translation: Translation, generated_name: str | None = None,
+                keep_generated_span: bool = False) -> ModelError:
     """Point the diagnostics of a failed load of generated text back at the `.cpn` file.
 
-    A diagnostic positioned in the generated text gets the `.cpn` position of the element it comes from,
-    and a note with the element's id, page and the generated line.
+    A diagnostic positioned in the generated text gets a note with the element's id, page and `.cpn`
+    position. Unless `keep_generated_span` (the generated text is on disk, `cpn-verify convert`), its span
+    moves to the `.cpn` file too.
     """
     out = []
     for d in error.diagnostics:
         s = d.span
-        if s is not None and (generated_name is None or s.file == generated_name or s.file == translation.path):
+        if s is not None and (generated_name is None or s.file in (generated_name, translation.path)):
             found = translation.locate(s.line, s.col)
             if found is not None:
                 span, origin = found
-                notes = list(d.notes) + [f"in {origin.describe()}; line {s.line} of the translated text"]
-                out.append(Diagnostic(d.code, d.message, span, d.hint, notes, dict(d.params), d.severity))
+                if keep_generated_span:
+                    note = f"from {origin.describe()}: {span}"
+                    new_span = s
+                else:
+                    note = f"in {origin.describe()}; line {s.line} of the translated text"
+                    new_span = span
+                out.append(Diagnostic(d.code, d.message, new_span, d.hint, list(d.notes) + [note],
+                                      dict(d.params), d.severity))
                 continue
         out.append(d)
-    sources = {}
-    try:
-        with open(translation.path, encoding="iso-8859-1") as f:
-            sources[translation.path] = f.read()
-    except OSError:
-        pass
+    sources = dict(error.sources)
+    if not keep_generated_span:
+        try:
+            with open(translation.path, encoding="iso-8859-1") as f:
+                sources[translation.path] = f.read()
+        except OSError:
+            pass
     return type(error)(out, sources)
