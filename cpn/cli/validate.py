@@ -16,7 +16,6 @@ import json
 import os
 import sys
 import time
-from array import array
 from dataclasses import dataclass, field
 
 FIGURES = ("states", "arcs", "max_tokens_per_marking", "max_tokens_in_place", "dead_markings",
@@ -60,158 +59,35 @@ class Figures:
         return self.dead_markings > 0
 
 
-def _max_multiplicity(ms) -> int:
-    if not ms:
-        return 0
-    values = getattr(ms, "values", None)
-    if values is not None:
-        return max(values(), default=0)
-    return max((n for _v, n in ms.items()), default=0)
-
-
-def _key(transition) -> str:
-    return getattr(transition, "name", None) or str(transition)
-
-
 def explore_figures(engine, max_states: int = MAX_STATES_DEFAULT) -> Figures:
-    """Breadth-first exploration with the engine protocol (docs/internals.md), and the figures.
+    """Explore with the state-space explorer and compute the figures expected.json publishes.
 
     The global properties follow the Model Checking Contest on the net as given (for a coloured net,
     its coloured places and transitions): OneSafe, no place ever holds two tokens; QuasiLiveness, every
-    transition occurs; Liveness, every transition occurs in every terminal strongly connected component;
-    StableMarking, some place has the same marking in every reachable state.
+    transition occurs; Liveness, every transition occurs in every terminal strongly connected component
+    (so that from every state it can occur again); StableMarking, some place has the same marking in
+    every reachable state.
     """
-    ntrans = len(engine.transitions)
-    tindex = {_key(t): i for i, t in enumerate(engine.transitions)}
-    be_trans: dict[int, int] = {}
-    s0 = engine.initial_state()
-    index = {s0: 0}
-    queue = [s0]
-    offsets = array("q", [0])
-    dst = array("q")
-    via = array("i")
-    fig = Figures()
-    nplaces = len(engine.places)
-    first_marking = None
-    stable = [True] * nplaces
-    head = 0
-    while head < len(queue):
-        s = queue[head]
-        head += 1
-        counts = engine.token_counts(s)
-        total = sum(counts)
-        if total > fig.max_tokens_per_marking:
-            fig.max_tokens_per_marking = total
-        top = max(counts, default=0)
-        if top > fig.max_tokens_in_place:
-            fig.max_tokens_in_place = top
-        marking = engine.marking(s)
-        for ms in marking:
-            m = _max_multiplicity(ms)
-            if m > fig.max_of_one_colour_in_place:
-                fig.max_of_one_colour_in_place = m
-        if first_marking is None:
-            first_marking = marking
-        else:
-            for p in range(nplaces):
-                if stable[p] and marking[p] != first_marking[p]:
-                    stable[p] = False
-        succs = list(engine.successors(s))
-        if not succs:
-            fig.dead_markings += 1
-        for be, s1 in succs:
-            j = index.get(s1)
-            if j is None:
-                if len(index) >= max_states:
-                    fig.complete = False
-                    continue
-                j = len(index)
-                index[s1] = j
-                queue.append(s1)
-            t = be_trans.get(be)
-            if t is None:
-                t = be_trans[be] = tindex[_key(engine.binding_element(be).transition)]
-            dst.append(j)
-            via.append(t)
-        offsets.append(len(dst))
-    fig.states = len(index)
-    fig.arcs = len(dst)
-    if not fig.complete:
+    from cpn.checks._common import TransitionIndex
+    from cpn.checks.bounds import boundedness
+    from cpn.checks.liveness import dead_markings, dead_transitions, live_transitions, scc_summary
+    from cpn.statespace import ExploreOptions, Explorer
+
+    x = Explorer(engine, ExploreOptions(max_states=max_states)).run()
+    b = boundedness(x)
+    fig = Figures(states=x.n_states, arcs=x.n_arcs, max_tokens_per_marking=b.max_tokens_per_marking,
+                  max_tokens_in_place=b.max_tokens_in_place,
+                  max_of_one_colour_in_place=b.max_of_one_colour_in_place,
+                  dead_markings=dead_markings(x).count, complete=x.complete)
+    if not x.complete:
         return fig
-    fired = set(via)
-    fig.properties["OneSafe"] = fig.max_tokens_in_place <= 1
-    fig.properties["QuasiLiveness"] = len(fired) == ntrans
-    fig.properties["StableMarking"] = any(stable)
-    live = True
-    for comp in terminal_components(fig.states, offsets, dst):
-        seen = {via[k] for v in comp for k in range(offsets[v], offsets[v + 1])}
-        if len(seen) < ntrans:
-            live = False
-            break
-    fig.properties["Liveness"] = live
+    tindex = TransitionIndex(engine)
+    live = live_transitions(x, scc_summary(x), tindex.arc_transitions(x.graph.bes))
+    fig.properties["OneSafe"] = b.max_tokens_in_place <= 1
+    fig.properties["QuasiLiveness"] = not dead_transitions(x, tindex)
+    fig.properties["Liveness"] = live is not None and len(live) == len(engine.transitions)
+    fig.properties["StableMarking"] = any(p.upper_multiset == p.lower_multiset for p in b.places)
     return fig
-
-
-def terminal_components(n: int, offsets, dst) -> list[list[int]]:
-    """The terminal strongly connected components of a graph in CSR form (iterative Tarjan).
-
-    Tarjan, "Depth-first search and linear graph algorithms", SIAM J. Computing 1(2), 1972.
-    """
-    index = [-1] * n
-    low = [0] * n
-    on_stack = [False] * n
-    comp_of = [-1] * n
-    stack: list[int] = []
-    comps: list[list[int]] = []
-    counter = 0
-    for root in range(n):
-        if index[root] != -1:
-            continue
-        work = [(root, offsets[root])]
-        index[root] = low[root] = counter
-        counter += 1
-        stack.append(root)
-        on_stack[root] = True
-        while work:
-            v, k = work[-1]
-            end = offsets[v + 1]
-            descended = False
-            while k < end:
-                w = dst[k]
-                k += 1
-                if index[w] == -1:
-                    work[-1] = (v, k)
-                    index[w] = low[w] = counter
-                    counter += 1
-                    stack.append(w)
-                    on_stack[w] = True
-                    work.append((w, offsets[w]))
-                    descended = True
-                    break
-                if on_stack[w] and index[w] < low[v]:
-                    low[v] = index[w]
-            if descended:
-                continue
-            work.pop()
-            if work:
-                u = work[-1][0]
-                if low[v] < low[u]:
-                    low[u] = low[v]
-            if low[v] == index[v]:
-                comp = []
-                while True:
-                    w = stack.pop()
-                    on_stack[w] = False
-                    comp_of[w] = len(comps)
-                    comp.append(w)
-                    if w == v:
-                        break
-                comps.append(comp)
-    terminal = []
-    for c, comp in enumerate(comps):
-        if all(comp_of[dst[k]] == c for v in comp for k in range(offsets[v], offsets[v + 1])):
-            terminal.append(comp)
-    return terminal
 
 
 # ---------------------------------------------------------------------- comparison

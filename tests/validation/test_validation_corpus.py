@@ -1,0 +1,44 @@
+"""End to end: every corpus instance of up to 100,000 states, loaded with `cpn.load`, explored, and
+compared with every figure expected.json publishes (shared/validation/README.md)."""
+
+from __future__ import annotations
+
+import json
+import os
+
+import pytest
+
+from cpn.cli.validate import select, validate_instance
+
+VALIDATION = os.environ.get("CPN_VALIDATION_DIR", "/work/shared/validation")
+LIMIT = 100_000
+
+
+def _instances():
+    try:
+        with open(os.path.join(VALIDATION, "expected.json"), encoding="utf-8") as fh:
+            corpus = json.load(fh)
+    except OSError:
+        return []
+    return [inst for inst in corpus["instances"] if inst["states"] <= LIMIT]
+
+
+INSTANCES = _instances()
+
+
+def _loader_missing() -> bool:
+    import cpn
+
+    return not hasattr(cpn, "load")
+
+
+@pytest.mark.skipif(not INSTANCES, reason="validation corpus not found")
+@pytest.mark.parametrize("inst", INSTANCES, ids=[i["name"] for i in INSTANCES])
+def test_instance_matches_published_figures(inst):
+    if _loader_missing():
+        pytest.skip("cpn.load does not exist yet")
+    [(inst, skip)] = select([inst], None, None)
+    if skip:
+        pytest.skip(skip)
+    res = validate_instance(VALIDATION, inst, max_states=2 * LIMIT)
+    assert res.status == "match", "\n".join(res.differences) or res.reason
