@@ -22,16 +22,17 @@ class StopReason(enum.Enum):
     def describe(self, options: ExploreOptions | None = None) -> str:
         """One sentence saying why the search stopped, with the limit that stopped it."""
         o = options or ExploreOptions()
-        return {
-            StopReason.COMPLETE: "nothing left to explore",
-            StopReason.MAX_STATES: f"max_states={o.max_states} was reached",
-            StopReason.MAX_ARCS: f"max_arcs={o.max_arcs} was reached",
-            StopReason.MAX_SECONDS: f"max_seconds={o.max_seconds:g} was reached",
-            StopReason.MAX_MEMORY: f"max_memory_mb={o.max_memory_mb:g} was reached",
-            StopReason.PREDICATE: "a state satisfied the stop predicate",
-            StopReason.INTERRUPTED: "interrupted by the user",
-            StopReason.TIME_GROWS: "the state space grows only because time grows",
-        }[self]
+        if self is StopReason.COMPLETE:
+            return "nothing left to explore"
+        if self is StopReason.PREDICATE:
+            return "a state satisfied the stop predicate"
+        if self is StopReason.INTERRUPTED:
+            return "interrupted by the user"
+        if self is StopReason.TIME_GROWS:
+            return "the state space grows only because time grows"
+        limit = {StopReason.MAX_STATES: o.max_states, StopReason.MAX_ARCS: o.max_arcs,
+                 StopReason.MAX_SECONDS: o.max_seconds, StopReason.MAX_MEMORY: o.max_memory_mb}[self]
+        return f"{self.value.replace('max_memory', 'max_memory_mb')}={limit:g} was reached" if limit is not None else f"{self.value} was reached"
 
 
 @dataclass(frozen=True)

@@ -1,0 +1,74 @@
+"""The JSON result of `explore`: a stable schema (docs/statespace.md); keys are added, never renamed.
+
+Imports `cpn.report.model` only.
+"""
+
+from __future__ import annotations
+
+from cpn.report.model import Report
+
+SCHEMA_VERSION: int = 1
+EXAMPLES: int = 10
+
+
+def to_json(r: Report) -> dict:
+    x = r.exploration
+    g = x.graph
+    dec = r.scc.decomposition
+    terminal = r.scc.terminal
+    home = r.home
+    return {
+        "schema": SCHEMA_VERSION,
+        "model": r.model,
+        "options": r.options,
+        "statespace": {
+            "states": x.n_states,
+            "arcs": x.n_arcs,
+            "complete": x.complete,
+            "stop_reason": x.stop_reason.value,
+            "stop_message": x.stop_reason.describe(x.options),
+            "unexpanded": x.unexpanded,
+            "seconds": round(x.seconds, 3),
+            "peak_memory_mb": round(x.peak_memory_mb, 1),
+            "timed": r.timed,
+            "time_condensation": bool(x.options.time_condensation),
+            "untimed_states": x.untimed_states,
+            "time_growth": x.time_growth,
+            "levels": x.levels,
+        },
+        "scc": {
+            "nodes": r.scc.nodes,
+            "arcs": r.scc.arcs,
+            "terminal": terminal,
+            "nontrivial": r.scc.nontrivial,
+            "arcs_between_sccs": r.scc.arcs_between,
+            "seconds": round(r.scc.seconds, 3),
+        },
+        "bounds": {b.place: {"upper": b.upper, "lower": b.lower} for b in r.bounds.places},
+        "multiset_bounds": {b.place: {"upper": b.upper_text, "lower": b.lower_text} for b in r.bounds.places},
+        "dead_markings": {
+            "count": r.dead.count,
+            "examples": [i + 1 for i in r.dead.states[:EXAMPLES]],
+            "untimed_count": r.dead.untimed_count,
+            "unexpanded": r.dead.unexpanded,
+            "trace": r.dead_trace.to_json() if r.dead_trace is not None else None,
+        },
+        "dead_transitions": r.dead_transitions,
+        "live_transitions": r.live_transitions,
+        "home_markings": {
+            "count": None if home.states is None else len(home.states),
+            "examples": None if home.states is None else [i + 1 for i in home.states[:EXAMPLES]],
+            "initial_is_home": home.initial_is_home,
+            "all": None if home.states is None else len(home.states) == g.n_states,
+        },
+        "fairness": (None if r.fairness is None
+                     else {name: cls.value for name, cls in r.fairness.items()}),
+        "infinite_occurrence_sequences": (None if not r.fairness_known else any(dec.nontrivial)),
+        "tokens": {
+            "max_per_marking": r.bounds.max_tokens_per_marking,
+            "max_in_place": r.bounds.max_tokens_in_place,
+            "max_of_one_colour_in_place": r.bounds.max_of_one_colour_in_place,
+        },
+        "report_seconds": round(r.seconds, 3),
+        "notes": r.notes,
+    }

@@ -1,0 +1,98 @@
+"""The standard report as data: `build_report(exploration, model=...) -> Report`.
+
+Imports `cpn.checks` and `cpn.statespace` only. Renderers (text, json, graphs) read a Report and
+return text; they compute nothing.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+from cpn.checks import (
+    Boundedness,
+    DeadMarkings,
+    Fairness,
+    HomeMarkings,
+    SccSummary,
+    TransitionIndex,
+    boundedness,
+    dead_markings,
+    dead_transitions,
+    fairness,
+    home_markings,
+    live_transitions,
+    scc_summary,
+)
+from cpn.statespace import Exploration, Trace, shortest_trace
+
+
+@dataclass
+class Report:
+    model: str
+    options: dict
+    exploration: Exploration
+    scc: SccSummary
+    bounds: Boundedness
+    dead: DeadMarkings
+    dead_transitions: list  # names; on a partial space: not seen so far
+    live_transitions: list | None  # names, None when partial
+    home: HomeMarkings
+    fairness: dict | None  # name -> Fairness; None = no infinite occurrence sequences
+    fairness_known: bool  # False on a partial space (not computed)
+    dead_trace: Trace | None
+    seconds: float  # the whole report: generation plus analysis
+    analysis_seconds: float
+    generated: str = ""
+    notes: list = field(default_factory=list)
+
+    @property
+    def engine(self):
+        return self.exploration.engine
+
+    @property
+    def timed(self) -> bool:
+        return bool(getattr(self.engine, "is_timed", False))
+
+
+def build_report(x: Exploration, model: str = "<unsaved net>", options: dict | None = None,
+                 trace_to_dead: bool = True) -> Report:
+    """Compute every section of the standard report from an exploration."""
+    t0 = time.perf_counter()
+    engine = x.engine
+    names = [t.name for t in engine.transitions]
+    tindex = TransitionIndex(engine)
+    arc_t = tindex.arc_transitions(x.graph.bes)
+    scc = scc_summary(x)
+    bounds = boundedness(x)
+    dead = dead_markings(x)
+    dead_t = [names[t] for t in dead_transitions(x, tindex)]
+    live = live_transitions(x, scc, arc_t)
+    live_names = None if live is None else [names[t] for t in live]
+    home = home_markings(x, scc)
+    fair: dict | None = None
+    if x.complete:
+        f = fairness(x, scc.decomposition, arc_t)
+        fair = None if f is None else {names[t]: cls for t, cls in f.items()}
+    trace = None
+    if trace_to_dead and dead.states:
+        trace = shortest_trace(x.graph, dead.states[0], engine)
+    analysis = time.perf_counter() - t0
+    notes = []
+    if x.time_growth is not None:
+        notes.append(
+            "the state space grows only because time grows: after "
+            f"{x.time_growth['untimed_markings']} distinct markings modulo time, "
+            f"{x.time_growth['levels_without_new_untimed_marking']} more BFS levels found nothing but later "
+            f"clocks (now {x.time_growth['frontier_min_clock']}). Run again with --time-condensation "
+            "(CPN Tools' CreationTime reduction) to get a finite state space."
+        )
+    return Report(
+        model=model, options=dict(options or {}), exploration=x, scc=scc, bounds=bounds, dead=dead,
+        dead_transitions=dead_t, live_transitions=live_names, home=home, fairness=fair,
+        fairness_known=x.complete, dead_trace=trace, seconds=x.seconds + analysis,
+        analysis_seconds=analysis, generated=time.strftime("%a %b %d %H:%M:%S %Y"), notes=notes,
+    )
+
+
+__all__ = ["Fairness", "Report", "build_report"]
