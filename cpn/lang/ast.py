@@ -128,6 +128,14 @@ class Annot(Expr):
 
 
 @dataclass(slots=True, eq=False)
+class ToMs(Expr):
+    """A single value used where a multiset is expected: ``1`value`` (inserted by the type checker)."""
+
+    expr: Expr
+    ty: Any = None
+
+
+@dataclass(slots=True, eq=False)
 class OpFun(Expr):
     """`op +`: an infix operator used as a function of a pair."""
 
@@ -199,6 +207,7 @@ class PRecord(Pat):
     fields: list[tuple[str, Pat]]
     flexible: bool
     ty: Any = None
+    ty_labels: list[str] | None = None  # all labels of the record type, set by the type checker
 
 
 @dataclass(slots=True, eq=False)

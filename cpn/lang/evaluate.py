@@ -1,0 +1,308 @@
+"""A tree-walking evaluator of typed CPN ML expressions.
+
+Used to evaluate declarations (`val`, colour-set bounds) while checking, initial markings, and by the
+reference interpreter of the engine. Slow and plain on purpose: it is the oracle the compiled engine is
+tested against.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from cpn.lang import ast as A
+from cpn.lang import types as T
+from cpn.lang.builtins import BUILTINS, MLError
+from cpn.values.multiset import Multiset, MultisetError, TimedMultiset
+
+_NOMATCH = object()
+
+
+class Closure:
+    """A CPN ML function value: clauses evaluated in the environment where the function was defined."""
+
+    __slots__ = ("clauses", "env", "ev", "arity", "name", "args")
+
+    def __init__(self, clauses, env, ev, name="fn", arity=1, args=()):
+        self.clauses = clauses  # list of (params: list[Pat], body)
+        self.env = env
+        self.ev = ev
+        self.arity = arity
+        self.name = name
+        self.args = args
+
+    def __call__(self, arg):
+        args = self.args + (arg,)
+        if len(args) < self.arity:
+            return Closure(self.clauses, self.env, self.ev, self.name, self.arity, args)
+        for params, body in self.clauses:
+            env = dict(self.env)
+            if all(self.ev.match(p, a, env) for p, a in zip(params, args)):
+                return self.ev.eval(body, env)
+        raise MLError(f"no clause of '{self.name}' matches its argument (SML exception Match)")
+
+
+class Evaluator:
+    """Evaluates expressions; `globals` maps symbol uids of vals and functions to values."""
+
+    def __init__(self, colsets: dict, globals_: dict[int, Any] | None = None):
+        self.colsets = colsets  # name -> ColourSet
+        self.globals = {} if globals_ is None else globals_
+        self.time = 0
+        self.ran_choice = None  # callable(ColourSet) -> value, for CS.ran() in simulation
+
+    # ------------------------------------------------------------------ expressions
+    def eval(self, e: A.Expr, env: dict) -> Any:
+        m = getattr(self, "_e_" + type(e).__name__)
+        return m(e, env)
+
+    def _e_Const(self, e, env):
+        return e.value
+
+    def _e_Name(self, e, env):
+        sym = e.ref
+        kind = sym.kind
+        if kind in ("local", "var", "param"):
+            try:
+                return env[sym.uid]
+            except KeyError:
+                raise MLError(f"variable '{sym.name}' is not bound") from None
+        if kind in ("val", "fun"):
+            return self.globals[sym.uid]
+        if kind == "con":
+            info = sym.data
+            if info.kind == "enum":
+                return info.tag
+            if info.kind == "index":
+                cs = self.colsets[info.colset]
+
+                def mk(i, cs=cs):
+                    if not cs.contains(i):
+                        raise MLError(f"{cs.constructor}({i}) is outside colour set {cs.name}")
+                    return i
+                return mk
+            if info.has_arg:
+                return lambda v, tag=info.tag: (tag, v)
+            return info.tag
+        if kind == "builtin":
+            if sym.name in ("intTime", "time"):
+                return lambda _u: self.time
+            return BUILTINS[sym.name][1]
+        if kind == "csop":
+            return self._csop(*sym.data)
+        raise MLError(f"cannot evaluate '{sym.name}'")
+
+    def _csop(self, csname, op):
+        cs = self.colsets[csname]
+        if op == "all":
+            def all_(_u):
+                vals = cs.values()
+                if vals is None:
+                    raise MLError(f"{csname}.all(): colour set {csname} is infinite or too large")
+                return Multiset(vals)
+            return all_
+        if op == "size":
+            return lambda _u: cs.size()
+        if op == "ord":
+            return cs.ord
+        if op == "col":
+            def col(i):
+                vals = cs.values()
+                if vals is None or not 0 <= i < len(vals):
+                    raise MLError(f"{csname}.col({i}) is outside the colour set")
+                return vals[i]
+            return col
+        if op == "legal":
+            return cs.contains
+        if op == "mkstr":
+            return cs.format
+        if op == "ran":
+            def ran(_u):
+                if self.ran_choice is None:
+                    raise MLError(f"{csname}.ran() draws a random value; it is allowed only in arc inscriptions "
+                                  "and guards, where exploration tries every value")
+                return self.ran_choice(cs)
+            return ran
+        raise MLError(f"unknown colour set function {csname}.{op}")
+
+    def _e_Select(self, e, env):
+        idx = e.index
+        return lambda v: v[idx]
+
+    def _e_TupleE(self, e, env):
+        return tuple(self.eval(x, env) for x in e.items)
+
+    def _e_RecordE(self, e, env):
+        vals = {label: self.eval(x, env) for label, x in e.fields}
+        return tuple(vals[label] for label in sorted(vals))
+
+    def _e_ListE(self, e, env):
+        return tuple(self.eval(x, env) for x in e.items)
+
+    def _e_App(self, e, env):
+        f = self.eval(e.fn, env)
+        a = self.eval(e.arg, env)
+        return f(a)
+
+    def _e_Neg(self, e, env):
+        return -self.eval(e.operand, env)
+
+    def _e_If(self, e, env):
+        return self.eval(e.then if self.eval(e.cond, env) else e.else_, env)
+
+    def _e_Case(self, e, env):
+        v = self.eval(e.subject, env)
+        for pat, body in e.rules:
+            env2 = dict(env)
+            if self.match(pat, v, env2):
+                return self.eval(body, env2)
+        raise MLError("no rule of the case-expression matches (SML exception Match)")
+
+    def _e_Fn(self, e, env):
+        return Closure([([p], b) for p, b in e.rules], env, self, "fn")
+
+    def _e_Let(self, e, env):
+        env = dict(env)
+        for d in e.decls:
+            self.declare(d, env)
+        return self.eval(e.body, env)
+
+    def _e_Seq(self, e, env):
+        v = None
+        for x in e.items:
+            v = self.eval(x, env)
+        return v
+
+    def _e_Annot(self, e, env):
+        return self.eval(e.expr, env)
+
+    def _e_ToMs(self, e, env):
+        v = self.eval(e.expr, env)
+        return v if isinstance(v, (Multiset, TimedMultiset)) else Multiset.of(v)
+
+    def _e_OpFun(self, e, env):
+        return lambda pair: binop(e.op, pair[0], pair[1], e.op_ty)
+
+    def _e_BinOp(self, e, env):
+        op = e.op
+        if op == "andalso":
+            return bool(self.eval(e.left, env)) and bool(self.eval(e.right, env))
+        if op == "orelse":
+            return bool(self.eval(e.left, env)) or bool(self.eval(e.right, env))
+        return binop(op, self.eval(e.left, env), self.eval(e.right, env), e.op_ty)
+
+    # ------------------------------------------------------------------ declarations in let
+    def declare(self, d: A.Decl, env: dict) -> None:
+        if isinstance(d, A.ValDecl):
+            v = self.eval(d.expr, env)
+            if not self.match(d.pat, v, env):
+                raise MLError("the value does not match the pattern of 'val' (SML exception Bind)")
+        elif isinstance(d, A.FunDecl):
+            clo = self.make_function(d, env)
+            env[d.ref.uid] = clo
+        else:
+            raise MLError("unsupported declaration inside let")
+
+    def make_function(self, d: A.FunDecl, env: dict) -> Closure:
+        clo = Closure([(c.params, c.body) for c in d.clauses], env, self, d.name, arity=len(d.clauses[0].params))
+        env[d.ref.uid] = clo  # recursion: the closure sees itself
+        return clo
+
+    # ------------------------------------------------------------------ patterns
+    def match(self, p: A.Pat, v: Any, env: dict) -> bool:
+        if isinstance(p, A.PWild):
+            return True
+        if isinstance(p, A.PVar):
+            sym = p.ref
+            if sym is not None and sym.kind == "con":
+                return v == self._e_Name(A.Name(p.span, p.name, ref=sym), env)
+            env[sym.uid] = v
+            return True
+        if isinstance(p, A.PConst):
+            return v == p.value and type(v) is type(p.value) or (p.kind == "unit" and v == ())
+        if isinstance(p, A.PTuple):
+            return len(v) == len(p.items) and all(self.match(q, x, env) for q, x in zip(p.items, v))
+        if isinstance(p, A.PList):
+            return len(v) == len(p.items) and all(self.match(q, x, env) for q, x in zip(p.items, v))
+        if isinstance(p, A.PCons):
+            return len(v) >= 1 and self.match(p.head, v[0], env) and self.match(p.tail, v[1:], env)
+        if isinstance(p, A.PCon):
+            info = p.ref.data
+            if info.kind == "index":
+                return self.match(p.arg, v, env)
+            return isinstance(v, tuple) and v[0] == info.tag and self.match(p.arg, v[1], env)
+        if isinstance(p, A.PRecord):
+            labels = p.ty_labels
+            return all(self.match(q, v[labels.index(label)], env) for label, q in p.fields)
+        if isinstance(p, A.PAs):
+            env[p.ref.uid] = v
+            return self.match(p.pat, v, env)
+        if isinstance(p, A.PAnnot):
+            return self.match(p.pat, v, env)
+        raise MLError(f"unsupported pattern {type(p).__name__}")
+
+
+def _is_real(op_ty) -> bool:
+    t = T.prune(op_ty) if op_ty is not None else None
+    return isinstance(t, T.TCon) and t.name == "real"
+
+
+def binop(op: str, a: Any, b: Any, op_ty=None) -> Any:
+    """The meaning of an infix operator on evaluated operands (shared with compiled code)."""
+    if op == "+":
+        return a + b
+    if op == "-":
+        return a - b
+    if op == "*":
+        return a * b
+    if op == "div":
+        if b == 0:
+            raise MLError("division by zero (SML exception Div)")
+        return a // b
+    if op == "mod":
+        if b == 0:
+            raise MLError("division by zero (SML exception Div)")
+        return a % b
+    if op == "/":
+        if b == 0:
+            raise MLError("division by zero (SML exception Div)")
+        return a / b
+    if op == "^":
+        return a + b
+    if op == "::":
+        return (a,) + b
+    if op in ("^^", "@"):
+        return a + b
+    if op == "=":
+        return a == b
+    if op == "<>":
+        return a != b
+    if op == "<":
+        return a < b
+    if op == "<=":
+        return a <= b
+    if op == ">":
+        return a > b
+    if op == ">=":
+        return a >= b
+    if op == "`":
+        if a < 0:
+            raise MLError(f"negative coefficient {a} in {a}`...")
+        return Multiset.of(b, a)
+    if op in ("++", "+++"):
+        if isinstance(a, TimedMultiset) or isinstance(b, TimedMultiset):
+            return TimedMultiset.lift(a) + TimedMultiset.lift(b)
+        return a + b
+    if op == "--":
+        if isinstance(a, TimedMultiset):
+            a = a.untimed()
+        if isinstance(b, TimedMultiset):
+            b = b.untimed()
+        try:
+            return a - b
+        except MultisetError as exc:
+            raise MLError(str(exc)) from None
+    if op == "@+":
+        if not isinstance(a, (Multiset, TimedMultiset)):
+            a = Multiset.of(a)
+        return TimedMultiset.lift(a, b)
+    raise MLError(f"unknown operator {op}")

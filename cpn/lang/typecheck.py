@@ -1,0 +1,1177 @@
+"""Name resolution and type checking of a parsed model; builds the colour sets and evaluates constants.
+
+Every error of a file is collected (one `Diagnostic` each) before `ModelError` is raised.
+Imports `cpn.lang.*`, `cpn.values` and layer 0.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from cpn._util import did_you_mean
+from cpn.diagnostics import Diagnostic, Severity, Span
+from cpn.errors import ModelError
+from cpn.lang import ast as A
+from cpn.lang import types as T
+from cpn.lang.binding import all_vars, guard_binder, guard_conjuncts, pattern_vars
+from cpn.lang.builtins import BUILTINS, COLSET_OPS, MLError, parse_type
+from cpn.lang.evaluate import Evaluator
+from cpn.lang.symbols import ConInfo, Symbol
+from cpn.values import colours as C
+
+_KEYWORD_LIKE = {"true", "false"}
+
+
+@dataclass(eq=False)
+class ArcInfo:
+    decl: A.ArcDecl
+    kind: str  # 'in' 'out' 'both' 'inhibitor' 'reset'
+    place: str
+    trans: str
+    expr: A.Expr | None
+
+
+@dataclass(eq=False)
+class TransInfo:
+    decl: A.TransDecl
+    arcs: list[ArcInfo] = field(default_factory=list)
+    variables: list[str] = field(default_factory=list)  # every variable, sorted
+    free: list[str] = field(default_factory=list)  # variables bound by enumerating their colour set
+    ran: list[tuple[str, str]] = field(default_factory=list)  # (synthetic variable, colour set) for CS.ran()
+
+
+@dataclass(eq=False)
+class PageInfo:
+    name: str
+    decl: A.ModuleDecl | None
+    params: list[Symbol]
+    places: dict[str, A.PlaceDecl] = field(default_factory=dict)
+    transitions: dict[str, TransInfo] = field(default_factory=dict)
+    instances: list[A.InstanceDecl] = field(default_factory=list)
+    order: list[str] = field(default_factory=list)  # transition names in declaration order
+
+
+@dataclass(eq=False)
+class CheckedModel:
+    """A model whose names are resolved, types checked, colour sets built and constants evaluated."""
+
+    model: A.Model
+    net_name: str
+    colsets: dict[str, C.ColourSet]
+    cstypes: dict[str, T.Type]
+    variables: dict[str, Symbol]
+    globals: dict[str, Symbol]
+    evaluator: Evaluator
+    top: PageInfo
+    modules: dict[str, PageInfo]
+    warnings: list[Diagnostic]
+
+
+class _Env:
+    """A chain of local scopes over the global scope."""
+
+    __slots__ = ("names", "parent")
+
+    def __init__(self, names=None, parent=None):
+        self.names = names if names is not None else {}
+        self.parent = parent
+
+    def lookup(self, name):
+        env = self
+        while env is not None:
+            if name in env.names:
+                return env.names[name]
+            env = env.parent
+        return None
+
+    def child(self, names=None):
+        return _Env(dict(names or {}), self)
+
+    def local_types(self):
+        env = self
+        while env is not None:
+            for s in env.names.values():
+                if s.kind == "local":
+                    yield s.type
+            env = env.parent
+
+
+class Checker:
+    def __init__(self, model: A.Model, overrides: dict[str, str] | None = None):
+        self.model = model
+        self.file = model.file
+        self.diags: list[Diagnostic] = []
+        self.colsets: dict[str, C.ColourSet] = {}
+        self.cstypes: dict[str, T.Type] = {}
+        self.cs_spans: dict[str, Span] = {}
+        self.globals: dict[str, Symbol] = {}
+        self.variables: dict[str, Symbol] = {}
+        self.ev = Evaluator(self.colsets, {})
+        self.overrides = dict(overrides or {})
+        self.used_overrides: set[str] = set()
+        self.pending: list[tuple] = []
+        self.net_name = "Top"
+        self.builtin_syms: dict[str, Symbol] = {}
+        for name, (tytext, _) in BUILTINS.items():
+            self.builtin_syms[name] = Symbol(name, "builtin", parse_type(tytext))
+        self.genv = _Env(self.globals)
+        self.ran_counter = 0
+        self.ran_sink: list | None = None
+        # CPN Tools' standard declarations; a model may redeclare them
+        self.predefined = {"UNIT", "BOOL", "INT", "STRING", "REAL", "TIME", "INTINF"}
+        for name, cs, ty in (("UNIT", C.UnitCS("UNIT"), T.UNIT), ("BOOL", C.BoolCS("BOOL"), T.BOOL),
+                             ("INT", C.IntCS("INT"), T.INT), ("STRING", C.StringCS("STRING"), T.STRING),
+                             ("REAL", C.RealCS("REAL"), T.REAL), ("TIME", C.IntCS("TIME"), T.INT),
+                             ("INTINF", C.IntCS("INTINF"), T.INT)):
+            self.colsets[name] = cs
+            self.cstypes[name] = ty
+            self.cs_spans[name] = Span("<standard declarations>", 0, 0)
+
+    # ------------------------------------------------------------------ diagnostics
+    def error(self, code, message, span, hint=None, notes=(), **params):
+        self.diags.append(Diagnostic(code, message, span, hint=hint, notes=list(notes), params=params))
+
+    def warn(self, code, message, span, hint=None, **params):
+        self.diags.append(Diagnostic(code, message, span, hint=hint, params=params, severity=Severity.WARNING))
+
+    def _where(self, span: Span | None) -> str:
+        return f"{span.line}:{span.col}" if span else "?"
+
+    # ------------------------------------------------------------------ entry point
+    def check(self) -> CheckedModel:
+        top_decls = []
+        modules: dict[str, A.ModuleDecl] = {}
+        for d in self.model.decls:
+            if isinstance(d, A.NetHeader):
+                self.net_name = d.name
+            elif isinstance(d, A.ColsetDecl):
+                self.colset_decl(d)
+            elif isinstance(d, A.VarDecl):
+                self.var_decl(d)
+            elif isinstance(d, A.ValDecl):
+                self.val_decl(d)
+            elif isinstance(d, A.FunDecl):
+                self.fun_decl(d)
+            elif isinstance(d, A.ModuleDecl):
+                if d.name in modules:
+                    first = modules[d.name].span
+                    self.error("E0202", f"module '{d.name}' is declared twice", d.span,
+                               notes=[f"first declared at {self._where(first)}"],
+                               hint="Rename one of them; module names must be unique.", name=d.name)
+                else:
+                    modules[d.name] = d
+            else:
+                top_decls.append(d)
+        for name in sorted(set(self.overrides) - self.used_overrides):
+            cand = did_you_mean(name, [n for n, s in self.globals.items() if s.kind == "val"])
+            self.error("E0305", f"there is no 'val {name}' in the model to override", None,
+                       hint=f"Did you mean '{cand}'?" if cand else "Only constants declared with 'val' can be set.",
+                       name=name)
+        self.module_decls = modules
+        top = self.page(self.net_name, None, top_decls)
+        pages = {name: self.page(name, m, m.body) for name, m in modules.items()}
+        self.check_instances(top, pages)
+        for p in pages.values():
+            self.check_instances(p, pages)
+        errors = [d for d in self.diags if d.severity is Severity.ERROR]
+        if errors:
+            raise ModelError(self.diags, {self.file: self.model.source})
+        return CheckedModel(self.model, self.net_name, self.colsets, self.cstypes, self.variables, self.globals,
+                            self.ev, top, pages, [d for d in self.diags if d.severity is Severity.WARNING])
+
+    # ------------------------------------------------------------------ declarations
+    def _declare_global(self, sym: Symbol) -> bool:
+        old = self.globals.get(sym.name)
+        if old is not None and old.kind in ("var", "con") and sym.kind in ("var", "con"):
+            self.error("E0202", f"'{sym.name}' is declared twice", sym.span,
+                       notes=[f"first declared at {self._where(old.span)}"],
+                       hint="Rename one of them.", name=sym.name)
+            return False
+        self.globals[sym.name] = sym  # a later val or fun shadows an earlier one, as in SML
+        return True
+
+    def lookup_colset(self, name: str, span: Span) -> C.ColourSet | None:
+        cs = self.colsets.get(name)
+        if cs is None:
+            cand = did_you_mean(name, self.colsets)
+            hint = (f"Did you mean '{cand}' (declared at {self._where(self.cs_spans[cand])})? Colour-set names are "
+                    "case-sensitive." if cand else "Declare it with 'colset NAME = ...;' before its first use.")
+            self.error("E0201", f"unknown colour set '{name}'", span, hint=hint, name=name)
+        return cs
+
+    def const_int(self, e: A.Expr | None, what: str) -> int | None:
+        if e is None:
+            return None
+        t = self.infer_top(e)
+        if t is None:
+            return None
+        if not self.unify(t, T.INT, e.span, f"{what} must be an integer"):
+            return None
+        try:
+            return self.ev.eval(e, {})
+        except (MLError, ArithmeticError, TypeError, IndexError, KeyError) as exc:
+            self.error("E0401", f"evaluating {what} failed: {exc}", e.span)
+            return None
+
+    def colset_decl(self, d: A.ColsetDecl) -> None:
+        b = d.body
+        name = d.name
+        if name in self.colsets and name in self.predefined:
+            self.predefined.discard(name)
+            del self.colsets[name]
+        if name in self.colsets:
+            self.error("E0202", f"colour set '{name}' is declared twice", d.span,
+                       notes=[f"first declared at {self._where(self.cs_spans[name])}"],
+                       hint="Rename one of them; colour-set names must be unique.", name=name)
+            return
+        timed = d.timed
+        cs: C.ColourSet | None = None
+        ty: T.Type | None = None
+        k = b.kind
+        if k == "unit":
+            cs, ty = C.UnitCS(name, timed), T.UNIT
+        elif k == "bool":
+            cs, ty = C.BoolCS(name, timed), T.BOOL
+        elif k in ("int",):
+            lo, hi = self.const_int(b.low, "the lower bound"), self.const_int(b.high, "the upper bound")
+            if b.low is not None and (lo is None or hi is None):
+                return
+            if lo is not None and hi < lo:
+                self.error("E0304", f"colour set '{name}' has an empty range {lo}..{hi}", b.span,
+                           hint="The lower bound must not exceed the upper bound.")
+                return
+            cs, ty = C.IntCS(name, lo, hi, timed), T.INT
+        elif k == "time":
+            cs, ty = C.IntCS(name, None, None, timed), T.INT
+        elif k == "string":
+            cs, ty = C.StringCS(name, timed), T.STRING
+        elif k == "real":
+            cs, ty = C.RealCS(name, timed), T.REAL
+        elif k == "enum":
+            if len(set(b.names)) != len(b.names):
+                self.error("E0304", f"enumeration '{name}' lists a constant twice", b.span)
+                return
+            cs, ty = C.EnumCS(name, b.names, timed), T.TCon(name)
+            for i, c in enumerate(b.names):
+                self._declare_global(Symbol(c, "con", ty, b.span, ConInfo(name, i, "enum", False)))
+        elif k == "index":
+            lo, hi = self.const_int(b.low, "the lower bound"), self.const_int(b.high, "the upper bound")
+            if lo is None or hi is None:
+                return
+            if hi < lo:
+                self.error("E0304", f"index colour set '{name}' has an empty range {lo}..{hi}", b.span)
+                return
+            cs, ty = C.IndexCS(name, b.names[0], lo, hi, timed), T.TCon(name)
+            self._declare_global(Symbol(b.names[0], "con", T.TFun(T.INT, ty), b.span,
+                                        ConInfo(name, 0, "index", True)))
+        elif k == "product":
+            comps = [self.lookup_colset(n, b.span) for n in b.names]
+            if None in comps:
+                return
+            cs = C.ProductCS(name, comps, timed)
+            ty = T.TTuple([self.cstypes[n] for n in b.names])
+        elif k == "record":
+            labels = [f for f, _ in b.fields]
+            if len(set(labels)) != len(labels):
+                self.error("E0304", f"record '{name}' has a field twice", b.span)
+                return
+            comps = [(f, self.lookup_colset(n, b.span)) for f, n in b.fields]
+            if any(c is None for _, c in comps):
+                return
+            cs = C.RecordCS(name, comps, timed)
+            ty = T.TRecord([(f, self.cstypes[n]) for f, n in b.fields])
+        elif k == "list":
+            elem = self.lookup_colset(b.names[0], b.span)
+            if elem is None:
+                return
+            lo, hi = self.const_int(b.low, "the lower bound"), self.const_int(b.high, "the upper bound")
+            cs = C.ListCS(name, elem, lo, hi, timed)
+            ty = T.lst(self.cstypes[b.names[0]])
+        elif k == "union":
+            ty = T.TCon(name)
+            cons = []
+            for i, (cname, csname) in enumerate(b.fields):
+                arg = self.lookup_colset(csname, b.span) if csname else None
+                if csname and arg is None:
+                    return
+                cons.append((cname, arg))
+                cty = T.TFun(self.cstypes[csname], ty) if csname else ty
+                self._declare_global(Symbol(cname, "con", cty, b.span, ConInfo(name, i, "union", bool(csname))))
+            cs = C.UnionCS(name, cons, timed)
+        elif k in ("subset_by", "subset_with"):
+            base = self.lookup_colset(b.names[0], b.span)
+            if base is None:
+                return
+            bty = self.cstypes[b.names[0]]
+            t = self.infer_top(b.pred)
+            if t is None:
+                return
+            if k == "subset_by":
+                if not self.unify(t, T.TFun(bty, T.BOOL), b.pred.span, "the predicate of a subset colour set"):
+                    return
+                try:
+                    pred = self.ev.eval(b.pred, {})
+                except MLError as exc:
+                    self.error("E0401", f"evaluating the predicate failed: {exc}", b.pred.span)
+                    return
+                cs = C.SubsetCS(name, base, predicate=pred, timed=timed)
+            else:
+                if not self.unify(t, T.lst(bty), b.pred.span, "the members of a subset colour set"):
+                    return
+                cs = C.SubsetCS(name, base, members=self.ev.eval(b.pred, {}), timed=timed)
+            ty = bty
+        elif k == "alias":
+            base = self.lookup_colset(b.names[0], b.span)
+            if base is None:
+                return
+            cs, ty = C.AliasCS(name, base, timed or base.timed), self.cstypes[b.names[0]]
+        if cs is None:
+            self.error("E0206", f"unsupported colour set kind '{k}'", b.span)
+            return
+        self.colsets[name] = cs
+        self.cstypes[name] = ty
+        self.cs_spans[name] = d.span
+
+    def var_decl(self, d: A.VarDecl) -> None:
+        cs = self.lookup_colset(d.colset, d.colset_span)
+        if cs is None:
+            return
+        for name, span in d.names:
+            sym = Symbol(name, "var", self.cstypes[d.colset], span, d.colset)
+            if self._declare_global(sym):
+                self.variables[name] = sym
+
+    def val_decl(self, d: A.ValDecl) -> None:
+        name = d.name
+        expr = d.expr
+        if name in self.overrides:
+            self.used_overrides.add(name)
+            expr = self.parse_override(name, self.overrides[name], d)
+            if expr is None:
+                return
+        t = self.infer_top(expr)
+        if t is None:
+            return
+        if d.type_expr is not None:
+            at = self.type_of_annotation(d.type_expr)
+            if at is not None and not self.unify(t, at, expr.span, f"the value of '{name}'"):
+                return
+        d.expr = expr
+        try:
+            value = self.ev.eval(expr, {})
+        except (MLError, RecursionError) as exc:
+            self.error("E0401", f"evaluating 'val {name}' failed: {exc}", expr.span)
+            return
+        sym = Symbol(name, "val", T.Scheme(T.free_vars(t), t), d.pat.span)
+        self._declare_global(sym)
+        d.pat.ref = sym
+        self.ev.globals[sym.uid] = value
+
+    def parse_override(self, name: str, text: str, d: A.ValDecl) -> A.Expr | None:
+        from cpn.lang.parser import parse
+
+        try:
+            m = parse(f"val {name} = {text};", f"--set {name}")
+        except ModelError:
+            self.error("E0305", f"the value given for '{name}' with --set is not a CPN ML expression: {text!r}",
+                       d.span, hint=f"Write it as in the model, e.g. --set {name}=8 or --set '{name}=\"text\"'.")
+            return None
+        return m.decls[0].expr
+
+    def fun_decl(self, d: A.FunDecl, env: _Env | None = None) -> Symbol | None:
+        outer = env or self.genv
+        if isinstance(d.ref, tuple):
+            self.error("E0101", f"the clauses of function '{d.name}' have different names: "
+                       + ", ".join(d.ref[1]), d.span, hint="All clauses of a 'fun' use the same name.")
+            return None
+        arity = len(d.clauses[0].params)
+        for c in d.clauses:
+            if len(c.params) != arity:
+                self.error("E0301", f"the clauses of function '{d.name}' have different numbers of arguments",
+                           c.span)
+                return None
+        sym = Symbol(d.name, "fun" if env is None else "local", None, d.span)
+        ftype = T.TVar()
+        sym.type = ftype
+        d.ref = sym
+        inner = outer.child({d.name: sym})
+        try:
+            for c in d.clauses:
+                binds: dict[str, Symbol] = {}
+                ptys = [self.infer_pat(p, binds) for p in c.params]
+                body_env = inner.child(binds)
+                bt = self.infer(c.body, body_env)
+                if c.result_type is not None:
+                    rt = self.type_of_annotation(c.result_type)
+                    if rt is not None:
+                        self.unify(bt, rt, c.body.span, f"the result of '{d.name}'")
+                ct = bt
+                for pt in reversed(ptys):
+                    ct = T.TFun(pt, ct)
+                self.unify(ftype, ct, c.span, f"the clauses of '{d.name}'")
+            self.resolve_pending()
+        except _Abort:
+            return None
+        env_free = set()
+        for lt in outer.local_types():
+            env_free |= T.free_vars(lt if not isinstance(lt, T.Scheme) else lt.type)
+        sym.type = T.Scheme([v for v in T.free_vars(ftype) if v not in env_free], ftype)
+        if env is None:
+            self._declare_global(sym)
+            self.ev.make_function(d, self.ev.globals)
+        return sym
+
+    # ------------------------------------------------------------------ types
+    def type_of_annotation(self, te: A.TypeExpr) -> T.Type | None:
+        if isinstance(te, A.TName):
+            if te.name in self.cstypes:
+                return self.cstypes[te.name]
+            simple = {"int": T.INT, "bool": T.BOOL, "string": T.STRING, "unit": T.UNIT, "real": T.REAL,
+                      "INT": T.INT, "BOOL": T.BOOL, "STRING": T.STRING, "UNIT": T.UNIT}
+            if te.name in simple:
+                return simple[te.name]
+            self.lookup_colset(te.name, te.span)
+            return None
+        if isinstance(te, A.TPost):
+            inner = self.type_of_annotation(te.arg)
+            if inner is None:
+                return None
+            if te.name in ("list", "ms"):
+                return T.TCon(te.name, (inner,))
+            self.error("E0201", f"unknown type constructor '{te.name}'", te.span)
+            return None
+        if isinstance(te, A.TTuple):
+            items = [self.type_of_annotation(x) for x in te.items]
+            return None if None in items else T.TTuple(items)
+        return None
+
+    def unify(self, a, b, span, what: str) -> bool:
+        try:
+            T.unify(a, b)
+            return True
+        except T.UnifyError as exc:
+            names: dict = {}
+            detail = f" ({exc})" if str(exc) else ""
+            self.error("E0301", f"type mismatch in {what}: found {T.show(a, names)}, expected {T.show(b, names)}"
+                       + detail, span, found=T.show(a), expected=T.show(b))
+            return False
+
+    def must(self, a, b, span, what):
+        if not self.unify(a, b, span, what):
+            raise _Abort()
+
+    def infer_top(self, e: A.Expr, env: _Env | None = None) -> T.Type | None:
+        try:
+            t = self.infer(e, env or self.genv)
+            self.resolve_pending()
+            return t
+        except _Abort:
+            self.pending.clear()
+            return None
+
+    def resolve_pending(self) -> None:
+        progress = True
+        while self.pending and progress:
+            progress = False
+            for item in list(self.pending):
+                if self._try_select(*item):
+                    self.pending.remove(item)
+                    progress = True
+        for node, argt, rest, kind in self.pending:
+            self.error("E0301", f"cannot tell which record or tuple '#{node.label}' selects from" if kind == "sel"
+                       else "cannot tell the type of this flexible record pattern", node.span,
+                       hint="Add a type annotation, e.g. (x : MyRecord).")
+        if self.pending:
+            self.pending.clear()
+            raise _Abort()
+
+    def _try_select(self, node, argt, rest, kind) -> bool:
+        t = T.prune(argt)
+        if isinstance(t, T.TVar):
+            return False
+        if kind == "pat":
+            if not isinstance(t, T.TRecord):
+                self.error("E0301", "a record pattern matches a value that is not a record", node.span)
+                return True
+            node.ty_labels = t.labels()
+            for label, ft in rest:
+                fields = dict(t.fields)
+                if label not in fields:
+                    self.error("E0301", f"the record has no field '{label}'", node.span)
+                    return True
+                self.unify(ft, fields[label], node.span, f"field '{label}'")
+            return True
+        if isinstance(t, T.TRecord):
+            labels = t.labels()
+            if node.label not in labels:
+                self.error("E0301", f"the record {T.show(t)} has no field '{node.label}'", node.span,
+                           hint=f"Its fields are {', '.join(labels)}.")
+                return True
+            node.index = labels.index(node.label)
+            self.unify(rest, t.fields[node.index][1], node.span, f"'#{node.label}'")
+            return True
+        if isinstance(t, T.TTuple) and node.label.isdigit():
+            i = int(node.label)
+            if not 1 <= i <= len(t.items):
+                self.error("E0301", f"'#{i}' selects from a tuple of {len(t.items)} components", node.span)
+                return True
+            node.index = i - 1
+            self.unify(rest, t.items[i - 1], node.span, f"'#{i}'")
+            return True
+        self.error("E0301", f"'#{node.label}' is applied to a value of type {T.show(t)}", node.span)
+        return True
+
+    # ------------------------------------------------------------------ expressions
+    def resolve_name(self, name: str, env: _Env, span: Span) -> Symbol | None:
+        sym = env.lookup(name)
+        if sym is not None:
+            return sym
+        if name in self.builtin_syms:
+            return self.builtin_syms[name]
+        if "." in name:
+            cs, _, op = name.rpartition(".")
+            if cs in self.colsets and op in COLSET_OPS:
+                return Symbol(name, "csop", None, span, (cs, op))
+        return None
+
+    def unknown_name(self, name: str, env: _Env, span: Span) -> None:
+        names = set(self.globals) | set(self.builtin_syms)
+        e = env
+        while e is not None:
+            names |= set(e.names)
+            e = e.parent
+        cand = did_you_mean(name, names)
+        if "." in name:
+            cs, _, op = name.rpartition(".")
+            if cs in self.colsets:
+                hint = f"Colour sets have the functions {', '.join(sorted(COLSET_OPS))}."
+            else:
+                hint = f"Did you mean '{cand}'?" if cand else "This library function is not supported (docs/cpnml.md)."
+        else:
+            hint = (f"Did you mean '{cand}'?" if cand else
+                    "Declare it with 'val', 'var' or 'fun' before its first use.")
+        self.error("E0201", f"unknown name '{name}'", span, hint=hint, name=name)
+
+    def infer(self, e: A.Expr, env: _Env) -> T.Type:
+        t = getattr(self, "_i_" + type(e).__name__)(e, env)
+        e.ty = t
+        return t
+
+    def _i_Const(self, e, env):
+        return {"int": T.INT, "string": T.STRING, "bool": T.BOOL, "unit": T.UNIT, "real": T.REAL}[e.kind]
+
+    def _i_Name(self, e, env):
+        sym = self.resolve_name(e.name, env, e.span)
+        if sym is None:
+            self.unknown_name(e.name, env, e.span)
+            raise _Abort()
+        e.ref = sym
+        if sym.kind == "csop":
+            cs, op = sym.data
+            cst = self.cstypes[cs]
+            return {"all": T.TFun(T.UNIT, T.ms(cst)), "size": T.TFun(T.UNIT, T.INT), "ran": T.TFun(T.UNIT, cst),
+                    "ord": T.TFun(cst, T.INT), "col": T.TFun(T.INT, cst), "legal": T.TFun(cst, T.BOOL),
+                    "mkstr": T.TFun(cst, T.STRING)}[op]
+        t = sym.type
+        return t.instantiate() if isinstance(t, T.Scheme) else t
+
+    def _i_Select(self, e, env):
+        a, r = T.TVar(), T.TVar()
+        self.pending.append((e, a, r, "sel"))
+        return T.TFun(a, r)
+
+    def _i_TupleE(self, e, env):
+        return T.TTuple([self.infer(x, env) for x in e.items])
+
+    def _i_RecordE(self, e, env):
+        labels = [label for label, _ in e.fields]
+        if len(set(labels)) != len(labels):
+            self.error("E0301", "a record expression names a field twice", e.span)
+            raise _Abort()
+        return T.TRecord([(label, self.infer(x, env)) for label, x in e.fields])
+
+    def _i_ListE(self, e, env):
+        elem = T.TVar()
+        for x in e.items:
+            self.must(self.infer(x, env), elem, x.span, "the elements of a list")
+        return T.lst(elem)
+
+    def _i_App(self, e, env):
+        if isinstance(e.fn, A.Select):
+            at = self.infer(e.arg, env)
+            ft = self.infer(e.fn, env)
+            self.must(ft, T.TFun(at, T.TVar()), e.span, "a field selection")
+            if self.pending and self.pending[-1][0] is e.fn and self._try_select(*self.pending[-1]):
+                self.pending.pop()
+            return T.prune(ft).res
+        if isinstance(e.fn, A.Name) and e.fn.name.endswith(".ran") and self.ran_sink is not None:
+            sym = self.resolve_name(e.fn.name, env, e.fn.span)
+            if sym is not None and sym.kind == "csop":
+                # CS.ran() in a transition: a fresh free variable over CS (every value is one binding)
+                cs = sym.data[0]
+                self.ran_counter += 1
+                vname = f"{cs}.ran#{self.ran_counter}"
+                vsym = Symbol(vname, "var", self.cstypes[cs], e.span, cs)
+                self.ran_sink.append((vname, cs, vsym))
+                self.infer(e.arg, env)
+                e.fn = A.Name(e.fn.span, "ignore")
+                e.fn.ref = self.builtin_syms["ignore"]
+                # rewrite in place: App(ignore, ()) is replaced by the variable through the parent
+                e.ran_var = vsym  # type: ignore[attr-defined]
+                return self.cstypes[cs]
+        ft = self.infer(e.fn, env)
+        at = self.infer(e.arg, env)
+        r = T.TVar()
+        pf = T.prune(ft)
+        if isinstance(pf, T.TFun):
+            self.must(at, pf.arg, e.arg.span, f"the argument of {self._fn_name(e.fn)}")
+            self.must(pf.res, r, e.span, "an application")
+        else:
+            self.must(ft, T.TFun(at, r), e.fn.span, "an application (the left side is not a function)")
+        return r
+
+    @staticmethod
+    def _fn_name(f):
+        return f"'{f.name}'" if isinstance(f, A.Name) else "the function"
+
+    def _i_Neg(self, e, env):
+        t = self.infer(e.operand, env)
+        self.must(t, T.TVar(overload=("int", "real")), e.span, "'~'")
+        return t
+
+    def _i_If(self, e, env):
+        self.must(self.infer(e.cond, env), T.BOOL, e.cond.span, "the condition of 'if'")
+        tt = self.infer(e.then, env)
+        et = self.infer(e.else_, env)
+        return self._join_branches(e, "then", "else_", tt, et)
+
+    def _join_branches(self, e, a, b, ta, tb):
+        pa, pb = T.prune(ta), T.prune(tb)
+        is_ms = lambda t: isinstance(t, T.TCon) and t.name == "ms"  # noqa: E731
+        if is_ms(pa) and not is_ms(pb) and not isinstance(pb, T.TVar):
+            setattr(e, b, A.ToMs(getattr(e, b).span, getattr(e, b), ty=T.ms(tb)))
+            tb = T.ms(tb)
+        elif is_ms(pb) and not is_ms(pa) and not isinstance(pa, T.TVar):
+            setattr(e, a, A.ToMs(getattr(e, a).span, getattr(e, a), ty=T.ms(ta)))
+            ta = T.ms(ta)
+        self.must(tb, ta, getattr(e, b).span, "the branches (both must have the same type)")
+        return ta
+
+    def _i_Case(self, e, env):
+        st = self.infer(e.subject, env)
+        rt = None
+        for i, (pat, body) in enumerate(e.rules):
+            binds: dict[str, Symbol] = {}
+            self.must(self.infer_pat(pat, binds), st, pat.span, "a case pattern")
+            bt = self.infer(body, env.child(binds))
+            if rt is None:
+                rt = bt
+            else:
+                self.must(bt, rt, body.span, "the rules of 'case' (all must have the same type)")
+        return rt
+
+    def _i_Fn(self, e, env):
+        at, rt = T.TVar(), T.TVar()
+        for pat, body in e.rules:
+            binds: dict[str, Symbol] = {}
+            self.must(self.infer_pat(pat, binds), at, pat.span, "the argument pattern of 'fn'")
+            self.must(self.infer(body, env.child(binds)), rt, body.span, "the rules of 'fn'")
+        return T.TFun(at, rt)
+
+    def _i_Let(self, e, env):
+        inner = env.child()
+        for d in e.decls:
+            if isinstance(d, A.ValDecl):
+                t = self.infer(d.expr, inner)
+                binds: dict[str, Symbol] = {}
+                self.must(self.infer_pat(d.pat, binds), t, d.pat.span, "the pattern of 'val'")
+                inner = inner.child(binds)
+            elif isinstance(d, A.FunDecl):
+                sym = self.fun_decl(d, inner)
+                if sym is None:
+                    raise _Abort()
+                inner = inner.child({d.name: sym})
+        return self.infer(e.body, inner)
+
+    def _i_Seq(self, e, env):
+        t = None
+        for x in e.items:
+            t = self.infer(x, env)
+        return t
+
+    def _i_Annot(self, e, env):
+        t = self.infer(e.expr, env)
+        at = self.type_of_annotation(e.type_expr)
+        if at is None:
+            raise _Abort()
+        self.must(t, at, e.span, "a type annotation")
+        return t
+
+    def _i_ToMs(self, e, env):
+        return T.ms(self.infer(e.expr, env))
+
+    def _i_OpFun(self, e, env):
+        a, b, r = self._op_types(e.op, e)
+        return T.TFun(T.TTuple([a, b]), r)
+
+    def _op_types(self, op, node):
+        if op in ("+", "-", "*"):
+            v = T.TVar(overload=("int", "real"))
+            node.op_ty = v
+            return v, v, v
+        if op == "/":
+            return T.REAL, T.REAL, T.REAL
+        if op in ("div", "mod"):
+            return T.INT, T.INT, T.INT
+        if op == "^":
+            return T.STRING, T.STRING, T.STRING
+        if op in ("<", "<=", ">", ">="):
+            v = T.TVar(overload=("int", "real", "string"))
+            node.op_ty = v
+            return v, v, T.BOOL
+        if op in ("=", "<>"):
+            v = T.TVar(eq=True)
+            return v, v, T.BOOL
+        if op == "::":
+            v = T.TVar()
+            return v, T.lst(v), T.lst(v)
+        if op in ("^^", "@"):
+            v = T.lst(T.TVar())
+            return v, v, v
+        if op in ("andalso", "orelse"):
+            return T.BOOL, T.BOOL, T.BOOL
+        if op == "`":
+            v = T.TVar()
+            return T.INT, v, T.ms(v)
+        raise _Abort()
+
+    def infer_ms(self, e: A.Expr, elem: T.Type, env: _Env, what: str) -> A.Expr:
+        """Infer e where a multiset over `elem` is expected; a single value is wrapped in ToMs."""
+        t = self.infer(e, env)
+        pt = T.prune(t)
+        if isinstance(pt, T.TCon) and pt.name == "ms":
+            self.must(pt.args[0], elem, e.span, what)
+            return e
+        if isinstance(pt, T.TVar) and not isinstance(T.prune(elem), T.TVar):
+            try:
+                T.unify(pt, elem)
+                return A.ToMs(e.span, e, ty=T.ms(elem))
+            except T.UnifyError:
+                self.must(pt, T.ms(elem), e.span, what)
+                return e
+        self.must(t, elem, e.span, what)
+        return A.ToMs(e.span, e, ty=T.ms(elem))
+
+    def _i_BinOp(self, e, env):
+        op = e.op
+        if op in ("++", "--", "+++"):
+            elem = T.TVar()
+            e.left = self.infer_ms(e.left, elem, env, f"the left operand of '{op}'")
+            e.right = self.infer_ms(e.right, elem, env, f"the right operand of '{op}'")
+            return T.ms(elem)
+        if op == "@+":
+            elem = T.TVar()
+            e.left = self.infer_ms(e.left, elem, env, "the tokens of '@+'")
+            self.must(self.infer(e.right, env), T.INT, e.right.span, "a time delay (it must be an integer)")
+            return T.ms(elem)
+        if op == "@@":
+            self.error("E0206", "absolute timestamps '@@' are not supported; use '@+' delays", e.span)
+            raise _Abort()
+        a, b, r = self._op_types(op, e)
+        self.must(self.infer(e.left, env), a, e.left.span, f"the left operand of '{op}'")
+        self.must(self.infer(e.right, env), b, e.right.span, f"the right operand of '{op}'")
+        return r
+
+    # ------------------------------------------------------------------ patterns
+    def infer_pat(self, p: A.Pat, binds: dict[str, Symbol]) -> T.Type:
+        t = self._infer_pat(p, binds)
+        p.ty = t
+        return t
+
+    def _bind_local(self, name, span, binds, t):
+        if name in binds:
+            self.error("E0202", f"variable '{name}' occurs twice in one pattern", span)
+            raise _Abort()
+        sym = Symbol(name, "local", t, span)
+        binds[name] = sym
+        return sym
+
+    def _infer_pat(self, p, binds):
+        if isinstance(p, A.PWild):
+            return T.TVar()
+        if isinstance(p, A.PVar):
+            g = self.globals.get(p.name)
+            if g is not None and g.kind == "con" and not g.data.has_arg:
+                p.ref = g
+                return g.type
+            t = T.TVar()
+            p.ref = self._bind_local(p.name, p.span, binds, t)
+            return t
+        if isinstance(p, A.PConst):
+            return {"int": T.INT, "string": T.STRING, "bool": T.BOOL, "unit": T.UNIT}[p.kind]
+        if isinstance(p, A.PTuple):
+            return T.TTuple([self.infer_pat(x, binds) for x in p.items])
+        if isinstance(p, A.PList):
+            v = T.TVar()
+            for x in p.items:
+                self.must(self.infer_pat(x, binds), v, x.span, "the elements of a list pattern")
+            return T.lst(v)
+        if isinstance(p, A.PCons):
+            h = self.infer_pat(p.head, binds)
+            tl = self.infer_pat(p.tail, binds)
+            self.must(tl, T.lst(h), p.span, "a '::' pattern")
+            return tl
+        if isinstance(p, A.PCon):
+            g = self.globals.get(p.name)
+            if g is None or g.kind != "con" or not g.data.has_arg:
+                cand = did_you_mean(p.name, [n for n, s in self.globals.items() if s.kind == "con"])
+                self.error("E0201", f"'{p.name}' is not a constructor with an argument", p.span,
+                           hint=f"Did you mean '{cand}'?" if cand else None, name=p.name)
+                raise _Abort()
+            p.ref = g
+            ft = g.type
+            self.must(self.infer_pat(p.arg, binds), ft.arg, p.arg.span, f"the argument of '{p.name}'")
+            return ft.res
+        if isinstance(p, A.PRecord):
+            fields = [(label, self.infer_pat(q, binds)) for label, q in p.fields]
+            if p.flexible:
+                v = T.TVar()
+                self.pending.append((p, v, fields, "pat"))
+                return v
+            p.ty_labels = sorted(label for label, _ in fields)
+            return T.TRecord(fields)
+        if isinstance(p, A.PAs):
+            t = self.infer_pat(p.pat, binds)
+            p.ref = self._bind_local(p.name, p.span, binds, t)
+            return t
+        if isinstance(p, A.PAnnot):
+            t = self.infer_pat(p.pat, binds)
+            at = self.type_of_annotation(p.type_expr)
+            if at is None:
+                raise _Abort()
+            self.must(t, at, p.span, "a type annotation")
+            return t
+        raise _Abort()
+
+    # ------------------------------------------------------------------ pages
+    def page(self, name: str, mdecl: A.ModuleDecl | None, decls: list[A.Decl]) -> PageInfo:
+        params = []
+        penv = {}
+        if mdecl is not None:
+            for pname, csname, span in mdecl.params:
+                cs = self.lookup_colset(csname, span)
+                sym = Symbol(pname, "param", self.cstypes.get(csname, T.TVar()), span, csname)
+                params.append(sym)
+                penv[pname] = sym
+        page = PageInfo(name, mdecl, params)
+        env = self.genv.child(penv)
+        page.env = env  # type: ignore[attr-defined]
+        for d in decls:
+            if isinstance(d, A.PlaceDecl):
+                if d.name in page.places or d.name in page.transitions:
+                    first = (page.places.get(d.name) or page.transitions[d.name].decl).span
+                    self.error("E0202", f"'{d.name}' is declared twice on page '{name}'", d.name_span,
+                               notes=[f"first declared at {self._where(first)}"],
+                               hint="Rename one of them; place and transition names must be unique within a page.")
+                    continue
+                page.places[d.name] = d
+                cs = self.lookup_colset(d.colset, d.colset_span)
+                if cs is not None and d.init is not None:
+                    self.check_marking(d, env)
+            elif isinstance(d, A.TransDecl):
+                if d.name in page.places or d.name in page.transitions:
+                    first = (page.places.get(d.name) or page.transitions[d.name].decl).span
+                    self.error("E0202", f"transition '{d.name}' is declared twice on page '{name}'", d.name_span,
+                               notes=[f"first declared at {self._where(first)}"],
+                               hint="Rename one of them; transition names must be unique within a net page.")
+                    continue
+                page.transitions[d.name] = TransInfo(d)
+                page.order.append(d.name)
+            elif isinstance(d, A.InstanceDecl):
+                page.instances.append(d)
+            elif isinstance(d, A.ModuleDecl):
+                self.error("E0206", "modules cannot be declared inside modules", d.span,
+                           hint="Declare every module at the top level of the file.")
+            elif isinstance(d, A.NetHeader):
+                self.error("E0206", "'net' is only allowed at the top level", d.span)
+            elif isinstance(d, (A.ColsetDecl, A.VarDecl, A.ValDecl, A.FunDecl)):
+                self.error("E0206", "declarations inside a module are not supported; declare them at the top "
+                           "level", d.span, hint="CPN ML declarations are global, as in CPN Tools.")
+        for d in decls:
+            if isinstance(d, A.ArcDecl):
+                self.arc(page, d, env)
+        for tname in page.order:
+            self.transition(page, page.transitions[tname], env)
+        return page
+
+    def check_marking(self, d: A.PlaceDecl, env: _Env) -> None:
+        elem = self.cstypes[d.colset]
+        try:
+            d.init = self.infer_ms(d.init, elem, env, f"the initial marking of place '{d.name}'")
+            self.resolve_pending()
+        except _Abort:
+            self.pending.clear()
+
+    def arc(self, page: PageInfo, d: A.ArcDecl, env: _Env) -> None:
+        kind = d.kind
+        if kind.endswith("?"):
+            self.error("E0203", f"{kind[:-1]} arcs are written with '->' from the place to the transition", d.span)
+            return
+        src_p, dst_p = d.src in page.places, d.dst in page.places
+        src_t, dst_t = d.src in page.transitions, d.dst in page.transitions
+        for nm, sp, known in ((d.src, d.src_span, src_p or src_t), (d.dst, d.dst_span, dst_p or dst_t)):
+            if not known:
+                cand = did_you_mean(nm, list(page.places) + list(page.transitions))
+                self.error("E0201", f"unknown place or transition '{nm}' on page '{page.name}'", sp,
+                           hint=f"Did you mean '{cand}'?" if cand else "Declare it with 'place' or 'trans'.",
+                           name=nm)
+                return
+        if kind in ("inhibitor", "reset", "<->"):
+            if not (src_p and dst_t):
+                self.error("E0203", f"{'double' if kind == '<->' else kind} arcs go from a place to a transition: "
+                           f"'{d.src}' -> '{d.dst}'", d.span, hint="Write the place first.")
+                return
+            place, trans = d.src, d.dst
+            ak = {"inhibitor": "inhibitor", "reset": "reset", "<->": "both"}[kind]
+        elif src_p and dst_t:
+            place, trans, ak = d.src, d.dst, "in"
+        elif src_t and dst_p:
+            place, trans, ak = d.dst, d.src, "out"
+        else:
+            what = "two places" if src_p else "two transitions"
+            self.error("E0203", f"an arc must connect a place and a transition, but '{d.src}' and '{d.dst}' are "
+                       f"{what}", d.span, hint="Arcs go from a place to a transition or back.")
+            return
+        pd = page.places[place]
+        expr = d.expr
+        info = page.transitions[trans]
+        if expr is None:
+            if ak in ("reset",):
+                pass
+            elif ak == "inhibitor":
+                pass
+            elif pd.colset in self.colsets and self.colsets[pd.colset].kind == "unit":
+                expr = A.Const(d.span, (), "unit")
+            else:
+                self.error("E0301", f"the arc between '{place}' and '{trans}' has no inscription", d.span,
+                           hint="Only arcs of unit places may omit the inscription (it means 1`()).")
+                return
+        elif ak == "reset":
+            self.error("E0301", "reset arcs take no inscription", d.span)
+            return
+        if expr is not None and pd.colset in self.cstypes:
+            elem = self.cstypes[pd.colset]
+            sink: list = []
+            self.ran_sink = sink if ak == "out" else None
+            try:
+                expr = self.infer_ms(expr, elem, env,
+                                     f"the inscription of arc '{d.src}' -> '{d.dst}' (place '{place}' holds "
+                                     f"{pd.colset})")
+                self.resolve_pending()
+            except _Abort:
+                self.pending.clear()
+                return
+            finally:
+                self.ran_sink = None
+            if sink:
+                expr = _replace_ran(expr)
+                info.ran.extend((v, cs) for v, cs, _ in sink)
+                for v, cs, sym in sink:
+                    self.variables[v] = sym
+            if ak in ("in", "both", "inhibitor") and _has_delay(expr):
+                self.error("E0206", "delays on input arcs ('preemption') are not supported", expr.span)
+                return
+        info.arcs.append(ArcInfo(d, ak, place, trans, expr))
+
+    def transition(self, page: PageInfo, info: TransInfo, env: _Env) -> None:
+        d = info.decl
+        ok = True
+        for i, g in enumerate(d.guards):
+            t = self.infer_top(g, env)
+            if t is None:
+                ok = False
+                continue
+            pt = T.prune(t)
+            if isinstance(pt, T.TCon) and pt.name == "list":
+                self.unify(pt.args[0], T.BOOL, g.span, f"the guard of transition '{d.name}'")
+            else:
+                self.unify(t, T.BOOL, g.span, f"the guard of transition '{d.name}'")
+        for what, e in (("the delay", d.delay), ("the priority", d.priority)):
+            if e is not None:
+                t = self.infer_top(e, env)
+                if t is None:
+                    ok = False
+                else:
+                    self.unify(t, T.INT, e.span, f"{what} of transition '{d.name}' (an integer)")
+        if not ok:
+            return
+        # which variables are bound, and how
+        used: set[str] = set()
+        for a in info.arcs:
+            all_vars(a.expr, used)
+        for g in d.guards:
+            all_vars(g, used)
+        all_vars(d.delay, used)
+        all_vars(d.priority, used)
+        bound: set[str] = set()
+        for a in info.arcs:
+            if a.kind in ("in", "both") and a.expr is not None:
+                bound |= pattern_vars(a.expr)
+        conj = guard_conjuncts(d.guards)
+        changed = True
+        while changed:
+            changed = False
+            for c in conj:
+                gb = guard_binder(c, bound)
+                if gb is not None:
+                    bound |= pattern_vars(gb[0])
+                    changed = True
+        free = []
+        for v in sorted(used - bound):
+            sym = self.variables[v]
+            cs = self.colsets[sym.data]
+            if cs.values() is not None:
+                free.append(v)
+                continue
+            span = self._first_use(info, v)
+            binder = next((a for a in info.arcs if a.kind in ("in", "both") and a.expr is not None), None)
+            hint = (f"A variable must occur on an input arc of '{d.name}' (or be bound by its guard as "
+                    f"'{v} = ...') before it can be used; only variables of small colour sets may be unbound. ")
+            if binder is not None:
+                bvars = sorted(pattern_vars(binder.expr))
+                if bvars:
+                    hint += (f"'{bvars[0]}' is bound by the arc from '{binder.place}' at "
+                             f"{self._where(binder.decl.span)}.")
+            self.error("E0302", f"variable '{v}' of transition '{d.name}' is not bound (colour set "
+                       f"'{sym.data}' is too large to try every value)", span, hint=hint.strip(), name=v)
+        info.variables = sorted(used)
+        info.free = free
+
+    def _first_use(self, info: TransInfo, v: str) -> Span:
+        for a in info.arcs:
+            if a.expr is not None and v in all_vars(a.expr):
+                return _find_name_span(a.expr, v) or a.decl.span
+        for g in info.decl.guards:
+            sp = _find_name_span(g, v)
+            if sp:
+                return sp
+        return info.decl.span
+
+    def check_instances(self, page: PageInfo, pages: dict[str, PageInfo]) -> None:
+        seen = {}
+        for inst in page.instances:
+            if inst.name in seen:
+                self.error("E0202", f"instance '{inst.name}' is declared twice on page '{page.name}'",
+                           inst.name_span, notes=[f"first declared at {self._where(seen[inst.name])}"])
+                continue
+            seen[inst.name] = inst.span
+            mod = pages.get(inst.module)
+            if mod is None:
+                cand = did_you_mean(inst.module, pages)
+                self.error("E0201", f"unknown module '{inst.module}'", inst.module_span,
+                           hint=f"Did you mean '{cand}'?" if cand else "Declare it with 'module NAME { ... }'.",
+                           name=inst.module)
+                continue
+            given = {}
+            for aname, expr, span in inst.args:
+                if aname in given:
+                    self.error("E0204", f"parameter '{aname}' is given twice", span)
+                    continue
+                given[aname] = expr
+                psym = next((p for p in mod.params if p.name == aname), None)
+                if psym is None:
+                    cand = did_you_mean(aname, [p.name for p in mod.params])
+                    self.error("E0204", f"module '{mod.name}' has no parameter '{aname}'", span,
+                               hint=f"Did you mean '{cand}'?" if cand else
+                               f"Its parameters are: {', '.join(p.name for p in mod.params) or 'none'}.")
+                    continue
+                t = self.infer_top(expr, page.env)
+                if t is not None:
+                    self.unify(t, psym.type, expr.span, f"parameter '{aname}' of instance '{inst.name}'")
+            for p in mod.params:
+                if p.name not in given:
+                    self.error("E0204", f"instance '{inst.name}' does not give parameter '{p.name}' of module "
+                               f"'{mod.name}'", inst.span, hint=f"Add '{p.name} = VALUE' in the parentheses.")
+            bound_ports = set()
+            for port, pspan, sock, sspan in inst.binds:
+                pd = mod.places.get(port)
+                if pd is None or pd.port is None:
+                    ports = [n for n, x in mod.places.items() if x.port]
+                    cand = did_you_mean(port, ports)
+                    self.error("E0204", f"module '{mod.name}' has no port '{port}'", pspan,
+                               hint=f"Did you mean '{cand}'?" if cand else f"Its ports are: {', '.join(ports) or 'none'}.")
+                    continue
+                if port in bound_ports:
+                    self.error("E0204", f"port '{port}' is bound twice", pspan)
+                    continue
+                bound_ports.add(port)
+                sd = page.places.get(sock)
+                if sd is None:
+                    cand = did_you_mean(sock, page.places)
+                    self.error("E0201", f"unknown socket place '{sock}' on page '{page.name}'", sspan,
+                               hint=f"Did you mean '{cand}'?" if cand else "Sockets are places of the page that "
+                               "holds the instance.", name=sock)
+                    continue
+                if sd.colset != pd.colset and (sd.colset in self.colsets and pd.colset in self.colsets):
+                    a, b = self.colsets[sd.colset], self.colsets[pd.colset]
+                    base = lambda c: c.base if isinstance(c, C.AliasCS) else c  # noqa: E731
+                    if base(a) is not base(b):
+                        self.error("E0301", f"port '{port}' has colour set {pd.colset} but its socket '{sock}' has "
+                                   f"{sd.colset}", sspan, hint="A port and its socket must have the same colour set.")
+            for n, pd in mod.places.items():
+                if pd.port and n not in bound_ports:
+                    self.warn("W0101", f"port '{n}' of module '{mod.name}' is not bound in instance '{inst.name}'; "
+                              "it is an ordinary place of the instance", inst.span)
+
+
+class _Abort(Exception):
+    """Stop checking the current expression (its error is already recorded)."""
+
+
+def _has_delay(e) -> bool:
+    if isinstance(e, A.BinOp):
+        return e.op == "@+" or _has_delay(e.left) or _has_delay(e.right)
+    if isinstance(e, A.If):
+        return _has_delay(e.then) or _has_delay(e.else_)
+    return False
+
+
+def _replace_ran(e):
+    """Replace the App nodes marked by CS.ran() with their synthetic variables."""
+    vsym = getattr(e, "ran_var", None) if isinstance(e, A.App) else None
+    if vsym is not None:
+        n = A.Name(e.span, vsym.name, ty=e.ty)
+        n.ref = vsym
+        return n
+    for attr in ("items",):
+        if hasattr(e, attr) and isinstance(getattr(e, attr), list):
+            setattr(e, attr, [_replace_ran(x) for x in getattr(e, attr)])
+    if isinstance(e, A.RecordE):
+        e.fields = [(label, _replace_ran(x)) for label, x in e.fields]
+    for attr in ("fn", "arg", "left", "right", "operand", "cond", "then", "else_", "expr", "body", "subject"):
+        if hasattr(e, attr) and isinstance(getattr(e, attr), A.Expr):
+            setattr(e, attr, _replace_ran(getattr(e, attr)))
+    if isinstance(e, A.Case):
+        e.rules = [(p, _replace_ran(b)) for p, b in e.rules]
+    return e
+
+
+def _find_name_span(e, name: str) -> Span | None:
+    from cpn.lang.binding import children
+
+    if isinstance(e, A.Name) and e.name == name:
+        return e.span
+    for c in children(e):
+        sp = _find_name_span(c, name)
+        if sp:
+            return sp
+    return None
+
+
+def check(model: A.Model, overrides: dict[str, str] | None = None) -> CheckedModel:
+    """Resolve names and check types of a parsed model; raises ModelError with every error found."""
+    return Checker(model, overrides).check()
+
+
+__all__ = ["check", "CheckedModel", "PageInfo", "TransInfo", "ArcInfo", "Any"]
