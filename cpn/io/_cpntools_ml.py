@@ -28,6 +28,12 @@ RANDOM_FUNCTIONS: frozenset[str] = frozenset(
     discrete bernoulli binomial poisson""".split()
 )
 
+# Names (or the first part of qualified names) of side effects: I/O, monitors, charts, communication.
+SIDE_EFFECT_NAMES: frozenset[str] = frozenset(
+    """TextIO print MSC OS Posix Unix send_to_applet acceptConnection openConnection closeConnection
+    send receive""".split()
+)
+
 _TOKEN_RE = re.compile(
     r"""(?P<comment>\(\*)|(?P<string>"(?:[^"\\]|\\.)*")|(?P<name>[A-Za-z][A-Za-z0-9_']*(?:\.[A-Za-z][A-Za-z0-9_']*)*)
     |(?P<assign>:=)|(?P<bang>!(?=\s*[A-Za-z(]))|(?P<other>.)""",
@@ -89,27 +95,38 @@ def assigned_refs(text: str) -> set[str]:
 
 
 def declared_functions(text: str) -> list[tuple[str, str]]:
-    """(name, body text) for each `fun NAME` / `val NAME` declared in an ML declaration text.
+    """(name, body text) for each top-level `fun NAME` / `val NAME` of an ML declaration text.
 
-    The body is everything up to the next top-level `fun`/`val` keyword: an over-approximation that is
-    good enough to decide which names a declaration depends on.
+    Top level means outside `let`/`local` ... `end`. The body is everything up to the next top-level
+    declaration: enough to decide which names a declaration depends on.
     """
     clean = strip_comments(text)
-    heads = list(re.finditer(r"\b(fun|val)\s+(?:\(\s*)?([A-Za-z][A-Za-z0-9_']*)", clean))
+    heads = []
+    depth = 0
+    for m in re.finditer(r'"(?:[^"\\]|\\.)*"|\b(let|local|struct|sig|end|fun|val|and)\b(?:\s+(?:\(\s*)?'
+                         r"(?:op\s+)?([A-Za-z][A-Za-z0-9_']*))?", clean):
+        kw = m.group(1)
+        if kw in ("let", "local", "struct", "sig"):
+            depth += 1
+        elif kw == "end":
+            depth = max(depth - 1, 0)
+        elif kw in ("fun", "val", "and") and depth == 0 and m.group(2):
+            heads.append((m.group(2), m.start(), m.end()))
     out = []
-    for i, m in enumerate(heads):
-        end = heads[i + 1].start() if i + 1 < len(heads) else len(clean)
-        out.append((m.group(2), clean[m.end() : end]))
+    for i, (name, _start, end) in enumerate(heads):
+        stop = heads[i + 1][1] if i + 1 < len(heads) else len(clean)
+        out.append((name, clean[end:stop]))
     return out
 
 
 def ml_name(text: str) -> str:
-    """The name CPN Tools gives an element in ML and in its reports: white space becomes `_`.
+    """The name CPN Tools gives an element in ML and in its reports.
 
-    CPN Tools writes a place named "Packets<newline>To Send" as `Packets_To_Send` (`Mark.Top'Send_Mes`,
-    `Bind.Page'Take_Chopsticks` in the sample nets' saved queries).
+    Every character an ML identifier cannot hold becomes `_`, one for one, in the name as drawn: a place
+    named "Packets<newline>To Send" is `Packets_To_Send` (`Mark.Top'Send_Mes`, `Bind.Page'Take_Chopsticks`
+    in the sample nets' saved queries; cpncheck documents the same rule, checked against CPN Tools 4.0.1).
     """
-    return re.sub(r"\s", "_", text.strip())
+    return re.sub(r"[^A-Za-z0-9_']", "_", text.strip())
 
 
 def quote(name: str) -> str:

@@ -182,6 +182,7 @@ class _Translator:
         self.timed_colsets: set[str] = set()
         self.declared: set[str] = set()  # names declared by val/fun/colset in the globbox
         self.impure: set[str] = set(ml.RANDOM_FUNCTIONS)  # functions that draw random values
+        self.code_outputs: dict[str, tuple] = {}  # transition id -> (outputs, pattern, action, origin)
         self.globref_consts: dict[str, str] = {}  # globrefs translated as constants
         self.globrefs_refused: dict[str, Element] = {}
         self.assigned: set[str] = set()
@@ -280,9 +281,11 @@ class _Translator:
                 elif el.tag == "var":
                     user_names |= {c.text.strip() for c in el.findall("id")}
         funs = [f for t in decl_texts for f in ml.declared_functions(t)]
+        self._needed_declarations(gb)
         user_names |= {name for name, _ in funs}
         # A user's own 'normal' or 'uniform' (an enumeration constant, say) is not the library function.
         self.impure = set(ml.RANDOM_FUNCTIONS) - user_names
+        self.impure_via: dict[str, str] = {}  # a function -> the random function it calls
         changed = True
         while changed:  # transitive closure: a function that calls a random one is random
             changed = False
@@ -290,15 +293,69 @@ class _Translator:
                 used = {n for n, _ in ml.names(body)}
                 if name not in self.impure and used & self.impure:
                     self.impure.add(name)
+                    self.impure_via[name] = sorted(used & self.impure)[0]
+                    changed = True
+
+    def _needed_declarations(self, gb: Element | None) -> None:
+        """Find the ML declarations the net uses, directly or through other declarations.
+
+        Monitors, I/O helpers and functions for simulation reports are declared in the globbox too, and
+        often use what a state space cannot have (references, files, the simulator's API). A declaration
+        that no inscription and no colour set needs is left out, with a note.
+        """
+        self.needed_ml: set[int] = set()
+        if gb is None:
+            return
+
+        def words(text: str) -> set[str]:
+            out = set()
+            for n, _ in ml.names(text):
+                out.add(n)
+                out.update(n.split("."))
+            return out
+
+        needed: set[str] = set()
+        for page in self.cpnet.findall("page"):
+            for pl in page.findall("place"):
+                needed |= words(pl.child_text("type")) | words(pl.child_text("initmark"))
+            for tr in page.findall("trans"):
+                for tag in ("cond", "time", "priority"):
+                    needed |= words(tr.child_text(tag))
+                code = tr.child_text("code")
+                if re.search(r"\boutput\b", ml.strip_comments(code)):
+                    needed |= words(code)
+            for a in page.findall("arc"):
+                needed |= words(a.child_text("annot"))
+        mls = []
+        for el in self._all_decl_elements(gb):
+            if el.tag == "color":
+                for sub in el.iter("ml"):
+                    needed |= words(sub.text)
+                lay = el.find("layout")
+                if lay is not None and el.find("by") is None:
+                    needed |= words(lay.text)
+            elif el.tag == "ml":
+                heads = {name for name, _ in ml.declared_functions(el.text)}
+                mls.append((el, heads, words(el.text)))
+        changed = True
+        while changed:
+            changed = False
+            for el, heads, used in mls:
+                if id(el) not in self.needed_ml and heads & needed:
+                    self.needed_ml.add(id(el))
+                    needed |= used
                     changed = True
 
     def _refuse_random(self, text: str, origin: Origin, what: str) -> bool:
         """Refuse text that draws random values from a distribution; True if refused."""
         for n, _ in ml.names(text):
             if n in self.impure:
-                direct = n in ml.RANDOM_FUNCTIONS
-                why = (f"'{n}' draws a random value" if direct
-                       else f"'{n}' calls a random distribution function")
+                chain = [n]
+                while chain[-1] in self.impure_via and len(chain) < 10:
+                    chain.append(self.impure_via[chain[-1]])
+                why = (f"'{n}' draws a random value" if len(chain) == 1
+                       else f"'{n}' calls " + ", which calls ".join(f"'{c}'" for c in chain[1:])
+                       + ", a random distribution function")
                 self.error(origin, f"{what} uses {n}: {why}; a net that does has no deterministic state space",
                            hint="Replace the distribution by a finite choice, e.g. a colour set "
                                 "'colset D = int with 1..5;' and 'D.ran()', which becomes a choice of every value.")
@@ -476,8 +533,15 @@ class _Translator:
         self.out.stmt([(f"var {', '.join(names)} : {tname};", None)], origin)
 
     def _ml(self, el: Element, text: str | None = None) -> None:
+        pruned = text is None and id(el) not in self.needed_ml
         text = _clean(el.text if text is None else text)
         if not text:
+            return
+        if pruned:
+            heads = [name for name, _ in ml.declared_functions(text)]
+            what = ", ".join(heads) if heads else _short(text, 30)
+            self.out.raw(f"(* declaration {el.attrs.get('id', '?')} ({what}) at line {el.line}: not used by the "
+                         "net, left out *)")
             return
         origin = self._origin(el, None, "declaration")
         if el.parts:
@@ -744,6 +808,10 @@ class _Translator:
                        f"{what} has a synchronous channel inscription '{_short(chan)}'; synchronous channels "
                        "(CPN Tools 4 extensions) are not supported",
                        hint="Merge the transitions that synchronise into one transition.")
+        code = _clean(t.el.child_text("code"))
+        if code:
+            co = _text_origin(t.el.find("code"), t.id, t.page.name, f"code segment of '{t.name}'")
+            self._code_segment(t, code, co, what)
         guard = _clean(t.el.child_text("cond"))
         if guard:
             go = _text_origin(t.el.find("cond"), t.id, t.page.name, f"guard of '{t.name}'")
@@ -762,6 +830,10 @@ class _Translator:
                 self.error(do, f"{what} has the time interval '{_short(delay)}'; time intervals are not "
                            "supported by the model language yet",
                            hint="Split the transition into one transition per delay, or use a fixed delay.")
+            elif t.id in self.code_outputs:
+                rest = delay[2:]
+                do2 = Origin(do.line, do.col + 2 + len(rest) - len(rest.lstrip()), do.element, do.page, do.what)
+                parts += [(" @+ ", None)] + self._with_code(t, rest.strip(), do2)
             else:
                 parts += [(" ", None), (delay, do)]
         prio = _clean(t.el.child_text("priority"))
@@ -771,15 +843,13 @@ class _Translator:
                 parts += [(f" priority {STANDARD_PRIORITIES[prio]}", None)]
             else:
                 parts += [(" priority ", None), (prio, po)]
-        code = _clean(t.el.child_text("code"))
-        if code:
-            co = _text_origin(t.el.find("code"), t.id, t.page.name, f"code segment of '{t.name}'")
-            self._code_segment(code, co, what)
         parts.append((";", None))
         self.out.stmt(parts, o, ind)
 
-    def _code_segment(self, code: str, origin: Origin, what: str) -> None:
-        """Accept a code segment that cannot change the state space; refuse every other one."""
+    def _code_segment(self, t: _Trans, code: str, origin: Origin, what: str) -> None:
+        """Translate a code segment: without output variables its action cannot change the marking and is
+        dropped (with a note); a pure action that binds output variables becomes a `let` around the output
+        arc inscriptions and the time inscription that use them. Everything else is refused."""
         clean = ml.strip_comments(code)
         m = re.match(r"\s*(?:input\s*(?P<inp>\([^)]*\)|[A-Za-z][\w']*)\s*;)?\s*"
                      r"(?:output\s*(?P<out>\([^)]*\)|[A-Za-z][\w']*)\s*;)?\s*action\b(?P<act>.*)\Z", clean, re.S)
@@ -788,22 +858,51 @@ class _Translator:
                        hint="Rewrite the code segment, or move its computation into arc inscriptions.")
             return
         outs = [v.strip() for v in (m.group("out") or "").strip("()").split(",") if v.strip()]
-        if outs:
-            self.error(origin, f"{what} has a code segment that binds the output variable(s) "
-                       f"{', '.join(outs)}; code segments that compute values are not supported",
-                       hint="Compute the value in the output arc inscriptions instead, e.g. with "
-                            "'let val x = f(y) in (x, y) end', or bind it on an input arc.")
+        act = code[m.start("act"):].strip()
+        if act.endswith(";"):
+            act = act[:-1].rstrip()
+        if not outs:
+            note = (f"the code segment of {what} binds no output variable: its action is not "
+                    "executed (it cannot change the marking)")
+            self.notes.append(note)
+            self.out.raw(f"(* note: {note} *)")
             return
-        act = m.group("act")
         if self._refuse_random(act, origin, f"the code segment of {what}"):
             return
-        if ":=" in act and any(n in self.globref_consts for n in ml.assigned_refs(act)):
-            self.error(origin, f"the code segment of {what} assigns a reference variable that inscriptions read")
+        effects = sorted({n for n, _ in ml.names(act) if n.split(".")[0] in ml.SIDE_EFFECT_NAMES
+                          or n in ml.SIDE_EFFECT_NAMES})
+        if effects or ":=" in ml.strip_comments(act) or re.search(r"!\s*[A-Za-z(]", ml.strip_comments(act)):
+            used = ", ".join(effects) if effects else "a reference variable"
+            self.error(origin, f"{what} has a code segment that binds the output variable(s) {', '.join(outs)} "
+                       f"with an action that uses {used}: code with side effects has no place in a state space",
+                       hint="Compute the output values with pure CPN ML (no I/O, no references, no MSC), or "
+                            "remove the code segment.")
             return
-        note = (f"the code segment of {what} binds no output variable: its action is not "
-                "executed (it cannot change the marking)")
+        # Where the action starts in the .cpn file, for error positions in the generated `let`.
+        offset = code.index(act) if act in code else 0
+        before = code[:offset]
+        if "\n" in before:
+            ao = Origin(origin.line + before.count("\n"), len(before.rsplit("\n", 1)[-1]) + 1, origin.element,
+                        origin.page, origin.what)
+        else:
+            ao = Origin(origin.line, origin.col + offset, origin.element, origin.page, origin.what)
+        pat = outs[0] if len(outs) == 1 else "(" + ", ".join(outs) + ")"
+        self.code_outputs[t.id] = (outs, pat, act, ao)
+        note = (f"the code segment of {what} binds {', '.join(outs)}; its action is evaluated in a 'let' "
+                "around the output inscriptions that use them")
         self.notes.append(note)
         self.out.raw(f"(* note: {note} *)")
+
+    def _with_code(self, t: _Trans, text: str, origin: Origin) -> list[tuple[str, Origin | None]]:
+        """Parts of an inscription of `t`, wrapped in the `let` of t's code segment if it uses an output."""
+        co = self.code_outputs.get(t.id)
+        if co is None:
+            return [(text, origin)]
+        outs, pat, act, ao = co
+        used = {n for n, _ in ml.names(text)}
+        if not used & set(outs):
+            return [(text, origin)]
+        return [(f"(let val {pat} = ", None), (act, ao), (" in ", None), (text, origin), (" end)", None)]
 
     def _instance(self, t: _Trans, ind: str) -> None:
         o = Origin(t.el.line, t.el.col, t.id, t.page.name, f"substitution transition '{t.name}'")
@@ -868,7 +967,9 @@ class _Translator:
                        "expected PtoT, TtoP, BOTHDIR, Inhibitor or Reset")
             return
         parts: list[tuple[str, Origin | None]] = [(head, None)]
-        if annot:
+        if annot and orient == "ttop":
+            parts += [(" : ", None)] + self._with_code(t, annot, ao)
+        elif annot:
             parts += [(" : ", None), (annot, ao)]
         parts.append((";", None))
         self.out.stmt(parts, o, ind)

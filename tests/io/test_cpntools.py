@@ -86,9 +86,10 @@ def test_one_page_net_translates_every_element_kind():
 
 
 def test_names_that_are_not_identifiers_are_quoted():
-    body = place("P1", "val", "S") + place("P2", "1st", "S") + place("P3", "a.b", "S") + trans("T1", "in")
+    body = place("P1", "val", "S") + place("P2", "1st", "S") + place("P3", "a.b", "S") + place("P4", "Acknowledg-\nment", "S") + trans("T1", "in")
     text = translate_text(cpn_xml(DECLS, page("PG1", "Top", body)), "t.cpn").text
-    assert 'place "val" : S;' in text and 'place "1st" : S;' in text and 'place "a.b" : S;' in text
+    assert 'place "val" : S;' in text and 'place "1st" : S;' in text and "place a_b : S;" in text
+    assert "place Acknowledg__ment : S;" in text
     assert 'trans "in";' in text
     parse(text, "t.cpnet")
 
@@ -190,7 +191,7 @@ def refused(xml: str) -> ModelError:
 
 def test_refusals_are_positioned_and_all_reported_in_one_run():
     body = (place("P1", "A", "S", "1`0")
-            + trans("T1", "t", code="input (x);\noutput (y);\naction x+1;")
+            + trans("T1", "t", code="input (x);\noutput (y);\naction (print(Int.toString x); x+1);")
             + trans("T2", "u", time="@++1.5")
             + trans("T3", "v", channel="ch.?x")
             + arc("A1", "TtoP", "T2", "P1", "exponential(1.0)"))
@@ -206,7 +207,7 @@ def test_random_function_called_through_a_declared_function_is_refused():
     decls = DECLS + '<ml id="M2">fun Delay() = discrete(1,3);</ml>'
     body = place("P1", "A", "S", "1`0") + trans("T1", "t", time="@+Delay()") + arc("A1", "PtoT", "T1", "P1", "x")
     err = refused(cpn_xml(decls, page("PG1", "Top", body)))
-    assert "'Delay' calls a random distribution function" in err.diagnostics[0].message
+    assert "'Delay' calls 'discrete', a random distribution function" in err.diagnostics[0].message
 
 
 def test_an_enumeration_constant_named_like_a_distribution_is_not_refused():
@@ -292,8 +293,8 @@ SAMPLE_TRANSLATION = {
     "DistributedDataBase_OG": None,
     "HierarchicalProtocol": None,
     "ProtocolWithTimer": None,
-    "QueueSystem": ("E0502", "binds the output variable(s) job"),
-    "QueueSystemConfigs": ("E0502", "binds the output variable(s) job"),
+    "QueueSystem": ("E0502", "'expTime' calls 'exponential', a random distribution function"),
+    "QueueSystemConfigs": ("E0502", "reads the reference variable 'num_of_servers'"),
     "RealTimedProtocol": ("E0502", "'@++'"),
     "RealTimedResourceAlloc": ("E0502", "'exponential' draws a random value"),
     "ResourceAllocation": None,
@@ -338,3 +339,21 @@ def test_limit_protocol_translates():
     text = translate(LIMIT)
     assert "net Protocol;" in text and "place Limit : UNIT = 3`();" in text
     parse(text, "limit.cpnet")
+
+
+def test_code_segment_with_pure_action_becomes_a_let_around_the_outputs():
+    body = (place("P1", "A", "S", "1`0") + place("P2", "B", "S")
+            + trans("T1", "t", time="@+z", code="input (x);\noutput (z);\naction\n(x + 1) mod 4;")
+            + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P2", "z"))
+    text = translate_text(cpn_xml(DECLS, page("PG1", "Top", body)), "t.cpn").text
+    assert "trans t @+ (let val z = (x + 1) mod 4 in z end);" in text
+    assert "arc t -> B : (let val z = (x + 1) mod 4 in z end);" in text
+    assert "arc A -> t : x;" in text
+    parse(text, "t.cpnet")
+
+
+def test_code_segment_with_side_effects_and_outputs_is_refused():
+    body = (place("P1", "A", "S", "1`0") + trans("T1", "t", code="input (x);\noutput (z);\naction\nMSC.start(x);")
+            + arc("A1", "PtoT", "T1", "P1", "x"))
+    err = refused(cpn_xml(DECLS, page("PG1", "Top", body)))
+    assert "uses MSC.start" in err.diagnostics[0].message
