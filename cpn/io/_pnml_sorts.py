@@ -79,17 +79,14 @@ class Sort:
             self.helpers[op] = names.ident(f"{op}_{self.name}")
         return self.helpers[op]
 
-    def helper_declarations(self, names: Namespace) -> list[str]:
-        """`fun` declarations of the helpers used, in a fixed order (succ, pred, ord, of)."""
+    def helper_declarations(self, arg: str) -> list[str]:
+        """`fun` declarations of the helpers used, in a fixed order (succ, pred, ord, of); `arg` is
+        the name of their parameter."""
         out = []
-        arg = None
         for op in ("succ", "pred", "ord", "of"):
             fname = self.helpers.get(op)
-            if fname is None:
-                continue
-            if arg is None:
-                arg = names.ident("c'")
-            out.append(self._helper_text(op, fname, arg))
+            if fname is not None:
+                out.append(self._helper_text(op, fname, arg))
         return out
 
     def _helper_text(self, op: str, fname: str, arg: str) -> str:

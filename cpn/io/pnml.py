@@ -385,8 +385,10 @@ class _Translator:
         for ident, sort in self.vars.values():
             by_sort.setdefault(sort.name, []).append(ident)
         out += [f"var {', '.join(vs)} : {s};" for s, vs in by_sort.items()]
-        for s in self.sort_order:
-            out += s.helper_declarations(self.names)
+        if any(s.helpers for s in self.sort_order):
+            arg = self.names.ident("c'")
+            for s in self.sort_order:
+                out += s.helper_declarations(arg)
         out.append("")
         return "\n".join(out + body) + "\n"
 
@@ -513,9 +515,19 @@ class _Translator:
                        code="E0501")
             return None
         if el.tag in ("dot", "bool"):
+            # an inline dot or bool is the declared one when there is one: no duplicate colour sets
             if el.tag not in self.anon:
-                self.anon[el.tag] = self.define(el, el.tag, DOT_COLSET if el.tag == "dot" else "BOOL")
+                same = next((s for s in self.sort_order if s.kind == el.tag), None)
+                self.anon[el.tag] = same or self.define(el, el.tag, DOT_COLSET if el.tag == "dot" else "BOOL")
             return self.anon[el.tag]
+        if el.tag == "finiteintrange":
+            try:
+                lo, hi = int(el.get("start", "")), int(el.get("end", ""))
+            except ValueError:
+                lo = hi = None
+            same = next((s for s in self.sort_order if s.kind == "range" and (s.lo, s.hi) == (lo, hi)), None)
+            if same is not None:
+                return same
         return self.define(el, f"{owner.get('id', owner.tag)}_sort", None)
 
     # ------------------------------------------------------------------ symmetric nets: terms
@@ -582,7 +594,9 @@ class _Translator:
     def t_finiteintrangeconstant(self, el, where, expect):
         term = self.t_numberconstant(el, where, expect)
         r = el.find("finiteintrange")
-        if r is not None:
+        if expect is not None and expect.kind == "range":
+            term.sort = expect
+        elif r is not None:
             term.sort = self.sort_of(r, el)
         return term
 
@@ -744,7 +758,19 @@ class _Translator:
         return self._arith(el, where, "mod")
 
     def _logic(self, el, where, op):
-        terms = self.subterms(el, where)
+        # and/or are associative: nested ones of the same kind become one chain
+        flat: list[Element] = []
+
+        def collect(node: Element) -> None:
+            for s in node.elements():
+                inner = s.elements() if s.tag == "subterm" else [s]
+                if inner and inner[0].tag == node.tag:
+                    collect(inner[0])
+                elif inner:
+                    flat.append(inner[0])
+
+        collect(el)
+        terms = [self.term(x, where) for x in flat]
         if not terms:
             return _Term("true" if op == "andalso" else "false")
         if len(terms) == 1:
