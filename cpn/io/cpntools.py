@@ -624,7 +624,7 @@ class _Translator:
                                _clean(pl.child_text("initmark")), kind, fusion, page)
                 page.places.append(place)
                 self.places[place.id] = place
-            seen = {}
+            # CPN Tools keeps place and transition names apart; `.cpnet` has one namespace per page.
             for tr in pel.findall("trans"):
                 name = self._element_name(tr, "transition", page, seen)
                 sub = tr.find("subst")
@@ -667,8 +667,8 @@ class _Translator:
         if name in seen:
             seen[name] += 1
             new = f"{name}_{seen[name]}"
-            self.notes.append(f"two {kind}s on page '{page.name}' are named '{name}'; "
-                              f"the one at line {el.line} is called '{new}'")
+            self.notes.append(f"two elements on page '{page.name}' are named '{name}'; "
+                              f"the {kind} at line {el.line} is called '{new}'")
             return new
         seen[name] = 1
         return name
