@@ -35,6 +35,7 @@ class Sort:
     base: Sort | None = None
     element_of: dict[str, str] = field(default_factory=dict)
     helpers: dict[str, str] = field(default_factory=dict)  # "succ"/"pred"/"ord"/"of" -> function name
+    origin: object = None  # the PNML element that declares the sort, for diagnostics
 
     def declaration(self) -> str:
         if self.kind == "dot":

@@ -18,7 +18,8 @@ from cpn.io._pnml_names import Namespace, NodeNames, quote_name
 from cpn.io._pnml_sorts import Sort, int_text
 from cpn.io._pnml_xml import Element, parse_xml
 
-__all__ = ["translate", "translate_text", "write", "write_text", "PT_NET", "SYMMETRIC_NET"]
+__all__ = ["translate", "translate_text", "translate_with_origins", "remap_error", "PnmlTranslation", "write",
+           "write_text", "PT_NET", "SYMMETRIC_NET"]
 
 PT_NET = "http://www.pnml.org/version-2009/grammar/ptnet"
 SYMMETRIC_NET = "http://www.pnml.org/version-2009/grammar/symmetricnet"
@@ -49,10 +50,73 @@ def translate(path: str | os.PathLike) -> str:
 
 def translate_text(data: bytes | str, filename: str = "<pnml>") -> str:
     """Translate PNML given as bytes or text; `filename` is used in diagnostics only."""
+    return _translation(data, filename).text
+
+
+@dataclass
+class PnmlTranslation:
+    """The `.cpnet` text of a PNML file and, per generated line, the PNML element it comes from."""
+
+    path: str
+    text: str
+    origins: dict[int, Span]  # 1-based line of the generated text -> start tag of the PNML element
+
+    def locate(self, line: int) -> Span | None:
+        return self.origins.get(line)
+
+
+def translate_with_origins(path: str | os.PathLike) -> PnmlTranslation:
+    """Like `translate`, also giving the origin of every generated statement (for `remap_error`)."""
+    path = os.fspath(path)
+    try:
+        with open(path, "rb") as fh:
+            data = fh.read()
+    except OSError as exc:
+        raise ModelError([Diagnostic("E0501", f"cannot read the PNML file: {exc.strerror}", Span(path, 1, 1))]) \
+            from None
+    return _translation(data, path)
+
+
+def remap_error(error: ModelError, translation: PnmlTranslation, generated_name: str | None = None) -> ModelError:
+    """Point the diagnostics of a failed load of translated text at the PNML elements they come from.
+
+    A diagnostic in the generated text (file `generated_name` or the PNML path) moves to the element's
+    start tag and keeps the generated line in a note.
+    """
+    lines = translation.text.splitlines()
+    out = []
+    for d in error.diagnostics:
+        s = d.span
+        names = {translation.path} | ({generated_name} if generated_name else set())
+        span = translation.locate(s.line) if s is not None and s.file in names else None
+        if span is None:
+            out.append(d)
+            continue
+        text = lines[s.line - 1].strip() if 0 < s.line <= len(lines) else ""
+        note = f"in the translation of this PNML element, line {s.line}: {text[:100]}"
+        out.append(Diagnostic(d.code, d.message, span, d.hint, list(d.notes) + [note], dict(d.params),
+                              d.severity))
+    sources = dict(error.sources)
+    try:
+        with open(translation.path, encoding="utf-8", errors="replace") as fh:
+            sources[translation.path] = fh.read()
+    except OSError:
+        pass
+    return type(error)(out, sources)
+
+
+def _translation(data: bytes | str, filename: str) -> PnmlTranslation:
     if isinstance(data, str):
         data = data.encode("utf-8")
     root = parse_xml(data, filename)
-    return _Translator(root, filename).run()
+    tr = _Translator(root, filename)
+    text = tr.run()
+    origins = {}
+    for i, line in enumerate(text.splitlines(), 1):
+        el = tr.origins.get(line)
+        if el is not None:
+            origins[i] = el.span(filename)
+    return PnmlTranslation(filename, text, origins)
 
 
 @dataclass
@@ -82,6 +146,7 @@ class _Arc:
     kind: str  # "arc", "inhibitor", "reset", "test"
     parts: list[str] = field(default_factory=list)
     weight: int = 0
+    origin: Element | None = None
 
 
 class _Translator:
@@ -98,6 +163,13 @@ class _Translator:
         self.consts: dict[str, tuple[str, Sort]] = {}  # feconstant / partitionelement id -> (ident, sort)
         self.vars: dict[str, tuple[str, Sort]] = {}
         self.anon: dict[str, Sort] = {}  # builtin sorts without a namedsort ("dot", "bool")
+        self.origins: dict[str, Element] = {}  # generated statement -> the PNML element it comes from
+
+    def line(self, text: str, origin: Element | None) -> str:
+        """Record where a generated statement comes from (statements are unique lines) and return it."""
+        if origin is not None:
+            self.origins.setdefault(text.split("\n", 1)[0], origin)
+        return text
 
     # ------------------------------------------------------------------ diagnostics
     def error(self, el: Element | None, message: str, hint: str | None = None, code: str = "E0502") -> None:
@@ -223,7 +295,7 @@ class _Translator:
     def emit_arcs(self, merged: dict[tuple, _Arc], out: list[str], render) -> None:
         for (src, dst, kind), a in merged.items():
             if kind == "reset":
-                out.append(f"reset {src} -> {dst};")
+                out.append(self.line(f"reset {src} -> {dst};", a.origin))
                 continue
             insc = render(a)
             if kind == "test":
@@ -231,7 +303,7 @@ class _Translator:
                 keyword, arrow = "arc", "<->"
             else:
                 keyword, arrow, p, t = ("inhibitor" if kind == "inhibitor" else "arc"), "->", src, dst
-            out.append(f"{keyword} {p} {arrow} {t}{' : ' + insc if insc else ''};")
+            out.append(self.line(f"{keyword} {p} {arrow} {t}{' : ' + insc if insc else ''};", a.origin))
 
     # ------------------------------------------------------------------ P/T nets
     def pt_net(self, net: Element) -> str:
@@ -244,11 +316,11 @@ class _Translator:
                 continue
             m = self.pt_int(p, "initialMarking", 0, f"the initial marking of place '{p.get('id')}'")
             init = f" = {m}`()" if m else ""
-            out.append(f"place {table[p.get('id')]} : {DOT_COLSET}{init};")
+            out.append(self.line(f"place {table[p.get('id')]} : {DOT_COLSET}{init};", p))
         out.append("")
         for t in transitions:
             if t.get("id") in table:
-                out.append(f"trans {table[t.get('id')]};")
+                out.append(self.line(f"trans {table[t.get('id')]};", t))
         out.append("")
         merged: dict[tuple, _Arc] = {}
         for a in arcs:
@@ -263,7 +335,7 @@ class _Translator:
                 continue
             w = self.pt_int(a, "inscription", 1, f"the inscription of arc '{a.get('id', '?')}'")
             key = (src, dst, kind)
-            merged.setdefault(key, _Arc(src, dst, kind)).weight += w
+            merged.setdefault(key, _Arc(src, dst, kind, origin=a)).weight += w
         self.emit_arcs(merged, out, lambda arc: "" if arc.weight == 1 else f"{arc.weight}`()")
         return "\n".join(out) + "\n"
 
@@ -339,7 +411,7 @@ class _Translator:
             if m is not None and m.elements():
                 term = self.term(m.elements()[0], f"the initial marking of place '{pid}'", sort)
                 init = " = " + term.as_ms()
-            body.append(f"place {table[pid]} : {sort.name}{init};")
+            body.append(self.line(f"place {table[pid]} : {sort.name}{init};", p))
         body.append("")
         for t in transitions:
             tid = t.get("id", "")
@@ -351,7 +423,7 @@ class _Translator:
                 g = self.term(c.elements()[0], f"the guard of transition '{tid}'")
                 if g.text != "true":
                     guard = f" [{g.text}]"
-            body.append(f"trans {table[tid]}{guard};")
+            body.append(self.line(f"trans {table[tid]}{guard};", t))
         body.append("")
         merged: dict[tuple, _Arc] = {}
         for a in arcs:
@@ -374,13 +446,13 @@ class _Translator:
                 self.error(a, f"arc '{aid}' has no inscription and its place is not of sort dot",
                            hint="Give the arc an <hlinscription>.", code="E0501")
                 continue
-            arc = merged.setdefault((src, dst, kind), _Arc(src, dst, kind))
+            arc = merged.setdefault((src, dst, kind), _Arc(src, dst, kind, origin=a))
             if text:
                 arc.parts.append(text)
         self.emit_arcs(merged, body, lambda arc: " ++ ".join(arc.parts))
 
         out = [self.header(net, "symmetric net")]
-        out += [s.declaration() for s in self.sort_order]
+        out += [self.line(s.declaration(), s.origin) for s in self.sort_order]
         by_sort: dict[str, list[str]] = {}
         for ident, sort in self.vars.values():
             by_sort.setdefault(sort.name, []).append(ident)
@@ -392,8 +464,8 @@ class _Translator:
         out.append("")
         return "\n".join(out + body) + "\n"
 
-    def new_sort(self, kind: str, *names: str | None, **kw) -> Sort:
-        sort = Sort(kind, self.names.ident(*names), **kw)
+    def new_sort(self, kind: str, *names: str | None, origin: Element | None = None, **kw) -> Sort:
+        sort = Sort(kind, self.names.ident(*names), origin=origin, **kw)
         self.sort_order.append(sort)
         return sort
 
@@ -430,15 +502,15 @@ class _Translator:
         """The colour set for sort definition `d` (named `name` when given)."""
         tag = d.tag
         if tag == "dot":
-            return self.new_sort("dot", name, sid, "Dot")
+            return self.new_sort("dot", name, sid, "Dot", origin=d)
         if tag == "bool":
-            return self.new_sort("bool", name, sid, "Bool")
+            return self.new_sort("bool", name, sid, "Bool", origin=d)
         if tag in ("cyclicenumeration", "finiteenumeration"):
             fcs = d.findall("feconstant")
             if not fcs:
                 self.error(d, f"the enumeration of sort '{sid}' has no constants", code="E0501")
                 return None
-            sort = self.new_sort("enum", name, sid, "Enum", cyclic=(tag == "cyclicenumeration"))
+            sort = self.new_sort("enum", name, sid, "Enum", origin=d, cyclic=(tag == "cyclicenumeration"))
             for fc in fcs:
                 ident = self.names.ident(fc.get("name"), fc.get("id"), f"{sort.name}_{fc.get('name')}")
                 sort.consts.append(ident)
@@ -454,7 +526,7 @@ class _Translator:
             if lo > hi:
                 self.error(d, f"finiteintrange of sort '{sid}' is empty ({lo}..{hi})", code="E0501")
                 return None
-            return self.new_sort("range", name, sid, "Range", lo=lo, hi=hi)
+            return self.new_sort("range", name, sid, "Range", origin=d, lo=lo, hi=hi)
         if tag == "productsort":
             parts = [self.sort_of(c, d) for c in d.elements()]
             if any(p is None for p in parts):
@@ -464,7 +536,7 @@ class _Translator:
                     return parts[0]
                 self.error(d, f"productsort of sort '{sid}' has no components", code="E0501")
                 return None
-            return self.new_sort("product", name, sid, "Product", parts=parts)
+            return self.new_sort("product", name, sid, "Product", origin=d, parts=parts)
         self.error(d, f"unsupported PNML sort '{tag}' in the declaration of sort '{sid}'",
                    hint="Supported sorts are dot, bool, cyclicenumeration, finiteenumeration, finiteintrange, "
                         "productsort and partition.")
@@ -479,7 +551,7 @@ class _Translator:
             else:
                 self.error(el, f"partition '{sid}' does not name the sort it partitions", code="E0501")
             return None
-        sort = self.new_sort("enum", el.get("name"), sid, "Partition")
+        sort = self.new_sort("enum", el.get("name"), sid, "Partition", origin=el)
         sort.base = base
         for pe in el.findall("partitionelement"):
             ident = self.names.ident(pe.get("name"), pe.get("id"))

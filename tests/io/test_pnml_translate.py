@@ -309,3 +309,20 @@ def test_corpus_translates_and_parses(path):
 
     text = translate(path)
     parse(text, path + ".cpnet")
+
+
+def test_origins_point_at_the_pnml_elements(tmp_path):
+    from cpn.diagnostics import Diagnostic, Span
+    from cpn.io.pnml import remap_error, translate_with_origins
+
+    path = tmp_path / "m.pnml"
+    path.write_text(pt('<place id="p"/>\n<transition id="t"/>\n<arc id="a" source="p" target="t"/>'))
+    tr = translate_with_origins(path)
+    lines = tr.text.splitlines()
+    arc_line = lines.index("arc p -> t;") + 1
+    assert tr.locate(arc_line).line == 6
+    assert tr.locate(lines.index("place p : DOT;") + 1).line == 4
+    err = ModelError([Diagnostic("E0301", "type mismatch", Span(str(path), arc_line, 5))])
+    mapped = remap_error(err, tr)
+    d = mapped.diagnostics[0]
+    assert (d.span.line, d.code) == (6, "E0301") and "arc p -> t;" in d.notes[-1]
