@@ -17,7 +17,7 @@ from array import array
 from itertools import compress
 
 from cpn.statespace import Exploration
-from cpn.statespace.scc import SccDecomposition, has_cycle
+from cpn.statespace.scc import SccDecomposition, first_cycle_component, has_cycle
 
 
 class Fairness(enum.Enum):
@@ -28,41 +28,55 @@ class Fairness(enum.Enum):
 
 
 def fairness(x: Exploration, dec: SccDecomposition, arc_transitions: array) -> dict[int, Fairness] | None:
-    """Fairness class of each transition instance, or None when there is no infinite sequence."""
+    """Fairness class of each transition instance, or None when there is no infinite sequence.
+
+    Per transition instance t, at most two searches, both confined to the nontrivial SCCs:
+    1. a cycle avoiding t among the states where t is enabled: t is not just (No Fairness);
+    2. otherwise the SCCs of the graph less t's arcs: none nontrivial means impartial, none holding a
+       state that enables t means fair, else just.
+    The first is a depth-first search that stops at its first back arc, which is what makes the
+    common "No Fairness" answer cheap on large graphs.
+    """
     if not any(dec.nontrivial):
         return None
     g = x.graph
     n = g.n_states
     off, dst = g.offsets, g.dst
-    # Cycles only live inside nontrivial SCCs: every search below is confined to them.
-    cyclic = bytearray(map(dec.nontrivial.__getitem__, dec.comp))
-    src = g.arc_sources()
-    result: dict[int, Fairness] = {}
     ntrans = len(x.engine.transitions)
+    cyclic = bytearray(map(dec.nontrivial.__getitem__, dec.comp))
+    enabled = _enabled_in_cycles(g, cyclic, arc_transitions, ntrans)
+    result: dict[int, Fairness] = {}
     for t in range(ntrans):
-        skip = bytearray(map(t.__eq__, arc_transitions))
-        enabled = bytearray(n)
-        for v in compress(src, skip):
-            enabled[v] = 1
-        keep = cyclic
-        witness = {}
+        en = enabled[t]
+        if any(en) and has_cycle(n, off, dst, arc_transitions, t, en):
+            result[t] = Fairness.NONE
+            continue
+        seen = {"cycle": False}
 
-        def avoid_t(nodes, enabled=enabled, witness=witness):
-            witness["cycle"] = True
-            if any(map(enabled.__getitem__, nodes)):
-                witness["enabled"] = True
-                return True
-            return False
+        def through_enabled(nodes, en=en, seen=seen):
+            seen["cycle"] = True
+            return any(map(en.__getitem__, nodes))
 
-        has_cycle(n, off, dst, skip_arc=skip, keep_node=keep, within=avoid_t)
-        if not witness.get("cycle"):
-            result[t] = Fairness.IMPARTIAL
-        elif not witness.get("enabled"):
+        if first_cycle_component(n, off, dst, through_enabled, arc_transitions, t, cyclic) is not None:
+            result[t] = Fairness.JUST
+        elif seen["cycle"]:
             result[t] = Fairness.FAIR
         else:
-            keep_enabled = bytearray(a & b for a, b in zip(cyclic, enabled))
-            if has_cycle(n, off, dst, skip_arc=skip, keep_node=keep_enabled):
-                result[t] = Fairness.NONE
-            else:
-                result[t] = Fairness.JUST
+            result[t] = Fairness.IMPARTIAL
     return result
+
+
+def _enabled_in_cycles(g, cyclic: bytearray, arc_transitions: array, ntrans: int) -> list[bytearray]:
+    """Per transition instance, a bytearray over states: enabled there, and the state lies on a cycle."""
+    n = g.n_states
+    enabled = [bytearray(n) for _ in range(ntrans)]
+    off = g.offsets
+    expanded = g.expanded
+    for v in compress(range(min(n, expanded)), cyclic):
+        a, b = off[v], off[v + 1]
+        if b - a == 1:
+            enabled[arc_transitions[a]][v] = 1
+        else:
+            for t in set(arc_transitions[a:b]):
+                enabled[t][v] = 1
+    return enabled

@@ -6,10 +6,15 @@ May import cpn.engine, cpn.net, cpn.values, cpn.diagnostics and cpn.errors; neve
 from cpn.statespace.explore import Exploration, Explorer, Progress
 from cpn.statespace.graph import StateGraph
 from cpn.statespace.options import ExploreOptions, StopReason
-from cpn.statespace.scc import SccDecomposition, has_cycle, strongly_connected_components
+from cpn.statespace.scc import (
+    SccDecomposition,
+    first_cycle_component,
+    has_cycle,
+    strongly_connected_components,
+)
 from cpn.statespace.trace import Step, Trace, replay, shortest_trace
 
 __all__ = [
     "Exploration", "Explorer", "ExploreOptions", "Progress", "SccDecomposition", "StateGraph", "Step",
-    "StopReason", "Trace", "has_cycle", "replay", "shortest_trace", "strongly_connected_components",
+    "StopReason", "Trace", "first_cycle_component", "has_cycle", "replay", "shortest_trace", "strongly_connected_components",
 ]
