@@ -753,13 +753,10 @@ class Checker:
         if isinstance(pt, T.TCon) and pt.name == "ms":
             self.must(pt.args[0], elem, e.span, what)
             return e
-        if isinstance(pt, T.TVar) and not isinstance(T.prune(elem), T.TVar):
-            try:
-                T.unify(pt, elem)
-                return A.ToMs(e.span, e, ty=T.ms(elem))
-            except T.UnifyError:
-                self.must(pt, T.ms(elem), e.span, what)
-                return e
+        if isinstance(pt, T.TVar):
+            # not known yet (e.g. a recursive call): a multiset, as CPN ML's ++ requires
+            self.must(pt, T.ms(elem), e.span, what)
+            return e
         self.must(t, elem, e.span, what)
         return A.ToMs(e.span, e, ty=T.ms(elem))
 

@@ -1,0 +1,485 @@
+"""Typed CPN ML expressions and transitions to Python source.
+
+Each transition becomes one function that enumerates its enabled bindings on the multisets of the places
+it reads: nested loops over the distinct tokens that input-arc patterns match, each guard conjunct tested
+as soon as its variables are bound, then the consumed and produced tokens. Every generated line that
+evaluates a model expression is recorded in a blame table (line -> model element and span), so that an
+error raised inside generated code names the model element. Model text is never executed as Python: the
+source is built from the typed AST, identifiers are mangled, constants are `repr`s of checked values.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+from cpn.lang import ast as A
+from cpn.lang import binding as B
+from cpn.lang.builtins import BUILTINS, TIME_BUILTINS
+
+_PY_BINOPS = {"+": "+", "-": "-", "*": "*", "^": "+", "^^": "+", "@": "+", "=": "==", "<>": "!=",
+              "<": "<", "<=": "<=", ">": ">", ">=": ">="}
+
+
+class Unsupported(Exception):
+    """An expression the compiler leaves to the evaluator."""
+
+
+@dataclass
+class Namespace:
+    """Objects the generated module refers to by name."""
+
+    objects: dict[str, Any] = field(default_factory=dict)
+    _ids: dict[int, str] = field(default_factory=dict)
+
+    def ref(self, obj: Any, hint: str = "K") -> str:
+        key = id(obj)
+        name = self._ids.get(key)
+        if name is None:
+            name = f"{hint}{len(self.objects)}"
+            self._ids[key] = name
+            self.objects[name] = obj
+        return name
+
+
+class ExprCompiler:
+    """Compiles one expression to a Python expression string, given the Python names of bound variables."""
+
+    def __init__(self, ns: Namespace, evaluator, varnames: dict[str, str], params: dict[int, Any],
+                 var_uids: dict[str, int]):
+        self.ns = ns
+        self.ev = evaluator
+        self.varnames = varnames  # transition variable name -> python local name
+        self.params = params
+        self.var_uids = var_uids
+        self.uses_time = False
+
+    def const(self, v: Any) -> str:
+        if isinstance(v, (bool, int, str, float)) or v == ():
+            return repr(v)
+        return self.ns.ref(v, "K")
+
+    def fallback(self, e: A.Expr) -> str:
+        """Evaluate e with the tree-walking evaluator (for let, case, fn, sequences)."""
+        node = self.ns.ref(e, "X")
+        used = B.all_vars(e)
+        items = ", ".join(f"{self.var_uids[n]}: {py}" for n, py in self.varnames.items() if n in used)
+        env = self.ns.ref(self.params, "P")
+        return f"EVAL({node}, {{**{env}, {items}}})" if items else f"EVAL({node}, {env})"
+
+    def expr(self, e: A.Expr) -> str:
+        try:
+            return getattr(self, "_c_" + type(e).__name__)(e)
+        except Unsupported:
+            return self.fallback(e)
+
+    def _c_Const(self, e):
+        return self.const(e.value)
+
+    def _c_Name(self, e):
+        sym = e.ref
+        k = sym.kind
+        if k == "var":
+            return self.varnames[sym.name]
+        if k in ("val", "fun"):
+            return self.ns.ref(self.ev.globals[sym.uid], "G")
+        if k == "param":
+            return self.const(self.params[sym.uid])
+        if k == "con":
+            info = sym.data
+            if info.kind == "enum" or (info.kind == "union" and not info.has_arg):
+                return repr(info.tag)
+            return self.ns.ref(self.ev.eval(e, {}), "C")
+        if k == "builtin":
+            if sym.name in TIME_BUILTINS:
+                self.uses_time = True
+                return "TIMEFN"
+            return self.ns.ref(BUILTINS[sym.name][1], "B")
+        if k == "csop":
+            return self.ns.ref(self.ev.eval(e, {}), "S")
+        raise Unsupported()
+
+    def _c_Select(self, e):
+        return f"(lambda r: r[{e.index}])"
+
+    def _c_TupleE(self, e):
+        return "(" + "".join(self.expr(x) + ", " for x in e.items) + ")"
+
+    def _c_RecordE(self, e):
+        fields = sorted(e.fields, key=lambda f: f[0])
+        return "(" + "".join(self.expr(x) + ", " for _, x in fields) + ")"
+
+    def _c_ListE(self, e):
+        return "(" + "".join(self.expr(x) + ", " for x in e.items) + ")"
+
+    def _c_App(self, e):
+        if isinstance(e.fn, A.Select):
+            return f"{self.expr(e.arg)}[{e.fn.index}]"
+        if isinstance(e.fn, A.Name) and e.fn.ref.kind == "con" and e.fn.ref.data.kind == "index":
+            return f"IDX({self.ns.ref(self.ev.colsets[e.fn.ref.data.colset], 'S')}, {self.expr(e.arg)})"
+        if isinstance(e.fn, A.Name) and e.fn.ref.kind == "con" and e.fn.ref.data.kind == "union":
+            return f"({e.fn.ref.data.tag}, {self.expr(e.arg)})"
+        if isinstance(e.fn, A.Name) and e.fn.ref.kind == "builtin" and e.fn.name == "not":
+            return f"(not {self.expr(e.arg)})"
+        return f"{self.expr(e.fn)}({self.expr(e.arg)})"
+
+    def _c_Neg(self, e):
+        return f"(-{self.expr(e.operand)})"
+
+    def _c_If(self, e):
+        return f"({self.expr(e.then)} if {self.expr(e.cond)} else {self.expr(e.else_)})"
+
+    def _c_Annot(self, e):
+        return self.expr(e.expr)
+
+    def _c_ToMs(self, e):
+        return f"MS1({self.expr(e.expr)})"
+
+    def _c_BinOp(self, e):
+        op = e.op
+        if op == "andalso":
+            return f"({self.expr(e.left)} and {self.expr(e.right)})"
+        if op == "orelse":
+            return f"({self.expr(e.left)} or {self.expr(e.right)})"
+        if op == "::":
+            return f"(({self.expr(e.left)},) + {self.expr(e.right)})"
+        if op in _PY_BINOPS:
+            return f"({self.expr(e.left)} {_PY_BINOPS[op]} {self.expr(e.right)})"
+        return f"BINOP({op!r}, {self.expr(e.left)}, {self.expr(e.right)})"
+
+    def _c_Case(self, e):
+        raise Unsupported()
+
+    def _c_Let(self, e):
+        raise Unsupported()
+
+    def _c_Fn(self, e):
+        raise Unsupported()
+
+    def _c_Seq(self, e):
+        raise Unsupported()
+
+    def _c_OpFun(self, e):
+        raise Unsupported()
+
+
+# ----------------------------------------------------------------------------- multiset terms
+
+
+@dataclass
+class Term:
+    """One summand of an inscription: `coef`value` (pattern or expression), or an opaque multiset."""
+
+    coef: A.Expr | None  # None means 1
+    value: A.Expr | None  # None for opaque terms
+    opaque: A.Expr | None = None  # an expression evaluating to a multiset
+    cond: list = field(default_factory=list)  # (expr, polarity) conditions from if-then-else
+
+
+def terms(e: A.Expr, cond=None) -> list[Term]:
+    """Flatten an untimed inscription into terms; `if` with multiset branches becomes conditional terms."""
+    cond = cond or []
+    if isinstance(e, A.BinOp) and e.op in ("++", "+++"):
+        return terms(e.left, cond) + terms(e.right, cond)
+    if isinstance(e, A.ToMs):
+        return [Term(None, e.expr, cond=cond)]
+    if isinstance(e, A.BinOp) and e.op == "`":
+        return [Term(e.left, e.right, cond=cond)]
+    if isinstance(e, A.Name) and e.ref is not None and e.ref.kind == "builtin" and e.name == "empty":
+        return []
+    if isinstance(e, A.If):
+        return terms(e.then, cond + [(e.cond, True)]) + terms(e.else_, cond + [(e.cond, False)])
+    return [Term(None, None, opaque=e, cond=cond)]
+
+
+def has_time(e) -> bool:
+    if isinstance(e, A.BinOp) and e.op == "@+":
+        return True
+    return any(has_time(c) for c in B.children(e))
+
+
+def out_terms(e: A.Expr, ec: ExprCompiler, delay: str = "0") -> list[str]:
+    """Python expressions, each a list of (value, count, delay) triples, whose sum is the output of e."""
+    if isinstance(e, A.BinOp) and e.op in ("++", "+++"):
+        return out_terms(e.left, ec, delay) + out_terms(e.right, ec, delay)
+    if isinstance(e, A.BinOp) and e.op == "@+":
+        d = ec.expr(e.right)
+        return out_terms(e.left, ec, d if delay == "0" else f"({delay}) + ({d})")
+    if isinstance(e, A.ToMs):
+        return [f"(({ec.expr(e.expr)}, 1, {delay}),)"]
+    if isinstance(e, A.BinOp) and e.op == "`":
+        return [f"(({ec.expr(e.right)}, {ec.expr(e.left)}, {delay}),)"]
+    if isinstance(e, A.Name) and e.ref is not None and e.ref.kind == "builtin" and e.name == "empty":
+        return []
+    if isinstance(e, A.If):
+        a = " + ".join(out_terms(e.then, ec, delay)) or "()"
+        b = " + ".join(out_terms(e.else_, ec, delay)) or "()"
+        return [f"(({a}) if {ec.expr(e.cond)} else ({b}))"]
+    return [f"MSITEMS({ec.expr(e)}, {delay})"]
+
+
+class TransitionCodegen:
+    """Generates `bind_<t>(M0, M1, ...)`: the enabled bindings of one transition instance."""
+
+    def __init__(self, t, net, ns: Namespace, evaluator, read: list[int]):
+        self.t = t
+        self.net = net
+        self.ns = ns
+        self.read = read  # place indices, in the order of the function's parameters
+        self.varnames = {v: f"v{i}" for i, v in enumerate(t.variables)}
+        var_uids = {name: sym.uid for name, sym in net.variables.items()}
+        self.ec = ExprCompiler(ns, evaluator, self.varnames, t.params, var_uids)
+        self.lines: list[str] = []
+        self.blame: dict[int, tuple[str, Any]] = {}
+        self.indent = 1
+        self._tok = 0
+
+    def emit(self, line: str, blame: tuple[str, Any] | None = None) -> None:
+        self.lines.append("    " * self.indent + line)
+        if blame is not None:
+            self.blame[len(self.lines)] = blame
+
+    def newtok(self) -> str:
+        self._tok += 1
+        return f"tok{self._tok}"
+
+    # -- pattern matching
+    def matchable(self, e, bound: set) -> bool:
+        if B.is_var(e):
+            return True
+        if isinstance(e, (A.TupleE, A.ListE)):
+            b = set(bound)
+            ok = True
+            for x in e.items:
+                ok = ok and self.matchable(x, b)
+                b |= B.pattern_vars(x)
+            return ok
+        if isinstance(e, A.RecordE):
+            b = set(bound)
+            ok = True
+            for _, x in sorted(e.fields, key=lambda f: f[0]):
+                ok = ok and self.matchable(x, b)
+                b |= B.pattern_vars(x)
+            return ok
+        if isinstance(e, A.App) and B.is_constructor_fn(e.fn):
+            return self.matchable(e.arg, bound)
+        if isinstance(e, A.Annot):
+            return self.matchable(e.expr, bound)
+        if isinstance(e, A.BinOp) and e.op == "::":
+            return self.matchable(e.left, bound) and self.matchable(e.right, bound | B.pattern_vars(e.left))
+        return B.all_vars(e) <= bound
+
+    def gen_match(self, e, src: str, bound: set, blame) -> None:
+        if B.is_var(e):
+            py = self.varnames[e.name]
+            if e.name in bound:
+                self.emit(f"if {src} != {py}: continue")
+            else:
+                self.emit(f"{py} = {src}")
+                bound.add(e.name)
+            return
+        if isinstance(e, A.TupleE):
+            for i, x in enumerate(e.items):
+                self.gen_match(x, f"{src}[{i}]", bound, blame)
+            return
+        if isinstance(e, A.RecordE):
+            for i, (_, x) in enumerate(sorted(e.fields, key=lambda f: f[0])):
+                self.gen_match(x, f"{src}[{i}]", bound, blame)
+            return
+        if isinstance(e, A.ListE):
+            self.emit(f"if len({src}) != {len(e.items)}: continue")
+            for i, x in enumerate(e.items):
+                self.gen_match(x, f"{src}[{i}]", bound, blame)
+            return
+        if isinstance(e, A.App) and B.is_constructor_fn(e.fn):
+            info = e.fn.ref.data
+            if info.kind == "index":
+                self.gen_match(e.arg, src, bound, blame)
+            else:
+                self.emit(f"if type({src}) is not tuple or {src}[0] != {info.tag}: continue")
+                self.gen_match(e.arg, f"{src}[1]", bound, blame)
+            return
+        if isinstance(e, A.Annot):
+            self.gen_match(e.expr, src, bound, blame)
+            return
+        if isinstance(e, A.BinOp) and e.op == "::":
+            self.emit(f"if not {src}: continue")
+            self.gen_match(e.left, f"{src}[0]", bound, blame)
+            self.gen_match(e.right, f"{src}[1:]", bound, blame)
+            return
+        self.emit(f"if {src} != {self.ec.expr(e)}: continue", blame)
+
+    def check_member(self, var: str) -> None:
+        sym = self.net.variables[var]
+        cs = self.net.colsets[sym.data]
+        self.emit(f"if not {self.ns.ref(cs.contains, 'M')}({self.varnames[var]}): continue")
+
+    # -- the whole function
+    def generate(self) -> tuple[str, str]:
+        t = self.t
+        fname = f"bind_{t.index}"
+        params = ", ".join(f"M{i}" for i in range(len(self.read))) or "_"
+        pos = {p: i for i, p in enumerate(self.read)}
+        in_terms: list[tuple[int, Term, Any]] = []
+        for a in t.arcs:
+            if a.kind in ("in", "both") and a.expr is not None:
+                for term in terms(a.expr):
+                    in_terms.append((pos[a.place], term, ("arc", a)))
+        guards = [(g, ("guard", g)) for g in B.guard_conjuncts(t.guards)]
+        bound: set[str] = set()
+        loop_token: dict[int, tuple[int, str]] = {}  # id(term) -> (place position, python name of the token)
+        self.emit("out = []", None)
+        self.indent -= 1
+        self.lines.insert(0, f"def {fname}({params}):")
+        self.indent = 1
+        self.emit("for _once in ONCE:")
+        self.indent += 1
+        used_terms: set[int] = set()
+        done_guards: set[int] = set()
+
+        def emit_ready_guards():
+            for i, (g, bl) in enumerate(guards):
+                if i not in done_guards and B.all_vars(g) <= bound:
+                    done_guards.add(i)
+                    self.emit(f"if not {self.ec.expr(g)}: continue", bl)
+
+        all_vars = set(t.variables)
+        emit_ready_guards()
+        while bound != all_vars:
+            progress = False
+            for k, (pi, term, bl) in enumerate(in_terms):
+                if k in used_terms or term.value is None or term.cond:
+                    continue
+                newv = B.pattern_vars(term.value) - bound
+                if not newv or (term.coef is not None and not B.all_vars(term.coef) <= bound):
+                    continue
+                if not self.matchable(term.value, bound):
+                    continue
+                used_terms.add(k)
+                if B.is_var(term.value):
+                    py = self.varnames[term.value.name]
+                    self.emit(f"for {py} in M{pi}:")
+                    self.indent += 1
+                    bound.add(term.value.name)
+                    loop_token[k] = (pi, py)
+                else:
+                    tok = self.newtok()
+                    self.emit(f"for {tok} in M{pi}:")
+                    self.indent += 1
+                    self.gen_match(term.value, tok, bound, bl)
+                    loop_token[k] = (pi, tok)
+                emit_ready_guards()
+                progress = True
+                break
+            if progress:
+                continue
+            for i, (g, bl) in enumerate(guards):
+                if i in done_guards:
+                    continue
+                gb = B.guard_binder(g, bound)
+                if gb is None:
+                    continue
+                pat, expr = gb
+                newv = B.pattern_vars(pat) - bound
+                tok = self.newtok()
+                self.emit(f"{tok} = {self.ec.expr(expr)}", bl)
+                self.gen_match(pat, tok, bound, bl)
+                for v in sorted(newv):
+                    self.check_member(v)
+                done_guards.add(i)
+                emit_ready_guards()
+                progress = True
+                break
+            if progress:
+                continue
+            rest = sorted(v for v in t.free if v not in bound)
+            if rest:
+                v = rest[0]
+                cs = self.net.colsets[self.net.variables[v].data]
+                self.emit(f"for {self.varnames[v]} in {self.ns.ref(tuple(cs.values()), 'V')}:")
+                self.indent += 1
+                bound.add(v)
+                emit_ready_guards()
+                continue
+            raise RuntimeError(f"cannot bind variables {sorted(all_vars - bound)} of {t.name}")
+        emit_ready_guards()
+        # consumption per read place
+        per_place: dict[int, list] = {}
+        for k, (pi, term, bl) in enumerate(in_terms):
+            per_place.setdefault(pi, []).append((k, term, bl))
+        consumed = []
+        for pi in range(len(self.read)):
+            entries = per_place.get(pi)
+            if not entries:
+                consumed.append("None")
+                continue
+            c = f"c{pi}"
+            if len(entries) == 1 and entries[0][0] in loop_token and entries[0][1].coef is None \
+                    and not entries[0][1].cond and B.is_pattern(entries[0][1].value):
+                k = entries[0][0]
+                self.emit(f"{c} = {{{self._value_code(entries[0][1].value, loop_token[k][1])}: 1}}")
+                consumed.append(c)
+                continue
+            self.emit(f"{c} = {{}}")
+            for k, term, bl in entries:
+                lines = []
+                if term.opaque is not None:
+                    lines.append((f"for _v, _n, _d in MSITEMS({self.ec.expr(term.opaque)}, 0):", bl))
+                    lines.append(("    " + f"{c}[_v] = {c}.get(_v, 0) + _n", None))
+                else:
+                    coef = "1" if term.coef is None else self.ec.expr(term.coef)
+                    val = self._value_code(term.value, loop_token[k][1] if k in loop_token else None)
+                    if term.coef is not None:
+                        lines.append((f"_n = {coef}", bl))
+                        lines.append(("if _n < 0: raise MLError(f'negative coefficient {_n}')", bl))
+                        lines.append((f"if _n: _v = {val}; {c}[_v] = {c}.get(_v, 0) + _n", bl))
+                    else:
+                        lines.append((f"_v = {val}; {c}[_v] = {c}.get(_v, 0) + 1", bl))
+                cond_prefix = 0
+                for ce, pol in term.cond:
+                    self.emit(f"if {'' if pol else 'not '}{self.ec.expr(ce)}:", bl)
+                    self.indent += 1
+                    cond_prefix += 1
+                for line, lb in lines:
+                    self.emit(line, lb)
+                self.indent -= cond_prefix
+            self.emit(f"if not ENOUGH(M{pi}, {c}): continue")
+            consumed.append(c)
+        for a in t.arcs:
+            if a.kind == "inhibitor":
+                pi = pos[a.place]
+                if a.expr is None:
+                    self.emit(f"if M{pi}: continue")
+                else:
+                    self.emit(f"if INHIBITED(M{pi}, {self.ec.expr(a.expr)}): continue", ("arc", a))
+        # production
+        produced = []
+        for a in t.arcs:
+            if a.kind == "out" and a.expr is not None:
+                parts = out_terms(a.expr, self.ec)
+                if parts:
+                    self.emit(f"_o = {' + '.join(parts)}", ("arc", a))
+                    produced.append(f"({a.place}, _o{a.place}_{len(produced)})")
+                    self.lines[-1] = self.lines[-1].replace("_o =", f"_o{a.place}_{len(produced) - 1} =")
+            elif a.kind == "both" and a.expr is not None:
+                c = f"c{pos[a.place]}"
+                produced.append(f"({a.place}, tuple((_v, _n, 0) for _v, _n in {c}.items()))")
+        delay = "0"
+        if t.delay is not None:
+            self.emit(f"_td = {self.ec.expr(t.delay)}", ("delay", t.delay))
+            delay = "_td"
+        prio = "None"
+        if t.priority is not None:
+            self.emit(f"_pr = {self.ec.expr(t.priority)}", ("priority", t.priority))
+            prio = "_pr"
+        binding = "(" + "".join(self.varnames[v] + ", " for v in t.variables) + ")"
+        self.emit(f"out.append(({binding}, ({''.join(c + ', ' for c in consumed)}), "
+                  f"({''.join(p + ', ' for p in produced)}), {delay}, {prio}))")
+        self.indent = 1
+        self.emit("return out")
+        return fname, "\n".join(self.lines)
+
+    def _value_code(self, e, tok: str | None) -> str:
+        if tok is not None and B.is_pattern(e):
+            return tok
+        return self.ec.expr(e)

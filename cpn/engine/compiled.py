@@ -1,0 +1,495 @@
+"""The compiled engine: generated binding functions, interned place markings, memoised transitions.
+
+A state is a tuple of per-place multiset ids (plus the clock for timed nets). The enabled bindings of a
+transition depend only on the markings of the places it reads, so each transition memoises its result
+per tuple of those ids (LTSmin's transition groups): most states reuse a result computed before.
+"""
+
+from __future__ import annotations
+
+import operator
+from dataclasses import dataclass
+
+from cpn.engine import codegen
+from cpn.engine.runtime import RUNTIME
+from cpn.errors import EvaluationError
+from cpn.lang.builtins import MLError
+from cpn.values.colours import format_multiset
+from cpn.values.multiset import MultisetError
+
+NEG_INF = float("-inf")
+#: the priority of a transition without one (CPN Tools' P_NORMAL)
+P_NORMAL: int = 1000
+
+
+@dataclass(frozen=True, slots=True)
+class BindingElement:
+    transition: int
+    binding: dict
+
+
+class _Places:
+    """Interning of place markings: per place, id -> dict and frozenset key -> id."""
+
+    def __init__(self, places):
+        self.places = places
+        n = len(places)
+        self.dicts: list[list[dict]] = [[] for _ in range(n)]
+        self.views: list[list[dict]] = [[] for _ in range(n)]  # untimed view (value -> count)
+        self.index: list[dict] = [{} for _ in range(n)]
+        self.counts: list[list[int]] = [[] for _ in range(n)]
+        self.timed = [p.timed for p in places]
+        for p in range(n):
+            self.intern(p, {})
+
+    def intern(self, p: int, d: dict) -> int:
+        key = frozenset(d.items())
+        idx = self.index[p]
+        i = idx.get(key)
+        if i is None:
+            i = len(self.dicts[p])
+            idx[key] = i
+            self.dicts[p].append(d)
+            if self.timed[p]:
+                view: dict = {}
+                for (v, _ts), n in d.items():
+                    view[v] = view.get(v, 0) + n
+                self.views[p].append(view)
+            else:
+                self.views[p].append(d)
+            self.counts[p].append(sum(d.values()))
+        return i
+
+
+class CompiledEngine:
+    """Successor function of a net, compiled to Python; see docs/internals.md for the protocol."""
+
+    reference = False
+
+    def __init__(self, net, time_condensation: bool = False):
+        self.net = net
+        self.places = net.places
+        self.transitions = net.transitions
+        self.is_timed = net.is_timed
+        self.time_condensation = bool(time_condensation) and self.is_timed
+        self.ev = net.checked.evaluator
+        self.store = _Places(net.places)
+        self._be_index: dict = {}
+        self._be: list[tuple[int, tuple]] = []
+        self._add_memo: list[dict] = [{} for _ in net.places]
+        self._delta_index: list[dict] = [{} for _ in net.places]
+        self._deltas: list[list[dict]] = [[] for _ in net.places]
+        self._shift_memo: list[dict] = [{} for _ in net.places]
+        self._fire_memo: dict = {}
+        self._has_priorities = any(t.priority is not None for t in net.transitions)
+        self._prio: dict[int, int] = {}
+        self._compile()
+
+    # ------------------------------------------------------------------ compilation
+    def _compile(self) -> None:
+        self._plan = []
+        self.sources: dict[int, str] = {}
+        timed_places = {p.index for p in self.places if p.timed}
+        for t in self.transitions:
+            read = []
+            for a in t.arcs:
+                if a.kind in ("in", "both", "inhibitor", "reset") and a.place not in read:
+                    read.append(a.place)
+            writes = []
+            for a in t.arcs:
+                if a.kind in ("out",) and a.place not in read and a.place not in writes:
+                    writes.append(a.place)
+            ns = codegen.Namespace()
+            gen = codegen.TransitionCodegen(t, self.net, ns, self.ev, read)
+            fname, src = gen.generate()
+            uses_time = gen.ec.uses_time
+            glob = dict(RUNTIME)
+            glob.update(ns.objects)
+            glob["EVAL"] = self.ev.eval
+            ev = self.ev
+            glob["TIMEFN"] = lambda _u, ev=ev: ev.time
+            filename = f"<cpn transition {t.name}>"
+            code = compile(src, filename, "exec")
+            exec(code, glob)  # noqa: S102 - source generated from the typed AST, not from model text
+            fn = glob[fname]
+            self.sources[t.index] = src
+            timed_t = uses_time or any(p in timed_places for p in read + writes)
+            if len(read) == 0:
+                getter = _const_key
+            elif len(read) == 1:
+                getter = operator.itemgetter(read[0])
+            else:
+                getter = operator.itemgetter(*read)
+            resets = {a.place for a in t.arcs if a.kind == "reset"}
+            info = _TInfo(t, fn, read, writes, getter, {}, timed_t, uses_time, resets, gen.blame, filename)
+            self._plan.append(info)
+        self._untimed_plan = [i for i in self._plan if not i.timed]
+        self._timed_plan = [i for i in self._plan if i.timed]
+
+    # ------------------------------------------------------------------ protocol
+    def initial_state(self) -> tuple:
+        ids = [self.store.intern(p.index, dict(p.initial)) for p in self.places]
+        if self.is_timed:
+            ids.append(0)
+        return tuple(ids)
+
+    def binding_element(self, be: int) -> BindingElement:
+        t, vals = self._be[be]
+        tr = self.transitions[t]
+        return BindingElement(t, dict(zip(tr.variables, vals)))
+
+    def format_binding_element(self, be: int) -> str:
+        t, vals = self._be[be]
+        tr = self.transitions[t]
+        parts = []
+        for name, v in zip(tr.variables, vals):
+            cs = self.net.colsets[self.net.variables[name].data]
+            parts.append(f"{name}={cs.format(v)}")
+        return f"{tr.name}: {{{', '.join(parts)}}}"
+
+    def marking(self, s: tuple) -> list[dict]:
+        d = self.store.dicts
+        return [dict(d[p][s[p]]) for p in range(len(self.places))]
+
+    def token_counts(self, s: tuple) -> tuple:
+        c = self.store.counts
+        return tuple(c[p][s[p]] for p in range(len(self.places)))
+
+    def place_view(self, s: tuple, p: int) -> dict:
+        """The untimed multiset of place p in state s (value -> count); do not mutate."""
+        return self.store.views[p][s[p]]
+
+    def untimed(self, s: tuple):
+        if not self.is_timed:
+            return s
+        views = self.store.views
+        return tuple(frozenset(views[p][s[p]].items()) if self.store.timed[p] else s[p]
+                     for p in range(len(self.places)))
+
+    def clock(self, s: tuple) -> int:
+        return s[-1] if self.is_timed else 0
+
+    def format_marking(self, s: tuple, p: int) -> str:
+        pl = self.places[p]
+        return format_multiset(pl.colour_set, self.store.dicts[p][s[p]].items(), timed=pl.timed)
+
+    def format_multiset(self, p: int, ms: dict) -> str:
+        return format_multiset(self.places[p].colour_set, ms.items())
+
+    # ------------------------------------------------------------------ binding elements
+    def _intern_be(self, t: int, vals: tuple) -> int:
+        key = (t, vals)
+        i = self._be_index.get(key)
+        if i is None:
+            i = len(self._be)
+            self._be_index[key] = i
+            self._be.append(key)
+        return i
+
+    # ------------------------------------------------------------------ successors
+    def successors(self, s: tuple) -> list[tuple[int, tuple]]:
+        if self.is_timed:
+            return self._timed_successors(s)
+        out = []
+        append = out.append
+        for info in self._plan:
+            key = info.getter(s)
+            res = info.memo.get(key)
+            if res is None:
+                res = self._miss(info, key)
+            for be, sets, adds in res:
+                lst = list(s)
+                for pos, nid in sets:
+                    lst[pos] = nid
+                for pos, did in adds:
+                    lst[pos] = self._add(pos, lst[pos], did)
+                append((be, tuple(lst)))
+        if self._has_priorities and out:
+            out = self._by_priority(out)
+        return out
+
+    def _add(self, p: int, cur: int, did: int) -> int:
+        memo = self._add_memo[p]
+        k = (cur, did)
+        nid = memo.get(k)
+        if nid is None:
+            d = dict(self.store.dicts[p][cur])
+            for v, n in self._deltas[p][did].items():
+                d[v] = d.get(v, 0) + n
+            nid = self.store.intern(p, d)
+            memo[k] = nid
+        return nid
+
+    def _delta(self, p: int, d: dict) -> int:
+        key = frozenset(d.items())
+        idx = self._delta_index[p]
+        i = idx.get(key)
+        if i is None:
+            i = len(self._deltas[p])
+            idx[key] = i
+            self._deltas[p].append(d)
+        return i
+
+    def _call(self, info, views):
+        try:
+            return info.fn(*views)
+        except (MLError, MultisetError, ArithmeticError, IndexError, TypeError, ValueError, KeyError,
+                RecursionError) as exc:
+            raise self._blame(info, exc) from None
+
+    def _blame(self, info, exc) -> EvaluationError:
+        tb = exc.__traceback__
+        line = None
+        local = {}
+        while tb is not None:
+            if tb.tb_frame.f_code.co_filename == info.filename:
+                line = tb.tb_lineno
+                local = tb.tb_frame.f_locals
+            tb = tb.tb_next
+        kind, obj = info.blame.get(line, ("transition", None))
+        t = info.t
+        binding = {}
+        for i, v in enumerate(t.variables):
+            if f"v{i}" in local:
+                cs = self.net.colsets[self.net.variables[v].data]
+                try:
+                    binding[v] = cs.format(local[f"v{i}"])
+                except Exception:  # noqa: BLE001
+                    binding[v] = repr(local[f"v{i}"])
+        what = {"guard": f"the guard of transition '{t.transition}'", "arc": f"the inscription of arc "
+                f"{getattr(obj, 'label', '')}", "delay": f"the delay of transition '{t.transition}'",
+                "priority": f"the priority of transition '{t.transition}'"}.get(kind, f"transition '{t.transition}'")
+        bind_text = ", ".join(f"{k}={v}" for k, v in binding.items())
+        msg = f"{what} failed for binding <{bind_text}>: {_reason(exc)}" if bind_text else f"{what} failed: {_reason(exc)}"
+        span = getattr(obj, "span", None) or t.span
+        hint = "Guards and inscriptions are evaluated for every candidate binding; guard the failing operation."
+        return EvaluationError(msg, span, t.name, binding, hint, self.net.checked.model.source)
+
+    def _miss(self, info, key):
+        read = info.read
+        keys = key if len(read) > 1 else ((key,) if read else ())
+        views = [self.store.views[p][i] for p, i in zip(read, keys)]
+        res = []
+        for bvals, consumed, produced, _td, pr in self._call(info, views):
+            be = self._intern_be(info.t.index, bvals)
+            if self._has_priorities:
+                self._prio[be] = pr if pr is not None else P_NORMAL
+            sets, adds = self._writes(info, keys, consumed, produced, None, 0)
+            res.append((be, sets, adds))
+        info.memo[key] = res
+        return res
+
+    def _by_priority(self, out):
+        prio = self._prio
+        best = min(prio.get(be, P_NORMAL) for be, _ in out)
+        return [(be, s) for be, s in out if prio.get(be, P_NORMAL) == best]
+
+    def _check_tokens(self, info, p, items):
+        cs = self.places[p].colour_set
+        for v, _n, _d in items:
+            if not cs.contains(v):
+                arc = next((a for a in info.t.arcs if a.place == p and a.kind in ("out", "both")), None)
+                raise EvaluationError(
+                    f"transition '{info.t.transition}' puts {_fmt(cs, v)} on place '{self.places[p].name}', "
+                    f"outside its colour set {cs.name} = {cs.describe()}",
+                    arc.span if arc else info.t.span, info.t.name, None,
+                    f"Make the inscription of arc {arc.label if arc else ''} produce values of {cs.name}.",
+                    self.net.checked.model.source)
+
+    def _writes(self, info, keys, consumed, produced, f, td):
+        """New place ids after firing: (sets, adds). f is the firing time for timed places."""
+        store = self.store
+        sets = []
+        adds = []
+        prod: dict[int, list] = {}
+        for p, items in produced:
+            self._check_tokens(info, p, items)
+            prod.setdefault(p, []).extend(items)
+        for i, p in enumerate(info.read):
+            cur = keys[i]
+            c = consumed[i]
+            if not c and p not in prod and p not in info.resets:
+                continue
+            timed = store.timed[p]
+            d = dict(store.dicts[p][cur])
+            if c:
+                if timed:
+                    _remove_timed(d, c, f)
+                else:
+                    for v, n in c.items():
+                        left = d[v] - n
+                        if left:
+                            d[v] = left
+                        else:
+                            del d[v]
+            if p in info.resets:
+                d = {}
+            for v, n, dl in prod.get(p, ()):
+                if n:
+                    k = (v, f + td + dl) if timed else v
+                    d[k] = d.get(k, 0) + n
+            nid = store.intern(p, d)
+            if nid != cur:
+                sets.append((p, nid))
+        for p in info.writes:
+            items = prod.get(p)
+            if not items:
+                continue
+            timed = store.timed[p]
+            delta: dict = {}
+            for v, n, dl in items:
+                if n:
+                    k = (v, f + td + dl) if timed else v
+                    delta[k] = delta.get(k, 0) + n
+            if delta:
+                adds.append((p, self._delta(p, delta)))
+        return tuple(sets), tuple(adds)
+
+    # ------------------------------------------------------------------ timed nets
+    def _timed_successors(self, s: tuple) -> list:
+        clock = s[-1]
+        cands = []  # (ready, be, info, key, recipe or (sets, adds))
+        for info in self._plan:
+            key = info.getter(s)
+            if info.uses_time:
+                key = (key, clock)
+            res = info.memo.get(key)
+            if res is None:
+                res = self._timed_miss(info, key, clock)
+            for entry in res:
+                cands.append((entry[0], info, key, entry))
+        if not cands:
+            return []
+        now = [c for c in cands if c[0] <= clock]
+        if now:
+            f = clock
+        else:
+            f = min(c[0] for c in cands)
+            now = [c for c in cands if c[0] <= f]
+        out = []
+        for ready, info, key, entry in now:
+            if info.timed:
+                be = entry[1]
+                fk = (be, key, f)
+                w = self._fire_memo.get(fk)
+                if w is None:
+                    _, _, keys, consumed, produced, td = entry
+                    w = self._writes(info, keys, consumed, produced, f, td)
+                    self._fire_memo[fk] = w
+                sets, adds = w
+            else:
+                be, sets, adds = entry[1], entry[2], entry[3]
+            lst = list(s)
+            for pos, nid in sets:
+                lst[pos] = nid
+            for pos, did in adds:
+                lst[pos] = self._add(pos, lst[pos], did)
+            if self.time_condensation:
+                if f:
+                    for p in range(len(self.places)):
+                        if self.store.timed[p]:
+                            lst[p] = self._shift(p, lst[p], f)
+                lst[-1] = 0
+            else:
+                lst[-1] = f
+            out.append((be, tuple(lst)))
+        if self._has_priorities and out:
+            out = self._by_priority(out)
+        return out
+
+    def _shift(self, p: int, i: int, f: int) -> int:
+        memo = self._shift_memo[p]
+        k = (i, f)
+        nid = memo.get(k)
+        if nid is None:
+            d: dict = {}
+            for (v, ts), n in self.store.dicts[p][i].items():
+                key = (v, max(ts - f, 0))
+                d[key] = d.get(key, 0) + n
+            nid = self.store.intern(p, d)
+            memo[k] = nid
+        return nid
+
+    def _timed_miss(self, info, key, clock):
+        read = info.read
+        rkey = key[0] if info.uses_time else key
+        keys = rkey if len(read) > 1 else ((rkey,) if read else ())
+        views = [self.store.views[p][i] for p, i in zip(read, keys)]
+        self.ev.time = clock
+        bindings = self._call(info, views)
+        res = []
+        for bvals, consumed, produced, td, pr in bindings:
+            be = self._intern_be(info.t.index, bvals)
+            if self._has_priorities:
+                self._prio[be] = pr if pr is not None else P_NORMAL
+            if info.timed:
+                ready = NEG_INF
+                for i, p in enumerate(read):
+                    c = consumed[i]
+                    if c and self.store.timed[p]:
+                        r = _ready_time(self.store.dicts[p][keys[i]], c)
+                        if r > ready:
+                            ready = r
+                res.append((ready, be, keys, consumed, produced, td))
+            else:
+                sets, adds = self._writes(info, keys, consumed, produced, 0, 0)
+                res.append((NEG_INF, be, sets, adds))
+        info.memo[key] = res
+        return res
+
+
+class _TInfo:
+    __slots__ = ("t", "fn", "read", "writes", "getter", "memo", "timed", "uses_time", "resets", "blame",
+                 "filename")
+
+    def __init__(self, t, fn, read, writes, getter, memo, timed, uses_time, resets, blame, filename):
+        self.t, self.fn, self.read, self.writes, self.getter = t, fn, read, writes, getter
+        self.memo, self.timed, self.uses_time, self.resets = memo, timed, uses_time, resets
+        self.blame, self.filename = blame, filename
+
+
+def _const_key(_s):
+    return ()
+
+
+def _ready_time(d: dict, need: dict) -> float:
+    """The earliest time at which the tokens `need` (value -> count) are all ready in timed multiset d."""
+    ready = NEG_INF
+    for v, n in need.items():
+        stamps = sorted(ts for (w, ts), k in d.items() if w == v for _ in range(k))
+        t = stamps[n - 1]
+        if t > ready:
+            ready = t
+    return ready
+
+
+def _remove_timed(d: dict, need: dict, f) -> None:
+    """Remove, for each value, the tokens with the largest timestamps not after f."""
+    for v, n in need.items():
+        stamps = sorted((ts for (w, ts) in d if w == v and ts <= f), reverse=True)
+        for ts in stamps:
+            if not n:
+                break
+            k = d[(v, ts)]
+            take = min(k, n)
+            n -= take
+            if k == take:
+                del d[(v, ts)]
+            else:
+                d[(v, ts)] = k - take
+
+
+def _reason(exc: BaseException) -> str:
+    if isinstance(exc, ZeroDivisionError):
+        return "division by zero"
+    if isinstance(exc, RecursionError):
+        return "recursion too deep"
+    return str(exc) or type(exc).__name__
+
+
+def _fmt(cs, v):
+    try:
+        return cs.format(v)
+    except Exception:  # noqa: BLE001
+        return repr(v)
+

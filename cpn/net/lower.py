@@ -1,0 +1,140 @@
+"""Lowering a checked model to a `Net`: instantiate modules, bind ports to sockets, merge fusion sets,
+evaluate initial markings. The only place where `cpn.net` touches `cpn.lang`.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict
+
+from cpn.diagnostics import Diagnostic
+from cpn.errors import ModelError
+from cpn.lang import ast as A
+from cpn.lang.builtins import MLError
+from cpn.lang.typecheck import CheckedModel, PageInfo
+from cpn.net.model import ArcInstance, Net, PlaceInstance, TransitionInstance
+from cpn.values.colours import format_multiset
+from cpn.values.multiset import Multiset, TimedMultiset
+
+MAX_INSTANCE_DEPTH: int = 64
+
+
+class _Lowerer:
+    def __init__(self, cm: CheckedModel):
+        self.cm = cm
+        self.places: list[PlaceInstance] = []
+        self.transitions: list[TransitionInstance] = []
+        self.counter: dict[str, int] = defaultdict(int)
+        self.fusion: dict[str, int] = {}
+        self.diags: list[Diagnostic] = []
+
+    def error(self, code, msg, span, hint=None):
+        self.diags.append(Diagnostic(code, msg, span, hint=hint))
+
+    def run(self) -> Net:
+        self.instantiate(self.cm.top, {}, {}, [self.cm.top.name])
+        if self.diags:
+            raise ModelError(self.diags, {self.cm.model.file: self.cm.model.source})
+        return Net(self.cm.net_name, self.places, self.transitions, self.cm, self.cm.model.file)
+
+    def initial(self, d: A.PlaceDecl, cs, env) -> dict:
+        if d.init is None:
+            return {}
+        try:
+            m = self.cm.evaluator.eval(d.init, env)
+        except (MLError, ArithmeticError, RecursionError) as exc:
+            self.error("E0401", f"evaluating the initial marking of place '{d.name}' failed: {exc}", d.init.span)
+            return {}
+        timed = cs.timed
+        out: dict = {}
+        items = m.items if isinstance(m, TimedMultiset) else [(v, n, 0) for v, n in m.items()]
+        for v, n, delay in items:
+            if not cs.contains(v):
+                self.error("E0303", f"the initial marking of place '{d.name}' contains {_fmt(cs, v)}, which is "
+                           f"outside colour set {cs.name} = {cs.describe()}", d.init.span,
+                           hint=f"Use values of {cs.name}, or widen the colour set.")
+                continue
+            key = (v, delay) if timed else v
+            out[key] = out.get(key, 0) + n
+        return out
+
+    def instantiate(self, page: PageInfo, params: dict, binds: dict[str, int], path: list[str]) -> None:
+        self.counter[page.name] += 1
+        k = self.counter[page.name]
+        local: dict[str, int] = {}
+        for name, d in page.places.items():
+            iname = f"{page.name}'{name} {k}"
+            cs = self.cm.colsets.get(d.colset)
+            if d.port and name in binds:
+                idx = binds[name]
+                self.places[idx].aliases.append(iname)
+                local[name] = idx
+                continue
+            if d.fusion is not None and d.fusion in self.fusion:
+                idx = self.fusion[d.fusion]
+                other = self.places[idx]
+                if other.colour_set is not cs and other.colour_set.name != cs.name:
+                    self.error("E0205", f"place '{name}' is in fusion set '{d.fusion}' with colour set {cs.name}, "
+                               f"but '{other.name}' in the same set has {other.colour_set.name}", d.span,
+                               hint="All places of a fusion set must have the same colour set.")
+                other.aliases.append(iname)
+                local[name] = idx
+                continue
+            idx = len(self.places)
+            self.places.append(PlaceInstance(idx, iname, page.name, name, k, cs, cs.timed,
+                                             self.initial(d, cs, params), d.span))
+            if d.fusion is not None:
+                self.fusion[d.fusion] = idx
+            local[name] = idx
+        for tname in page.order:
+            info = page.transitions[tname]
+            d = info.decl
+            arcs = [ArcInstance(local[a.place], a.kind, a.expr, a.decl.span, _arc_label(a)) for a in info.arcs]
+            variables = sorted(set(info.variables) | {v for v, _ in info.ran})
+            free = sorted(set(info.free) | {v for v, _ in info.ran})
+            self.transitions.append(TransitionInstance(
+                len(self.transitions), f"{page.name}'{tname} {k}", page.name, tname, k, d.guards, d.delay,
+                d.priority, arcs, variables, free, dict(params), d.span))
+        for inst in page.instances:
+            child = self.cm.modules[inst.module]
+            if len(path) >= MAX_INSTANCE_DEPTH or inst.module in path:
+                self.error("E0204", f"module '{inst.module}' instantiates itself (through "
+                           f"{' -> '.join(path + [inst.module])})", inst.span,
+                           hint="Module instances must form a tree.")
+                continue
+            cparams = {}
+            for aname, expr, _span in inst.args:
+                psym = next((p for p in child.params if p.name == aname), None)
+                if psym is None:
+                    continue
+                try:
+                    cparams[psym.uid] = self.cm.evaluator.eval(expr, params)
+                except (MLError, ArithmeticError) as exc:
+                    self.error("E0401", f"evaluating parameter '{aname}' failed: {exc}", expr.span)
+                    continue
+                cs = self.cm.colsets.get(psym.data)
+                if cs is not None and not cs.contains(cparams[psym.uid]):
+                    self.error("E0303", f"parameter '{aname}' of instance '{inst.name}' is "
+                               f"{_fmt(cs, cparams[psym.uid])}, outside colour set {cs.name}", expr.span)
+            cbinds = {port: local[sock] for port, _, sock, _ in inst.binds if sock in local}
+            self.instantiate(child, cparams, cbinds, path + [inst.module])
+
+
+def _fmt(cs, v) -> str:
+    try:
+        return cs.format(v)
+    except Exception:  # noqa: BLE001 - a value outside the colour set may not format
+        return repr(v)
+
+
+def _arc_label(a) -> str:
+    if a.kind == "out":
+        return f"'{a.trans}' -> '{a.place}'"
+    return f"'{a.place}' -> '{a.trans}'"
+
+
+def lower(cm: CheckedModel) -> Net:
+    """Flatten a checked model into a Net of place and transition instances."""
+    return _Lowerer(cm).run()
+
+
+__all__ = ["lower", "format_multiset", "Multiset"]
