@@ -8,7 +8,7 @@ import os
 import pytest
 
 from cpn.errors import ModelError
-from cpn.io.cpntools import remap_error, translate, translate_file, translate_text
+from cpn.io.cpntools import remap_error, translate, translate_text
 from cpn.lang.parser import parse
 
 SAMPLES = "/work/shared/cpntools-samples"
