@@ -1,0 +1,307 @@
+"""The reference interpreter: a slow, plainly correct successor function, the oracle of the tests.
+
+It shares nothing with the compiled engine but the typed AST and the tree-walking evaluator: bindings are
+found by trying every combination of candidate values (from the tokens, the guard and the colour sets)
+and keeping those that satisfy the definition of enabling; firing evaluates every inscription afresh.
+"""
+
+from __future__ import annotations
+
+import itertools
+
+from cpn.errors import EvaluationError
+from cpn.lang import ast as A
+from cpn.lang import binding as B
+from cpn.lang.builtins import MLError
+from cpn.values.colours import format_multiset
+from cpn.values.multiset import Multiset, MultisetError, TimedMultiset
+
+NEG_INF = float("-inf")
+
+
+class ReferenceEngine:
+    reference = True
+
+    def __init__(self, net, time_condensation: bool = False):
+        self.net = net
+        self.places = net.places
+        self.transitions = net.transitions
+        self.is_timed = net.is_timed
+        self.time_condensation = bool(time_condensation) and self.is_timed
+        self.ev = net.checked.evaluator
+        self.uids = {name: sym.uid for name, sym in net.variables.items()}
+        self._be: list = []
+        self._be_index: dict = {}
+
+    # -- states are tuples of frozensets of (key, count), plus the clock for timed nets
+    def initial_state(self):
+        s = tuple(frozenset(p.initial.items()) for p in self.places)
+        return s + (0,) if self.is_timed else s
+
+    def marking(self, s):
+        return [dict(fs) for fs in s[: len(self.places)]]
+
+    def token_counts(self, s):
+        return tuple(sum(n for _, n in fs) for fs in s[: len(self.places)])
+
+    def clock(self, s):
+        return s[-1] if self.is_timed else 0
+
+    def untimed(self, s):
+        out = []
+        for p, fs in zip(self.places, s):
+            if p.timed:
+                d: dict = {}
+                for (v, _), n in fs:
+                    d[v] = d.get(v, 0) + n
+                out.append(frozenset(d.items()))
+            else:
+                out.append(fs)
+        return tuple(out)
+
+    def format_marking(self, s, p):
+        pl = self.places[p]
+        return format_multiset(pl.colour_set, s[p], timed=pl.timed)
+
+    def binding_element(self, be):
+        from cpn.engine.compiled import BindingElement
+
+        t, vals = self._be[be]
+        return BindingElement(t, dict(zip(self.transitions[t].variables, vals)))
+
+    def format_binding_element(self, be):
+        t, vals = self._be[be]
+        tr = self.transitions[t]
+        parts = [f"{n}={self.net.colsets[self.net.variables[n].data].format(v)}" for n, v in zip(tr.variables, vals)]
+        return f"{tr.name}: {{{', '.join(parts)}}}"
+
+    def _intern(self, t, vals):
+        k = (t, vals)
+        if k not in self._be_index:
+            self._be_index[k] = len(self._be)
+            self._be.append(k)
+        return self._be_index[k]
+
+    # -- evaluation helpers
+    def _eval(self, e, env, t, what):
+        try:
+            return self.ev.eval(e, env)
+        except (MLError, MultisetError, ArithmeticError, IndexError, TypeError, RecursionError) as exc:
+            raise EvaluationError(f"{what} of transition '{t.transition}' failed: {exc}", e.span, t.name) from None
+
+    def _ms(self, e, env, t):
+        v = self._eval(e, env, t, "an arc inscription")
+        if isinstance(v, TimedMultiset):
+            return [(x, n, d) for x, n, d in v.items]
+        if isinstance(v, Multiset):
+            return [(x, n, 0) for x, n in v.items()]
+        return [(v, 1, 0)]
+
+    def _env(self, t, assignment):
+        env = dict(t.params)
+        for name, v in assignment.items():
+            env[self.uids[name]] = v
+        return env
+
+    # -- candidate values of variables
+    def _collect(self, e, value, out):
+        """Loose matching: every variable in a pattern position of e gets the matching part of value."""
+        if B.is_var(e):
+            out.setdefault(e.name, []).append(value)
+        elif isinstance(e, (A.TupleE, A.ListE)):
+            if isinstance(value, tuple) and len(value) == len(e.items):
+                for x, v in zip(e.items, value):
+                    self._collect(x, v, out)
+        elif isinstance(e, A.RecordE):
+            for (_, x), v in zip(sorted(e.fields, key=lambda f: f[0]), value):
+                self._collect(x, v, out)
+        elif isinstance(e, A.App) and B.is_constructor_fn(e.fn):
+            info = e.fn.ref.data
+            if info.kind == "index":
+                self._collect(e.arg, value, out)
+            elif isinstance(value, tuple) and value[0] == info.tag:
+                self._collect(e.arg, value[1], out)
+        elif isinstance(e, A.BinOp) and e.op == "::":
+            if isinstance(value, tuple) and value:
+                self._collect(e.left, value[0], out)
+                self._collect(e.right, value[1:], out)
+        elif isinstance(e, A.Annot):
+            self._collect(e.expr, value, out)
+
+    def _summands(self, e):
+        if isinstance(e, A.BinOp) and e.op in ("++", "+++"):
+            return self._summands(e.left) + self._summands(e.right)
+        if isinstance(e, A.BinOp) and e.op == "`":
+            return [e.right]
+        if isinstance(e, A.ToMs):
+            return [e.expr]
+        if isinstance(e, A.If):
+            return self._summands(e.then) + self._summands(e.else_)
+        return []
+
+    def _bindings(self, t, marking):
+        views = [_view(p, marking[p.index]) for p in self.places]
+        cands: dict[str, list] = {}
+        for a in t.arcs:
+            if a.kind in ("in", "both") and a.expr is not None:
+                for term in self._summands(a.expr):
+                    found: dict[str, list] = {}
+                    for tok in views[a.place]:
+                        self._collect(term, tok, found)
+                    for name, vals in found.items():
+                        cands.setdefault(name, []).extend(vals)
+        order = [v for v in t.variables if v in cands]
+        free = [v for v in t.variables if v not in cands and v in t.free]
+        domains = [sorted(set(cands[v]), key=repr) for v in order]
+        domains += [list(self.net.colsets[self.net.variables[v].data].values()) for v in free]
+        names = order + free
+        rest = [v for v in t.variables if v not in names]
+        conj = B.guard_conjuncts(t.guards)
+        for combo in itertools.product(*domains):
+            assignment = dict(zip(names, combo))
+            ok = True
+            for v in rest:  # bound by a guard conjunct pattern = expr
+                if v in assignment:
+                    continue
+                for c in conj:
+                    gb = B.guard_binder(c, set(assignment))
+                    if gb is None or v not in B.pattern_vars(gb[0]):
+                        continue
+                    val = self._eval(gb[1], self._env(t, assignment), t, "the guard")
+                    found = {}
+                    self._collect(gb[0], val, found)
+                    for k, vals in found.items():
+                        assignment.setdefault(k, vals[0])
+                    break
+                if v not in assignment:
+                    ok = False
+                    break
+                cs = self.net.colsets[self.net.variables[v].data]
+                if not cs.contains(assignment[v]):
+                    ok = False
+                    break
+            if ok:
+                yield assignment
+
+    def _enabled(self, t, marking, assignment):
+        """(consumed per place, ready time) if the binding is enabled (ignoring time), else None."""
+        env = self._env(t, assignment)
+        need: dict[int, dict] = {}
+        for a in t.arcs:
+            if a.kind in ("in", "both") and a.expr is not None:
+                for v, n, _ in self._ms(a.expr, env, t):
+                    if n < 0:
+                        return None
+                    d = need.setdefault(a.place, {})
+                    d[v] = d.get(v, 0) + n
+        for p, d in need.items():
+            view = _view_counts(self.places[p], marking[p])
+            if any(view.get(v, 0) < n for v, n in d.items()):
+                return None
+        for g in B.guard_conjuncts(t.guards):
+            if not self._eval(g, env, t, "the guard"):
+                return None
+        for a in t.arcs:
+            if a.kind == "inhibitor":
+                view = _view_counts(self.places[a.place], marking[a.place])
+                if a.expr is None:
+                    if view:
+                        return None
+                else:
+                    inh: dict = {}
+                    for v, n, _ in self._ms(a.expr, env, t):
+                        inh[v] = inh.get(v, 0) + n
+                    if (not any(inh.values()) and view) or (any(inh.values()) and all(
+                            view.get(v, 0) >= n for v, n in inh.items())):
+                        return None
+        ready = NEG_INF
+        for p, d in need.items():
+            if self.places[p].timed:
+                for v, n in d.items():
+                    stamps = sorted(ts for (w, ts), k in marking[p].items() if w == v for _ in range(k))
+                    ready = max(ready, stamps[n - 1])
+        return need, ready
+
+    def successors(self, s):
+        n = len(self.places)
+        marking = [dict(fs) for fs in s[:n]]
+        clock = s[-1] if self.is_timed else 0
+        self.ev.time = clock
+        cands = []
+        for t in self.transitions:
+            for assignment in self._bindings(t, marking):
+                r = self._enabled(t, marking, assignment)
+                if r is not None:
+                    cands.append((r[1], t, assignment, r[0]))
+        if not cands:
+            return []
+        f = clock if any(c[0] <= clock for c in cands) else min(c[0] for c in cands)
+        now = [c for c in cands if c[0] <= f]
+        if any(t.priority is not None for t in self.transitions):
+            prios = [self._eval(t.priority, self._env(t, a), t, "the priority") if t.priority is not None else 1000
+                     for _, t, a, _ in now]
+            best = min(prios)
+            now = [c for c, p in zip(now, prios) if p == best]
+        out = []
+        for _, t, assignment, need in now:
+            out.append((self._intern(t.index, tuple(assignment[v] for v in t.variables)),
+                        self._fire(t, marking, assignment, need, f)))
+        return out
+
+    def _fire(self, t, marking, assignment, need, f):
+        self.ev.time = f
+        env = self._env(t, assignment)
+        m = [dict(d) for d in marking]
+        for p, d in need.items():
+            if self.places[p].timed:
+                for v, n in d.items():
+                    while n:
+                        ts = max(ts for (w, ts) in m[p] if w == v and ts <= f)
+                        m[p][(v, ts)] -= 1
+                        if not m[p][(v, ts)]:
+                            del m[p][(v, ts)]
+                        n -= 1
+            else:
+                for v, n in d.items():
+                    m[p][v] -= n
+                    if not m[p][v]:
+                        del m[p][v]
+        for a in t.arcs:
+            if a.kind == "reset":
+                m[a.place] = {}
+        td = self._eval(t.delay, env, t, "the delay") if t.delay is not None else 0
+        for a in t.arcs:
+            if a.kind in ("out", "both") and a.expr is not None:
+                pl = self.places[a.place]
+                items = self._ms(a.expr, env, t) if a.kind == "out" else [(v, n, 0) for v, n in need[a.place].items()]
+                for v, n, d in items:
+                    if not pl.colour_set.contains(v):
+                        raise EvaluationError(f"transition '{t.transition}' puts a value outside colour set "
+                                              f"{pl.colour_set.name} on place '{pl.name}'", a.span, t.name)
+                    key = (v, f + td + d) if pl.timed else v
+                    if n:
+                        m[a.place][key] = m[a.place].get(key, 0) + n
+        if self.is_timed and self.time_condensation:
+            for p in self.places:
+                if p.timed:
+                    d2: dict = {}
+                    for (v, ts), k in m[p.index].items():
+                        key = (v, max(ts - f, 0))
+                        d2[key] = d2.get(key, 0) + k
+                    m[p.index] = d2
+            f = 0
+        s = tuple(frozenset(d.items()) for d in m)
+        return s + (f,) if self.is_timed else s
+
+
+def _view(place, d):
+    return list(_view_counts(place, d))
+
+
+def _view_counts(place, d):
+    if not place.timed:
+        return d
+    out: dict = {}
+    for (v, _), n in d.items():
+        out[v] = out.get(v, 0) + n
+    return out
