@@ -363,3 +363,34 @@ def test_code_segment_with_side_effects_and_outputs_is_refused():
             + arc("A1", "PtoT", "T1", "P1", "x"))
     err = refused(cpn_xml(DECLS, page("PG1", "Top", body)))
     assert "uses MSC.start" in err.diagnostics[0].message
+
+
+# ------------------------------------------------------------------ cpn-verify convert
+
+
+def test_convert_writes_a_model_that_loads(tmp_path, capsys):
+    from cpn.cli.main import main
+
+    out = tmp_path / "dp.cpnet"
+    assert main(["convert", f"{SAMPLES}/DiningPhilosophers.cpn", "-o", str(out)]) == 0
+    assert "place Unused_Chopsticks : CS = CS.all();" in out.read_text()
+
+
+def test_convert_refuses_with_exit_65_and_positions(tmp_path, capsys):
+    from cpn.cli.main import main
+
+    assert main(["convert", f"{SAMPLES}/channel.cpn", "-o", str(tmp_path / "c.cpnet")]) == 65
+    err = capsys.readouterr().err
+    assert f"{SAMPLES}/channel.cpn:246:34: error[E0502]" in err
+
+
+def test_convert_reports_front_end_errors_in_the_written_file_with_the_cpn_origin(tmp_path, capsys):
+    from cpn.cli.main import main
+
+    body = place("P1", "A", "S", "1`0") + trans("T1", "t") + arc("A1", "PtoT", "T1", "P1", "undefined_name")
+    model = tmp_path / "m.cpn"
+    model.write_text(cpn_xml(DECLS, page("PG1", "Top", body)))
+    assert main(["convert", str(model)]) == 65
+    err = capsys.readouterr().err
+    assert f"{tmp_path}/m.cpnet:" in err and "unknown name 'undefined_name'" in err
+    assert "from arc inscription A/t (A1 on page 'Top')" in err and f"{model}:" in err
