@@ -34,8 +34,7 @@ def _parser() -> Lark:
 
 def _expected_text(exc: UnexpectedInput) -> str:
     expected = getattr(exc, "expected", None) or getattr(exc, "allowed", None) or set()
-    names = sorted({TERMINAL_NAMES.get(t, None) or _pretty_terminal(t) for t in expected})
-    names = [n for n in names if n]
+    names = sorted({n for n in (TERMINAL_NAMES.get(t) or _pretty_terminal(t) for t in expected) if n})
     if not names:
         return ""
     if len(names) > 6:
@@ -73,6 +72,12 @@ def _diagnose(exc: UnexpectedInput, text: str, filename: str) -> Diagnostic:
         line, col = len(lines), len(lines[-1]) + 1
     span = Span(filename, line, col, line, col)
     found = _found(exc, text)
+    if isinstance(exc, UnexpectedCharacters):
+        ch = text[exc.pos_in_stream] if exc.pos_in_stream < len(text) else ""
+        if ch == '"':
+            return Diagnostic("E0102", "unterminated string", span, hint="Close the string with '\"' on the same line.")
+        if text.startswith("(*", exc.pos_in_stream):
+            return Diagnostic("E0102", "unterminated comment", span, hint="Close the comment with '*)'.")
     label = None
     try:
         label = exc.match_examples(_parser().parse, {i: ex for i, (_, msg, _, ex) in enumerate(SYNTAX_ERRORS)
@@ -138,6 +143,46 @@ def _offset(text: str, line: int, col: int) -> int:
     return sum(len(x) for x in lines[: line - 1]) + col - 1
 
 
+_OPEN = {"(": ")", "[": "]", "{": "}"}
+_TOKENS = re.compile(r'\(\*.*?\*\)|//[^\n]*|"(?:\\.|[^"\\\n])*"|[()\[\]{}]', re.DOTALL)
+
+
+def _unbalanced(text: str, filename: str) -> list[tuple[Diagnostic, int, int]]:
+    """Statements whose brackets do not balance: (diagnostic, start, end) of each such statement."""
+    starts = [m.start() for m in _STMT_START.finditer(text) if m.group(1)] + [len(text)]
+    out = []
+    for a, b in zip(starts, starts[1:]):
+        seg = text[a:b]
+        stack: list[tuple[str, int]] = []
+        bad = None
+        for m in _TOKENS.finditer(seg):
+            tok = m.group()
+            if tok in _OPEN:
+                stack.append((tok, a + m.start()))
+            elif tok in (")", "]", "}"):
+                if stack and _OPEN[stack[-1][0]] == tok:
+                    stack.pop()
+                elif tok == "}" and not stack:
+                    continue  # the end of a module body
+                else:
+                    bad = (tok, a + m.start(), "closing")
+                    break
+        if bad is None and stack:
+            tok, pos = next(((t, q) for t, q in stack if t != "{"), (None, None))
+            if tok is not None:
+                bad = (tok, pos, "opening")
+        if bad:
+            tok, pos, kind = bad
+            line = text.count("\n", 0, pos) + 1
+            col = pos - (text.rfind("\n", 0, pos) + 1) + 1
+            msg = (f"'{tok}' is never closed" if kind == "opening" else f"'{tok}' closes nothing")
+            out.append((Diagnostic("E0101", f"unbalanced parentheses or brackets: {msg}",
+                                   Span(filename, line, col, line, col),
+                                   hint="Check that every '(', '[' and '{' has its closing partner in the same "
+                                        "declaration."), a, b))
+    return out
+
+
 def parse(text: str, filename: str = "<string>") -> A.Model:
     """Parse `.cpnet` source text into an `ast.Model`.
 
@@ -152,6 +197,14 @@ def parse(text: str, filename: str = "<string>") -> A.Model:
             tree = parser.parse(work)
             break
         except UnexpectedInput as exc:
+            unbalanced = _unbalanced(work, filename)
+            if unbalanced:
+                for d, a, b in unbalanced:
+                    if d.span.line not in seen_lines:
+                        seen_lines.add(d.span.line)
+                        diags.append(d)
+                    work = work[:a] + re.sub(r"[^\n]", " ", work[a:b]) + work[b:]
+                continue
             d = _diagnose(exc, work, filename)
             if d.span.line not in seen_lines:
                 seen_lines.add(d.span.line)

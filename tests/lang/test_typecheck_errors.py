@@ -1,0 +1,65 @@
+"""Name and type errors: each malformed model gets its code and position, never a traceback."""
+
+import pytest
+
+import cpn
+from cpn.errors import ModelError
+
+HEAD = "colset INT5 = int with 0..5;\ncolset U = unit;\nvar x : INT5;\n"
+
+CASES = [
+    # (body after HEAD, code, line, col)
+    ("var y : Int5;", "E0201", 4, 9),
+    ("place A : INT5 = 1`x2;", "E0201", 4, 20),
+    ("place A : INT5;\nplace A : INT5;", "E0202", 5, 7),
+    ("place A : INT5;\nplace B : INT5;\ntrans t;\narc A -> B : x;", "E0203", 7, 1),
+    ('place A : INT5 = 1`"a";', "E0301", 4, 18),
+    ("place A : INT5;\ntrans t;\narc A -> t : x;\narc t -> A : x + 1;\ntrans u [y > 1];", "E0201", 8, 10),
+    ("colset I = int;\nvar y : I;\nplace A : INT5;\nplace B : I;\ntrans t;\narc A -> t : x;\narc t -> B : y;",
+     "E0302", 10, 14),
+    ("place A : INT5 = 1`12;", "E0303", 4, 18),
+    ("place A : INT5;\ntrans t [x];\narc A -> t : x;", "E0301", 5, 10),
+    ("module M() { place P : INT5; }\ninstance I = N();", "E0201", 5, 14),
+    ("module M(k : INT5) { place P : INT5; }\ninstance I = M();", "E0204", 5, 1),
+    ("place A : INT5;\ntrans t;\nreset t -> A;", "E0203", 6, 1),
+    ("fun f 0 = 1 | g n = 2;", "E0101", 4, 1),
+    ("val v = hd [];\nval w = 1 div 0;", "E0401", 4, 9),
+]
+
+
+@pytest.mark.parametrize("body,code,line,col", CASES)
+def test_error_code_and_position(body, code, line, col):
+    with pytest.raises(ModelError) as info:
+        cpn.loads(HEAD + body, "m.cpnet")
+    d = info.value.errors[0]
+    assert (d.code, d.span.line, d.span.col) == (code, line, col), info.value.render()
+
+
+def test_all_errors_reported_in_one_run():
+    src = HEAD + "var y : Nope;\nplace A : Nope2;\nval z = 1 + \"a\";\n"
+    with pytest.raises(ModelError) as info:
+        cpn.loads(src, "m.cpnet")
+    assert [d.code for d in info.value.errors] == ["E0201", "E0201", "E0301"]
+
+
+def test_did_you_mean_colour_set():
+    with pytest.raises(ModelError) as info:
+        cpn.loads("colset PH = int with 1..5;\nvar p : Ph;", "m.cpnet")
+    assert "Did you mean 'PH'" in info.value.errors[0].hint
+
+
+def test_unknown_override_is_reported():
+    with pytest.raises(ModelError) as info:
+        cpn.loads("val N = 3;", "m.cpnet", set={"M": "4"})
+    assert info.value.errors[0].code == "E0305"
+
+
+def test_override_of_wrong_type():
+    with pytest.raises(ModelError) as info:
+        cpn.loads("val N = 3;\ncolset C = int with 1..N;", "m.cpnet", set={"N": '"x"'})
+    assert info.value.errors[0].code == "E0301"
+
+
+def test_override_changes_colour_set():
+    m = cpn.loads("val N = 3;\ncolset C = int with 1..N;\nplace P : C = C.all();", "m.cpnet", set={"N": 7})
+    assert sum(m.net.places[0].initial.values()) == 7
