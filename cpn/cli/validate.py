@@ -65,8 +65,8 @@ def explore_figures(engine, max_states: int = MAX_STATES_DEFAULT) -> Figures:
     The global properties follow the Model Checking Contest on the net as given (for a coloured net,
     its coloured places and transitions): OneSafe, no place ever holds two tokens; QuasiLiveness, every
     transition occurs; Liveness, every transition occurs in every terminal strongly connected component
-    (so that from every state it can occur again); StableMarking, some place has the same marking in
-    every reachable state.
+    (so that from every state it can occur again); StableMarking, some place holds the same number of
+    tokens in every reachable state (for a coloured place the colours may change: TokenRing-COL).
     """
     from cpn.checks._common import TransitionIndex
     from cpn.checks.bounds import boundedness
@@ -86,7 +86,7 @@ def explore_figures(engine, max_states: int = MAX_STATES_DEFAULT) -> Figures:
     fig.properties["OneSafe"] = b.max_tokens_in_place <= 1
     fig.properties["QuasiLiveness"] = not dead_transitions(x, tindex)
     fig.properties["Liveness"] = live is not None and len(live) == len(engine.transitions)
-    fig.properties["StableMarking"] = any(p.upper_multiset == p.lower_multiset for p in b.places)
+    fig.properties["StableMarking"] = any(p.upper == p.lower for p in b.places)
     return fig
 
 
