@@ -7,6 +7,7 @@ separate; the frontier is the tail `states[expanded:]` of the store, which BFS f
 
 from __future__ import annotations
 
+import gc
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -136,6 +137,10 @@ class Explorer:
         level_end = 1
         levels = 0
         n_arcs = 0
+        # The states are acyclic tuples of ints, yet each allocation burst makes the cyclic collector
+        # walk every stored state again: switching it off cut MS(7) generation CPU time by about 25%.
+        gc_was_enabled = gc.isenabled()
+        gc.disable()
         try:
             while stop is StopReason.COMPLETE and head < len(states):
                 if head == level_end:
@@ -183,6 +188,9 @@ class Explorer:
             del dst[offsets[-1]:]
             del bes[offsets[-1]:]
             stop = StopReason.INTERRUPTED
+        finally:
+            if gc_was_enabled:
+                gc.enable()
         seconds = time.perf_counter() - t0
         if watcher is not None:
             watcher.level(states, watcher.seen_upto, len(states))
