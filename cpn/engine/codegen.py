@@ -36,7 +36,7 @@ class Namespace:
         key = id(obj)
         name = self._ids.get(key)
         if name is None:
-            name = f"{hint}{len(self.objects)}"
+            name = f"_{hint}{len(self.objects)}"
             self._ids[key] = name
             self.objects[name] = obj
         return name

@@ -1,0 +1,48 @@
+"""The compiled engine against the reference interpreter: same enabled binding elements, same successors
+(timestamps included), on every model of the repository and on random nets."""
+
+import glob
+import os
+
+import pytest
+
+import cpn
+from tests.engine._explore import graph
+from tests.engine.randomnets import random_net
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(__file__)))
+MODELS = sorted(glob.glob(os.path.join(ROOT, "models", "**", "*.cpnet"), recursive=True)
+                + glob.glob(os.path.join(ROOT, "tests", "models", "good", "*.cpnet")))
+SMALL = {"dp.cpnet": {"N": 4}, "ms.cpnet": {"N": 2}}
+
+
+def _compare(model, condensation=False, limit=150):
+    a = graph(model.engine(time_condensation=condensation), limit)
+    b = graph(model.engine(time_condensation=condensation, reference=True), limit)
+    if len(a) < limit and len(b) < limit:
+        assert a.keys() == b.keys()
+    common = a.keys() & b.keys()
+    assert common, "the engines do not even agree on the initial state"
+    for k in common:
+        assert a[k] == b[k], k
+
+
+@pytest.mark.parametrize("path", MODELS + [os.path.join(ROOT, "bench", "nets", n) for n in SMALL],
+                         ids=os.path.basename)
+def test_repository_models(path):
+    model = cpn.load(path, set=SMALL.get(os.path.basename(path)))
+    _compare(model, condensation=model.net.is_timed)
+    if model.net.is_timed:
+        _compare(model, condensation=False, limit=60)
+
+
+@pytest.mark.parametrize("chunk", range(10))
+def test_random_nets(chunk):
+    """1,000 random nets in ten chunks of 100."""
+    for seed in range(chunk * 100, chunk * 100 + 100):
+        text = random_net(seed)
+        model = cpn.loads(text, f"random{seed}.cpnet")
+        try:
+            _compare(model, condensation=model.net.is_timed and seed % 2 == 0, limit=25)
+        except AssertionError:
+            raise AssertionError(f"engines differ on random net {seed}:\n{text}") from None
