@@ -367,7 +367,7 @@ class CompiledEngine:
             f = min(c[0] for c in cands)
             now = [c for c in cands if c[0] <= f]
         out = []
-        for ready, info, key, entry in now:
+        for _ready, info, key, entry in now:
             if info.timed:
                 be = entry[1]
                 fk = (be, key, f)

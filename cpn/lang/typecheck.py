@@ -478,7 +478,7 @@ class Checker:
                 if self._try_select(*item):
                     self.pending.remove(item)
                     progress = True
-        for node, argt, rest, kind in self.pending:
+        for node, _argt, _rest, kind in self.pending:
             self.error("E0301", f"cannot tell which record or tuple '#{node.label}' selects from" if kind == "sel"
                        else "cannot tell the type of this flexible record pattern", node.span,
                        hint="Add a type annotation, e.g. (x : MyRecord).")
@@ -661,7 +661,7 @@ class Checker:
     def _i_Case(self, e, env):
         st = self.infer(e.subject, env)
         rt = None
-        for i, (pat, body) in enumerate(e.rules):
+        for _i, (pat, body) in enumerate(e.rules):
             binds: dict[str, Symbol] = {}
             self.must(self.infer_pat(pat, binds), st, pat.span, "a case pattern")
             bt = self.infer(body, env.child(binds))
@@ -974,7 +974,7 @@ class Checker:
             if sink:
                 expr = _replace_ran(expr)
                 info.ran.extend((v, cs) for v, cs, _ in sink)
-                for v, cs, sym in sink:
+                for v, _cs, sym in sink:
                     self.variables[v] = sym
             if ak in ("in", "both", "inhibitor") and _has_delay(expr):
                 self.error("E0206", "delays on input arcs ('preemption') are not supported", expr.span)
@@ -984,7 +984,7 @@ class Checker:
     def transition(self, page: PageInfo, info: TransInfo, env: _Env) -> None:
         d = info.decl
         ok = True
-        for i, g in enumerate(d.guards):
+        for _i, g in enumerate(d.guards):
             t = self.infer_top(g, env)
             if t is None:
                 ok = False
