@@ -416,11 +416,48 @@ class _Writer:
             comps = body.names if body is not None and body.kind == "product" else [None] * len(e.items)
             return "<tuple>" + "".join(f"<subterm>{self.value(x, c)}</subterm>"
                                        for x, c in zip(e.items, comps)) + "</tuple>"
+        step = self.step(e)
+        if step is not None:
+            op, x = step
+            return f"<{op}><subterm>{self.value(x, cs)}</subterm></{op}>"
         if isinstance(e, A.App) and isinstance(e.fn, A.Name) and e.fn.name in self.funs:
             op, fcs = self.funs[e.fn.name]
             if op in ("successor", "predecessor"):
                 return f"<{op}><subterm>{self.value(e.arg, fcs or cs)}</subterm></{op}>"
         raise _Unsupported("an expression that PNML symmetric nets cannot express", e)
+
+    def _csop(self, e, op: str):
+        """The argument of `S.op arg` (and S) when e has that form, else None."""
+        A = self.A
+        if isinstance(e, A.App) and isinstance(e.fn, A.Name) and e.fn.name.endswith("." + op):
+            return e.arg, e.fn.name[: -len(op) - 1]
+        return None
+
+    def step(self, e):
+        """('successor' | 'predecessor', x) when e is how `cpn.io.pnml` writes successor/predecessor:
+        `S.col ((S.ord x + k) mod n)` with k = 1 or n - 1, or, on an int range a..b,
+        `if x = b then a else x + 1` / `if x = a then b else x - 1`."""
+        A = self.A
+        col = self._csop(e, "col")
+        if col is not None:
+            m = col[0]
+            if isinstance(m, A.BinOp) and m.op == "mod" and isinstance(m.right, A.Const) \
+                    and isinstance(m.left, A.BinOp) and m.left.op == "+" and isinstance(m.left.right, A.Const):
+                inner = self._csop(m.left.left, "ord")
+                n, k = m.right.value, m.left.right.value
+                if inner is not None and inner[1] == col[1]:
+                    if n and k == 1 % n:
+                        return "successor", inner[0]
+                    if n and k == (n - 1) % n:
+                        return "predecessor", inner[0]
+            return None
+        if isinstance(e, A.If) and isinstance(e.cond, A.BinOp) and e.cond.op == "=" \
+                and isinstance(e.else_, A.BinOp) and e.else_.op in ("+", "-") \
+                and isinstance(e.else_.right, A.Const) and e.else_.right.value == 1 \
+                and isinstance(e.cond.left, A.Name) and isinstance(e.else_.left, A.Name) \
+                and e.cond.left.name == e.else_.left.name:
+            return ("successor" if e.else_.op == "+" else "predecessor"), e.cond.left
+        return None
 
     def boolean(self, e) -> str:
         A = self.A
@@ -438,6 +475,8 @@ class _Writer:
                     for x in (left, right)]
             if all(ords):
                 left, right = left.arg, right.arg
+            elif self._csop(left, "ord") is not None and self._csop(right, "ord") is not None:
+                left, right = self._csop(left, "ord")[0], self._csop(right, "ord")[0]
             cs = self.sort_of_value(left) or self.sort_of_value(right)
             return (f"<{_CMP[e.op]}><subterm>{self.value(left, cs)}</subterm>"
                     f"<subterm>{self.value(right, cs)}</subterm></{_CMP[e.op]}>")

@@ -762,7 +762,8 @@ class _Translator:
         if t.sort is None or t.sort.kind not in ("enum", "range", "bool"):
             self.error(el, f"'{el.tag}' in {where} is applied to a value whose sort is not an enumeration or range")
             return t
-        return _Term(f"{t.sort.helper(op, self.names)} {t.paren()}", sort=t.sort, atomic=False)
+        text = t.sort.succ(t.paren()) if op == "succ" else t.sort.pred(t.paren())
+        return _Term(text, sort=t.sort, atomic=text.startswith("("))
 
     def t_successor(self, el, where, expect):
         return self._step(el, where, "succ")
@@ -777,8 +778,7 @@ class _Translator:
         a, b = terms
         sort = a.sort or b.sort
         if ordered and sort is not None and sort.kind in ("enum", "bool"):
-            f = sort.helper("ord", self.names)
-            return _Term(f"{f} {a.paren()} {op} {f} {b.paren()}", atomic=False)
+            return _Term(f"{sort.ord(a.paren())} {op} {sort.ord(b.paren())}", atomic=False)
         if ordered and (sort is None or sort.kind not in ("range",)):
             if sort is None and not (a.text.lstrip("~").isdigit() and b.text.lstrip("~").isdigit()):
                 self.error(el, f"'{el.tag}' in {where} compares values whose sort is unknown")

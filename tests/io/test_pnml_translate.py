@@ -202,14 +202,15 @@ def test_dot_and_bool_constants():
     assert inscription_of(numberof(2, "<dotconstant/>"), "dotS") == "2`()"
 
 
-def test_successor_and_predecessor_use_generated_functions():
+def test_successor_and_predecessor_wrap_around():
     text = full(numberof(1, f"<successor>{sub(var('vx'))}</successor>"))
-    assert "arc t -> P : 1`(succ_Proc x);" in text
-    assert "fun succ_Proc c' =\n  case c' of\n    p0 => p1\n  | p1 => p2\n  | p2 => p0;" in text
+    assert "arc t -> P : 1`(Proc.col ((Proc.ord x + 1) mod 3));" in text
     text = full(numberof(1, f"<predecessor>{sub(var('vx'))}</predecessor>"))
-    assert "  | p0 => p2" not in text and "    p0 => p2" in text
+    assert "arc t -> P : 1`(Proc.col ((Proc.ord x + 2) mod 3));" in text
     text = full(numberof(1, f"<successor>{sub(var('vr'))}</successor>"), "rng")
-    assert "fun succ_Rng c' = if c' = 3 then 1 else c' + 1;" in text
+    assert "arc t -> P : 1`(if r = 3 then 1 else r + 1);" in text
+    text = full(numberof(1, f"<predecessor>{sub(var('vr'))}</predecessor>"), "rng")
+    assert "arc t -> P : 1`(if r = 1 then 3 else r - 1);" in text
 
 
 def test_comparisons_and_connectives():
@@ -222,7 +223,7 @@ def test_comparisons_and_connectives():
     assert guard_of(f"<imply>{sub(eq, ne)}</imply>") == "trans t [not (x = p0) orelse (x <> y)];"
     for tag, op in [("lessthan", "<"), ("lessthanorequal", "<="), ("greaterthan", ">"),
                     ("greaterthanorequal", ">=")]:
-        assert guard_of(f"<{tag}>{sub(var('vx'), var('vy'))}</{tag}>") == f"trans t [ord_Proc x {op} ord_Proc y];"
+        assert guard_of(f"<{tag}>{sub(var('vx'), var('vy'))}</{tag}>") == f"trans t [Proc.ord x {op} Proc.ord y];"
 
 
 def test_partition():
