@@ -20,8 +20,8 @@ DEAD_EXAMPLES: int = 10
 class SccSummary:
     decomposition: SccDecomposition
     nodes: int
-    arcs: int  # distinct ordered pairs of SCCs joined by an arc (CPN Tools' count, see docs/statespace.md)
-    arcs_between: int  # state-space arcs whose ends lie in different SCCs
+    arcs: int  # state-space arcs whose ends lie in different SCCs (CPN Tools' count, docs/statespace.md)
+    arc_pairs: int  # distinct ordered pairs of different SCCs joined by at least one arc
     terminal: int
     nontrivial: int
     seconds: float
@@ -34,7 +34,7 @@ def scc_summary(x: Exploration) -> SccSummary:
     g = x.graph
     dec = strongly_connected_components(g.n_states, g.offsets, g.dst)
     between, pairs = scc_graph_arcs(dec, g.offsets, g.dst)
-    return SccSummary(dec, dec.count, pairs, between, sum(dec.terminal), sum(dec.nontrivial),
+    return SccSummary(dec, dec.count, between, pairs, sum(dec.terminal), sum(dec.nontrivial),
                       time.perf_counter() - t0)
 
 

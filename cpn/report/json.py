@@ -41,7 +41,7 @@ def to_json(r: Report) -> dict:
             "arcs": r.scc.arcs,
             "terminal": terminal,
             "nontrivial": r.scc.nontrivial,
-            "arcs_between_sccs": r.scc.arcs_between,
+            "arcs_distinct_pairs": r.scc.arc_pairs,
             "seconds": round(r.scc.seconds, 3),
         },
         "bounds": {b.place: {"upper": b.upper, "lower": b.lower} for b in r.bounds.places},

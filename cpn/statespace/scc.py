@@ -213,7 +213,11 @@ def first_cycle_component(n: int, offsets: array, dst: array, accept, arc_labels
 
 
 def scc_graph_arcs(dec: SccDecomposition, offsets: array, dst: array) -> tuple[int, int]:
-    """Arcs of the SCC graph: (state-space arcs between distinct SCCs, distinct ordered SCC pairs)."""
+    """Arcs of the SCC graph: (state-space arcs between distinct SCCs, distinct ordered SCC pairs).
+
+    CPN Tools' report counts the first: LimitProtocol (CPN book ch. 7) has 37,312 such arcs, published
+    as its SCC graph's arcs, and 20,154 distinct pairs.
+    """
     if dec.count <= 1:
         return 0, 0
     comp = dec.comp

@@ -34,7 +34,7 @@ def test_two_terminal_sccs():
     x, ti, arc_t, scc = _analyse(e)
     assert (x.n_states, x.n_arcs) == (4, 4)
     assert (scc.nodes, scc.terminal, scc.nontrivial) == (3, 2, 1)
-    assert scc.arcs == 2 and scc.arcs_between == 2
+    assert scc.arcs == 2 and scc.arc_pairs == 2
     home = home_markings(x, scc)
     assert home.states == [] and home.initial_is_home is False
     dead = dead_markings(x)
