@@ -445,7 +445,9 @@ class _Writer:
                     and isinstance(m.left, A.BinOp) and m.left.op == "+" and isinstance(m.left.right, A.Const):
                 inner = self._csop(m.left.left, "ord")
                 n, k = m.right.value, m.left.right.value
-                if inner is not None and inner[1] == col[1]:
+                body = self.resolve(col[1])[1]
+                if inner is not None and inner[1] == col[1] and body is not None and body.kind == "enum" \
+                        and len(body.names) == n:
                     if n and k == 1 % n:
                         return "successor", inner[0]
                     if n and k == (n - 1) % n:
@@ -456,7 +458,15 @@ class _Writer:
                 and isinstance(e.else_.right, A.Const) and e.else_.right.value == 1 \
                 and isinstance(e.cond.left, A.Name) and isinstance(e.else_.left, A.Name) \
                 and e.cond.left.name == e.else_.left.name:
-            return ("successor" if e.else_.op == "+" else "predecessor"), e.cond.left
+            body = self.resolve(self.sort_of_value(e.cond.left) or "")[1]
+            if body is None or body.kind != "int" or not all(
+                    isinstance(x, A.Const) for x in (body.low, body.high, e.cond.right, e.then)):
+                return None
+            lo, hi = body.low.value, body.high.value
+            if e.else_.op == "+" and (e.cond.right.value, e.then.value) == (hi, lo):
+                return "successor", e.cond.left
+            if e.else_.op == "-" and (e.cond.right.value, e.then.value) == (lo, hi):
+                return "predecessor", e.cond.left
         return None
 
     def boolean(self, e) -> str:
@@ -475,12 +485,28 @@ class _Writer:
                     for x in (left, right)]
             if all(ords):
                 left, right = left.arg, right.arg
-            elif self._csop(left, "ord") is not None and self._csop(right, "ord") is not None:
-                left, right = self._csop(left, "ord")[0], self._csop(right, "ord")[0]
+            else:
+                # S.ord x compared with S.ord y, or with a position k (the k-th constant of S)
+                lo, ro = self._csop(left, "ord"), self._csop(right, "ord")
+                if lo is not None and ro is not None:
+                    left, right = lo[0], ro[0]
+                elif lo is not None and self._position(right, lo[1]) is not None:
+                    left, right = lo[0], self._position(right, lo[1])
+                elif ro is not None and self._position(left, ro[1]) is not None:
+                    left, right = self._position(left, ro[1]), ro[0]
             cs = self.sort_of_value(left) or self.sort_of_value(right)
             return (f"<{_CMP[e.op]}><subterm>{self.value(left, cs)}</subterm>"
                     f"<subterm>{self.value(right, cs)}</subterm></{_CMP[e.op]}>")
         raise _Unsupported("a guard that PNML symmetric nets cannot express", e)
+
+    def _position(self, e, cs: str):
+        """The constant at position e (an int literal) of enumeration cs, as a Name, or None."""
+        A = self.A
+        body = self.resolve(cs)[1]
+        if isinstance(e, A.Const) and e.kind == "int" and body is not None and body.kind == "enum" \
+                and 0 <= e.value < len(body.names):
+            return A.Name(e.span, body.names[e.value])
+        return None
 
     def sort_of_value(self, e) -> str | None:
         A = self.A

@@ -56,3 +56,74 @@ def test_nets_outside_pnml_are_refused_with_positions():
     assert {d.code for d in diags} == {"E0502"}
     lines = sorted(d.span.line for d in diags)
     assert 1 in lines and 4 in lines and 6 in lines
+
+
+# ---------------------------------------------------------------------- same state space
+
+def _figures(path):
+    import cpn
+    from cpn.cli.validate import explore_figures
+
+    f = explore_figures(cpn.load(str(path)).engine())
+    return (f.states, f.arcs, f.max_tokens_per_marking, f.max_of_one_colour_in_place, f.dead_markings,
+            f.properties)
+
+
+def _loader_missing() -> bool:
+    import cpn
+
+    return not hasattr(cpn, "load")
+
+
+SMALL = ["TokenRing-COL-005", "DatabaseWithMutex-COL-02", "Sudoku-COL-AN02", "BridgeAndVehicles-COL-V04P05N02",
+         "ResAllocation-PT-R003C005", "IBM319-PT-none"]
+
+
+@pytest.mark.skipif(not CORPUS, reason="validation corpus not found")
+@pytest.mark.parametrize("name", SMALL)
+def test_written_pnml_has_the_same_state_space(name, tmp_path):
+    if _loader_missing():
+        pytest.skip("cpn.load does not exist yet")
+    src = os.path.join(VALIDATION, name, "model.pnml")
+    out = tmp_path / "again.pnml"
+    write(translate(src), out)
+    assert _figures(out) == _figures(src)
+
+
+CPNET = """
+colset PH = with p0 | p1 | p2 | p3;
+colset R = int with 1..3;
+colset PR = product PH * R;
+var p, q : PH;
+var r : R;
+place Think : PH = PH.all();
+place Fork : PH = PH.all();
+place Eat : PR;
+place Count : R = 1`1;
+trans Take [PH.ord p < 3];
+trans TakeLast [p = p3];
+trans Put;
+arc Think -> Take : p;
+arc Fork -> Take : p ++ PH.col ((PH.ord p + 1) mod 4);
+arc Count -> Take : r;
+arc Take -> Count : if r = 3 then 1 else r + 1;
+arc Take -> Eat : (p, r);
+arc Think -> TakeLast : p;
+arc Fork -> TakeLast : p ++ PH.col ((PH.ord p + 1) mod 4);
+arc TakeLast -> Eat : (p, 1);
+arc Eat -> Put : (p, r);
+arc Put -> Think : p;
+arc Put -> Fork : p ++ PH.col ((PH.ord p + 1) mod 4);
+"""
+
+
+def test_cpnet_model_written_and_read_back_has_the_same_state_space(tmp_path):
+    if _loader_missing():
+        pytest.skip("cpn.load does not exist yet")
+    src = tmp_path / "phil.cpnet"
+    src.write_text(CPNET)
+    out = tmp_path / "phil.pnml"
+    write(src, out)
+    text = out.read_text()
+    assert "<successor>" in text and "<lessthan>" in text and "<finiteintrange" in text
+    assert _figures(out) == _figures(src)
