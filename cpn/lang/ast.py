@@ -67,6 +67,7 @@ class App(Expr):
     fn: Expr
     arg: Expr
     ty: Any = None
+    ran_var: Any = None  # for CS.ran() in a transition: the free variable that replaces it
 
 
 @dataclass(slots=True, eq=False)

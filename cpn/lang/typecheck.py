@@ -618,7 +618,7 @@ class Checker:
                 e.fn = A.Name(e.fn.span, "ignore")
                 e.fn.ref = self.builtin_syms["ignore"]
                 # rewrite in place: App(ignore, ()) is replaced by the variable through the parent
-                e.ran_var = vsym  # type: ignore[attr-defined]
+                e.ran_var = vsym
                 return self.cstypes[cs]
         ft = self.infer(e.fn, env)
         at = self.infer(e.arg, env)

@@ -147,3 +147,20 @@ def test_time_growth_is_detected():
 def test_time_growth_detection_can_be_disabled():
     x = Explorer(_ticker(), ExploreOptions(max_states=200, detect_time_growth=False)).run()
     assert x.stop_reason is StopReason.MAX_STATES
+
+
+def test_large_binding_element_ids_widen_the_arc_array():
+    base = dining_philosophers(3)
+
+    class Wide:
+        places, transitions, is_timed = base.places, base.transitions, False
+        initial_state = staticmethod(base.initial_state)
+
+        def successors(self, s):
+            return [(be * 30_000, t) for be, t in base.successors(s)]
+
+    x = Explorer(Wide()).run()
+    ref = Explorer(dining_philosophers(3)).run()
+    assert x.graph.bes.typecode == "i"
+    assert list(x.graph.bes) == [be * 30_000 for be in ref.graph.bes]
+    assert list(x.graph.parent_be) == [be * 30_000 if be >= 0 else -1 for be in ref.graph.parent_be]
