@@ -286,6 +286,13 @@ class _Translator:
         # A user's own 'normal' or 'uniform' (an enumeration constant, say) is not the library function.
         self.impure = set(ml.RANDOM_FUNCTIONS) - user_names
         self.impure_via: dict[str, str] = {}  # a function -> the random function it calls
+        # `fun DEL() = NetDelay.ran();`: a call DEL() is written NetDelay.ran(), which the engine explores
+        # as a choice of every value; inside a function it would be one random draw.
+        self.ran_aliases: dict[str, str] = {}
+        for name, body in funs:
+            m = re.fullmatch(r"\s*\(\s*\)\s*=\s*([A-Za-z][\w']*\.ran)\s*\(\s*\)\s*;?\s*", body)
+            if m:
+                self.ran_aliases[name] = m.group(1) + "()"
         changed = True
         while changed:  # transitive closure: a function that calls a random one is random
             changed = False
@@ -382,6 +389,8 @@ class _Translator:
                        "needs integer model time",
                        hint="Write an integer delay with '@+', e.g. '@+5'.")
         self._check_globref_use(text, origin, what)
+        for name, ran in self.ran_aliases.items():
+            text = re.sub(r"\b" + re.escape(name) + r"\s*\(\s*\)", ran, text)
         return self._rewrite_globrefs(text)
 
     # -- declarations ----------------------------------------------------------------------------

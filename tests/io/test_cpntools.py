@@ -394,3 +394,15 @@ def test_convert_reports_front_end_errors_in_the_written_file_with_the_cpn_origi
     err = capsys.readouterr().err
     assert f"{tmp_path}/m.cpnet:" in err and "unknown name 'undefined_name'" in err
     assert "from arc inscription A/t (A1 on page 'Top')" in err and f"{model}:" in err
+
+
+def test_a_nullary_function_that_is_cs_ran_is_inlined():
+    decls = DECLS + '<ml id="M2">fun pick() = S.ran();</ml>'
+    body = place("P1", "A", "UNIT", "1`()") + place("P2", "B", "S") + trans("T1", "t")
+    body += arc("A1", "PtoT", "T1", "P1", "()") + arc("A2", "TtoP", "T1", "P2", "pick()")
+    text = translate_text(cpn_xml(decls, page("PG1", "Top", body)), "t.cpn").text
+    assert "arc t -> B : S.ran();" in text
+    import cpn
+
+    engine = cpn.loads(text, "t.cpnet").engine()
+    assert len(list(engine.successors(engine.initial_state()))) == 4  # S = int with 0..3
