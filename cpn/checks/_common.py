@@ -83,4 +83,6 @@ class TransitionIndex:
         table = [0] * (distinct[-1] + 1)
         for be in distinct:
             table[be] = self(be)
-        return array("i", map(table.__getitem__, bes))
+        n = len(self.engine.transitions)
+        code = "B" if n <= 0xFF else "H" if n <= 0xFFFF else "i"
+        return array(code, map(table.__getitem__, bes))

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import gc
 import time
+from array import array
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
@@ -179,14 +180,20 @@ class Explorer:
                         if pred is not None and pred(t):
                             stop, predicate_state = StopReason.PREDICATE, j
                     dst_append(j)
-                    bes_append(be)
+                    try:
+                        bes_append(be)
+                    except OverflowError:
+                        g.bes = array("i", g.bes)  # binding-element ids outgrew 16 bits: widen once
+                        bes = g.bes
+                        bes_append = bes.append
+                        bes_append(be)
                 n_arcs = len(dst)
                 off_append(n_arcs)
                 head += 1
         except KeyboardInterrupt:
             # A half-expanded state keeps no arcs: it is unexpanded. States it discovered stay.
             del dst[offsets[-1]:]
-            del bes[offsets[-1]:]
+            del g.bes[offsets[-1]:]
             stop = StopReason.INTERRUPTED
         finally:
             if gc_was_enabled:
