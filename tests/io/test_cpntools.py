@@ -406,3 +406,18 @@ def test_a_nullary_function_that_is_cs_ran_is_inlined():
 
     engine = cpn.loads(text, "t.cpnet").engine()
     assert len(list(engine.successors(engine.initial_state()))) == 4  # S = int with 0..3
+
+
+def test_realtimestamp_option_is_noted():
+    opts = ('<options><option name="realtimestamp"><value><boolean>true</boolean></value></option></options>')
+    t = translate_text(cpn_xml(DECLS, page("PG1", "Top", place("P1", "A", "S")), extra=opts), "t.cpn")
+    assert any("realtimestamp" in n for n in t.notes) and "(* note: the net sets the option 'realtimestamp'" in t.text
+
+
+def test_unused_declarations_are_left_out_and_used_ones_kept():
+    decls = DECLS + ('<ml id="M2">fun helper x = x + 1;</ml><ml id="M3">fun used x = helper x;</ml>'
+                     '<ml id="M4">fun logit () = TextIO.print "x";</ml>')
+    body = place("P1", "A", "S", "1`(used 0)")
+    text = translate_text(cpn_xml(decls, page("PG1", "Top", body)), "t.cpn").text
+    assert "fun helper x = x + 1;" in text and "fun used x = helper x;" in text
+    assert "fun logit" not in text and "(* declaration M4 (logit) at line" in text
