@@ -126,6 +126,8 @@ def test_limit_protocol_matches_the_cpn_tools_report():
 FINITE = {
     "DiningPhilosophers_ASKCTL": (8, 10, 6, 2),
     "DiningPhilosophers_COMM_Mon": (243, 945, 3, 2),
+    # cpncheck refuses the code segments (acceptConnection); with them emptied it gives these figures
+    "DiningPhilosophers_COMM": (245, 948, 5, 1),
     "DistributedDataBase": (109, 224, 1, 0),
     "DistributedDataBase_OG": (28, 42, 1, 0),
     "ResourceAllocation_OG": (13, 20, 1, 0),
@@ -162,7 +164,7 @@ def test_finite_samples_match_cpncheck(name):
 
 
 # Samples whose state space is large or infinite: the first states explore without an error.
-LARGE = ["DiningPhilosophers_COMM", "HierarchicalProtocol", "ProtocolWithTimer", "ResourceAllocation", "RingProtocol",
+LARGE = ["HierarchicalProtocol", "ProtocolWithTimer", "ResourceAllocation", "RingProtocol",
          "SimpleProtocol", "SimpleProtocol_RP", "Telephones", "TimedProtocol", "TimedResourceAlloc"]
 
 
