@@ -33,6 +33,10 @@ class _Term:
         return self.text if self.is_ms else f"1`{self.paren()}"
 
 
+# the largest factor by which a computed multiset is repeated with ++ (scalarproduct, numberof)
+MAX_REPEAT: int = 16
+
+
 class TermTranslator:
     """The term half of the PNML translator; the host provides error(), sort_of(), resolve_sort(),
     and the tables vars, consts, sorts, sort_els and names."""
@@ -130,14 +134,42 @@ class TermTranslator:
             return _Term("empty", is_ms=True, atomic=True)
         if not what.is_ms:
             return _Term(f"{n}`{what.paren()}", is_ms=True, sort=what.sort, atomic=False,
-                         expansion=[(n, what.text)])
+                         expansion=[(n, what.paren())])
+        return self._scale(el, where, n, what)
+
+    def _scale(self, el, where, n: int, what: _Term) -> _Term:
+        """n times the multiset `what`: its elements' multiplicities times n when they are known, else
+        `what` added n times (CPN ML has no scalar product of multisets)."""
         if n == 1:
             return what
-        if what.expansion is None:
-            self.error(el, f"'numberof' in {where} multiplies a multiset that is not built from 'all'")
+        if what.expansion is not None:
+            exp = [(n * k, v) for k, v in what.expansion]
+            return _Term(_ms_text(exp), is_ms=True, sort=what.sort, atomic=False, expansion=exp)
+        if n > MAX_REPEAT:
+            self.error(el, f"'{el.tag}' in {where} multiplies a computed multiset by {n}",
+                       hint=f"Only multiplicities up to {MAX_REPEAT} of a multiset that is not made of constants "
+                            "and 'all' can be translated.")
             return what
-        exp = [(n * k, v) for k, v in what.expansion]
-        return _Term(_ms_text(exp), is_ms=True, sort=what.sort, atomic=False, expansion=exp)
+        text = what.text if what.atomic else f"({what.text})"
+        return _Term(" ++ ".join([text] * n), is_ms=True, sort=what.sort, atomic=False)
+
+    def t_scalarproduct(self, el, where, expect):
+        terms = self.subterms(el, where, expect)
+        if not self._arity(el, terms, 2, where):
+            return _Term("empty", is_ms=True)
+        count, what = terms
+        try:
+            n = int(count.text.replace("~", "-"))
+        except ValueError:
+            self.error(el, f"the factor of 'scalarproduct' in {where} is not a constant")
+            return _Term("empty", is_ms=True)
+        if n <= 0:
+            return _Term("empty", is_ms=True)
+        return self._scale(el, where, n, what if what.is_ms else _Term(what.as_ms(), is_ms=True, sort=what.sort,
+                                                                        atomic=False, expansion=[(1, what.paren())]))
+
+    def t_empty(self, el, where, expect):
+        return _Term("empty", is_ms=True, expansion=[])
 
     def t_tuple(self, el, where, expect):
         comp = expect.parts if expect is not None and expect.kind == "product" else []
@@ -237,6 +269,13 @@ class TermTranslator:
 
     def t_greaterthanorequal(self, el, where, expect):
         return self._compare(el, where, ">=", True)
+
+    # order of partition elements (ISO 15909-2 'partitions')
+    def t_ltp(self, el, where, expect):
+        return self._compare(el, where, "<", True)
+
+    def t_gtp(self, el, where, expect):
+        return self._compare(el, where, ">", True)
 
     # integer operators of finite int ranges (ISO 15909-2 'integers')
     t_lt, t_leq, t_gt, t_geq = t_lessthan, t_lessthanorequal, t_greaterthan, t_greaterthanorequal

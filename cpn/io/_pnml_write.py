@@ -375,7 +375,7 @@ class _Writer:
         if isinstance(e, A.Name) and e.name == "empty":
             if cs is None:
                 raise _Unsupported("'empty' of an unknown colour set", e)
-            return f"<emptymultiset>{self.sort_xml(cs, e)}</emptymultiset>"
+            return f"<empty>{self.sort_xml(cs, e)}</empty>"
         return (f'<numberof><subterm><numberconstant value="1"><positive/></numberconstant></subterm>'
                 f"<subterm>{self.value(e, cs)}</subterm></numberof>")
 

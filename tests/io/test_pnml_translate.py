@@ -327,3 +327,34 @@ def test_origins_point_at_the_pnml_elements(tmp_path):
     mapped = remap_error(err, tr)
     d = mapped.diagnostics[0]
     assert (d.span.line, d.code) == (6, "E0301") and "arc p -> t;" in d.notes[-1]
+
+
+def test_scalarproduct_empty_and_repeated_multisets():
+    two_x = f"<scalarproduct>{sub(num(2), numberof(1, var('vx')))}</scalarproduct>"
+    assert inscription_of(two_x) == "2`x"
+    add = f"<add>{sub(numberof(1, var('vx')), numberof(1, var('vy')))}</add>"
+    assert inscription_of(f"<scalarproduct>{sub(num(2), add)}</scalarproduct>") == "2`x ++ 2`y"
+    succ = f"<successor>{sub(var('vx'))}</successor>"
+    add2 = f"<add>{sub(numberof(1, var('vx')), numberof(1, succ))}</add>"
+    assert inscription_of(f"<scalarproduct>{sub(num(2), add2)}</scalarproduct>") \
+        == "2`x ++ 2`(Proc.col ((Proc.ord x + 1) mod 3))"
+    sub_ms = f"<subtract>{sub(all_of('proc'), numberof(1, var('vx')))}</subtract>"
+    assert inscription_of(f"<scalarproduct>{sub(num(2), sub_ms)}</scalarproduct>") \
+        == "(Proc.all() -- 1`x) ++ (Proc.all() -- 1`x)"
+    assert inscription_of('<empty><usersort declaration="proc"/></empty>') == "empty"
+
+
+def test_partition_order():
+    decls = ENUM + """
+    <partition id="part" name="Half"><usersort declaration="proc"/>
+      <partitionelement id="lo" name="lo"><useroperator declaration="p0"/><useroperator declaration="p1"/></partitionelement>
+      <partitionelement id="hi" name="hi"><useroperator declaration="p2"/></partitionelement>
+    </partition>"""
+    pof = '<partitionelementof refpartition="part">' + sub(var("vx")) + "</partitionelementof>"
+    body = (f'<place id="P"><type><structure><usersort declaration="proc"/></structure></type></place>'
+            f'<transition id="t"><condition><structure><ltp>{sub(pof, const("hi"))}</ltp>'
+            f"</structure></condition></transition>"
+            f'<arc id="a1" source="P" target="t"><hlinscription><structure>{numberof(1, var("vx"))}'
+            f"</structure></hlinscription></arc>")
+    text = translate_text(sn(decls, body))
+    assert "trans t [Half.ord (of_Half x) < Half.ord hi];" in text
