@@ -81,6 +81,8 @@ class ExprCompiler:
         k = sym.kind
         if k == "var":
             return self.varnames[sym.name]
+        if k == "fun" and sym.uid in getattr(self, "functions", {}):
+            return self.ns.ref(self.functions[sym.uid], "F")
         if k in ("val", "fun"):
             return self.ns.ref(self.ev.globals[sym.uid], "G")
         if k == "param":
@@ -483,3 +485,104 @@ class TransitionCodegen:
         if tok is not None and B.is_pattern(e):
             return tok
         return self.ec.expr(e)
+
+
+class FunctionCodegen:
+    """Compiles a global `fun` of one argument (possibly a tuple) into a Python function.
+
+    Clauses become pattern tests in order; bodies are compiled expressions. Functions of several curried
+    arguments stay with the evaluator.
+    """
+
+    def __init__(self, ns: Namespace, evaluator, functions: dict[int, Any], var_uids: dict[str, int]):
+        self.ns = ns
+        self.ev = evaluator
+        self.functions = functions
+        self.var_uids = var_uids
+
+    def compile(self, fd: A.FunDecl) -> str | None:
+        if len(fd.clauses[0].params) != 1:
+            return None
+        name = f"_F{fd.ref.uid}"
+        lines = [f"def {name}(arg):"]
+        for clause in fd.clauses:
+            locals_: dict[int, str] = {}
+            body: list[str] = []
+            if not self._match(clause.params[0], "arg", body, locals_):
+                return None
+            ec = _LocalExprCompiler(self.ns, self.ev, locals_, self.functions, self.var_uids)
+            try:
+                ret = ec.expr(clause.body)
+            except Unsupported:
+                return None
+            lines.append("    for _once in ONCE:")
+            lines.extend("        " + b for b in body)
+            lines.append(f"        return {ret}")
+        lines.append(f"    raise MLError({('no clause of ' + repr(fd.name) + ' matches its argument (SML exception Match)')!r})")
+        return "\n".join(lines)
+
+    def _match(self, p: A.Pat, src: str, out: list[str], locals_: dict[int, str]) -> bool:
+        if isinstance(p, A.PWild):
+            return True
+        if isinstance(p, A.PVar):
+            sym = p.ref
+            if sym.kind == "con":
+                out.append(f"if {src} != {sym.data.tag!r}: continue")
+                return True
+            py = f"l{sym.uid}"
+            locals_[sym.uid] = py
+            out.append(f"{py} = {src}")
+            return True
+        if isinstance(p, A.PConst):
+            if p.kind == "bool":
+                out.append(f"if {src} is not {p.value!r}: continue")
+            else:
+                out.append(f"if {src} != {p.value!r}: continue")
+            return True
+        if isinstance(p, A.PTuple):
+            return all(self._match(x, f"{src}[{i}]", out, locals_) for i, x in enumerate(p.items))
+        if isinstance(p, A.PList):
+            out.append(f"if len({src}) != {len(p.items)}: continue")
+            return all(self._match(x, f"{src}[{i}]", out, locals_) for i, x in enumerate(p.items))
+        if isinstance(p, A.PCons):
+            out.append(f"if not {src}: continue")
+            return self._match(p.head, f"{src}[0]", out, locals_) and self._match(p.tail, f"{src}[1:]", out, locals_)
+        if isinstance(p, A.PCon):
+            info = p.ref.data
+            if info.kind == "index":
+                return self._match(p.arg, src, out, locals_)
+            out.append(f"if type({src}) is not tuple or {src}[0] != {info.tag}: continue")
+            return self._match(p.arg, f"{src}[1]", out, locals_)
+        if isinstance(p, A.PRecord):
+            labels = p.ty_labels
+            return all(self._match(q, f"{src}[{labels.index(label)}]", out, locals_) for label, q in p.fields)
+        if isinstance(p, A.PAs):
+            py = f"l{p.ref.uid}"
+            locals_[p.ref.uid] = py
+            out.append(f"{py} = {src}")
+            return self._match(p.pat, src, out, locals_)
+        if isinstance(p, A.PAnnot):
+            return self._match(p.pat, src, out, locals_)
+        return False
+
+
+class _LocalExprCompiler(ExprCompiler):
+    """An expression compiler that also knows the local variables of a function clause."""
+
+    def __init__(self, ns, ev, locals_, functions, var_uids):
+        super().__init__(ns, ev, {}, {}, var_uids)
+        self.locals = locals_
+        self.functions = functions
+
+    def fallback(self, e):
+        raise Unsupported()
+
+    def _c_Name(self, e):
+        sym = e.ref
+        if sym.kind == "local":
+            if sym.uid not in self.locals:
+                raise Unsupported()
+            return self.locals[sym.uid]
+        if sym.kind == "fun" and sym.uid in self.functions:
+            return f"_F{sym.uid}"
+        return super()._c_Name(e)

@@ -20,6 +20,10 @@ from cpn.values.multiset import MultisetError
 NEG_INF = float("-inf")
 #: the priority of a transition without one (CPN Tools' P_NORMAL)
 P_NORMAL: int = 1000
+#: after this many lookups, a transition whose results were reused less than MEMO_MISS_RATE of the time
+#: stops keeping them (DP(12): most (Think, Forks) pairs occur once; MS(8): most Reply keys recur)
+MEMO_PROBE: int = 4096
+MEMO_MISS_RATE: float = 0.8
 
 
 @dataclass(frozen=True, slots=True)
@@ -76,7 +80,11 @@ class CompiledEngine:
         self.store = _Places(net.places)
         self._be_index: dict = {}
         self._be: list[tuple[int, tuple]] = []
-        self._add_memo: list[dict] = [{} for _ in net.places]
+        self._add_memo: list[dict] = [{} for _ in net.places]  # place -> delta id -> {id: id}
+        self._sub_memo: list[dict] = [{} for _ in net.places]
+        self._members: list[set] = [set() for _ in net.places]  # values known to be in the colour set
+        self._recipes: dict[int, tuple] = {}  # binding element -> its effect (untimed transitions)
+        self._nstates = 0  # calls of successors(), to judge how often memoised results are reused
         self._delta_index: list[dict] = [{} for _ in net.places]
         self._deltas: list[list[dict]] = [[] for _ in net.places]
         self._shift_memo: list[dict] = [{} for _ in net.places]
@@ -86,8 +94,32 @@ class CompiledEngine:
         self._compile()
 
     # ------------------------------------------------------------------ compilation
+    def _compile_functions(self) -> dict:
+        """Compile the model's global functions of one argument; the rest stay with the evaluator."""
+        from cpn.lang import ast as A
+
+        ns = codegen.Namespace()
+        functions: dict[int, object] = {}
+        var_uids = {name: sym.uid for name, sym in self.net.variables.items()}
+        fc = codegen.FunctionCodegen(ns, self.ev, functions, var_uids)
+        sources = []
+        decls = [d for d in self.net.checked.model.decls if isinstance(d, A.FunDecl) and d.ref is not None]
+        for d in decls:
+            src = fc.compile(d)
+            if src is not None:
+                functions[d.ref.uid] = None  # visible to later and recursive calls
+                sources.append((d, src))
+        glob = dict(RUNTIME)
+        glob.update(ns.objects)
+        for d, src in sources:
+            exec(compile(src, f"<cpn function {d.name}>", "exec"), glob)  # noqa: S102 - generated from the AST
+        for d, _ in sources:
+            functions[d.ref.uid] = glob[f"_F{d.ref.uid}"]
+        return functions
+
     def _compile(self) -> None:
         self._plan = []
+        self.functions = self._compile_functions()
         self.sources: dict[int, str] = {}
         timed_places = {p.index for p in self.places if p.timed}
         for t in self.transitions:
@@ -101,6 +133,7 @@ class CompiledEngine:
                     writes.append(a.place)
             ns = codegen.Namespace()
             gen = codegen.TransitionCodegen(t, self.net, ns, self.ev, read)
+            gen.ec.functions = self.functions
             fname, src = gen.generate()
             uses_time = gen.ec.uses_time
             glob = dict(RUNTIME)
@@ -188,6 +221,7 @@ class CompiledEngine:
 
     # ------------------------------------------------------------------ successors
     def successors(self, s: tuple) -> list[tuple[int, tuple]]:
+        self._nstates += 1
         if self.is_timed:
             return self._timed_successors(s)
         out = []
@@ -201,23 +235,41 @@ class CompiledEngine:
                 lst = list(s)
                 for pos, nid in sets:
                     lst[pos] = nid
-                for pos, did in adds:
-                    lst[pos] = self._add(pos, lst[pos], did)
+                for pos, did, memo in adds:
+                    cur = lst[pos]
+                    nid = memo.get(cur)
+                    lst[pos] = nid if nid is not None else self._add(pos, cur, did)
                 append((be, tuple(lst)))
         if self._has_priorities and out:
             out = self._by_priority(out)
         return out
 
     def _add(self, p: int, cur: int, did: int) -> int:
-        memo = self._add_memo[p]
-        k = (cur, did)
-        nid = memo.get(k)
+        """The id of place p's marking `cur` plus the tokens of delta `did` (memoised per delta)."""
+        memo = self._add_memo[p].setdefault(did, {})
+        nid = memo.get(cur)
         if nid is None:
             d = dict(self.store.dicts[p][cur])
             for v, n in self._deltas[p][did].items():
                 d[v] = d.get(v, 0) + n
             nid = self.store.intern(p, d)
-            memo[k] = nid
+            memo[cur] = nid
+        return nid
+
+    def _sub(self, p: int, cur: int, did: int) -> int:
+        """The id of place p's marking `cur` minus the tokens of delta `did` (included; memoised)."""
+        memo = self._sub_memo[p].setdefault(did, {})
+        nid = memo.get(cur)
+        if nid is None:
+            d = dict(self.store.dicts[p][cur])
+            for v, n in self._deltas[p][did].items():
+                left = d[v] - n
+                if left:
+                    d[v] = left
+                else:
+                    del d[v]
+            nid = self.store.intern(p, d)
+            memo[cur] = nid
         return nid
 
     def _delta(self, p: int, d: dict) -> int:
@@ -266,18 +318,68 @@ class CompiledEngine:
         return EvaluationError(msg, span, t.name, binding, hint, self.net.checked.model.source)
 
     def _miss(self, info, key):
+        """Enabled bindings of an untimed transition on the place markings `key`, with their effects."""
         read = info.read
         keys = key if len(read) > 1 else ((key,) if read else ())
         views = [self.store.views[p][i] for p, i in zip(read, keys)]
         res = []
+        recipes = self._recipes
+        sub_memo, add_memo = self._sub_memo, self._add_memo
         for bvals, consumed, produced, _td, pr in self._call(info, views):
             be = self._intern_be(info.t.index, bvals)
             if self._has_priorities:
                 self._prio[be] = pr if pr is not None else P_NORMAL
-            sets, adds = self._writes(info, keys, consumed, produced, None, 0)
-            res.append((be, sets, adds))
-        info.memo[key] = res
+            recipe = recipes.get(be)
+            if recipe is None:
+                recipe = recipes[be] = self._recipe(info, consumed, produced)
+            changes, adds = recipe
+            sets = []
+            for i, p, sd, ad, reset in changes:
+                cur = keys[i]
+                nid = 0 if reset else cur
+                if sd is not None and not reset:
+                    m = sub_memo[p].get(sd)
+                    n2 = m.get(nid) if m is not None else None
+                    nid = n2 if n2 is not None else self._sub(p, nid, sd)
+                if ad is not None:
+                    m = add_memo[p].get(ad)
+                    n2 = m.get(nid) if m is not None else None
+                    nid = n2 if n2 is not None else self._add(p, nid, ad)
+                if nid != cur:
+                    sets.append((p, nid))
+            res.append((be, tuple(sets), adds))
+        info.lookups += 1
+        if info.store_results:
+            info.memo[key] = res
+            if info.lookups == MEMO_PROBE and MEMO_PROBE > self._nstates * MEMO_MISS_RATE:
+                # this transition's input markings rarely repeat: stop keeping its results
+                info.store_results = False
+                info.memo.clear()
         return res
+
+    def _recipe(self, info, consumed, produced):
+        """The effect of one binding element of an untimed transition on each place it touches."""
+        prod: dict[int, dict] = {}
+        for p, items in produced:
+            self._check_tokens(info, p, items)
+            d = prod.setdefault(p, {})
+            for v, n, _dl in items:
+                if n:
+                    d[v] = d.get(v, 0) + n
+        changes = []
+        for i, p in enumerate(info.read):
+            c = consumed[i]
+            reset = p in info.resets
+            sd = self._delta(p, c) if c else None
+            ad = self._delta(p, prod[p]) if prod.get(p) else None
+            if sd is not None or ad is not None or reset:
+                changes.append((i, p, sd, ad, reset))
+        adds = []
+        for p in info.writes:
+            if prod.get(p):
+                did = self._delta(p, prod[p])
+                adds.append((p, did, self._add_memo[p].setdefault(did, {})))
+        return tuple(changes), tuple(adds)
 
     def _by_priority(self, out):
         prio = self._prio
@@ -285,9 +387,14 @@ class CompiledEngine:
         return [(be, s) for be, s in out if prio.get(be, P_NORMAL) == best]
 
     def _check_tokens(self, info, p, items):
+        known = self._members[p]
         cs = self.places[p].colour_set
         for v, _n, _d in items:
-            if not cs.contains(v):
+            if v in known:
+                continue
+            if cs.contains(v):
+                known.add(v)
+            else:
                 arc = next((a for a in info.t.arcs if a.place == p and a.kind in ("out", "both")), None)
                 raise EvaluationError(
                     f"transition '{info.t.transition}' puts {_fmt(cs, v)} on place '{self.places[p].name}', "
@@ -311,6 +418,21 @@ class CompiledEngine:
             if not c and p not in prod and p not in info.resets:
                 continue
             timed = store.timed[p]
+            if not timed and p not in info.resets:
+                nid = cur
+                if c:
+                    nid = self._sub(p, nid, self._delta(p, c))
+                items = prod.get(p)
+                if items:
+                    delta: dict = {}
+                    for v, n, _dl in items:
+                        if n:
+                            delta[v] = delta.get(v, 0) + n
+                    if delta:
+                        nid = self._add(p, nid, self._delta(p, delta))
+                if nid != cur:
+                    sets.append((p, nid))
+                continue
             d = dict(store.dicts[p][cur])
             if c:
                 if timed:
@@ -342,7 +464,8 @@ class CompiledEngine:
                     k = (v, f + td + dl) if timed else v
                     delta[k] = delta.get(k, 0) + n
             if delta:
-                adds.append((p, self._delta(p, delta)))
+                did = self._delta(p, delta)
+                adds.append((p, did, self._add_memo[p].setdefault(did, {})))
         return tuple(sets), tuple(adds)
 
     # ------------------------------------------------------------------ timed nets
@@ -382,7 +505,7 @@ class CompiledEngine:
             lst = list(s)
             for pos, nid in sets:
                 lst[pos] = nid
-            for pos, did in adds:
+            for pos, did, _memo in adds:
                 lst[pos] = self._add(pos, lst[pos], did)
             if self.time_condensation:
                 if f:
@@ -440,12 +563,14 @@ class CompiledEngine:
 
 class _TInfo:
     __slots__ = ("t", "fn", "read", "writes", "getter", "memo", "timed", "uses_time", "resets", "blame",
-                 "filename")
+                 "filename", "lookups", "store_results")
 
     def __init__(self, t, fn, read, writes, getter, memo, timed, uses_time, resets, blame, filename):
         self.t, self.fn, self.read, self.writes, self.getter = t, fn, read, writes, getter
         self.memo, self.timed, self.uses_time, self.resets = memo, timed, uses_time, resets
         self.blame, self.filename = blame, filename
+        self.lookups = 0
+        self.store_results = True
 
 
 def _const_key(_s):
