@@ -50,16 +50,21 @@ def child(net: str, n: int) -> dict:
     engine = model.engine(time_condensation=False)
     load_s = time.perf_counter() - t_start
     rss0 = current_rss_mb()
+    cpu0 = time.process_time()
     x = Explorer(engine).run()
+    cpu_gen = time.process_time() - cpu0
+    rss_gen = current_rss_mb()
     peak_gen = peak_rss_mb()
     report = build_report(x, model=f"{net}({n})")
+    cpu_all = time.process_time() - cpu0
     peak_all = peak_rss_mb()
     dead = report.dead.count
     return {
         "net": net, "n": n, "states": x.n_states, "arcs": x.n_arcs, "dead": dead, "complete": x.complete,
         "load_s": load_s, "gen_s": x.seconds, "report_s": report.seconds, "analysis_s": report.analysis_seconds,
         "peak_gen_mb": peak_gen, "peak_report_mb": peak_all, "rss_before_mb": rss0,
-        "bytes_per_state": (peak_gen - rss0) * 1048576 / max(1, x.n_states),
+        "gen_cpu_s": cpu_gen, "report_cpu_s": cpu_all,
+        "bytes_per_state": max(0.0, rss_gen - rss0) * 1048576 / max(1, x.n_states),
         "wall_s": time.perf_counter() - t_start,
     }
 
