@@ -13,9 +13,11 @@ from array import array
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from cpn.errors import EvaluationError
 from cpn.statespace._memory import current_rss_mb, peak_rss_mb
 from cpn.statespace.graph import StateGraph
 from cpn.statespace.options import ExploreOptions, StopReason
+from cpn.statespace.trace import shortest_trace
 
 # How many BFS levels without a new untimed marking, and how far past the clock at which the untimed
 # markings stopped changing, before a timed search is declared to grow only because time grows.
@@ -190,6 +192,11 @@ class Explorer:
                 n_arcs = len(dst)
                 off_append(n_arcs)
                 head += 1
+        except EvaluationError as err:
+            # An inscription or guard failed while expanding state `head`: say how it is reached.
+            if not err.trace:
+                err.trace = [step.text for step in shortest_trace(g, head, engine).steps]
+            raise
         except KeyboardInterrupt:
             # A half-expanded state keeps no arcs: it is unexpanded. States it discovered stay.
             del dst[offsets[-1]:]

@@ -63,3 +63,12 @@ def test_time_growth_detected_and_condensation_makes_it_finite():
     x = Explorer(e, ExploreOptions(max_states=10_000, time_condensation=True)).run()
     # {()@0} at clock 0, then {()@1} at clock 0 again and again after condensation
     assert x.complete and (x.n_states, x.n_arcs) == (2, 2)
+
+
+def test_evaluation_error_carries_the_trace_to_the_failing_state():
+    from cpn.errors import EvaluationError
+
+    with pytest.raises(EvaluationError) as info:
+        Explorer(engine(os.path.join(MODELS, "div_zero.cpnet"))).run()
+    assert info.value.trace == ["Top'Step 1: {n=2}", "Top'Step 1: {n=1}"]
+    assert "reached after 2 steps" in info.value.render()
