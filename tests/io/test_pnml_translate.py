@@ -358,3 +358,37 @@ def test_partition_order():
             f"</structure></hlinscription></arc>")
     text = translate_text(sn(decls, body))
     assert "trans t [Half.ord (of_Half x) < Half.ord hi];" in text
+
+
+@pytest.mark.parametrize("weight, states", [(1, 2), (2, 3), (3, 3)])
+def test_inhibitor_weight_semantics_end_to_end(weight, states):
+    import cpn
+
+    if not hasattr(cpn, "loads"):
+        pytest.skip("cpn.loads does not exist yet")
+    from cpn.cli.validate import explore_figures
+
+    text = translate_text(pt(f"""
+      <place id="p"><initialMarking><text>2</text></initialMarking></place><place id="q"/>
+      <transition id="t"/>
+      <arc id="a" source="p" target="t"/><arc id="b" source="t" target="q"/>
+      <arc id="c" source="q" target="t"><type value="inhibitor"/><inscription><text>{weight}</text></inscription></arc>
+    """))
+    f = explore_figures(cpn.loads(text, "inh.cpnet").engine())
+    assert f.states == states
+
+
+def test_reset_arc_end_to_end():
+    import cpn
+
+    if not hasattr(cpn, "loads"):
+        pytest.skip("cpn.loads does not exist yet")
+    from cpn.cli.validate import explore_figures
+
+    text = translate_text(pt("""
+      <place id="p"><initialMarking><text>3</text></initialMarking></place><place id="go"><initialMarking><text>1</text></initialMarking></place>
+      <transition id="t"/>
+      <arc id="a" source="go" target="t"/><arc id="r" source="p" target="t"><type value="reset"/></arc>
+    """))
+    f = explore_figures(cpn.loads(text, "reset.cpnet").engine())
+    assert (f.states, f.arcs, f.max_tokens_per_marking) == (2, 1, 4)
