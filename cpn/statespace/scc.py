@@ -141,11 +141,10 @@ def strongly_connected_components(n: int, offsets: array, dst: array, arc_labels
                         nt = 1
                     else:
                         a, b = offsets[v], offsets[v + 1]
-                        if filtered:
+                        nt = 1 if v in dst[a:b] else 0
+                        if nt and filtered:
                             nt = 1 if any(w == v and lab != avoid
                                           for w, lab in zip(dst[a:b], arc_labels[a:b])) else 0
-                        else:
-                            nt = 1 if v in dst[a:b] else 0
                     if stop_at is not None and nt:
                         nodes = members[first:].tolist()
                         if stop_at(nodes):
