@@ -392,3 +392,26 @@ def test_reset_arc_end_to_end():
     """))
     f = explore_figures(cpn.loads(text, "reset.cpnet").engine())
     assert (f.states, f.arcs, f.max_tokens_per_marking) == (2, 1, 4)
+
+
+def test_int_range_constants_arithmetic_and_booleans():
+    rc = '<finiteintrangeconstant value="2"><finiteintrange start="1" end="3"/></finiteintrangeconstant>'
+    assert guard_of(f"<lessthan>{sub(var('vr'), rc)}</lessthan>").endswith("[r < 2];")
+    plus = f"<addition>{sub(var('vr'), rc)}</addition>"
+    assert guard_of(f"<equality>{sub(plus, rc)}</equality>").endswith("[(r + 2) = 2];")
+    assert guard_of('<booleanconstant value="true"/>') == "trans t;"
+    assert guard_of('<booleanconstant value="false"/>') == "trans t [false];"
+    text = full(numberof(1, rc), "rng")
+    assert "arc t -> P : 1`2;" in text
+    assert "colset Rng = int with 1..3;" in text and text.count("int with 1..3;") == 1
+
+
+def test_unordered_comparison_is_refused():
+    body = ('<place id="P"><type><structure><usersort declaration="pair"/></structure></type></place>'
+            '<transition id="t"><condition><structure><lessthan>'
+            f"{sub('<tuple>' + sub(var('vx'), var('vf')) + '</tuple>', '<tuple>' + sub(var('vy'), var('vf')) + '</tuple>')}"
+            "</lessthan></structure></condition></transition>")
+    with pytest.raises(ModelError) as info:
+        translate_text(sn(ENUM, body), "o.pnml")
+    assert info.value.diagnostics[0].code == "E0502"
+    assert "sort is unknown" in info.value.diagnostics[0].message
