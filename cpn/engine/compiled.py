@@ -8,6 +8,7 @@ per tuple of those ids (LTSmin's transition groups): most states reuse a result 
 from __future__ import annotations
 
 import operator
+from itertools import chain
 from dataclasses import dataclass
 
 from cpn.engine import codegen
@@ -24,12 +25,25 @@ P_NORMAL: int = 1000
 #: stops keeping them (DP(12): most (Think, Forks) pairs occur once; MS(8): most Reply keys recur)
 MEMO_PROBE: int = 4096
 MEMO_MISS_RATE: float = 0.8
+#: a transition keeps at most this many results; past it they are dropped (MS(8)'s Reply sees 111,537 keys,
+#: each about once)
+MEMO_MAX: int = 1 << 16
 
 
 @dataclass(frozen=True, slots=True)
 class BindingElement:
     transition: int
     binding: dict
+
+
+def canonical_key(d: dict):
+    """A hashable key equal for equal multisets: the sorted items, flattened (a third of the memory of a
+    frozenset of pairs), or a frozenset when the values cannot be ordered (mixed union values)."""
+    try:
+        items = sorted(d.items())
+    except TypeError:
+        return frozenset(d.items())
+    return tuple(chain.from_iterable(items))
 
 
 class _Places:
@@ -47,7 +61,7 @@ class _Places:
             self.intern(p, {})
 
     def intern(self, p: int, d: dict) -> int:
-        key = frozenset(d.items())
+        key = canonical_key(d)
         idx = self.index[p]
         i = idx.get(key)
         if i is None:
@@ -350,6 +364,8 @@ class CompiledEngine:
             res.append((be, tuple(sets), adds))
         info.lookups += 1
         if info.store_results:
+            if len(info.memo) >= MEMO_MAX:
+                info.memo.clear()
             info.memo[key] = res
             if info.lookups == MEMO_PROBE and MEMO_PROBE > self._nstates * MEMO_MISS_RATE:
                 # this transition's input markings rarely repeat: stop keeping its results
