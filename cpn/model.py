@@ -70,9 +70,15 @@ def source_of(path: str) -> str:
 
 def loads(text: str, filename: str = "<string>", set: dict | None = None) -> Model:  # noqa: A002
     """Load a model from `.cpnet` source text."""
-    model = _parse(text, filename)
-    checked = _check(model, _normalise_overrides(set))
-    net = _lower(checked)
+    try:
+        model = _parse(text, filename)
+        checked = _check(model, _normalise_overrides(set))
+        net = _lower(checked)
+    except RecursionError:
+        raise ModelError([Diagnostic("E0206", "the model is nested too deeply to be read (expressions or "
+                                     "declarations inside thousands of parentheses)", Span(filename, 1, 1),
+                                     hint="Split the expression with 'let' or auxiliary functions.")],
+                         {filename: text}) from None
     return Model(filename, text, net, checked.warnings)
 
 

@@ -170,6 +170,7 @@ class CompiledEngine:
             resets = {a.place for a in t.arcs if a.kind == "reset"}
             info = _TInfo(t, fn, read, writes, getter, {}, timed_t, uses_time, resets, gen.blame, filename)
             self._plan.append(info)
+        self._fast = [(i.getter, i.memo.get, i) for i in self._plan]
         self._untimed_plan = [i for i in self._plan if not i.timed]
         self._timed_plan = [i for i in self._plan if i.timed]
 
@@ -240,19 +241,22 @@ class CompiledEngine:
             return self._timed_successors(s)
         out = []
         append = out.append
-        for info in self._plan:
-            key = info.getter(s)
-            res = info.memo.get(key)
+        for getter, memo_get, info in self._fast:
+            key = getter(s)
+            res = memo_get(key)
             if res is None:
                 res = self._miss(info, key)
+            if not res:
+                continue
             for be, sets, adds in res:
                 lst = list(s)
                 for pos, nid in sets:
                     lst[pos] = nid
-                for pos, did, memo in adds:
-                    cur = lst[pos]
-                    nid = memo.get(cur)
-                    lst[pos] = nid if nid is not None else self._add(pos, cur, did)
+                if adds:
+                    # adds go to places the transition does not read: their id is the state's
+                    for pos, did, memo in adds:
+                        nid = memo.get(s[pos])
+                        lst[pos] = nid if nid is not None else self._add(pos, s[pos], did)
                 append((be, tuple(lst)))
         if self._has_priorities and out:
             out = self._by_priority(out)
