@@ -8,8 +8,8 @@ per tuple of those ids (LTSmin's transition groups): most states reuse a result 
 from __future__ import annotations
 
 import operator
-from itertools import chain
 from dataclasses import dataclass
+from itertools import chain
 
 from cpn.engine import codegen
 from cpn.engine.runtime import RUNTIME
