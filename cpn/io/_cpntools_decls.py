@@ -1,0 +1,368 @@
+"""Globbox declarations of a CPN Tools net: colour sets, variables, ML declarations, globrefs, `use`.
+
+A mixin of the translator (`cpn.io.cpntools`): it also decides which declarations the net needs and which
+functions draw random values. Imports the standard library and the CPN Tools helpers only.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+
+from cpn.io import _cpntools_ml as ml
+from cpn.io._cpntools_text import Origin, _clean, _short, _text_origin_from
+from cpn.io._cpntools_xml import Element
+
+
+class _Declarations:
+    """Reading and writing the globbox; the translator provides `out`, `error`, `cpnet`, `notes`."""
+
+    def _all_decl_elements(self, node: Element):
+        for c in node.children:
+            if c.tag == "block":
+                yield from self._all_decl_elements(c)
+            elif c.tag in ("color", "var", "ml", "globref", "use"):
+                yield c
+
+    def _scan_code_text(self) -> None:
+        texts = [t.text for t in self.cpnet.iter("text")] + [m.text for m in self.cpnet.iter("ml")]
+        for t in texts:
+            self.assigned |= ml.assigned_refs(t)
+        gb = self.cpnet.find("globbox")
+        decl_texts = []
+        user_names: set[str] = set()
+        if gb is not None:
+            for el in self._all_decl_elements(gb):
+                if el.tag == "ml":
+                    decl_texts.append(el.text)
+                elif el.tag == "color":
+                    for k in el.children:  # enumeration constants, index and union constructors
+                        if k.tag in ("enum", "index"):
+                            user_names |= {c.text.strip() for c in k.findall("id")}
+                        elif k.tag == "union":
+                            user_names |= {f.find("id").text.strip() for f in k.findall("unionfield")
+                                           if f.find("id") is not None}
+                elif el.tag == "var":
+                    user_names |= {c.text.strip() for c in el.findall("id")}
+        funs = [f for t in decl_texts for f in ml.declared_functions(t)]
+        self._needed_declarations(gb)
+        user_names |= {name for name, _ in funs}
+        # A user's own 'normal' or 'uniform' (an enumeration constant, say) is not the library function.
+        self.impure = set(ml.RANDOM_FUNCTIONS) - user_names
+        self.impure_via: dict[str, str] = {}  # a function -> the random function it calls
+        # `fun DEL() = NetDelay.ran();`: a call DEL() is written NetDelay.ran(), which the engine explores
+        # as a choice of every value; inside a function it would be one random draw.
+        self.ran_aliases: dict[str, str] = {}
+        for name, body in funs:
+            m = re.fullmatch(r"\s*\(\s*\)\s*=\s*([A-Za-z][\w']*\.ran)\s*\(\s*\)\s*;?\s*", body)
+            if m:
+                self.ran_aliases[name] = m.group(1) + "()"
+        changed = True
+        while changed:  # transitive closure: a function that calls a random one is random
+            changed = False
+            for name, body in funs:
+                used = {n for n, _ in ml.names(body)}
+                if name not in self.impure and used & self.impure:
+                    self.impure.add(name)
+                    self.impure_via[name] = sorted(used & self.impure)[0]
+                    changed = True
+
+    def _needed_declarations(self, gb: Element | None) -> None:
+        """Find the ML declarations the net uses, directly or through other declarations.
+
+        Monitors, I/O helpers and functions for simulation reports are declared in the globbox too, and
+        often use what a state space cannot have (references, files, the simulator's API). A declaration
+        that no inscription and no colour set needs is left out, with a note.
+        """
+        self.needed_ml: set[int] = set()
+        if gb is None:
+            return
+
+        def words(text: str) -> set[str]:
+            out = set()
+            for n, _ in ml.names(text):
+                out.add(n)
+                out.update(n.split("."))
+            return out
+
+        needed: set[str] = set()
+        for page in self.cpnet.findall("page"):
+            for pl in page.findall("place"):
+                needed |= words(pl.child_text("type")) | words(pl.child_text("initmark"))
+            for tr in page.findall("trans"):
+                for tag in ("cond", "time", "priority"):
+                    needed |= words(tr.child_text(tag))
+                code = tr.child_text("code")
+                if re.search(r"\boutput\b", ml.strip_comments(code)):
+                    needed |= words(code)
+            for a in page.findall("arc"):
+                needed |= words(a.child_text("annot"))
+        mls = []
+        for el in self._all_decl_elements(gb):
+            if el.tag == "color":
+                for sub in el.iter("ml"):
+                    needed |= words(sub.text)
+                lay = el.find("layout")
+                if lay is not None and el.find("by") is None:
+                    needed |= words(lay.text)
+            elif el.tag == "ml":
+                heads = {name for name, _ in ml.declared_functions(el.text)}
+                mls.append((el, heads, words(el.text)))
+        changed = True
+        while changed:
+            changed = False
+            for el, heads, used in mls:
+                if id(el) not in self.needed_ml and heads & needed:
+                    self.needed_ml.add(id(el))
+                    needed |= used
+                    changed = True
+
+    def _refuse_random(self, text: str, origin: Origin, what: str) -> bool:
+        """Refuse text that draws random values from a distribution; True if refused."""
+        for n, _ in ml.names(text):
+            if n in self.impure:
+                chain = [n]
+                while chain[-1] in self.impure_via and len(chain) < 10:
+                    chain.append(self.impure_via[chain[-1]])
+                why = (f"'{n}' draws a random value" if len(chain) == 1
+                       else f"'{n}' calls " + ", which calls ".join(f"'{c}'" for c in chain[1:])
+                       + ", a random distribution function")
+                self.error(origin, f"{what} uses {n}: {why}; a net that does has no deterministic state space",
+                           hint="Replace the distribution by a finite choice, e.g. a colour set "
+                                "'colset D = int with 1..5;' and 'D.ran()', which becomes a choice of every value.")
+                return True
+        return False
+
+    def _rewrite_globrefs(self, text: str) -> str:
+        for name in self.globref_consts:
+            text = re.sub(r"!\s*" + re.escape(name) + r"\b", name, text)
+        return text
+
+    def _check_globref_use(self, text: str, origin: Origin, what: str) -> None:
+        for name in self.globrefs_refused:
+            if re.search(r"!\s*" + re.escape(name) + r"\b", ml.strip_comments(text)):
+                self.error(origin, f"{what} reads the reference variable '{name}' (globref), whose value "
+                           "is not part of the marking",
+                           hint="Make it a constant ('val') or a token on a place.")
+
+    def _inscription(self, text: str, origin: Origin, what: str) -> str:
+        """Check and prepare one inscription (guard, arc, delay, initial marking)."""
+        self._refuse_random(text, origin, what)
+        if "@++" in text:
+            self.error(origin, f"{what} uses '@++', a real-valued delay ('{_short(text)}'): a state space "
+                       "needs integer model time",
+                       hint="Write an integer delay with '@+', e.g. '@+5'.")
+        self._check_globref_use(text, origin, what)
+        for name, ran in self.ran_aliases.items():
+            text = re.sub(r"\b" + re.escape(name) + r"\s*\(\s*\)", ran, text)
+        return self._rewrite_globrefs(text)
+
+    # -- declarations ----------------------------------------------------------------------------
+
+    def _decls(self, node: Element, block: str | None = None) -> None:
+        for c in node.children:
+            if c.tag == "block":
+                idel = c.find("id")
+                name = idel.text.strip() if idel is not None else ""
+                self.out.raw(f"(* block {name} *)" if name else "(* block *)")
+                self._decls(c, name)
+            elif c.tag == "color":
+                self._color(c)
+            elif c.tag == "var":
+                self._var(c)
+            elif c.tag == "ml":
+                self._ml(c)
+            elif c.tag == "globref":
+                self._globref(c)
+            elif c.tag == "use":
+                self._use(c)
+
+    def _origin(self, el: Element, page: str | None, what: str) -> Origin:
+        return Origin(el.line, el.col, el.attrs.get("id", "?"), page, what)
+
+    def _color(self, el: Element) -> None:
+        idel = el.find("id")
+        name = idel.text.strip() if idel is not None else ""
+        origin = self._origin(el, None, f"colour set '{name}'")
+        layout = el.find("layout")
+        timed = el.find("timed") is not None
+        body = self._color_body(el)
+        if body is None:
+            if layout is not None and layout.text.strip():
+                text = _clean(layout.text)
+                m = re.match(r"colset\s+([A-Za-z][A-Za-z0-9_']*)", text)
+                if m:
+                    name = m.group(1)
+                if re.search(r"\btimed\s*;?\s*$", text):
+                    timed = True
+                if not text.endswith(";"):
+                    text += ";"
+                self.declared.add(name)
+                if timed:
+                    self.timed_colsets.add(name)
+                self.out.stmt([(text, Origin(layout.text_line, layout.text_col, origin.element, None, origin.what))],
+                              origin)
+                return
+            self.error(el, f"colour set '{name}' ({origin.element}) has a kind this translator does not read",
+                       hint="Declare it with one of unit, bool, int, real, string, with (enumeration), "
+                            "index, product, record, list, union, subset or an alias.")
+            return
+        if timed:
+            self.timed_colsets.add(name)
+            body += " timed"
+        self.declared.add(name)
+        if el.find("declare") is not None:
+            extra = ", ".join(d.text.strip() for d in el.find("declare").findall("id"))
+            self.out.raw(f"(* colour set {name}: 'declare {extra}' generates I/O functions; ignored *)")
+        self.out.stmt([(f"colset {ml.quote(name)} = {body};", None)], origin)
+
+    def _color_body(self, el: Element) -> str | None:
+        """The CPN ML text of a structured colour set, or None if its kind is not recognised."""
+        kinds = [c for c in el.children if c.tag not in ("id", "layout", "timed", "declare")]
+        if len(kinds) != 1:
+            return None
+        k = kinds[0]
+
+        def ids(node: Element) -> list[str]:
+            return [c.text.strip() for c in node.findall("id")]
+
+        def mls(node: Element) -> list[str]:
+            return [_clean(c.text) for c in node.findall("ml")]
+
+        w = k.find("with")
+        if k.tag in ("unit", "bool", "real", "intinf", "time"):
+            if w is not None:
+                return None if k.tag in ("real", "time") else (
+                    f"{k.tag} with {ids(w)[0]}" if k.tag == "unit" and ids(w)
+                    else f"bool with ({', '.join(ids(w))})" if k.tag == "bool" and len(ids(w)) == 2 else None)
+            return k.tag
+        if k.tag in ("int", "string"):
+            if w is None:
+                return k.tag
+            lo_hi = mls(w)
+            if k.tag == "int" and len(lo_hi) == 2:
+                return f"int with {lo_hi[0]}..{lo_hi[1]}"
+            return None
+        if k.tag == "enum":
+            return "with " + " | ".join(ids(k))
+        if k.tag == "index":
+            b = mls(k)
+            i = ids(k)
+            if len(b) == 2 and len(i) == 1:
+                return f"index {i[0]} with {b[0]}..{b[1]}"
+            return None
+        if k.tag == "product":
+            return "product " + " * ".join(ids(k))
+        if k.tag == "record":
+            fields = []
+            for f in k.findall("recordfield"):
+                fi = ids(f)
+                if len(fi) != 2:
+                    return None
+                fields.append(f"{fi[0]} : {fi[1]}")
+            return "record " + " * ".join(fields)
+        if k.tag == "list":
+            i = ids(k)
+            if len(i) != 1:
+                return None
+            if w is not None:
+                b = mls(w)
+                return f"list {i[0]} with {b[0]}..{b[1]}" if len(b) == 2 else None
+            return f"list {i[0]}"
+        if k.tag == "union":
+            parts = []
+            for f in k.findall("unionfield"):
+                fi = ids(f)
+                t = f.find("type")
+                ti = ids(t) if t is not None else fi[1:]
+                parts.append(f"{fi[0]} : {ti[0]}" if ti else fi[0])
+            return "union " + " + ".join(parts)
+        if k.tag == "alias":
+            i = ids(k)
+            return i[0] if len(i) == 1 else None
+        if k.tag == "subset":
+            i = ids(k)
+            by = k.find("by")
+            if i and by is not None and mls(by):
+                return f"subset {i[0]} by {mls(by)[0]}"
+            if i and w is not None and mls(w):
+                return f"subset {i[0]} with {mls(w)[0]}"
+            return None
+        return None
+
+    def _var(self, el: Element) -> None:
+        t = el.find("type")
+        tname = t.find("id").text.strip() if t is not None and t.find("id") is not None else None
+        names = [c.text.strip() for c in el.findall("id")]
+        origin = self._origin(el, None, "variable declaration")
+        if tname is None or not names:
+            layout = el.find("layout")
+            if layout is not None and layout.text.strip():
+                text = _clean(layout.text)
+                self.out.stmt([(text if text.endswith(";") else text + ";", None)], origin)
+                return
+            self.error(el, f"variable declaration {origin.element} has no colour set or no name")
+            return
+        self.out.stmt([(f"var {', '.join(names)} : {tname};", None)], origin)
+
+    def _ml(self, el: Element, text: str | None = None) -> None:
+        pruned = text is None and id(el) not in self.needed_ml
+        text = _clean(el.text if text is None else text)
+        if not text:
+            return
+        if pruned:
+            heads = [name for name, _ in ml.declared_functions(text)]
+            what = ", ".join(heads) if heads else _short(text, 30)
+            self.out.raw(f"(* declaration {el.attrs.get('id', '?')} ({what}) at line {el.line}: not used by the "
+                         "net, left out *)")
+            return
+        origin = self._origin(el, None, "declaration")
+        if el.parts:
+            origin = Origin(el.text_line, el.text_col, origin.element, None, origin.what)
+            raw = el.text.replace("\r\n", "\n")
+            lead = raw[: len(raw) - len(raw.lstrip())]
+            if lead:
+                origin = _text_origin_from(el.text_line, el.text_col, lead, origin)
+        for name, _ in ml.declared_functions(text):
+            self.declared.add(name)
+        self._check_globref_use(text, origin, f"the declaration {origin.element}")
+        text = self._rewrite_globrefs(text)
+        if not text.rstrip().endswith(";"):
+            text += ";"
+        self.out.stmt([(text, origin)], origin)
+
+    def _globref(self, el: Element) -> None:
+        idel = el.find("id")
+        name = idel.text.strip() if idel is not None else "?"
+        mlel = el.find("ml")
+        expr = _clean(mlel.text) if mlel is not None else ""
+        origin = self._origin(el, None, f"reference variable '{name}'")
+        literal = re.fullmatch(r"~?\d+|\"[^\"]*\"|true|false|\(\)", expr) is not None
+        if literal and name not in self.assigned:
+            self.globref_consts[name] = expr
+            self.out.raw(f"(* globref {name} = {expr} is never assigned: a constant *)")
+            self.out.stmt([(f"val {name} = {expr};", None)], origin)
+            self.declared.add(name)
+            return
+        self.globrefs_refused[name] = el
+        why = "it is assigned with ':='" if name in self.assigned else "its initial value is not a literal"
+        self.out.raw(f"(* globref {name} = {_short(expr)} ({origin.element}): a reference variable, not translated "
+                     f"because {why}; any inscription that reads it is refused *)")
+
+    def _use(self, el: Element) -> None:
+        mlel = el.find("ml")
+        raw = _clean(mlel.text if mlel is not None else el.text)
+        fname = raw.strip().strip(";").strip().strip('"')
+        origin = self._origin(el, None, f"use \"{fname}\"")
+        full = os.path.join(os.path.dirname(os.path.abspath(self.path)), fname)
+        try:
+            with open(full, encoding="utf-8", errors="replace") as f:
+                content = f.read()
+        except OSError as exc:
+            self.error(el, f"cannot read the ML file '{fname}' named by a 'use' declaration: {exc.strerror}",
+                       hint=f"Put '{fname}' next to the model ({full}).")
+            return
+        self.out.raw(f"(* from use \"{fname}\" ({origin.element}) *)")
+        self._ml(el, content)
+
+    # -- pages -----------------------------------------------------------------------------------
