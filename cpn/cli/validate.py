@@ -18,8 +18,8 @@ import sys
 import time
 from dataclasses import dataclass, field
 
-FIGURES = ("states", "arcs", "max_tokens_per_marking", "max_tokens_in_place", "dead_markings",
-           "deadlock_reachable")
+FIGURES = ("states", "arcs", "arcs_distinct_marking_pairs", "max_tokens_per_marking", "max_tokens_in_place",
+           "dead_markings", "deadlock_reachable")
 PROPERTIES = ("OneSafe", "QuasiLiveness", "Liveness", "StableMarking")
 MAX_STATES_DEFAULT = 3_000_000
 
@@ -51,6 +51,9 @@ class Figures:
     max_tokens_in_place: int = 0  # all tokens of one place
     max_of_one_colour_in_place: int = 0  # the largest multiplicity of one colour in one place
     dead_markings: int = 0
+    arcs_distinct_marking_pairs: int = 0  # distinct (M, M') pairs joined by at least one arc
+    scc_nodes: int = 0
+    scc_arcs: int = 0  # state-space arcs between two SCCs (CPN Tools' count)
     complete: bool = True
     properties: dict[str, bool] = field(default_factory=dict)
 
@@ -81,8 +84,13 @@ def explore_figures(engine, max_states: int = MAX_STATES_DEFAULT) -> Figures:
                   dead_markings=dead_markings(x).count, complete=x.complete)
     if not x.complete:
         return fig
+    g = x.graph
+    off, dst = g.offsets, g.dst
+    fig.arcs_distinct_marking_pairs = sum(len(set(dst[off[i]:off[i + 1]])) for i in range(g.expanded))
     tindex = TransitionIndex(engine)
-    live = live_transitions(x, scc_summary(x), tindex.arc_transitions(x.graph.bes))
+    scc = scc_summary(x)
+    fig.scc_nodes, fig.scc_arcs = scc.nodes, scc.arcs
+    live = live_transitions(x, scc, tindex.arc_transitions(g.bes))
     fig.properties["OneSafe"] = b.max_tokens_in_place <= 1
     fig.properties["QuasiLiveness"] = not dead_transitions(x, tindex)
     fig.properties["Liveness"] = live is not None and len(live) == len(engine.transitions)
@@ -111,6 +119,8 @@ def found_figures(fig: Figures, fmt: str) -> dict:
            "max_tokens_in_place": in_place, "dead_markings": fig.dead_markings,
            "deadlock_reachable": fig.deadlock_reachable}
     if fig.complete:
+        out["arcs_distinct_marking_pairs"] = fig.arcs_distinct_marking_pairs
+        out["scc_graph"] = {"nodes": fig.scc_nodes, "arcs": fig.scc_arcs}
         out["mcc_global_properties"] = dict(fig.properties)
     return out
 
@@ -119,8 +129,12 @@ def compare(expected: dict, found: dict) -> list[str]:
     """One line per published figure that differs from what was found."""
     diffs = []
     for key in FIGURES:
-        if key in expected and key in found and expected[key] != found[key]:
+        if expected.get(key) is not None and key in found and expected[key] != found[key]:
             diffs.append(f"{key}: expected {expected[key]}, found {found[key]}")
+    scc, got_scc = expected.get("scc_graph") or {}, found.get("scc_graph") or {}
+    for key in ("nodes", "arcs"):
+        if key in scc and key in got_scc and scc[key] != got_scc[key]:
+            diffs.append(f"scc_graph {key}: expected {scc[key]}, found {got_scc[key]}")
     props = expected.get("mcc_global_properties") or {}
     got = found.get("mcc_global_properties") or {}
     for key in PROPERTIES:

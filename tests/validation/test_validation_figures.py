@@ -53,3 +53,15 @@ def test_partial_exploration_has_no_properties():
     f = explore_figures(eng, max_states=5)
     assert not f.complete and f.properties == {}
     assert "mcc_global_properties" not in found_figures(f, "pnml-col")
+
+
+def test_parallel_arcs_and_self_loops_count_once_as_marking_pairs():
+    # t0 and t1 both move the token from p0 to p1; t2 is a self-loop on p1
+    eng = pt_net([[1, 0], [1, 0], [0, 1]], [[0, 1], [0, 1], [0, 1]], [1, 0])
+    f = explore_figures(eng)
+    assert (f.states, f.arcs, f.arcs_distinct_marking_pairs) == (2, 3, 2)
+    assert (f.scc_nodes, f.scc_arcs) == (2, 2)
+    found = found_figures(f, "pnml-pt")
+    assert compare({"arcs_distinct_marking_pairs": 2, "scc_graph": {"nodes": 2, "arcs": 1}}, found) \
+        == ["scc_graph arcs: expected 1, found 2"]
+    assert compare({"arcs_distinct_marking_pairs": None}, found) == []
