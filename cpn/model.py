@@ -22,6 +22,7 @@ class Model:
         self.source = source
         self.net = net
         self.warnings = warnings
+        self.translation = None  # for .pnml and .cpn files: the translation to .cpnet and its origins
 
     def engine(self, time_condensation: bool = False, reference: bool = False):
         from cpn.engine import compile_net
@@ -100,5 +101,23 @@ def load(path: str | os.PathLike, set: dict | None = None) -> Model:  # noqa: A0
         raise ConfigurationError(f"no such model file: {path}")
     if os.path.isdir(path):
         raise ConfigurationError(f"{path} is a directory, not a model file")
-    text = source_of(path)
-    return loads(text, path, set)
+    lower = path.lower()
+    if lower.endswith((".pnml", ".cpn")):
+        # foreign formats are translated to .cpnet text; errors in the translation point back at the file
+        if lower.endswith(".pnml"):
+            from cpn.io import pnml as fmt
+
+            translation = fmt.translate_with_origins(path)
+        else:
+            from cpn.io import cpntools as fmt
+
+            translation = fmt.translate_file(path)
+        generated = f"{path} (as .cpnet)"
+        try:
+            model = loads(translation.text, generated, set)
+        except ModelError as exc:
+            raise fmt.remap_error(exc, translation, generated) from None
+        model.path = path
+        model.translation = translation
+        return model
+    return loads(source_of(path), path, set)

@@ -281,6 +281,7 @@ COLSET_OPS: dict[str, str] = {
     "col": "int -> cs",
     "legal": "cs -> bool",
     "mkstr": "cs -> string",
+    "mult": "cs1 ms * cs2 ms -> cs ms",
 }
 
 __all__ = ["BUILTINS", "COLSET_OPS", "MLError", "MultisetError", "parse_type", "TIME_BUILTINS"]

@@ -115,6 +115,15 @@ class Evaluator:
             return cs.contains
         if op == "mkstr":
             return cs.format
+        if op == "mult":
+            def mult(ms_tuple):
+                items = [((), 1)]
+                for m in ms_tuple:
+                    if isinstance(m, TimedMultiset):
+                        m = m.untimed()
+                    items = [(acc + (v,), n * k) for acc, n in items for v, k in m.items()]
+                return Multiset({v: n for v, n in items})
+            return mult
         if op == "ran":
             def ran(_u):
                 if self.ran_choice is None:

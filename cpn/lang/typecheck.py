@@ -570,6 +570,12 @@ class Checker:
         if sym.kind == "csop":
             cs, op = sym.data
             cst = self.cstypes[cs]
+            if op == "mult":
+                comps = T.prune(cst)
+                if not isinstance(comps, T.TTuple):
+                    self.error("E0301", f"'{e.name}': mult is defined on product colour sets only", e.span)
+                    raise _Abort()
+                return T.TFun(T.TTuple([T.ms(c) for c in comps.items]), T.ms(cst))
             return {"all": T.TFun(T.UNIT, T.ms(cst)), "size": T.TFun(T.UNIT, T.INT), "ran": T.TFun(T.UNIT, cst),
                     "ord": T.TFun(cst, T.INT), "col": T.TFun(T.INT, cst), "legal": T.TFun(cst, T.BOOL),
                     "mkstr": T.TFun(cst, T.STRING)}[op]
@@ -994,13 +1000,27 @@ class Checker:
                 self.unify(pt.args[0], T.BOOL, g.span, f"the guard of transition '{d.name}'")
             else:
                 self.unify(t, T.BOOL, g.span, f"the guard of transition '{d.name}'")
-        for what, e in (("the delay", d.delay), ("the priority", d.priority)):
-            if e is not None:
-                t = self.infer_top(e, env)
+        sink: list = []
+        self.ran_sink = sink  # CS.ran() in the delay is a choice of every value, as on output arcs
+        try:
+            if d.delay is not None:
+                t = self.infer_top(d.delay, env)
                 if t is None:
                     ok = False
                 else:
-                    self.unify(t, T.INT, e.span, f"{what} of transition '{d.name}' (an integer)")
+                    self.unify(t, T.INT, d.delay.span, f"the delay of transition '{d.name}' (an integer)")
+                    d.delay = _replace_ran(d.delay)
+        finally:
+            self.ran_sink = None
+        for v, cs, sym in sink:
+            info.ran.append((v, cs))
+            self.variables[v] = sym
+        if d.priority is not None:
+            t = self.infer_top(d.priority, env)
+            if t is None:
+                ok = False
+            else:
+                self.unify(t, T.INT, d.priority.span, f"the priority of transition '{d.name}' (an integer)")
         if not ok:
             return
         # which variables are bound, and how

@@ -289,9 +289,8 @@ SAMPLE_TRANSLATION = {
     "DiningPhilosophers_ASKCTL": None,
     "DiningPhilosophers_COMM": None,
     "DiningPhilosophers_COMM_Mon": None,
-    # the front end lacks CS.mult (PR.mult(1`s, DBM.all() -- 1`s)); requested
-    "DistributedDataBase": ("E0201", "unknown name 'PR.mult'"),
-    "DistributedDataBase_OG": ("E0201", "unknown name 'PR.mult'"),
+    "DistributedDataBase": None,  # PR.mult(1`s, DBM.all() -- 1`s)
+    "DistributedDataBase_OG": None,
     "HierarchicalProtocol": None,
     "ProtocolWithTimer": None,
     "QueueSystem": ("E0502", "'expTime' calls 'exponential', a random distribution function"),

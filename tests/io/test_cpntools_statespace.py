@@ -137,28 +137,9 @@ FINITE = {
 }
 
 
-# Constructs the front end or the engine does not support yet (reported to their authors): the test
-# fails as expected while the construct is missing, and passes as soon as it lands.
-PENDING = {
-    "DistributedDataBase": "CS.mult",  # fun Mes(s) = PR.mult(1`s, DBM.all() -- 1`s)
-    "DistributedDataBase_OG": "CS.mult",
-    "TimedProtocol": "ran() in a delay",  # @+DEL() with fun DEL() = NetDelay.ran()
-}
-
-
-def _pending(name: str, exc: Exception) -> None:
-    text = str(exc)
-    if name in PENDING and ("mult" in text or "ran()" in text):
-        pytest.xfail(f"{name}: {PENDING[name]} is not supported yet: {text[:200]}")
-    raise exc
-
-
 @pytest.mark.parametrize("name", sorted(FINITE))
 def test_finite_samples_match_cpncheck(name):
-    try:
-        s = explore(f"{SAMPLES}/{name}.cpn", max_states=5_000)
-    except (cpn.ModelError, cpn.EvaluationError) as exc:
-        _pending(name, exc)
+    s = explore(f"{SAMPLES}/{name}.cpn", max_states=5_000)
     assert s.complete
     assert (s.nodes, s.arcs, s.scc_nodes, s.dead) == FINITE[name]
 
@@ -170,10 +151,7 @@ LARGE = ["HierarchicalProtocol", "ProtocolWithTimer", "ResourceAllocation", "Rin
 
 @pytest.mark.parametrize("name", LARGE)
 def test_large_samples_explore(name):
-    try:
-        s = explore(f"{SAMPLES}/{name}.cpn", max_states=1_500, scc=False)
-    except (cpn.ModelError, cpn.EvaluationError) as exc:
-        _pending(name, exc)
+    s = explore(f"{SAMPLES}/{name}.cpn", max_states=1_500, scc=False)
     assert s.nodes > 1
 
 
