@@ -14,7 +14,8 @@ RESERVED: frozenset[str] = frozenset("""
     structure then type val var where while with withtype not true false empty unit bool int intinf string
     real time index product record list union subset by timed net place trans arc inhibitor reset module
     instance port out io fusion priority o all ran size hd tl length rev mem nil ref ms_to_col intTime
-    map filter exists app foldl foldr null ord chr abs max min succ pred col
+    map filter exists app foldl foldr null ord chr abs max min succ pred col ceil cf contains ignore ins
+    ins_new intersect list_to_ms remdupl rm round trunc floor legal mkstr mult
 """.split())
 
 
