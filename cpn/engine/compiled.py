@@ -171,6 +171,10 @@ class CompiledEngine:
             info = _TInfo(t, fn, read, writes, getter, {}, timed_t, uses_time, resets, gen.blame, filename)
             self._plan.append(info)
         self._fast = [(i.getter, i.memo.get, i) for i in self._plan]
+        self._flat = not self.is_timed and not self._has_priorities
+        if self._flat:
+            self._count = [0]
+            self.successors = self._generate_successors()
         self._untimed_plan = [i for i in self._plan if not i.timed]
         self._timed_plan = [i for i in self._plan if i.timed]
 
@@ -365,17 +369,81 @@ class CompiledEngine:
                     nid = n2 if n2 is not None else self._add(p, nid, ad)
                 if nid != cur:
                     sets.append((p, nid))
-            res.append((be, tuple(sets), adds))
+            if self._flat:
+                res.append(self._flat_entry(info, be, keys, sets, adds))
+            else:
+                res.append((be, tuple(sets), adds))
         info.lookups += 1
         if info.store_results:
             if len(info.memo) >= MEMO_MAX:
                 info.memo.clear()
             info.memo[key] = res
-            if info.lookups == MEMO_PROBE and MEMO_PROBE > self._nstates * MEMO_MISS_RATE:
+            nstates = self._count[0] if self._flat else self._nstates
+            if info.lookups == MEMO_PROBE and MEMO_PROBE > nstates * MEMO_MISS_RATE:
                 # this transition's input markings rarely repeat: stop keeping its results
                 info.store_results = False
                 info.memo.clear()
         return res
+
+    def _flat_entry(self, info, be, keys, sets, adds) -> tuple:
+        """A memoised result in the layout of the generated successor function: the binding element, the
+        new id of every place the transition reads, then (add memo, delta id) for every place it only
+        writes (the empty delta when this binding puts nothing there)."""
+        changed = dict(sets)
+        entry = [be]
+        for i, p in enumerate(info.read):
+            entry.append(changed.get(p, keys[i]))
+        added = {p: (memo, did) for p, did, memo in adds}
+        for p in info.writes:
+            got = added.get(p)
+            if got is None:
+                did = self._delta(p, {})
+                got = (self._add_memo[p].setdefault(did, {}), did)
+            entry.extend(got)
+        return tuple(entry)
+
+    def _generate_successors(self):
+        """One Python function computing all successors of an untimed net without priorities: the state is
+        unpacked once, each transition's memoised results are patched into a tuple display."""
+        n = len(self.places)
+        svars = [f"s{i}" for i in range(n)]
+        lines = ["def successors(s):"]
+        lines.append(f"    {', '.join(svars)}{',' if n == 1 else ''} = s" if n else "    pass")
+        lines.append("    COUNT[0] += 1")
+        lines.append("    out = []")
+        lines.append("    append = out.append")
+        glob = {"COUNT": self._count, "ADD": self._add, "MISS": self._miss}
+        for k, info in enumerate(self._plan):
+            glob[f"G{k}"] = info.memo.get
+            glob[f"I{k}"] = info
+            read, writes = info.read, info.writes
+            if len(read) == 0:
+                key = "()"
+            elif len(read) == 1:
+                key = f"s{read[0]}"
+            else:
+                key = "(" + ", ".join(f"s{p}" for p in read) + ")"
+            lines.append(f"    key = {key}")
+            lines.append(f"    res = G{k}(key)")
+            lines.append("    if res is None:")
+            lines.append(f"        res = MISS(I{k}, key)")
+            names = ["be"] + [f"r{p}" for p in read]
+            for p in writes:
+                names += [f"m{p}", f"d{p}"]
+            lines.append(f"    for {', '.join(names)} in res:")
+            for p in writes:
+                lines.append(f"        x{p} = m{p}.get(s{p})")
+                lines.append(f"        if x{p} is None:")
+                lines.append(f"            x{p} = ADD({p}, s{p}, d{p})")
+            comps = []
+            for p in range(n):
+                comps.append(f"r{p}" if p in read else f"x{p}" if p in writes else f"s{p}")
+            lines.append(f"        append((be, ({', '.join(comps)}{',' if n == 1 else ''})))")
+        lines.append("    return out")
+        src = "\n".join(lines)
+        exec(compile(src, f"<cpn successors of {self.net.name}>", "exec"), glob)  # noqa: S102 - generated
+        self.successors_source = src
+        return glob["successors"]
 
     def _recipe(self, info, consumed, produced):
         """The effect of one binding element of an untimed transition on each place it touches."""
