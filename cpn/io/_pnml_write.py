@@ -30,8 +30,14 @@ class _Unsupported(Exception):
         self.node = node
 
 
+def _is_flat_net(net) -> bool:
+    """Whether `net` is a flattened `cpn.net.Net` (place and transition instances)."""
+    return hasattr(net, "places") and hasattr(net, "transitions") and hasattr(net, "checked")
+
+
 def _model_of(net):
-    """The `.cpnet` syntax tree of `net`: a Model, an object holding one, .cpnet text or a path."""
+    """The `.cpnet` syntax tree of `net`: a Model, an object holding one (a loaded model, a flattened
+    net), .cpnet text or a path."""
     from cpn.lang import ast as A
 
     if isinstance(net, A.Model):
@@ -40,6 +46,8 @@ def _model_of(net):
         inner = getattr(net, attr, None)
         if isinstance(inner, A.Model):
             return inner
+    if _is_flat_net(net):
+        return net.checked.model
     from cpn.lang.parser import parse
 
     if isinstance(net, os.PathLike) or (isinstance(net, str) and "\n" not in net and net.endswith(".cpnet")):
@@ -65,8 +73,24 @@ def write(net, path: str | os.PathLike, net_id: str | None = None) -> None:
 
 
 def write_text(net, net_id: str = "net") -> str:
-    """The PNML document for `net` as text."""
-    return _Writer(_model_of(net), net_id).run()
+    """The PNML document for `net` as text.
+
+    `net` is a `.cpnet` path, its text, its syntax tree, a loaded model (`cpn.load`) or a flattened
+    `cpn.net.Net`. A net with modules is written from its flattened form, which must be a P/T net
+    (place instances named as in the state space report, e.g. `Sender'Ready 2`).
+    """
+    from cpn.lang import ast as A
+
+    model = _model_of(net)
+    if any(isinstance(d, (A.ModuleDecl, A.InstanceDecl)) for d in model.decls):
+        flat = net if _is_flat_net(net) else getattr(net, "net", None)
+        if flat is None:
+            first = next(d for d in model.decls if isinstance(d, (A.ModuleDecl, A.InstanceDecl)))
+            raise ModelError([Diagnostic(
+                "E0502", "a net with modules is written from its flattened form", first.span,
+                hint="Pass the loaded model (cpn.load(path)) or its flattened net (model.net) to write().")])
+        return _FlatPTWriter(flat, net_id).run()
+    return _Writer(model, net_id).run()
 
 
 class _Writer:
@@ -194,6 +218,8 @@ class _Writer:
             return 1
         if isinstance(e, A.Const) and e.kind == "unit":
             return 1
+        if isinstance(e, (A.ToMs, A.Annot)):  # the type checker's 1`v, and (e : T)
+            return self.unit_count(e.expr, what)
         if isinstance(e, A.Name) and e.name == "empty":
             return 0
         if isinstance(e, A.BinOp) and e.op == "`" and isinstance(e.left, A.Const) and e.left.kind == "int":
@@ -359,6 +385,10 @@ class _Writer:
     def ms(self, e, cs: str | None) -> str:
         """A multiset term of colour set `cs`."""
         A = self.A
+        if isinstance(e, A.Annot):
+            return self.ms(e.expr, cs)
+        if isinstance(e, A.ToMs):  # the type checker's 1`v
+            e = e.expr
         if isinstance(e, A.BinOp) and e.op == "++":
             parts = self.flatten(e, "++")
             return "<add>" + "".join(f"<subterm>{self.ms(p, cs)}</subterm>" for p in parts) + "</add>"
@@ -518,3 +548,64 @@ class _Writer:
         if isinstance(e, A.App) and isinstance(e.arg, A.Name):
             return self.sort_of_value(e.arg)
         return None
+
+
+class _FlatPTWriter:
+    """A flattened net (`cpn.net.Net`) whose place instances all hold `unit` tokens, as a P/T net."""
+
+    def __init__(self, net, net_id: str) -> None:
+        self.net = net
+        self.net_id = net_id
+        self.diags: list[Diagnostic] = []
+
+    def fail(self, span, message: str) -> None:
+        self.diags.append(Diagnostic("E0502", message, span or Span(self.net.source_file or "<net>", 1, 1),
+                                     hint="A net with modules is written as PNML only when its flattened form "
+                                          "is a P/T net (every place of colour set unit, no guards)."))
+
+    def run(self) -> str:
+        net = self.net
+        helper = _Writer.__new__(_Writer)  # only for unit_count and the document layout
+        from cpn.lang import ast as A
+
+        helper.A, helper.net_id, helper.ids = A, self.net_id, set()
+        pids, tids, page = {}, {}, []
+        for p in net.places:
+            if p.colour_set.kind != "unit" or p.timed:
+                self.fail(p.span, f"place '{p.name}' has colour set {p.colour_set.name}, not unit")
+                continue
+            pids[p.index] = helper.xml_id(p.name)
+            m = sum(p.initial.values())
+            mark = f"<initialMarking><text>{m}</text></initialMarking>" if m else ""
+            page.append(f"<place id={quoteattr(pids[p.index])}><name><text>{escape(p.name)}</text></name>"
+                        f"{mark}</place>")
+        k = 0
+        arcs = []
+        for t in net.transitions:
+            if t.guards or t.delay is not None or t.priority is not None or t.free:
+                self.fail(t.span, f"transition '{t.name}' has a guard, a delay, a priority or variables")
+            tid = tids[t.index] = helper.xml_id(t.name)
+            page.append(f"<transition id={quoteattr(tid)}><name><text>{escape(t.name)}</text></name></transition>")
+            for a in t.arcs:
+                if a.place not in pids:
+                    continue
+                w = 1
+                if a.kind != "reset":
+                    try:
+                        w = helper.unit_count(a.expr, f"the inscription of the arc {a.label or t.name}")
+                    except _Unsupported as exc:
+                        self.fail(getattr(exc.node, "span", None) or a.span, str(exc))
+                        continue
+                pairs = {"in": [(pids[a.place], tid, "normal")], "out": [(tid, pids[a.place], "normal")],
+                         "both": [(pids[a.place], tid, "normal"), (tid, pids[a.place], "normal")],
+                         "inhibitor": [(pids[a.place], tid, "inhibitor")],
+                         "reset": [(pids[a.place], tid, "reset")]}[a.kind]
+                for src, dst, kind in pairs:
+                    k += 1
+                    typ = f'<type value="{kind}"/>' if kind != "normal" else ""
+                    insc = f"<inscription><text>{w}</text></inscription>" if w != 1 and kind != "reset" else ""
+                    arcs.append(f'<arc id="a{k}" source={quoteattr(src)} target={quoteattr(dst)}>{insc}{typ}</arc>')
+        if self.diags:
+            raise ModelError(self.diags)
+        return helper.document(PT_TYPE, page + arcs, [])
+

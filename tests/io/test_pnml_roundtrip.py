@@ -127,3 +127,60 @@ def test_cpnet_model_written_and_read_back_has_the_same_state_space(tmp_path):
     text = out.read_text()
     assert "<successor>" in text and "<lessthan>" in text and "<finiteintrange" in text
     assert _figures(out) == _figures(src)
+
+
+HIERARCHICAL = """
+colset U = unit;
+module Stage {
+  port in  In  : U;
+  port out Out : U;
+  place Busy : U;
+  trans start;
+  trans stop;
+  arc In -> start;
+  arc start -> Busy;
+  arc Busy -> stop;
+  arc stop -> Out : 2`();
+}
+place A : U = 2`();
+place B : U;
+place C : U;
+instance S1 = Stage { In = A, Out = B };
+instance S2 = Stage { In = B, Out = C };
+"""
+
+
+def test_net_with_modules_is_written_flattened_as_a_pt_net(tmp_path):
+    import cpn
+
+    if not hasattr(cpn, "loads"):
+        pytest.skip("cpn.loads does not exist yet")
+    model = cpn.loads(HIERARCHICAL, "stages.cpnet")
+    out = tmp_path / "stages.pnml"
+    write(model, out)
+    text = out.read_text()
+    assert "ptnet" in text and "<text>Stage'Busy 2</text>" in text
+    assert _figures(out) == _figures_of(model)
+    with pytest.raises(ModelError) as info:
+        write_text(HIERARCHICAL)
+    assert info.value.diagnostics[0].code == "E0502"
+
+
+def _figures_of(model):
+    from cpn.cli.validate import explore_figures
+
+    f = explore_figures(model.engine())
+    return (f.states, f.arcs, f.max_tokens_per_marking, f.max_of_one_colour_in_place, f.dead_markings,
+            f.properties)
+
+
+def test_flat_net_object_is_written(tmp_path):
+    import cpn
+
+    if not hasattr(cpn, "load"):
+        pytest.skip("cpn.load does not exist yet")
+    src = os.path.join(VALIDATION, "TokenRing-COL-005", "model.pnml")
+    model = cpn.load(src)
+    out = tmp_path / "tr.pnml"
+    write(model.net, out)
+    assert _figures(out) == _figures(src)
