@@ -145,6 +145,7 @@ class _Translator(TermTranslator):
         self.vars: dict[str, tuple[str, Sort]] = {}
         self.anon: dict[str, Sort] = {}  # builtin sorts without a namedsort ("dot", "bool")
         self.origins: dict[str, Element] = {}  # generated statement -> the PNML element it comes from
+        self.var_els: dict[str, Element] = {}  # colour set -> its first variabledecl
 
     def line(self, text: str, origin: Element | None) -> str:
         """Record where a generated statement comes from (statements are unique lines) and return it."""
@@ -369,6 +370,7 @@ class _Translator(TermTranslator):
                 sort = self.sort_of(el.elements()[0] if el.elements() else None, el)
                 if sort is not None:
                     self.vars[el.get("id", "")] = (self.names.ident(el.get("name"), el.get("id")), sort)
+                    self.var_els.setdefault(sort.name, el)
 
         places, transitions, arcs, ids, resolve = self.collect_nodes(net)
         table = self.node_table(places, transitions)
@@ -437,7 +439,7 @@ class _Translator(TermTranslator):
         by_sort: dict[str, list[str]] = {}
         for ident, sort in self.vars.values():
             by_sort.setdefault(sort.name, []).append(ident)
-        out += [f"var {', '.join(vs)} : {s};" for s, vs in by_sort.items()]
+        out += [self.line(f"var {', '.join(vs)} : {s};", self.var_els.get(s)) for s, vs in by_sort.items()]
         if any(s.helpers for s in self.sort_order):
             arg = self.names.ident("c'")
             for s in self.sort_order:
