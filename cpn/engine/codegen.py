@@ -422,6 +422,21 @@ class TransitionCodegen:
                 self.emit(f"{c} = {{{self._value_code(entries[0][1].value, loop_token[k][1])}: 1}}")
                 consumed.append(c)
                 continue
+            if len(entries) == 1 and entries[0][1].opaque is None and not entries[0][1].cond:
+                k, term, bl = entries[0]
+                val = self._value_code(term.value, loop_token[k][1] if k in loop_token else None)
+                if term.coef is None:
+                    self.emit(f"_v = {val}", bl)
+                    self.emit(f"if _v not in M{pi}: continue")
+                    self.emit(f"{c} = {{_v: 1}}")
+                else:
+                    self.emit(f"_n = {self.ec.expr(term.coef)}", bl)
+                    self.emit("if _n < 0: raise MLError(f'negative coefficient {_n}')", bl)
+                    self.emit(f"_v = {val}", bl)
+                    self.emit(f"if _n and M{pi}.get(_v, 0) < _n: continue")
+                    self.emit(f"{c} = {{_v: _n}} if _n else {{}}")
+                consumed.append(c)
+                continue
             self.emit(f"{c} = {{}}")
             for k, term, bl in entries:
                 lines = []

@@ -347,6 +347,30 @@ class CompiledEngine:
         res = []
         recipes = self._recipes
         sub_memo, add_memo = self._sub_memo, self._add_memo
+        if self._flat:
+            frecipes = info.frecipes
+            for item in self._call(info, views):
+                r = frecipes.get(item[0])
+                if r is None:
+                    r = frecipes[item[0]] = self._flat_recipe(info, item)
+                entry = [r[0]]
+                for cur, step in zip(keys, r[1]):
+                    if step is None:
+                        entry.append(cur)
+                        continue
+                    p, sd, ad, reset = step
+                    nid = 0 if reset else cur
+                    if sd is not None and not reset:
+                        m = sub_memo[p].get(sd)
+                        n2 = m.get(nid) if m is not None else None
+                        nid = n2 if n2 is not None else self._sub(p, nid, sd)
+                    if ad is not None:
+                        m = add_memo[p].get(ad)
+                        n2 = m.get(nid) if m is not None else None
+                        nid = n2 if n2 is not None else self._add(p, nid, ad)
+                    entry.append(nid)
+                res.append(tuple(entry) + r[2])
+            return self._keep(info, key, res)
         for bvals, consumed, produced, _td, pr in self._call(info, views):
             be = self._intern_be(info.t.index, bvals)
             if self._has_priorities:
@@ -369,10 +393,11 @@ class CompiledEngine:
                     nid = n2 if n2 is not None else self._add(p, nid, ad)
                 if nid != cur:
                     sets.append((p, nid))
-            if self._flat:
-                res.append(self._flat_entry(info, be, keys, sets, adds))
-            else:
-                res.append((be, tuple(sets), adds))
+            res.append((be, tuple(sets), adds))
+        return self._keep(info, key, res)
+
+    def _keep(self, info, key, res):
+        """Memoise a transition's result for `key`, unless its inputs rarely repeat."""
         info.lookups += 1
         if info.store_results:
             if len(info.memo) >= MEMO_MAX:
@@ -385,22 +410,25 @@ class CompiledEngine:
                 info.memo.clear()
         return res
 
-    def _flat_entry(self, info, be, keys, sets, adds) -> tuple:
-        """A memoised result in the layout of the generated successor function: the binding element, the
-        new id of every place the transition reads, then (add memo, delta id) for every place it only
-        writes (the empty delta when this binding puts nothing there)."""
-        changed = dict(sets)
-        entry = [be]
-        for i, p in enumerate(info.read):
-            entry.append(changed.get(p, keys[i]))
+    def _flat_recipe(self, info, item) -> tuple:
+        """For one binding of an untimed transition: its binding element, how each read place changes
+        (None: unchanged), and the constant tail of its memo entries: (add memo, delta id) for every place
+        the transition only writes (the empty delta where this binding puts nothing)."""
+        bvals, consumed, produced, _td, _pr = item
+        be = self._intern_be(info.t.index, bvals)
+        changes, adds = self._recipe(info, consumed, produced)
+        steps: list = [None] * len(info.read)
+        for i, p, sd, ad, reset in changes:
+            steps[i] = (p, sd, ad, reset)
         added = {p: (memo, did) for p, did, memo in adds}
+        tail: list = []
         for p in info.writes:
             got = added.get(p)
             if got is None:
                 did = self._delta(p, {})
                 got = (self._add_memo[p].setdefault(did, {}), did)
-            entry.extend(got)
-        return tuple(entry)
+            tail.extend(got)
+        return be, tuple(steps), tuple(tail)
 
     def _generate_successors(self):
         """One Python function computing all successors of an untimed net without priorities: the state is
@@ -651,7 +679,7 @@ class CompiledEngine:
 
 class _TInfo:
     __slots__ = ("t", "fn", "read", "writes", "getter", "memo", "timed", "uses_time", "resets", "blame",
-                 "filename", "lookups", "store_results")
+                 "filename", "lookups", "store_results", "frecipes")
 
     def __init__(self, t, fn, read, writes, getter, memo, timed, uses_time, resets, blame, filename):
         self.t, self.fn, self.read, self.writes, self.getter = t, fn, read, writes, getter
@@ -659,6 +687,7 @@ class _TInfo:
         self.blame, self.filename = blame, filename
         self.lookups = 0
         self.store_results = True
+        self.frecipes: dict = {}  # binding values -> flat recipe (generated successor function)
 
 
 def _const_key(_s):
