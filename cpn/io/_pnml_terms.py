@@ -119,6 +119,9 @@ class TermTranslator:
 
     def t_numberof(self, el, where, expect):
         terms = self.subterms(el, where, expect)
+        if len(terms) == 1 and not terms[0].text.lstrip("~").isdigit():
+            # a numberof with only its term (seen in some contest files) is one of it
+            terms = [_Term("1"), terms[0]]
         if not self._arity(el, terms, 2, where):
             return _Term("empty", is_ms=True)
         count, what = terms

@@ -390,6 +390,7 @@ class _Translator(TermTranslator):
                 continue
             place_sort[pid] = sort
             init = ""
+            self.text_only(p, "hlinitialMarking", f"the initial marking of place '{pid}'")
             m = p.find("hlinitialMarking", "structure")
             if m is not None and m.elements():
                 term = self.term(m.elements()[0], f"the initial marking of place '{pid}'", sort)
@@ -401,6 +402,7 @@ class _Translator(TermTranslator):
             if tid not in table:
                 continue
             guard = ""
+            self.text_only(t, "condition", f"the guard of transition '{tid}'")
             c = t.find("condition", "structure")
             if c is not None and c.elements():
                 g = self.term(c.elements()[0], f"the guard of transition '{tid}'")
@@ -418,6 +420,8 @@ class _Translator(TermTranslator):
             aid = a.get("id", "?")
             pid = resolve(a.get("source") if direction == "in" else a.get("target"), a)
             sort = place_sort.get(pid)
+            if self.text_only(a, "hlinscription", f"the inscription of arc '{aid}'"):
+                continue
             ins = a.find("hlinscription", "structure")
             if kind == "reset":
                 text = ""
@@ -446,6 +450,18 @@ class _Translator(TermTranslator):
                 out += s.helper_declarations(arg)
         out.append("")
         return "\n".join(out + body) + "\n"
+
+    def text_only(self, el: Element, label: str, what: str) -> bool:
+        """Report a label given only as <text> (the term must be in <structure>); True if reported."""
+        lab = el.find(label)
+        if lab is None or (lab.find("structure") is not None and lab.find("structure").elements()):
+            return False
+        txt = lab.find("text")
+        if txt is None or not txt.text:
+            return False
+        self.error(lab, f"{what} is given only as text ('{txt.text[:60]}'), without a <structure>",
+                   hint="Symmetric nets carry terms as XML in <structure>; the <text> is only a comment.")
+        return True
 
     def new_sort(self, kind: str, *names: str | None, origin: Element | None = None, **kw) -> Sort:
         sort = Sort(kind, self.names.ident(*names), origin=origin, **kw)

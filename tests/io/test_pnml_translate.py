@@ -415,3 +415,14 @@ def test_unordered_comparison_is_refused():
         translate_text(sn(ENUM, body), "o.pnml")
     assert info.value.diagnostics[0].code == "E0502"
     assert "sort is unknown" in info.value.diagnostics[0].message
+
+
+def test_text_only_labels_are_refused_and_single_term_numberof_is_one():
+    body = ('<place id="P"><type><structure><usersort declaration="proc"/></structure></type>'
+            "<hlinitialMarking><text>1'p0</text></hlinitialMarking></place>"
+            '<transition id="t"/><arc id="a" source="P" target="t"><hlinscription><text>x</text></hlinscription></arc>')
+    with pytest.raises(ModelError) as info:
+        translate_text(sn(ENUM, body), "t.pnml")
+    assert [d.code for d in info.value.diagnostics] == ["E0502", "E0502"]
+    assert "without a <structure>" in info.value.diagnostics[0].message
+    assert inscription_of(f"<numberof>{sub(var('vx'))}</numberof>") == "1`x"
