@@ -1,8 +1,11 @@
 """`cpn-verify lint` and `simulate`: exit statuses and output."""
 
+import glob
 import os
 import subprocess
 import sys
+
+import pytest
 
 from cpn.cli.main import main
 
@@ -34,11 +37,15 @@ def test_bad_usage():
     assert main(["frobnicate"]) == 64
 
 
-def test_simulate_every_model(capsys):
-    for m in MODELS:
-        assert main(["simulate", m, "--steps", "15", "--seed", "3"]) == 0
-    out = capsys.readouterr().out
-    assert "Office'Archive 1" in out or "Station'Take" in out
+ALL_MODELS = sorted(glob.glob(os.path.join(ROOT, "**", "*.cpnet"), recursive=True))
+# models that stop with an evaluation error on purpose
+FAILING = {"div_zero.cpnet"}
+
+
+@pytest.mark.parametrize("path", ALL_MODELS, ids=lambda p: os.path.relpath(p, ROOT))
+def test_simulate_every_model_of_the_repository(path, capsys):
+    status = main(["simulate", path, "--steps", "15", "--seed", "3"])
+    assert status == (65 if os.path.basename(path) in FAILING else 0), capsys.readouterr().err
 
 
 def test_simulate_is_reproducible(capsys):
