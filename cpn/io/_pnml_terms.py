@@ -76,6 +76,8 @@ class TermTranslator:
 
     def t_useroperator(self, el, where, expect):
         ref = el.get("declaration", "")
+        if ref not in self.consts and ref in self.sorts and self.sorts[ref].kind == "dot":
+            return _Term("()", sort=self.sorts[ref])  # TAPAAL names the dot constant by its sort
         if ref not in self.consts:
             self.error(el, f"unknown constant '{ref}' in {where}",
                        hint="Only constants (feconstant, partitionelement) can be used as user operators.",

@@ -176,8 +176,11 @@ class _Translator(TermTranslator):
         net = nets[0]
         net_type = net.get("type", "")
         kind = net_type.rstrip("/").rsplit("/", 1)[-1]
-        if kind == "ptnet":
+        if kind == "ptnet" and not self.has_colours(net):
             text = self.pt_net(net)
+        elif kind == "ptnet":
+            # TAPAAL writes coloured nets with the P/T type and sort declarations: read what is there
+            text = self.symmetric_net(net)
         elif kind in _HL_NETS:
             text = self.symmetric_net(net)
         else:
@@ -259,10 +262,20 @@ class _Translator(TermTranslator):
         direction = "in" if ids[rs] == "place" else "out"
         return table[rs], table[rd], direction
 
+    @staticmethod
+    def has_colours(net: Element) -> bool:
+        """Whether a net declared as P/T carries sorts or high-level labels (TAPAAL's coloured nets)."""
+        if any(d.find("structure", "declarations") is not None for d in net.findall("declaration")):
+            return True
+        return any(el.tag in ("hlinitialMarking", "hlinscription") for el in net.iter())
+
     def arc_kind(self, arc: Element) -> str:
         t = arc.find("type")
         if t is None:
-            return "arc"
+            attr = arc.get("type")  # TAPAAL: <arc type="inhibitor">
+            if attr is None:
+                return "arc"
+            t = Element("type", {"value": attr}, arc.line, arc.col)
         value = (t.get("value") or t.text or "normal").strip().lower()
         if value in ("normal", ""):
             return "arc"

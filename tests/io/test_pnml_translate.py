@@ -426,3 +426,31 @@ def test_text_only_labels_are_refused_and_single_term_numberof_is_one():
     assert [d.code for d in info.value.diagnostics] == ["E0502", "E0502"]
     assert "without a <structure>" in info.value.diagnostics[0].message
     assert inscription_of(f"<numberof>{sub(var('vx'))}</numberof>") == "1`x"
+
+
+def test_tapaal_coloured_net_with_ptnet_type():
+    # TAPAAL writes coloured nets with the P/T net type, arc types as attributes, and the dot
+    # constant as a user operator naming the dot sort
+    doc = f'''<?xml version="1.0"?>
+<pnml xmlns="{NS}"><net id="c" type="http://www.pnml.org/version-2009/grammar/ptnet">
+<declaration><structure><declarations>
+  <namedsort id="dot" name="dot"><dot/></namedsort>
+  <namedsort id="r" name="r"><finiteintrange start="2" end="3"/></namedsort>
+  <variabledecl id="Varv" name="v"><usersort declaration="r"/></variabledecl>
+</declarations></structure></declaration>
+<page id="page0">
+  <place id="P0"><type><structure><usersort declaration="r"/></structure></type>
+    <hlinitialMarking><structure>{numberof(1, '<finiteintrangeconstant value="3"><finiteintrange start="2" end="3"/></finiteintrangeconstant>')}</structure></hlinitialMarking></place>
+  <place id="P1"><type><structure><usersort declaration="dot"/></structure></type></place>
+  <place id="P2"><type><structure><usersort declaration="dot"/></structure></type></place>
+  <transition id="T1"><condition><structure><greaterthan>{sub(var("Varv"), '<finiteintrangeconstant value="2"><finiteintrange start="2" end="3"/></finiteintrangeconstant>')}</greaterthan></structure></condition></transition>
+  <arc id="a" source="P0" target="T1" type="normal"><hlinscription><structure>{numberof(1, var("Varv"))}</structure></hlinscription></arc>
+  <arc id="b" source="T1" target="P1" type="normal"><hlinscription><structure>{numberof(1, const("dot"))}</structure></hlinscription></arc>
+  <arc id="c" source="P2" target="T1" type="inhibitor"><hlinscription><structure>{numberof(1, const("dot"))}</structure></hlinscription></arc>
+</page></net></pnml>'''
+    text = translate_text(doc)
+    assert "colset r = int with 2..3;" in text
+    assert "place P0 : r = 1`3;" in text
+    assert "trans T1 [v > 2];" in text
+    assert "arc T1 -> P1 : 1`();" in text
+    assert "inhibitor P2 -> T1 : 1`();" in text
