@@ -7,6 +7,7 @@ them all. Imports the stdlib and `cpn.io._pnml_*` only.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from cpn.io._pnml_sorts import Sort, int_text
@@ -24,7 +25,14 @@ class _Term:
     is_ms: bool = False
     sort: Sort | None = None
     atomic: bool = True
-    expansion: list[tuple[int, str]] | None = None
+    expansion: list[tuple[int, str]] | Callable[[], list[tuple[int, str]]] | None = None
+
+    def items(self) -> list[tuple[int, str]]:
+        """The expansion, computed on first use (a product sort's `all` can be large and is rarely
+        expanded)."""
+        if callable(self.expansion):
+            self.expansion = self.expansion()
+        return self.expansion
 
     def paren(self) -> str:
         return self.text if self.atomic else f"({self.text})"
@@ -117,7 +125,7 @@ class TermTranslator:
         sort = self.sort_of(sort_el, el) if sort_el is not None else None
         if sort is None:
             return _Term("empty", is_ms=True)
-        return _Term(f"{sort.name}.all()", is_ms=True, sort=sort, expansion=[(1, v) for v in sort.values()])
+        return _Term(f"{sort.name}.all()", is_ms=True, sort=sort, expansion=sort_values(sort))
 
     def t_numberof(self, el, where, expect):
         terms = self.subterms(el, where, expect)
@@ -148,7 +156,7 @@ class TermTranslator:
         if n == 1:
             return what
         if what.expansion is not None:
-            exp = [(n * k, v) for k, v in what.expansion]
+            exp = [(n * k, v) for k, v in what.items()]
             return _Term(_ms_text(exp), is_ms=True, sort=what.sort, atomic=False, expansion=exp)
         if n > MAX_REPEAT:
             self.error(el, f"'{el.tag}' in {where} multiplies a computed multiset by {n}",
@@ -195,7 +203,7 @@ class TermTranslator:
                 if t.expansion is None:
                     self.error(el, f"a tuple in {where} has a multiset component that is not 'all'")
                     return _Term("empty", is_ms=True)
-                choices.append(t.expansion)
+                choices.append(t.items())
             else:
                 choices.append([(1, t.text)])
         exp: list[tuple[int, str]] = [(1, "")]
@@ -212,7 +220,8 @@ class TermTranslator:
             return terms[0]
         exp = None
         if all(t.expansion is not None for t in terms):
-            exp = [kv for t in terms for kv in t.expansion]
+            def exp(terms=terms):
+                return [kv for t in terms for kv in t.items()]
         return _Term(" ++ ".join(t.as_ms() for t in terms), is_ms=True, sort=expect, atomic=False, expansion=exp)
 
     def t_subtract(self, el, where, expect):
@@ -358,6 +367,10 @@ class TermTranslator:
             return _Term("()")
         return _Term(f"{part.helper('of', self.names)} {terms[0].paren()}", sort=part, atomic=False)
 
+
+
+def sort_values(sort: Sort) -> Callable[[], list[tuple[int, str]]]:
+    return lambda: [(1, v) for v in sort.values()]
 
 
 def _ms_text(exp: list[tuple[int, str]]) -> str:
