@@ -11,7 +11,6 @@ from __future__ import annotations
 
 from array import array
 from dataclasses import dataclass
-from itertools import compress
 
 
 @dataclass
@@ -82,83 +81,91 @@ def strongly_connected_components(n: int, offsets: array, dst: array, arc_labels
     terminal = bytearray()
     nontrivial = bytearray()
     exits = bytearray(n)  # state has an arc to an already completed (hence different) SCC
-    stack: list[int] = []
+    stack = array("i")
     stack_append, stack_pop = stack.append, stack.pop
     counter = 0
     ncomp = 0
     filtered = arc_labels is not None
-
-    # Each DFS frame holds an iterator over the state's successors: resuming a frame costs nothing
-    # and the successor loop runs over a C-level slice (measured 1.7x faster than indexing dst[i]).
-    def successors_of(v):
-        a, b = offsets[v], offsets[v + 1]
-        if filtered:
-            return compress(dst[a:b], map(avoid.__ne__, arc_labels[a:b]))
-        return iter(dst[a:b])
-
+    # A DFS frame is a state and the position of its next arc (two ints in two lists). Frames that
+    # held an iterator over a slice of dst ran no faster and cost about 200 bytes each, and the DFS
+    # of a single large SCC is as deep as the SCC: on MS(8) that was 100 MB of peak memory.
     for root in range(n):
         if index[root] != -1 or (keep_node is not None and not keep_node[root]):
             continue
         index[root] = low[root] = counter
         counter += 1
         stack_append(root)
-        work = [(root, successors_of(root))]
+        work = array("i", [root])
+        ptr = array("q", [offsets[root]])
         while work:
-            v, it = work[-1]
+            v = work[-1]
+            i = ptr[-1]
+            end = offsets[v + 1]
             lv = low[v]
-            for w in it:
+            descended = False
+            while i < end:
+                if filtered and arc_labels[i] == avoid:
+                    i += 1
+                    continue
+                w = dst[i]
+                i += 1
                 iw = index[w]
                 if iw == -1:
                     if keep_node is not None and not keep_node[w]:
                         continue
                     low[v] = lv
+                    ptr[-1] = i
                     index[w] = low[w] = counter
                     counter += 1
                     stack_append(w)
-                    work.append((w, successors_of(w)))
+                    work.append(w)
+                    ptr.append(offsets[w])
+                    descended = True
                     break
                 if comp[w] == -1:
                     if iw < lv:
                         lv = iw
                 else:
                     exits[v] = 1
-            else:
-                low[v] = lv
-                work.pop()
-                if lv == index[v]:
-                    first = len(members)
-                    term = 1
-                    while True:
-                        w = stack_pop()
-                        comp[w] = ncomp
-                        members.append(w)
-                        if exits[w]:
-                            term = 0
-                        if w == v:
-                            break
-                    size = len(members) - first
-                    if size > 1:
-                        nt = 1
-                    else:
-                        a, b = offsets[v], offsets[v + 1]
-                        nt = 1 if v in dst[a:b] else 0
-                        if nt and filtered:
-                            nt = 1 if any(w == v and lab != avoid
-                                          for w, lab in zip(dst[a:b], arc_labels[a:b])) else 0
-                    if stop_at is not None and nt:
-                        nodes = members[first:].tolist()
-                        if stop_at(nodes):
-                            return nodes
-                    start.append(len(members))
-                    terminal.append(term)
-                    nontrivial.append(nt)
-                    ncomp += 1
-                    if work:
-                        exits[work[-1][0]] = 1
-                elif work:
-                    u = work[-1][0]
-                    if lv < low[u]:
-                        low[u] = lv
+            if descended:
+                continue
+            low[v] = lv
+            work.pop()
+            ptr.pop()
+            if lv == index[v]:
+                first = len(members)
+                term = 1
+                while True:
+                    w = stack_pop()
+                    comp[w] = ncomp
+                    members.append(w)
+                    if exits[w]:
+                        term = 0
+                    if w == v:
+                        break
+                size = len(members) - first
+                if size > 1:
+                    nt = 1
+                else:
+                    a, b = offsets[v], offsets[v + 1]
+                    nt = 1 if v in dst[a:b] else 0
+                    if nt and filtered:
+                        nt = 1 if any(w == v and lab != avoid
+                                      for w, lab in zip(dst[a:b], arc_labels[a:b])) else 0
+                if stop_at is not None and nt:
+                    nodes = members[first:].tolist()
+                    if stop_at(nodes):
+                        return nodes
+                start.append(len(members))
+                terminal.append(term)
+                nontrivial.append(nt)
+                ncomp += 1
+                if work:
+                    exits[work[-1]] = 1
+            elif work:
+                u = work[-1]
+                if lv < low[u]:
+                    low[u] = lv
     if stop_at is not None:
         return None
     return SccDecomposition(comp, members, start, terminal, nontrivial)
