@@ -520,21 +520,65 @@ class FunctionCodegen:
             return None
         name = f"_F{fd.ref.uid}"
         lines = [f"def {name}(arg):"]
-        for clause in fd.clauses:
-            locals_: dict[int, str] = {}
-            body: list[str] = []
-            if not self._match(clause.params[0], "arg", body, locals_):
-                return None
-            ec = _LocalExprCompiler(self.ns, self.ev, locals_, self.functions, self.var_uids)
-            try:
-                ret = ec.expr(clause.body)
-            except Unsupported:
-                return None
-            lines.append("    for _once in ONCE:")
-            lines.extend("        " + b for b in body)
-            lines.append(f"        return {ret}")
+        self._n = 0
+        try:
+            for clause in fd.clauses:
+                locals_: dict[int, str] = {}
+                body: list[str] = []
+                if not self._match(clause.params[0], "arg", body, locals_):
+                    return None
+                lines.append("    for _once in ONCE:")
+                lines.extend("        " + b for b in body)
+                self._stmt(clause.body, locals_, 2, lines)
+        except Unsupported:
+            return None
         lines.append(f"    raise MLError({('no clause of ' + repr(fd.name) + ' matches its argument (SML exception Match)')!r})")
         return "\n".join(lines)
+
+    def _stmt(self, e: A.Expr, locals_: dict[int, str], depth: int, out: list[str]) -> None:
+        """Statements that return the value of e: case, if and let become control flow."""
+        pad = "    " * depth
+        if isinstance(e, A.Case):
+            self._n += 1
+            subj = f"_c{self._n}"
+            out.append(f"{pad}{subj} = {self._expr(e.subject, locals_)}")
+            for pat, body in e.rules:
+                inner = dict(locals_)
+                tests: list[str] = []
+                if not self._match(pat, subj, tests, inner):
+                    raise Unsupported()
+                out.append(f"{pad}for _once in ONCE:")
+                out.extend(f"{pad}    {t}" for t in tests)
+                self._stmt(body, inner, depth + 1, out)
+            out.append(f"{pad}raise MLError('no rule of the case-expression matches (SML exception Match)')")
+            return
+        if isinstance(e, A.If):
+            out.append(f"{pad}if {self._expr(e.cond, locals_)}:")
+            self._stmt(e.then, locals_, depth + 1, out)
+            out.append(f"{pad}else:")
+            self._stmt(e.else_, locals_, depth + 1, out)
+            return
+        if isinstance(e, A.Let) and all(isinstance(d, A.ValDecl) for d in e.decls):
+            inner = dict(locals_)
+            for d in e.decls:
+                self._n += 1
+                tmp = f"_t{self._n}"
+                out.append(f"{pad}{tmp} = {self._expr(d.expr, inner)}")
+                tests: list[str] = []
+                if not self._match(d.pat, tmp, tests, inner):
+                    raise Unsupported()
+                for t in tests:
+                    if t.endswith(": continue"):
+                        out.append(f"{pad}{t[:-len('continue')]}raise MLError('the value does not match the "
+                                   "pattern of val (SML exception Bind)')")
+                    else:
+                        out.append(f"{pad}{t}")
+            self._stmt(e.body, inner, depth, out)
+            return
+        out.append(f"{pad}return {self._expr(e, locals_)}")
+
+    def _expr(self, e: A.Expr, locals_: dict[int, str]) -> str:
+        return _LocalExprCompiler(self.ns, self.ev, locals_, self.functions, self.var_uids).expr(e)
 
     def _match(self, p: A.Pat, src: str, out: list[str], locals_: dict[int, str]) -> bool:
         if isinstance(p, A.PWild):

@@ -104,6 +104,15 @@ class Evaluator:
             return lambda _u: cs.size()
         if op == "ord":
             return cs.ord
+        if op == "col" and cs.kind in ("enum", "index", "int") and cs.values() is not None:
+            low = getattr(cs, "low", 0) or 0
+            size = cs.size()
+
+            def col_range(i):
+                if not 0 <= i < size:
+                    raise MLError(f"{csname}.col({i}) is outside the colour set")
+                return low + i
+            return col_range
         if op == "col":
             def col(i):
                 vals = cs.values()
