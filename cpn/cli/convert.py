@@ -17,9 +17,9 @@ EXIT_DATAERR = 65
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
     p = subparsers.add_parser(
-        "convert", help="translate a CPN Tools .cpn net into a .cpnet model",
+        "convert", help="translate a CPN Tools .cpn or PNML net into a .cpnet model",
         description=__doc__.split("\n\n")[1], formatter_class=argparse.RawDescriptionHelpFormatter)
-    p.add_argument("model", metavar="FILE.cpn", help="a net saved by CPN Tools")
+    p.add_argument("model", metavar="FILE", help="a net saved by CPN Tools (.cpn) or a PNML file (.pnml)")
     p.add_argument("-o", "--output", metavar="FILE.cpnet",
                    help="where to write the translation (default: FILE.cpnet next to the input; '-' for stdout)")
     p.add_argument("--no-check", action="store_true",
@@ -29,7 +29,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
 
 def _default_output(model: str) -> str:
     root, ext = os.path.splitext(model)
-    return (root if ext.lower() == ".cpn" else model) + ".cpnet"
+    return (root if ext.lower() in (".cpn", ".pnml") else model) + ".cpnet"
 
 
 def _check(text: str, name: str):
@@ -38,15 +38,7 @@ def _check(text: str, name: str):
     from cpn.errors import ModelError
 
     try:
-        loads = getattr(cpn, "loads", None)
-        if loads is not None:
-            loads(text, name)
-        elif getattr(cpn, "load", None) is not None and os.path.exists(name):
-            cpn.load(name)
-        else:  # the front end is not complete: at least parse
-            from cpn.lang.parser import parse
-
-            parse(text, name)
+        cpn.loads(text, name)
     except ModelError as exc:
         return exc
     return None
@@ -54,10 +46,17 @@ def _check(text: str, name: str):
 
 def run(args) -> int:
     from cpn.errors import ModelError
-    from cpn.io.cpntools import remap_error, translate_file
 
+    is_pnml = args.model.lower().endswith(".pnml")
     try:
-        translation = translate_file(args.model)
+        if is_pnml:
+            from cpn.io.pnml import translate_with_origins
+
+            translation = translate_with_origins(args.model)
+        else:
+            from cpn.io.cpntools import translate_file
+
+            translation = translate_file(args.model)
     except ModelError as exc:
         print(exc.render(), file=sys.stderr)
         return exc.exit_status
@@ -69,13 +68,20 @@ def run(args) -> int:
         with open(out, "w", encoding="utf-8") as f:
             f.write(translation.text)
         name = out
-    for note in translation.notes:
+    for note in getattr(translation, "notes", ()):
         print(f"note: {note}", file=sys.stderr)
     if args.no_check:
         return EXIT_OK
     err = _check(translation.text, name)
     if err is not None:
-        mapped = remap_error(err, translation, name, keep_generated_span=True)
+        if is_pnml:
+            from cpn.io.pnml import remap_error
+
+            mapped = remap_error(err, translation, name)
+        else:
+            from cpn.io.cpntools import remap_error
+
+            mapped = remap_error(err, translation, name, keep_generated_span=True)
         mapped.sources.setdefault(name, translation.text)
         print(mapped.render(), file=sys.stderr)
         print(f"note: the translation was written to {out if out != '-' else 'standard output'}, "

@@ -8,6 +8,7 @@ import cpn
 from cpn.checks import Fairness
 from cpn.report import build_report
 from cpn.statespace import ExploreOptions, Explorer
+from tests._shared import SHARED
 
 if not hasattr(cpn, "load"):
     pytest.skip("cpn.load is not available yet", allow_module_level=True)
@@ -83,7 +84,7 @@ def test_ms_report():
 
 LIMIT = next((p for p in (os.path.join(os.path.dirname(__file__), "..", "..", "..", "shared", "validation",
                                        "CPNBook-LimitProtocol", "7-2LimitProtocol.cpn"),
-                          "/work/shared/validation/CPNBook-LimitProtocol/7-2LimitProtocol.cpn")
+                          SHARED + "/validation/CPNBook-LimitProtocol/7-2LimitProtocol.cpn")
               if os.path.exists(p)), None)
 
 

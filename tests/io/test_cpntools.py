@@ -10,9 +10,10 @@ import pytest
 from cpn.errors import ModelError
 from cpn.io.cpntools import remap_error, translate, translate_text
 from cpn.lang.parser import parse
+from tests._shared import SHARED
 
-SAMPLES = "/work/shared/cpntools-samples"
-LIMIT = "/work/shared/validation/CPNBook-LimitProtocol/7-2LimitProtocol.cpn"
+SAMPLES = SHARED + "/cpntools-samples"
+LIMIT = SHARED + "/validation/CPNBook-LimitProtocol/7-2LimitProtocol.cpn"
 
 
 def cpn_xml(globbox: str = "", pages: str = "", extra: str = "", instances: str | None = None) -> str:
@@ -420,3 +421,14 @@ def test_unused_declarations_are_left_out_and_used_ones_kept():
     text = translate_text(cpn_xml(decls, page("PG1", "Top", body)), "t.cpn").text
     assert "fun helper x = x + 1;" in text and "fun used x = helper x;" in text
     assert "fun logit" not in text and "(* declaration M4 (logit) at line" in text
+
+
+def test_convert_reads_pnml_too(tmp_path):
+    from cpn.cli.main import main
+
+    out = tmp_path / "tr.cpnet"
+    src = os.path.join(os.path.dirname(SAMPLES), "validation", "TokenRing-COL-005", "model.pnml")
+    assert main(["convert", src, "-o", str(out)]) == 0
+    import cpn
+
+    assert len(cpn.load(str(out)).net.places) >= 1

@@ -15,10 +15,11 @@ import pytest
 
 import cpn
 from cpn.io.cpntools import translate
+from tests._shared import SHARED
 
-SAMPLES = "/work/shared/cpntools-samples"
-LIMIT = "/work/shared/validation/CPNBook-LimitProtocol/7-2LimitProtocol.cpn"
-MAKE_NETS = "/work/shared/bench/make_cpn_nets.py"
+SAMPLES = SHARED + "/cpntools-samples"
+LIMIT = SHARED + "/validation/CPNBook-LimitProtocol/7-2LimitProtocol.cpn"
+MAKE_NETS = SHARED + "/bench/make_cpn_nets.py"
 BENCH_NETS = os.path.join(os.path.dirname(__file__), "..", "..", "bench", "nets")
 
 pytestmark = pytest.mark.skipif(not hasattr(cpn, "load"), reason="the front end (cpn.load) has not landed yet")

@@ -9,8 +9,9 @@ import pytest
 
 from cpn.errors import ModelError
 from cpn.io.pnml import translate, translate_text
+from tests._shared import SHARED
 
-VALIDATION = os.environ.get("CPN_VALIDATION_DIR", "/work/shared/validation")
+VALIDATION = os.environ.get("CPN_VALIDATION_DIR", SHARED + "/validation")
 NS = "http://www.pnml.org/version-2009/grammar/pnml"
 
 

@@ -7,8 +7,9 @@ import pytest
 from _toy import Mode, ToyEngine, ToyPlace, ToyTransition, dining_philosophers, pt_net
 
 from cpn.statespace import ExploreOptions, Explorer, StopReason, replay, shortest_trace
+from tests._shared import SHARED
 
-REFERENCE = "/work/shared/bench/reference_counts.py"
+REFERENCE = SHARED + "/bench/reference_counts.py"
 
 
 def _reference(net, n):

@@ -8,6 +8,7 @@ import pytest
 
 import cpn
 from cpn.statespace import ExploreOptions, Explorer, StopReason, replay, shortest_trace
+from tests._shared import SHARED
 
 if not hasattr(cpn, "load"):
     pytest.skip("cpn.load is not available yet", allow_module_level=True)
@@ -17,7 +18,7 @@ ROOT = os.path.dirname(os.path.dirname(HERE))
 MODELS = os.path.join(HERE, "models")
 NETS = os.path.join(ROOT, "bench", "nets")
 REFERENCE = next((p for p in (os.path.join(ROOT, "..", "shared", "bench", "reference_counts.py"),
-                              "/work/shared/bench/reference_counts.py") if os.path.exists(p)), None)
+                              SHARED + "/bench/reference_counts.py") if os.path.exists(p)), None)
 
 
 def engine(path, **sets):

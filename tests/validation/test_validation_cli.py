@@ -9,8 +9,9 @@ import shutil
 import pytest
 
 from cpn.cli.main import main
+from tests._shared import SHARED
 
-VALIDATION = os.environ.get("CPN_VALIDATION_DIR", "/work/shared/validation")
+VALIDATION = os.environ.get("CPN_VALIDATION_DIR", SHARED + "/validation")
 SOURCE = os.path.join(VALIDATION, "TokenRing-PT-005", "model.pnml")
 
 pytestmark = pytest.mark.skipif(not os.path.exists(SOURCE), reason="validation corpus not found")

@@ -9,8 +9,9 @@ import os
 import pytest
 
 from cpn.cli.validate import select, validate_instance
+from tests._shared import SHARED
 
-VALIDATION = os.environ.get("CPN_VALIDATION_DIR", "/work/shared/validation")
+VALIDATION = os.environ.get("CPN_VALIDATION_DIR", SHARED + "/validation")
 LIMIT = 100_000
 
 
