@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from itertools import chain
 
 from cpn.engine import codegen
+from cpn.engine.api import EngineAPI
 from cpn.engine.runtime import RUNTIME
 from cpn.errors import EvaluationError
 from cpn.lang.builtins import MLError
@@ -79,7 +80,7 @@ class _Places:
         return i
 
 
-class CompiledEngine:
+class CompiledEngine(EngineAPI):
     """Successor function of a net, compiled to Python; see docs/internals.md for the protocol."""
 
     reference = False

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import itertools
 
+from cpn.engine.api import EngineAPI
 from cpn.errors import EvaluationError
 from cpn.lang import ast as A
 from cpn.lang import binding as B
@@ -19,7 +20,7 @@ from cpn.values.multiset import Multiset, MultisetError, TimedMultiset
 NEG_INF = float("-inf")
 
 
-class ReferenceEngine:
+class ReferenceEngine(EngineAPI):
     reference = True
 
     def __init__(self, net, time_condensation: bool = False):

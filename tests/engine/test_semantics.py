@@ -204,3 +204,15 @@ instance M1 = Mid(); instance M2 = Mid();
 """
     net = cpn.loads(src, "m.cpnet").net
     assert [p.name for p in net.places] == ["Mid'X 1", "Leaf'L 1", "Leaf'L 2", "Mid'X 2", "Leaf'L 3", "Leaf'L 4"]
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_api_enabled_and_fire(reference):
+    e = load("place P : C = 1`1 ++ 1`2; place Q : C;\ntrans t;\narc P -> t : x;\narc t -> Q : x;"
+             ).engine(reference=reference)
+    s0 = e.initial_state()
+    assert sorted(b.binding["x"] for b in e.enabled(s0)) == [1, 2]
+    s1 = e.fire(s0, "Top't 1: {x=2}")
+    assert place(e, s1, "Top'Q 1") == {2: 1}
+    with pytest.raises(ValueError):
+        e.fire(s1, "Top't 1: {x=2}")
