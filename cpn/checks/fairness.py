@@ -30,12 +30,13 @@ class Fairness(enum.Enum):
 def fairness(x: Exploration, dec: SccDecomposition, arc_transitions: array) -> dict[int, Fairness] | None:
     """Fairness class of each transition instance, or None when there is no infinite sequence.
 
-    Per transition instance t, at most two searches, both confined to the nontrivial SCCs:
-    1. a cycle avoiding t among the states where t is enabled: t is not just (No Fairness);
-    2. otherwise the SCCs of the graph less t's arcs: none nontrivial means impartial, none holding a
-       state that enables t means fair, else just.
-    The first is a depth-first search that stops at its first back arc, which is what makes the
-    common "No Fairness" answer cheap on large graphs.
+    Per transition instance t, at most three searches, all confined to the nontrivial SCCs:
+    1. a cycle avoiding t: if there is none, t is impartial;
+    2. a cycle avoiding t among the states where t is enabled: t is not just (No Fairness);
+    3. otherwise the SCCs of the graph less t's arcs: one holding a state that enables t means just,
+       none means fair.
+    1 and 2 are depth-first searches that stop at their first back arc: the common answers
+    (impartial, no fairness) cost one or two such searches, and only 1 may have to visit everything.
     """
     if not any(dec.nontrivial):
         return None
@@ -47,22 +48,19 @@ def fairness(x: Exploration, dec: SccDecomposition, arc_transitions: array) -> d
     enabled = _enabled_in_cycles(g, cyclic, arc_transitions, ntrans)
     result: dict[int, Fairness] = {}
     for t in range(ntrans):
+        if not has_cycle(n, off, dst, arc_transitions, t, cyclic):
+            result[t] = Fairness.IMPARTIAL
+            continue
         en = enabled[t]
         if any(en) and has_cycle(n, off, dst, arc_transitions, t, en):
             result[t] = Fairness.NONE
             continue
-        seen = {"cycle": False}
 
-        def through_enabled(nodes, en=en, seen=seen):
-            seen["cycle"] = True
+        def through_enabled(nodes, en=en):
             return any(map(en.__getitem__, nodes))
 
-        if first_cycle_component(n, off, dst, through_enabled, arc_transitions, t, cyclic) is not None:
-            result[t] = Fairness.JUST
-        elif seen["cycle"]:
-            result[t] = Fairness.FAIR
-        else:
-            result[t] = Fairness.IMPARTIAL
+        found = first_cycle_component(n, off, dst, through_enabled, arc_transitions, t, cyclic)
+        result[t] = Fairness.JUST if found is not None else Fairness.FAIR
     return result
 
 
