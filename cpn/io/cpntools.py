@@ -184,7 +184,7 @@ class _Translator(_Declarations):
                                _clean(pl.child_text("initmark")), kind, fusion, page)
                 page.places.append(place)
                 self.places[place.id] = place
-            # CPN Tools keeps place and transition names apart; `.cpnet` has one namespace per page.
+            seen = {}  # places and transitions have separate namespaces, in CPN Tools and in .cpnet
             for tr in pel.findall("trans"):
                 name = self._element_name(tr, "transition", page, seen)
                 sub = tr.find("subst")

@@ -872,19 +872,20 @@ class Checker:
         page.env = env  # type: ignore[attr-defined]
         for d in decls:
             if isinstance(d, A.PlaceDecl):
-                if d.name in page.places or d.name in page.transitions:
-                    first = (page.places.get(d.name) or page.transitions[d.name].decl).span
-                    self.error("E0202", f"'{d.name}' is declared twice on page '{name}'", d.name_span,
+                # places and transitions have separate namespaces, as in CPN Tools
+                if d.name in page.places:
+                    first = page.places[d.name].span
+                    self.error("E0202", f"place '{d.name}' is declared twice on page '{name}'", d.name_span,
                                notes=[f"first declared at {self._where(first)}"],
-                               hint="Rename one of them; place and transition names must be unique within a page.")
+                               hint="Rename one of them; place names must be unique within a page.")
                     continue
                 page.places[d.name] = d
                 cs = self.lookup_colset(d.colset, d.colset_span)
                 if cs is not None and d.init is not None:
                     self.check_marking(d, env)
             elif isinstance(d, A.TransDecl):
-                if d.name in page.places or d.name in page.transitions:
-                    first = (page.places.get(d.name) or page.transitions[d.name].decl).span
+                if d.name in page.transitions:
+                    first = page.transitions[d.name].decl.span
                     self.error("E0202", f"transition '{d.name}' is declared twice on page '{name}'", d.name_span,
                                notes=[f"first declared at {self._where(first)}"],
                                hint="Rename one of them; transition names must be unique within a net page.")
@@ -937,6 +938,11 @@ class Checker:
                 return
             place, trans = d.src, d.dst
             ak = {"inhibitor": "inhibitor", "reset": "reset", "<->": "both"}[kind]
+        elif src_p and dst_t and src_t and dst_p:
+            self.error("E0203", f"the arc '{d.src}' -> '{d.dst}' is ambiguous: both names are a place and a "
+                       f"transition on page '{page.name}'", d.span,
+                       hint="Rename the place or the transition so that the direction of the arc is clear.")
+            return
         elif src_p and dst_t:
             place, trans, ak = d.src, d.dst, "in"
         elif src_t and dst_p:

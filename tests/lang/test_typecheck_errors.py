@@ -63,3 +63,17 @@ def test_override_of_wrong_type():
 def test_override_changes_colour_set():
     m = cpn.loads("val N = 3;\ncolset C = int with 1..N;\nplace P : C = C.all();", "m.cpnet", set={"N": 7})
     assert sum(m.net.places[0].initial.values()) == 7
+
+
+def test_a_place_and_a_transition_may_share_a_name():
+    m = cpn.loads(HEAD + "place Idle : U = 1`(); place Work : U; trans Work;\narc Idle -> Work;\n"
+                  "arc Work -> Work;".replace("arc Work -> Work", "arc Work -> Idle"), "m.cpnet")
+    assert [p.name for p in m.net.places] == ["Top'Idle 1", "Top'Work 1"]
+    assert [t.name for t in m.net.transitions] == ["Top'Work 1"]
+    assert [a.kind for a in m.net.transitions[0].arcs] == ["in", "out"]
+
+
+def test_an_arc_between_two_ambiguous_names_is_an_error():
+    with pytest.raises(ModelError) as info:
+        cpn.loads(HEAD + "place A : U; trans A; place B : U; trans B;\narc A -> B;", "m.cpnet")
+    assert info.value.errors[0].code == "E0203"
