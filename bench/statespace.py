@@ -139,6 +139,11 @@ def main(argv=None) -> int:
     nets = [s.strip() for s in args.nets.split(",") if s.strip()]
     sizes = parse_sizes(args.sizes, nets)
     cpn_dir = None
+    if args.cpncheck and not os.path.exists(os.path.join(CPNCHECK_VENV, "bin", "cpncheck")):
+        print(f"error: cpncheck is not installed in {CPNCHECK_VENV}; run:\n"
+              f"  python3 -m venv {CPNCHECK_VENV} && {CPNCHECK_VENV}/bin/pip install cpncheck\n"
+              "(or set CPNCHECK_VENV to another virtual environment that has it)", file=sys.stderr)
+        return 64
     if args.cpncheck:
         cpn_dir = tempfile.mkdtemp(prefix="cpn-bench-")
         subprocess.run([sys.executable, os.path.join(SHARED_BENCH, "make_cpn_nets.py"), cpn_dir], check=True)
