@@ -329,11 +329,10 @@ class TransitionCodegen:
                     in_terms.append((pos[a.place], term, ("arc", a)))
         guards = [(g, ("guard", g)) for g in B.guard_conjuncts(t.guards)]
         bound: set[str] = set()
-        loop_token: dict[int, tuple[int, str]] = {}  # id(term) -> (place position, python name of the token)
-        self.emit("out = []", None)
-        self.indent -= 1
-        self.lines.insert(0, f"def {fname}({params}):")
+        loop_token: dict[int, tuple[int, str]] = {}  # term number -> (place position, python name of the token)
+        self.lines.append(f"def {fname}({params}):")
         self.indent = 1
+        self.emit("out = []")
         self.emit("for _once in ONCE:")
         self.indent += 1
         used_terms: set[int] = set()
@@ -475,9 +474,9 @@ class TransitionCodegen:
             if a.kind == "out" and a.expr is not None:
                 parts = out_terms(a.expr, self.ec)
                 if parts:
-                    self.emit(f"_o = {' + '.join(parts)}", ("arc", a))
-                    produced.append(f"({a.place}, _o{a.place}_{len(produced)})")
-                    self.lines[-1] = self.lines[-1].replace("_o =", f"_o{a.place}_{len(produced) - 1} =")
+                    var = f"_o{a.place}_{len(produced)}"
+                    self.emit(f"{var} = {' + '.join(parts)}", ("arc", a))
+                    produced.append(f"({a.place}, {var})")
             elif a.kind == "both" and a.expr is not None:
                 c = f"c{pos[a.place]}"
                 produced.append(f"({a.place}, tuple((_v, _n, 0) for _v, _n in {c}.items()))")
