@@ -194,11 +194,6 @@ def terms(e: A.Expr, cond=None) -> list[Term]:
     return [Term(None, None, opaque=e, cond=cond)]
 
 
-def has_time(e) -> bool:
-    if isinstance(e, A.BinOp) and e.op == "@+":
-        return True
-    return any(has_time(c) for c in B.children(e))
-
 
 def out_terms(e: A.Expr, ec: ExprCompiler, delay: str = "0") -> list[str]:
     """Python expressions, each a list of (value, count, delay) triples, whose sum is the output of e."""
