@@ -7,7 +7,6 @@ Imports `cpn.lang.*`, `cpn.values` and layer 0.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
 
 from cpn._util import did_you_mean
 from cpn.diagnostics import Diagnostic, Severity, Span
@@ -1197,4 +1196,4 @@ def check(model: A.Model, overrides: dict[str, str] | None = None) -> CheckedMod
     return Checker(model, overrides).check()
 
 
-__all__ = ["check", "CheckedModel", "PageInfo", "TransInfo", "ArcInfo", "Any"]
+__all__ = ["check", "CheckedModel", "PageInfo", "TransInfo", "ArcInfo"]

@@ -12,8 +12,7 @@ from cpn.lang import ast as A
 from cpn.lang.builtins import MLError
 from cpn.lang.typecheck import CheckedModel, PageInfo
 from cpn.net.model import ArcInstance, Net, PlaceInstance, TransitionInstance
-from cpn.values.colours import format_multiset
-from cpn.values.multiset import Multiset, TimedMultiset
+from cpn.values.multiset import TimedMultiset
 
 MAX_INSTANCE_DEPTH: int = 64
 
@@ -137,4 +136,4 @@ def lower(cm: CheckedModel) -> Net:
     return _Lowerer(cm).run()
 
 
-__all__ = ["lower", "format_multiset", "Multiset"]
+__all__ = ["lower"]
