@@ -1,4 +1,5 @@
-"""Name resolution and type checking of a parsed model; builds the colour sets and evaluates constants.
+"""Name resolution and type inference of a parsed model (Hindley-Milner for CPN ML); builds the colour sets
+and evaluates constants. Net structure is checked by `cpn.lang.pages`.
 
 Every error of a file is collected (one `Diagnostic` each) before `ModelError` is raised.
 Imports `cpn.lang.*`, `cpn.values` and layer 0.
@@ -6,97 +7,20 @@ Imports `cpn.lang.*`, `cpn.values` and layer 0.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 from cpn._util import did_you_mean
 from cpn.diagnostics import Diagnostic, Severity, Span
 from cpn.errors import ModelError
 from cpn.lang import ast as A
 from cpn.lang import types as T
-from cpn.lang.binding import all_vars, guard_binder, guard_conjuncts, pattern_vars
 from cpn.lang.builtins import BUILTINS, COLSET_OPS, MLError, parse_type
+from cpn.lang.checked import Abort, ArcInfo, CheckedModel, Env, PageInfo, TransInfo
 from cpn.lang.evaluate import Evaluator
+from cpn.lang.pages import PageChecks
 from cpn.lang.symbols import ConInfo, Symbol
 from cpn.values import colours as C
 
-_KEYWORD_LIKE = {"true", "false"}
 
-
-@dataclass(eq=False)
-class ArcInfo:
-    decl: A.ArcDecl
-    kind: str  # 'in' 'out' 'both' 'inhibitor' 'reset'
-    place: str
-    trans: str
-    expr: A.Expr | None
-
-
-@dataclass(eq=False)
-class TransInfo:
-    decl: A.TransDecl
-    arcs: list[ArcInfo] = field(default_factory=list)
-    variables: list[str] = field(default_factory=list)  # every variable, sorted
-    free: list[str] = field(default_factory=list)  # variables bound by enumerating their colour set
-    ran: list[tuple[str, str]] = field(default_factory=list)  # (synthetic variable, colour set) for CS.ran()
-
-
-@dataclass(eq=False)
-class PageInfo:
-    name: str
-    decl: A.ModuleDecl | None
-    params: list[Symbol]
-    places: dict[str, A.PlaceDecl] = field(default_factory=dict)
-    transitions: dict[str, TransInfo] = field(default_factory=dict)
-    instances: list[A.InstanceDecl] = field(default_factory=list)
-    order: list[str] = field(default_factory=list)  # transition names in declaration order
-
-
-@dataclass(eq=False)
-class CheckedModel:
-    """A model whose names are resolved, types checked, colour sets built and constants evaluated."""
-
-    model: A.Model
-    net_name: str
-    colsets: dict[str, C.ColourSet]
-    cstypes: dict[str, T.Type]
-    variables: dict[str, Symbol]
-    globals: dict[str, Symbol]
-    evaluator: Evaluator
-    top: PageInfo
-    modules: dict[str, PageInfo]
-    warnings: list[Diagnostic]
-
-
-class _Env:
-    """A chain of local scopes over the global scope."""
-
-    __slots__ = ("names", "parent")
-
-    def __init__(self, names=None, parent=None):
-        self.names = names if names is not None else {}
-        self.parent = parent
-
-    def lookup(self, name):
-        env = self
-        while env is not None:
-            if name in env.names:
-                return env.names[name]
-            env = env.parent
-        return None
-
-    def child(self, names=None):
-        return _Env(dict(names or {}), self)
-
-    def local_types(self):
-        env = self
-        while env is not None:
-            for s in env.names.values():
-                if s.kind == "local":
-                    yield s.type
-            env = env.parent
-
-
-class Checker:
+class Checker(PageChecks):
     def __init__(self, model: A.Model, overrides: dict[str, str] | None = None):
         self.model = model
         self.file = model.file
@@ -114,7 +38,7 @@ class Checker:
         self.builtin_syms: dict[str, Symbol] = {}
         for name, (tytext, _) in BUILTINS.items():
             self.builtin_syms[name] = Symbol(name, "builtin", parse_type(tytext))
-        self.genv = _Env(self.globals)
+        self.genv = Env(self.globals)
         self.ran_counter = 0
         self.ran_sink: list | None = None
         # CPN Tools' standard declarations; a model may redeclare them
@@ -378,7 +302,7 @@ class Checker:
             return None
         return m.decls[0].expr
 
-    def fun_decl(self, d: A.FunDecl, env: _Env | None = None) -> Symbol | None:
+    def fun_decl(self, d: A.FunDecl, env: Env | None = None) -> Symbol | None:
         outer = env or self.genv
         if isinstance(d.ref, tuple):
             self.error("E0101", f"the clauses of function '{d.name}' have different names: "
@@ -410,7 +334,7 @@ class Checker:
                     ct = T.TFun(pt, ct)
                 self.unify(ftype, ct, c.span, f"the clauses of '{d.name}'")
             self.resolve_pending()
-        except _Abort:
+        except Abort:
             return None
         env_free = set()
         for lt in outer.local_types():
@@ -458,14 +382,14 @@ class Checker:
 
     def must(self, a, b, span, what):
         if not self.unify(a, b, span, what):
-            raise _Abort()
+            raise Abort()
 
-    def infer_top(self, e: A.Expr, env: _Env | None = None) -> T.Type | None:
+    def infer_top(self, e: A.Expr, env: Env | None = None) -> T.Type | None:
         try:
             t = self.infer(e, env or self.genv)
             self.resolve_pending()
             return t
-        except _Abort:
+        except Abort:
             self.pending.clear()
             return None
 
@@ -483,7 +407,7 @@ class Checker:
                        hint="Add a type annotation, e.g. (x : MyRecord).")
         if self.pending:
             self.pending.clear()
-            raise _Abort()
+            raise Abort()
 
     def _try_select(self, node, argt, rest, kind) -> bool:
         t = T.prune(argt)
@@ -522,7 +446,7 @@ class Checker:
         return True
 
     # ------------------------------------------------------------------ expressions
-    def resolve_name(self, name: str, env: _Env, span: Span) -> Symbol | None:
+    def resolve_name(self, name: str, env: Env, span: Span) -> Symbol | None:
         sym = env.lookup(name)
         if sym is not None:
             return sym
@@ -534,7 +458,7 @@ class Checker:
                 return Symbol(name, "csop", None, span, (cs, op))
         return None
 
-    def unknown_name(self, name: str, env: _Env, span: Span) -> None:
+    def unknown_name(self, name: str, env: Env, span: Span) -> None:
         names = set(self.globals) | set(self.builtin_syms)
         e = env
         while e is not None:
@@ -552,7 +476,7 @@ class Checker:
                     "Declare it with 'val', 'var' or 'fun' before its first use.")
         self.error("E0201", f"unknown name '{name}'", span, hint=hint, name=name)
 
-    def infer(self, e: A.Expr, env: _Env) -> T.Type:
+    def infer(self, e: A.Expr, env: Env) -> T.Type:
         t = getattr(self, "_i_" + type(e).__name__)(e, env)
         e.ty = t
         return t
@@ -564,7 +488,7 @@ class Checker:
         sym = self.resolve_name(e.name, env, e.span)
         if sym is None:
             self.unknown_name(e.name, env, e.span)
-            raise _Abort()
+            raise Abort()
         e.ref = sym
         if sym.kind == "csop":
             cs, op = sym.data
@@ -573,7 +497,7 @@ class Checker:
                 comps = T.prune(cst)
                 if not isinstance(comps, T.TTuple):
                     self.error("E0301", f"'{e.name}': mult is defined on product colour sets only", e.span)
-                    raise _Abort()
+                    raise Abort()
                 return T.TFun(T.TTuple([T.ms(c) for c in comps.items]), T.ms(cst))
             return {"all": T.TFun(T.UNIT, T.ms(cst)), "size": T.TFun(T.UNIT, T.INT), "ran": T.TFun(T.UNIT, cst),
                     "ord": T.TFun(cst, T.INT), "col": T.TFun(T.INT, cst), "legal": T.TFun(cst, T.BOOL),
@@ -593,7 +517,7 @@ class Checker:
         labels = [label for label, _ in e.fields]
         if len(set(labels)) != len(labels):
             self.error("E0301", "a record expression names a field twice", e.span)
-            raise _Abort()
+            raise Abort()
         return T.TRecord([(label, self.infer(x, env)) for label, x in e.fields])
 
     def _i_ListE(self, e, env):
@@ -695,7 +619,7 @@ class Checker:
             elif isinstance(d, A.FunDecl):
                 sym = self.fun_decl(d, inner)
                 if sym is None:
-                    raise _Abort()
+                    raise Abort()
                 inner = inner.child({d.name: sym})
         return self.infer(e.body, inner)
 
@@ -709,7 +633,7 @@ class Checker:
         t = self.infer(e.expr, env)
         at = self.type_of_annotation(e.type_expr)
         if at is None:
-            raise _Abort()
+            raise Abort()
         self.must(t, at, e.span, "a type annotation")
         return t
 
@@ -749,9 +673,9 @@ class Checker:
         if op == "`":
             v = T.TVar()
             return T.INT, v, T.ms(v)
-        raise _Abort()
+        raise Abort()
 
-    def infer_ms(self, e: A.Expr, elem: T.Type, env: _Env, what: str) -> A.Expr:
+    def infer_ms(self, e: A.Expr, elem: T.Type, env: Env, what: str) -> A.Expr:
         """Infer e where a multiset over `elem` is expected; a single value is wrapped in ToMs."""
         t = self.infer(e, env)
         pt = T.prune(t)
@@ -779,7 +703,7 @@ class Checker:
             return T.ms(elem)
         if op == "@@":
             self.error("E0206", "absolute timestamps '@@' are not supported; use '@+' delays", e.span)
-            raise _Abort()
+            raise Abort()
         a, b, r = self._op_types(op, e)
         self.must(self.infer(e.left, env), a, e.left.span, f"the left operand of '{op}'")
         self.must(self.infer(e.right, env), b, e.right.span, f"the right operand of '{op}'")
@@ -794,7 +718,7 @@ class Checker:
     def _bind_local(self, name, span, binds, t):
         if name in binds:
             self.error("E0202", f"variable '{name}' occurs twice in one pattern", span)
-            raise _Abort()
+            raise Abort()
         sym = Symbol(name, "local", t, span)
         binds[name] = sym
         return sym
@@ -830,7 +754,7 @@ class Checker:
                 cand = did_you_mean(p.name, [n for n, s in self.globals.items() if s.kind == "con"])
                 self.error("E0201", f"'{p.name}' is not a constructor with an argument", p.span,
                            hint=f"Did you mean '{cand}'?" if cand else None, name=p.name)
-                raise _Abort()
+                raise Abort()
             p.ref = g
             ft = g.type
             self.must(self.infer_pat(p.arg, binds), ft.arg, p.arg.span, f"the argument of '{p.name}'")
@@ -851,344 +775,12 @@ class Checker:
             t = self.infer_pat(p.pat, binds)
             at = self.type_of_annotation(p.type_expr)
             if at is None:
-                raise _Abort()
+                raise Abort()
             self.must(t, at, p.span, "a type annotation")
             return t
-        raise _Abort()
+        raise Abort()
 
     # ------------------------------------------------------------------ pages
-    def page(self, name: str, mdecl: A.ModuleDecl | None, decls: list[A.Decl]) -> PageInfo:
-        params = []
-        penv = {}
-        if mdecl is not None:
-            for pname, csname, span in mdecl.params:
-                cs = self.lookup_colset(csname, span)
-                sym = Symbol(pname, "param", self.cstypes.get(csname, T.TVar()), span, csname)
-                params.append(sym)
-                penv[pname] = sym
-        page = PageInfo(name, mdecl, params)
-        env = self.genv.child(penv)
-        page.env = env  # type: ignore[attr-defined]
-        for d in decls:
-            if isinstance(d, A.PlaceDecl):
-                # places and transitions have separate namespaces, as in CPN Tools
-                if d.name in page.places:
-                    first = page.places[d.name].span
-                    self.error("E0202", f"place '{d.name}' is declared twice on page '{name}'", d.name_span,
-                               notes=[f"first declared at {self._where(first)}"],
-                               hint="Rename one of them; place names must be unique within a page.")
-                    continue
-                page.places[d.name] = d
-                cs = self.lookup_colset(d.colset, d.colset_span)
-                if cs is not None and d.init is not None:
-                    self.check_marking(d, env)
-            elif isinstance(d, A.TransDecl):
-                if d.name in page.transitions:
-                    first = page.transitions[d.name].decl.span
-                    self.error("E0202", f"transition '{d.name}' is declared twice on page '{name}'", d.name_span,
-                               notes=[f"first declared at {self._where(first)}"],
-                               hint="Rename one of them; transition names must be unique within a net page.")
-                    continue
-                page.transitions[d.name] = TransInfo(d)
-                page.order.append(d.name)
-            elif isinstance(d, A.InstanceDecl):
-                page.instances.append(d)
-            elif isinstance(d, A.ModuleDecl):
-                self.error("E0206", "modules cannot be declared inside modules", d.span,
-                           hint="Declare every module at the top level of the file.")
-            elif isinstance(d, A.NetHeader):
-                self.error("E0206", "'net' is only allowed at the top level", d.span)
-            elif isinstance(d, (A.ColsetDecl, A.VarDecl, A.ValDecl, A.FunDecl)):
-                self.error("E0206", "declarations inside a module are not supported; declare them at the top "
-                           "level", d.span, hint="CPN ML declarations are global, as in CPN Tools.")
-        for d in decls:
-            if isinstance(d, A.ArcDecl):
-                self.arc(page, d, env)
-        for tname in page.order:
-            self.transition(page, page.transitions[tname], env)
-        return page
-
-    def check_marking(self, d: A.PlaceDecl, env: _Env) -> None:
-        elem = self.cstypes[d.colset]
-        try:
-            d.init = self.infer_ms(d.init, elem, env, f"the initial marking of place '{d.name}'")
-            self.resolve_pending()
-        except _Abort:
-            self.pending.clear()
-
-    def arc(self, page: PageInfo, d: A.ArcDecl, env: _Env) -> None:
-        kind = d.kind
-        if kind.endswith("?"):
-            self.error("E0203", f"{kind[:-1]} arcs are written with '->' from the place to the transition", d.span)
-            return
-        src_p, dst_p = d.src in page.places, d.dst in page.places
-        src_t, dst_t = d.src in page.transitions, d.dst in page.transitions
-        for nm, sp, known in ((d.src, d.src_span, src_p or src_t), (d.dst, d.dst_span, dst_p or dst_t)):
-            if not known:
-                cand = did_you_mean(nm, list(page.places) + list(page.transitions))
-                self.error("E0201", f"unknown place or transition '{nm}' on page '{page.name}'", sp,
-                           hint=f"Did you mean '{cand}'?" if cand else "Declare it with 'place' or 'trans'.",
-                           name=nm)
-                return
-        if kind in ("inhibitor", "reset", "<->"):
-            if not (src_p and dst_t):
-                self.error("E0203", f"{'double' if kind == '<->' else kind} arcs go from a place to a transition: "
-                           f"'{d.src}' -> '{d.dst}'", d.span, hint="Write the place first.")
-                return
-            place, trans = d.src, d.dst
-            ak = {"inhibitor": "inhibitor", "reset": "reset", "<->": "both"}[kind]
-        elif src_p and dst_t and src_t and dst_p:
-            self.error("E0203", f"the arc '{d.src}' -> '{d.dst}' is ambiguous: both names are a place and a "
-                       f"transition on page '{page.name}'", d.span,
-                       hint="Rename the place or the transition so that the direction of the arc is clear.")
-            return
-        elif src_p and dst_t:
-            place, trans, ak = d.src, d.dst, "in"
-        elif src_t and dst_p:
-            place, trans, ak = d.dst, d.src, "out"
-        else:
-            what = "two places" if src_p else "two transitions"
-            self.error("E0203", f"an arc must connect a place and a transition, but '{d.src}' and '{d.dst}' are "
-                       f"{what}", d.span, hint="Arcs go from a place to a transition or back.")
-            return
-        pd = page.places[place]
-        expr = d.expr
-        info = page.transitions[trans]
-        if expr is None:
-            if ak in ("reset",):
-                pass
-            elif ak == "inhibitor":
-                pass
-            elif pd.colset in self.colsets and self.colsets[pd.colset].kind == "unit":
-                expr = A.Const(d.span, (), "unit")
-            else:
-                self.error("E0301", f"the arc between '{place}' and '{trans}' has no inscription", d.span,
-                           hint="Only arcs of unit places may omit the inscription (it means 1`()).")
-                return
-        elif ak == "reset":
-            self.error("E0301", "reset arcs take no inscription", d.span)
-            return
-        if expr is not None and pd.colset in self.cstypes:
-            elem = self.cstypes[pd.colset]
-            sink: list = []
-            self.ran_sink = sink if ak == "out" else None
-            try:
-                expr = self.infer_ms(expr, elem, env,
-                                     f"the inscription of arc '{d.src}' -> '{d.dst}' (place '{place}' holds "
-                                     f"{pd.colset})")
-                self.resolve_pending()
-            except _Abort:
-                self.pending.clear()
-                return
-            finally:
-                self.ran_sink = None
-            if sink:
-                expr = _replace_ran(expr)
-                info.ran.extend((v, cs) for v, cs, _ in sink)
-                for v, _cs, sym in sink:
-                    self.variables[v] = sym
-            if ak in ("in", "both", "inhibitor") and _has_delay(expr):
-                self.error("E0206", "delays on input arcs ('preemption') are not supported", expr.span)
-                return
-        info.arcs.append(ArcInfo(d, ak, place, trans, expr))
-
-    def transition(self, page: PageInfo, info: TransInfo, env: _Env) -> None:
-        d = info.decl
-        ok = True
-        for _i, g in enumerate(d.guards):
-            t = self.infer_top(g, env)
-            if t is None:
-                ok = False
-                continue
-            pt = T.prune(t)
-            if isinstance(pt, T.TCon) and pt.name == "list":
-                self.unify(pt.args[0], T.BOOL, g.span, f"the guard of transition '{d.name}'")
-            else:
-                self.unify(t, T.BOOL, g.span, f"the guard of transition '{d.name}'")
-        sink: list = []
-        self.ran_sink = sink  # CS.ran() in the delay is a choice of every value, as on output arcs
-        try:
-            if d.delay is not None:
-                t = self.infer_top(d.delay, env)
-                if t is None:
-                    ok = False
-                else:
-                    self.unify(t, T.INT, d.delay.span, f"the delay of transition '{d.name}' (an integer)")
-                    d.delay = _replace_ran(d.delay)
-        finally:
-            self.ran_sink = None
-        for v, cs, sym in sink:
-            info.ran.append((v, cs))
-            self.variables[v] = sym
-        if d.priority is not None:
-            t = self.infer_top(d.priority, env)
-            if t is None:
-                ok = False
-            else:
-                self.unify(t, T.INT, d.priority.span, f"the priority of transition '{d.name}' (an integer)")
-        if not ok:
-            return
-        # which variables are bound, and how
-        used: set[str] = set()
-        for a in info.arcs:
-            all_vars(a.expr, used)
-        for g in d.guards:
-            all_vars(g, used)
-        all_vars(d.delay, used)
-        all_vars(d.priority, used)
-        bound: set[str] = set()
-        for a in info.arcs:
-            if a.kind in ("in", "both") and a.expr is not None:
-                bound |= pattern_vars(a.expr)
-        conj = guard_conjuncts(d.guards)
-        changed = True
-        while changed:
-            changed = False
-            for c in conj:
-                gb = guard_binder(c, bound)
-                if gb is not None:
-                    bound |= pattern_vars(gb[0])
-                    changed = True
-        free = []
-        for v in sorted(used - bound):
-            sym = self.variables[v]
-            cs = self.colsets[sym.data]
-            if cs.values() is not None:
-                free.append(v)
-                continue
-            span = self._first_use(info, v)
-            binder = next((a for a in info.arcs if a.kind in ("in", "both") and a.expr is not None), None)
-            hint = (f"A variable must occur on an input arc of '{d.name}' (or be bound by its guard as "
-                    f"'{v} = ...') before it can be used; only variables of small colour sets may be unbound. ")
-            if binder is not None:
-                bvars = sorted(pattern_vars(binder.expr))
-                if bvars:
-                    hint += (f"'{bvars[0]}' is bound by the arc from '{binder.place}' at "
-                             f"{self._where(binder.decl.span)}.")
-            self.error("E0302", f"variable '{v}' of transition '{d.name}' is not bound (colour set "
-                       f"'{sym.data}' is too large to try every value)", span, hint=hint.strip(), name=v)
-        info.variables = sorted(used)
-        info.free = free
-
-    def _first_use(self, info: TransInfo, v: str) -> Span:
-        for a in info.arcs:
-            if a.expr is not None and v in all_vars(a.expr):
-                return _find_name_span(a.expr, v) or a.decl.span
-        for g in info.decl.guards:
-            sp = _find_name_span(g, v)
-            if sp:
-                return sp
-        return info.decl.span
-
-    def check_instances(self, page: PageInfo, pages: dict[str, PageInfo]) -> None:
-        seen = {}
-        for inst in page.instances:
-            if inst.name in seen:
-                self.error("E0202", f"instance '{inst.name}' is declared twice on page '{page.name}'",
-                           inst.name_span, notes=[f"first declared at {self._where(seen[inst.name])}"])
-                continue
-            seen[inst.name] = inst.span
-            mod = pages.get(inst.module)
-            if mod is None:
-                cand = did_you_mean(inst.module, pages)
-                self.error("E0201", f"unknown module '{inst.module}'", inst.module_span,
-                           hint=f"Did you mean '{cand}'?" if cand else "Declare it with 'module NAME { ... }'.",
-                           name=inst.module)
-                continue
-            given = {}
-            for aname, expr, span in inst.args:
-                if aname in given:
-                    self.error("E0204", f"parameter '{aname}' is given twice", span)
-                    continue
-                given[aname] = expr
-                psym = next((p for p in mod.params if p.name == aname), None)
-                if psym is None:
-                    cand = did_you_mean(aname, [p.name for p in mod.params])
-                    self.error("E0204", f"module '{mod.name}' has no parameter '{aname}'", span,
-                               hint=f"Did you mean '{cand}'?" if cand else
-                               f"Its parameters are: {', '.join(p.name for p in mod.params) or 'none'}.")
-                    continue
-                t = self.infer_top(expr, page.env)
-                if t is not None:
-                    self.unify(t, psym.type, expr.span, f"parameter '{aname}' of instance '{inst.name}'")
-            for p in mod.params:
-                if p.name not in given:
-                    self.error("E0204", f"instance '{inst.name}' does not give parameter '{p.name}' of module "
-                               f"'{mod.name}'", inst.span, hint=f"Add '{p.name} = VALUE' in the parentheses.")
-            bound_ports = set()
-            for port, pspan, sock, sspan in inst.binds:
-                pd = mod.places.get(port)
-                if pd is None or pd.port is None:
-                    ports = [n for n, x in mod.places.items() if x.port]
-                    cand = did_you_mean(port, ports)
-                    self.error("E0204", f"module '{mod.name}' has no port '{port}'", pspan,
-                               hint=f"Did you mean '{cand}'?" if cand else f"Its ports are: {', '.join(ports) or 'none'}.")
-                    continue
-                if port in bound_ports:
-                    self.error("E0204", f"port '{port}' is bound twice", pspan)
-                    continue
-                bound_ports.add(port)
-                sd = page.places.get(sock)
-                if sd is None:
-                    cand = did_you_mean(sock, page.places)
-                    self.error("E0201", f"unknown socket place '{sock}' on page '{page.name}'", sspan,
-                               hint=f"Did you mean '{cand}'?" if cand else "Sockets are places of the page that "
-                               "holds the instance.", name=sock)
-                    continue
-                if sd.colset != pd.colset and (sd.colset in self.colsets and pd.colset in self.colsets):
-                    a, b = self.colsets[sd.colset], self.colsets[pd.colset]
-                    base = lambda c: c.base if isinstance(c, C.AliasCS) else c  # noqa: E731
-                    if base(a) is not base(b):
-                        self.error("E0301", f"port '{port}' has colour set {pd.colset} but its socket '{sock}' has "
-                                   f"{sd.colset}", sspan, hint="A port and its socket must have the same colour set.")
-            for n, pd in mod.places.items():
-                if pd.port and n not in bound_ports:
-                    self.warn("W0101", f"port '{n}' of module '{mod.name}' is not bound in instance '{inst.name}'; "
-                              "it is an ordinary place of the instance", inst.span)
-
-
-class _Abort(Exception):
-    """Stop checking the current expression (its error is already recorded)."""
-
-
-def _has_delay(e) -> bool:
-    if isinstance(e, A.BinOp):
-        return e.op == "@+" or _has_delay(e.left) or _has_delay(e.right)
-    if isinstance(e, A.If):
-        return _has_delay(e.then) or _has_delay(e.else_)
-    return False
-
-
-def _replace_ran(e):
-    """Replace the App nodes marked by CS.ran() with their synthetic variables."""
-    vsym = getattr(e, "ran_var", None) if isinstance(e, A.App) else None
-    if vsym is not None:
-        n = A.Name(e.span, vsym.name, ty=e.ty)
-        n.ref = vsym
-        return n
-    for attr in ("items",):
-        if hasattr(e, attr) and isinstance(getattr(e, attr), list):
-            setattr(e, attr, [_replace_ran(x) for x in getattr(e, attr)])
-    if isinstance(e, A.RecordE):
-        e.fields = [(label, _replace_ran(x)) for label, x in e.fields]
-    for attr in ("fn", "arg", "left", "right", "operand", "cond", "then", "else_", "expr", "body", "subject"):
-        if hasattr(e, attr) and isinstance(getattr(e, attr), A.Expr):
-            setattr(e, attr, _replace_ran(getattr(e, attr)))
-    if isinstance(e, A.Case):
-        e.rules = [(p, _replace_ran(b)) for p, b in e.rules]
-    return e
-
-
-def _find_name_span(e, name: str) -> Span | None:
-    from cpn.lang.binding import children
-
-    if isinstance(e, A.Name) and e.name == name:
-        return e.span
-    for c in children(e):
-        sp = _find_name_span(c, name)
-        if sp:
-            return sp
-    return None
 
 
 def check(model: A.Model, overrides: dict[str, str] | None = None) -> CheckedModel:
@@ -1197,3 +789,4 @@ def check(model: A.Model, overrides: dict[str, str] | None = None) -> CheckedMod
 
 
 __all__ = ["check", "CheckedModel", "PageInfo", "TransInfo", "ArcInfo"]
+

@@ -1,0 +1,352 @@
+"""Checking the net structure of a model: pages (the top level and modules), places, transitions, arcs,
+the binding of every transition variable, and module instances.
+
+A mixin of `cpn.lang.typecheck.Checker`, which provides inference and diagnostics.
+Imports `cpn.lang.*`, `cpn.values` and layer 0.
+"""
+
+from __future__ import annotations
+
+from cpn._util import did_you_mean
+from cpn.diagnostics import Span
+from cpn.lang import ast as A
+from cpn.lang import types as T
+from cpn.lang.binding import all_vars, children, guard_binder, guard_conjuncts, pattern_vars
+from cpn.lang.checked import Abort, ArcInfo, Env, PageInfo, TransInfo
+from cpn.lang.symbols import Symbol
+from cpn.values import colours as C
+
+
+class PageChecks:
+    """Checks of pages, transitions, arcs and instances (mixed into the Checker)."""
+
+    def page(self, name: str, mdecl: A.ModuleDecl | None, decls: list[A.Decl]) -> PageInfo:
+        params = []
+        penv = {}
+        if mdecl is not None:
+            for pname, csname, span in mdecl.params:
+                cs = self.lookup_colset(csname, span)
+                sym = Symbol(pname, "param", self.cstypes.get(csname, T.TVar()), span, csname)
+                params.append(sym)
+                penv[pname] = sym
+        page = PageInfo(name, mdecl, params)
+        env = self.genv.child(penv)
+        page.env = env  # type: ignore[attr-defined]
+        for d in decls:
+            if isinstance(d, A.PlaceDecl):
+                # places and transitions have separate namespaces, as in CPN Tools
+                if d.name in page.places:
+                    first = page.places[d.name].span
+                    self.error("E0202", f"place '{d.name}' is declared twice on page '{name}'", d.name_span,
+                               notes=[f"first declared at {self._where(first)}"],
+                               hint="Rename one of them; place names must be unique within a page.")
+                    continue
+                page.places[d.name] = d
+                cs = self.lookup_colset(d.colset, d.colset_span)
+                if cs is not None and d.init is not None:
+                    self.check_marking(d, env)
+            elif isinstance(d, A.TransDecl):
+                if d.name in page.transitions:
+                    first = page.transitions[d.name].decl.span
+                    self.error("E0202", f"transition '{d.name}' is declared twice on page '{name}'", d.name_span,
+                               notes=[f"first declared at {self._where(first)}"],
+                               hint="Rename one of them; transition names must be unique within a net page.")
+                    continue
+                page.transitions[d.name] = TransInfo(d)
+                page.order.append(d.name)
+            elif isinstance(d, A.InstanceDecl):
+                page.instances.append(d)
+            elif isinstance(d, A.ModuleDecl):
+                self.error("E0206", "modules cannot be declared inside modules", d.span,
+                           hint="Declare every module at the top level of the file.")
+            elif isinstance(d, A.NetHeader):
+                self.error("E0206", "'net' is only allowed at the top level", d.span)
+            elif isinstance(d, (A.ColsetDecl, A.VarDecl, A.ValDecl, A.FunDecl)):
+                self.error("E0206", "declarations inside a module are not supported; declare them at the top "
+                           "level", d.span, hint="CPN ML declarations are global, as in CPN Tools.")
+        for d in decls:
+            if isinstance(d, A.ArcDecl):
+                self.arc(page, d, env)
+        for tname in page.order:
+            self.transition(page, page.transitions[tname], env)
+        return page
+
+    def check_marking(self, d: A.PlaceDecl, env: Env) -> None:
+        elem = self.cstypes[d.colset]
+        try:
+            d.init = self.infer_ms(d.init, elem, env, f"the initial marking of place '{d.name}'")
+            self.resolve_pending()
+        except Abort:
+            self.pending.clear()
+
+    def arc(self, page: PageInfo, d: A.ArcDecl, env: Env) -> None:
+        kind = d.kind
+        if kind.endswith("?"):
+            self.error("E0203", f"{kind[:-1]} arcs are written with '->' from the place to the transition", d.span)
+            return
+        src_p, dst_p = d.src in page.places, d.dst in page.places
+        src_t, dst_t = d.src in page.transitions, d.dst in page.transitions
+        for nm, sp, known in ((d.src, d.src_span, src_p or src_t), (d.dst, d.dst_span, dst_p or dst_t)):
+            if not known:
+                cand = did_you_mean(nm, list(page.places) + list(page.transitions))
+                self.error("E0201", f"unknown place or transition '{nm}' on page '{page.name}'", sp,
+                           hint=f"Did you mean '{cand}'?" if cand else "Declare it with 'place' or 'trans'.",
+                           name=nm)
+                return
+        if kind in ("inhibitor", "reset", "<->"):
+            if not (src_p and dst_t):
+                self.error("E0203", f"{'double' if kind == '<->' else kind} arcs go from a place to a transition: "
+                           f"'{d.src}' -> '{d.dst}'", d.span, hint="Write the place first.")
+                return
+            place, trans = d.src, d.dst
+            ak = {"inhibitor": "inhibitor", "reset": "reset", "<->": "both"}[kind]
+        elif src_p and dst_t and src_t and dst_p:
+            self.error("E0203", f"the arc '{d.src}' -> '{d.dst}' is ambiguous: both names are a place and a "
+                       f"transition on page '{page.name}'", d.span,
+                       hint="Rename the place or the transition so that the direction of the arc is clear.")
+            return
+        elif src_p and dst_t:
+            place, trans, ak = d.src, d.dst, "in"
+        elif src_t and dst_p:
+            place, trans, ak = d.dst, d.src, "out"
+        else:
+            what = "two places" if src_p else "two transitions"
+            self.error("E0203", f"an arc must connect a place and a transition, but '{d.src}' and '{d.dst}' are "
+                       f"{what}", d.span, hint="Arcs go from a place to a transition or back.")
+            return
+        pd = page.places[place]
+        expr = d.expr
+        info = page.transitions[trans]
+        if expr is None:
+            if ak in ("reset",):
+                pass
+            elif ak == "inhibitor":
+                pass
+            elif pd.colset in self.colsets and self.colsets[pd.colset].kind == "unit":
+                expr = A.Const(d.span, (), "unit")
+            else:
+                self.error("E0301", f"the arc between '{place}' and '{trans}' has no inscription", d.span,
+                           hint="Only arcs of unit places may omit the inscription (it means 1`()).")
+                return
+        elif ak == "reset":
+            self.error("E0301", "reset arcs take no inscription", d.span)
+            return
+        if expr is not None and pd.colset in self.cstypes:
+            elem = self.cstypes[pd.colset]
+            sink: list = []
+            self.ran_sink = sink if ak == "out" else None
+            try:
+                expr = self.infer_ms(expr, elem, env,
+                                     f"the inscription of arc '{d.src}' -> '{d.dst}' (place '{place}' holds "
+                                     f"{pd.colset})")
+                self.resolve_pending()
+            except Abort:
+                self.pending.clear()
+                return
+            finally:
+                self.ran_sink = None
+            if sink:
+                expr = _replace_ran(expr)
+                info.ran.extend((v, cs) for v, cs, _ in sink)
+                for v, _cs, sym in sink:
+                    self.variables[v] = sym
+            if ak in ("in", "both", "inhibitor") and _has_delay(expr):
+                self.error("E0206", "delays on input arcs ('preemption') are not supported", expr.span)
+                return
+        info.arcs.append(ArcInfo(d, ak, place, trans, expr))
+
+    def transition(self, page: PageInfo, info: TransInfo, env: Env) -> None:
+        d = info.decl
+        ok = True
+        for _i, g in enumerate(d.guards):
+            t = self.infer_top(g, env)
+            if t is None:
+                ok = False
+                continue
+            pt = T.prune(t)
+            if isinstance(pt, T.TCon) and pt.name == "list":
+                self.unify(pt.args[0], T.BOOL, g.span, f"the guard of transition '{d.name}'")
+            else:
+                self.unify(t, T.BOOL, g.span, f"the guard of transition '{d.name}'")
+        sink: list = []
+        self.ran_sink = sink  # CS.ran() in the delay is a choice of every value, as on output arcs
+        try:
+            if d.delay is not None:
+                t = self.infer_top(d.delay, env)
+                if t is None:
+                    ok = False
+                else:
+                    self.unify(t, T.INT, d.delay.span, f"the delay of transition '{d.name}' (an integer)")
+                    d.delay = _replace_ran(d.delay)
+        finally:
+            self.ran_sink = None
+        for v, cs, sym in sink:
+            info.ran.append((v, cs))
+            self.variables[v] = sym
+        if d.priority is not None:
+            t = self.infer_top(d.priority, env)
+            if t is None:
+                ok = False
+            else:
+                self.unify(t, T.INT, d.priority.span, f"the priority of transition '{d.name}' (an integer)")
+        if not ok:
+            return
+        # which variables are bound, and how
+        used: set[str] = set()
+        for a in info.arcs:
+            all_vars(a.expr, used)
+        for g in d.guards:
+            all_vars(g, used)
+        all_vars(d.delay, used)
+        all_vars(d.priority, used)
+        bound: set[str] = set()
+        for a in info.arcs:
+            if a.kind in ("in", "both") and a.expr is not None:
+                bound |= pattern_vars(a.expr)
+        conj = guard_conjuncts(d.guards)
+        changed = True
+        while changed:
+            changed = False
+            for c in conj:
+                gb = guard_binder(c, bound)
+                if gb is not None:
+                    bound |= pattern_vars(gb[0])
+                    changed = True
+        free = []
+        for v in sorted(used - bound):
+            sym = self.variables[v]
+            cs = self.colsets[sym.data]
+            if cs.values() is not None:
+                free.append(v)
+                continue
+            span = self._first_use(info, v)
+            binder = next((a for a in info.arcs if a.kind in ("in", "both") and a.expr is not None), None)
+            hint = (f"A variable must occur on an input arc of '{d.name}' (or be bound by its guard as "
+                    f"'{v} = ...') before it can be used; only variables of small colour sets may be unbound. ")
+            if binder is not None:
+                bvars = sorted(pattern_vars(binder.expr))
+                if bvars:
+                    hint += (f"'{bvars[0]}' is bound by the arc from '{binder.place}' at "
+                             f"{self._where(binder.decl.span)}.")
+            self.error("E0302", f"variable '{v}' of transition '{d.name}' is not bound (colour set "
+                       f"'{sym.data}' is too large to try every value)", span, hint=hint.strip(), name=v)
+        info.variables = sorted(used)
+        info.free = free
+
+    def _first_use(self, info: TransInfo, v: str) -> Span:
+        for a in info.arcs:
+            if a.expr is not None and v in all_vars(a.expr):
+                return _find_name_span(a.expr, v) or a.decl.span
+        for g in info.decl.guards:
+            sp = _find_name_span(g, v)
+            if sp:
+                return sp
+        return info.decl.span
+
+    def check_instances(self, page: PageInfo, pages: dict[str, PageInfo]) -> None:
+        seen = {}
+        for inst in page.instances:
+            if inst.name in seen:
+                self.error("E0202", f"instance '{inst.name}' is declared twice on page '{page.name}'",
+                           inst.name_span, notes=[f"first declared at {self._where(seen[inst.name])}"])
+                continue
+            seen[inst.name] = inst.span
+            mod = pages.get(inst.module)
+            if mod is None:
+                cand = did_you_mean(inst.module, pages)
+                self.error("E0201", f"unknown module '{inst.module}'", inst.module_span,
+                           hint=f"Did you mean '{cand}'?" if cand else "Declare it with 'module NAME { ... }'.",
+                           name=inst.module)
+                continue
+            given = {}
+            for aname, expr, span in inst.args:
+                if aname in given:
+                    self.error("E0204", f"parameter '{aname}' is given twice", span)
+                    continue
+                given[aname] = expr
+                psym = next((p for p in mod.params if p.name == aname), None)
+                if psym is None:
+                    cand = did_you_mean(aname, [p.name for p in mod.params])
+                    self.error("E0204", f"module '{mod.name}' has no parameter '{aname}'", span,
+                               hint=f"Did you mean '{cand}'?" if cand else
+                               f"Its parameters are: {', '.join(p.name for p in mod.params) or 'none'}.")
+                    continue
+                t = self.infer_top(expr, page.env)
+                if t is not None:
+                    self.unify(t, psym.type, expr.span, f"parameter '{aname}' of instance '{inst.name}'")
+            for p in mod.params:
+                if p.name not in given:
+                    self.error("E0204", f"instance '{inst.name}' does not give parameter '{p.name}' of module "
+                               f"'{mod.name}'", inst.span, hint=f"Add '{p.name} = VALUE' in the parentheses.")
+            bound_ports = set()
+            for port, pspan, sock, sspan in inst.binds:
+                pd = mod.places.get(port)
+                if pd is None or pd.port is None:
+                    ports = [n for n, x in mod.places.items() if x.port]
+                    cand = did_you_mean(port, ports)
+                    self.error("E0204", f"module '{mod.name}' has no port '{port}'", pspan,
+                               hint=f"Did you mean '{cand}'?" if cand else f"Its ports are: {', '.join(ports) or 'none'}.")
+                    continue
+                if port in bound_ports:
+                    self.error("E0204", f"port '{port}' is bound twice", pspan)
+                    continue
+                bound_ports.add(port)
+                sd = page.places.get(sock)
+                if sd is None:
+                    cand = did_you_mean(sock, page.places)
+                    self.error("E0201", f"unknown socket place '{sock}' on page '{page.name}'", sspan,
+                               hint=f"Did you mean '{cand}'?" if cand else "Sockets are places of the page that "
+                               "holds the instance.", name=sock)
+                    continue
+                if sd.colset != pd.colset and (sd.colset in self.colsets and pd.colset in self.colsets):
+                    a, b = self.colsets[sd.colset], self.colsets[pd.colset]
+                    base = lambda c: c.base if isinstance(c, C.AliasCS) else c  # noqa: E731
+                    if base(a) is not base(b):
+                        self.error("E0301", f"port '{port}' has colour set {pd.colset} but its socket '{sock}' has "
+                                   f"{sd.colset}", sspan, hint="A port and its socket must have the same colour set.")
+            for n, pd in mod.places.items():
+                if pd.port and n not in bound_ports:
+                    self.warn("W0101", f"port '{n}' of module '{mod.name}' is not bound in instance '{inst.name}'; "
+                              "it is an ordinary place of the instance", inst.span)
+
+
+
+
+def _has_delay(e) -> bool:
+    if isinstance(e, A.BinOp):
+        return e.op == "@+" or _has_delay(e.left) or _has_delay(e.right)
+    if isinstance(e, A.If):
+        return _has_delay(e.then) or _has_delay(e.else_)
+    return False
+
+
+def _replace_ran(e):
+    """Replace the App nodes marked by CS.ran() with their synthetic variables."""
+    vsym = getattr(e, "ran_var", None) if isinstance(e, A.App) else None
+    if vsym is not None:
+        n = A.Name(e.span, vsym.name, ty=e.ty)
+        n.ref = vsym
+        return n
+    for attr in ("items",):
+        if hasattr(e, attr) and isinstance(getattr(e, attr), list):
+            setattr(e, attr, [_replace_ran(x) for x in getattr(e, attr)])
+    if isinstance(e, A.RecordE):
+        e.fields = [(label, _replace_ran(x)) for label, x in e.fields]
+    for attr in ("fn", "arg", "left", "right", "operand", "cond", "then", "else_", "expr", "body", "subject"):
+        if hasattr(e, attr) and isinstance(getattr(e, attr), A.Expr):
+            setattr(e, attr, _replace_ran(getattr(e, attr)))
+    if isinstance(e, A.Case):
+        e.rules = [(p, _replace_ran(b)) for p, b in e.rules]
+    return e
+
+
+def _find_name_span(e, name: str) -> Span | None:
+    if isinstance(e, A.Name) and e.name == name:
+        return e.span
+    for c in children(e):
+        sp = _find_name_span(c, name)
+        if sp:
+            return sp
+    return None
+
+
