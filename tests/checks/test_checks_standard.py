@@ -52,7 +52,7 @@ def test_livelock_fairness_and_home():
     f = fairness(x, scc.decomposition, arc_t)
     assert f == {0: Fairness.FAIR, 1: Fairness.IMPARTIAL, 2: Fairness.NONE}
     home = home_markings(x, scc)
-    assert home.states == dead_markings(x).states
+    assert list(home.states) == dead_markings(x).states
 
 
 def test_just_but_not_fair():
@@ -79,7 +79,7 @@ def test_dead_transitions_and_live_all():
     e2 = coloured_register()
     x2, ti2, arc_t2, scc2 = _analyse(e2)
     assert live_transitions(x2, scc2, arc_t2) == [0, 1]
-    assert home_markings(x2, scc2).states == [0, 1]
+    assert list(home_markings(x2, scc2).states) == [0, 1]
 
 
 def test_integer_and_multiset_bounds():
