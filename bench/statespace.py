@@ -28,7 +28,7 @@ import time
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
-SHARED_BENCH = os.environ.get("CPN_SHARED_BENCH", os.path.join(ROOT, "..", "shared", "bench"))
+SHARED_BENCH = os.path.join(os.environ.get("CPN_SHARED_DIR") or os.path.join(ROOT, "..", "shared"), "bench")
 if not os.path.isdir(SHARED_BENCH):
     SHARED_BENCH = "/work/shared/bench"
 CPNCHECK_VENV = os.environ.get("CPNCHECK_VENV", "/work/cpncheck-venv")
