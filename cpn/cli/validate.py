@@ -71,7 +71,7 @@ def explore_figures(engine, max_states: int = MAX_STATES_DEFAULT) -> Figures:
     (so that from every state it can occur again); StableMarking, some place holds the same number of
     tokens in every reachable state (for a coloured place the colours may change: TokenRing-COL).
     """
-    from cpn.checks._common import TransitionIndex
+    from cpn.checks import TransitionIndex
     from cpn.checks.bounds import boundedness
     from cpn.checks.liveness import dead_markings, dead_transitions, live_transitions, scc_summary
     from cpn.statespace import ExploreOptions, Explorer

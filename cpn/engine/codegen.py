@@ -315,7 +315,7 @@ class TransitionCodegen:
     def generate(self) -> tuple[str, str]:
         t = self.t
         fname = f"bind_{t.index}"
-        params = ", ".join(f"M{i}" for i in range(len(self.read))) or "_"
+        params = ", ".join(f"M{i}" for i in range(len(self.read)))
         pos = {p: i for i, p in enumerate(self.read)}
         in_terms: list[tuple[int, Term, Any]] = []
         for a in t.arcs:

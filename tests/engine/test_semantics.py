@@ -216,3 +216,13 @@ def test_api_enabled_and_fire(reference):
     assert place(e, s1, "Top'Q 1") == {2: 1}
     with pytest.raises(ValueError):
         e.fire(s1, "Top't 1: {x=2}")
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_transition_without_input_arcs_is_always_enabled(reference):
+    e = load("colset S = int with 0..2; place Q : S;\ntrans gen;\narc gen -> Q : 1;").engine(reference=reference)
+    s = e.initial_state()
+    for n in (1, 2):
+        [(b, s)] = step(e, s)
+        assert b == "Top'gen 1: {}"
+        assert place(e, s, "Top'Q 1") == {1: n}
