@@ -359,15 +359,13 @@ class CompiledEngine(EngineAPI):
                     if step is None:
                         entry.append(cur)
                         continue
-                    p, sd, ad, reset = step
+                    p, sd, smemo, ad, amemo, reset = step
                     nid = 0 if reset else cur
-                    if sd is not None and not reset:
-                        m = sub_memo[p].get(sd)
-                        n2 = m.get(nid) if m is not None else None
+                    if smemo is not None:
+                        n2 = smemo.get(nid)
                         nid = n2 if n2 is not None else self._sub(p, nid, sd)
-                    if ad is not None:
-                        m = add_memo[p].get(ad)
-                        n2 = m.get(nid) if m is not None else None
+                    if amemo is not None:
+                        n2 = amemo.get(nid)
                         nid = n2 if n2 is not None else self._add(p, nid, ad)
                     entry.append(nid)
                 res.append(tuple(entry) + r[2])
@@ -420,7 +418,10 @@ class CompiledEngine(EngineAPI):
         changes, adds = self._recipe(info, consumed, produced)
         steps: list = [None] * len(info.read)
         for i, p, sd, ad, reset in changes:
-            steps[i] = (p, sd, ad, reset)
+            # the memo dicts themselves, so that a miss costs one lookup per place
+            smemo = self._sub_memo[p].setdefault(sd, {}) if sd is not None and not reset else None
+            amemo = self._add_memo[p].setdefault(ad, {}) if ad is not None else None
+            steps[i] = (p, sd, smemo, ad, amemo, reset)
         added = {p: (memo, did) for p, did, memo in adds}
         tail: list = []
         for p in info.writes:
