@@ -317,7 +317,7 @@ class _Declarations:
                          "net, left out *)")
             return
         origin = self._origin(el, None, "declaration")
-        if el.parts:
+        if el.text:
             origin = Origin(el.text_line, el.text_col, origin.element, None, origin.what)
             raw = el.text.replace("\r\n", "\n")
             lead = raw[: len(raw) - len(raw.lstrip())]

@@ -114,7 +114,7 @@ def _clean(text: str) -> str:
 def _text_origin(el: Element, elem_id: str, page: str | None, what: str) -> Origin:
     """Origin of the `<text>` of an inscription element (its character data, to the column)."""
     t = el.find("text")
-    if t is not None and t.parts:
+    if t is not None and t.text:
         # The char data starts where expat reported it; leading white space is stripped by _clean.
         raw = t.text.replace("\r\n", "\n")
         lead = raw[: len(raw) - len(raw.lstrip())]
