@@ -176,8 +176,6 @@ class CompiledEngine(EngineAPI):
         if self._flat:
             self._count = [0]
             self.successors = self._generate_successors()
-        self._untimed_plan = [i for i in self._plan if not i.timed]
-        self._timed_plan = [i for i in self._plan if i.timed]
 
     # ------------------------------------------------------------------ protocol
     def initial_state(self) -> tuple:
