@@ -10,7 +10,7 @@ standard report), states per second, peak memory after generation and after the 
 state (peak RSS growth during generation divided by the states). Medians over --repeat runs.
 
 With --cpncheck, the same nets as CPN Tools .cpn files (shared/bench/make_cpn_nets.py) are run with
-cpncheck from /work/cpncheck-venv (`pip install cpncheck` there): shared/bench/cpncheck_run.py for
+cpncheck from the virtual environment CPNCHECK_VENV (default ../cpncheck-venv; `pip install cpncheck` there): shared/bench/cpncheck_run.py for
 generation, `cpncheck check NET.cpn` for the full report, and the ratios are printed.
 """
 
@@ -29,9 +29,7 @@ import time
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(HERE)
 SHARED_BENCH = os.path.join(os.environ.get("CPN_SHARED_DIR") or os.path.join(ROOT, "..", "shared"), "bench")
-if not os.path.isdir(SHARED_BENCH):
-    SHARED_BENCH = "/work/shared/bench"
-CPNCHECK_VENV = os.environ.get("CPNCHECK_VENV", "/work/cpncheck-venv")
+CPNCHECK_VENV = os.environ.get("CPNCHECK_VENV", os.path.join(ROOT, "..", "cpncheck-venv"))
 DEFAULT_SIZES = {"dp": [5, 8, 10, 12, 14], "ms": [4, 5, 6, 7, 8]}
 
 
