@@ -466,15 +466,13 @@ class TransitionCodegen:
         # production
         produced = []
         for a in t.arcs:
-            if a.kind == "out" and a.expr is not None:
+            # a double arc puts back its own inscription (not everything taken from its place)
+            if a.kind in ("out", "both") and a.expr is not None:
                 parts = out_terms(a.expr, self.ec)
                 if parts:
                     var = f"_o{a.place}_{len(produced)}"
                     self.emit(f"{var} = {' + '.join(parts)}", ("arc", a))
                     produced.append(f"({a.place}, {var})")
-            elif a.kind == "both" and a.expr is not None:
-                c = f"c{pos[a.place]}"
-                produced.append(f"({a.place}, tuple((_v, _n, 0) for _v, _n in {c}.items()))")
         delay = "0"
         if t.delay is not None:
             self.emit(f"_td = {self.ec.expr(t.delay)}", ("delay", t.delay))

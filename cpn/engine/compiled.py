@@ -458,7 +458,7 @@ class CompiledEngine(EngineAPI):
             names = ["be"] + [f"r{p}" for p in read]
             for p in writes:
                 names += [f"m{p}", f"d{p}"]
-            lines.append(f"    for {', '.join(names)} in res:")
+            lines.append(f"    for {', '.join(names)}{',' if len(names) == 1 else ''} in res:")
             for p in writes:
                 lines.append(f"        x{p} = m{p}.get(s{p})")
                 lines.append(f"        if x{p} is None:")
@@ -613,6 +613,11 @@ class CompiledEngine(EngineAPI):
                 w = self._fire_memo.get(fk)
                 if w is None:
                     _, _, keys, consumed, produced, td = entry
+                    if info.uses_time and f != clock:
+                        # outputs and delays that read intTime() are evaluated at the firing time
+                        at_f = self._at_time(info, key[0], f, be)
+                        if at_f is not None:
+                            produced, td = at_f
                     w = self._writes(info, keys, consumed, produced, f, td)
                     self._fire_memo[fk] = w
                 sets, adds = w
@@ -635,6 +640,18 @@ class CompiledEngine(EngineAPI):
         if self._has_priorities and out:
             out = self._by_priority(out)
         return out
+
+    def _at_time(self, info, rkey, f, be):
+        """(produced, delay) of binding element `be` evaluated with the clock at f, or None if it is not
+        a binding at f (a guard that reads the clock)."""
+        key = (rkey, f)
+        res = info.memo.get(key)
+        if res is None:
+            res = self._timed_miss(info, key, f)
+        for entry in res:
+            if entry[1] == be:
+                return entry[4], entry[5]
+        return None
 
     def _shift(self, p: int, i: int, f: int) -> int:
         memo = self._shift_memo[p]

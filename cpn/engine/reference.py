@@ -136,8 +136,6 @@ class ReferenceEngine(EngineAPI):
             return [e.right]
         if isinstance(e, A.ToMs):
             return [e.expr]
-        if isinstance(e, A.If):
-            return self._summands(e.then) + self._summands(e.else_)
         return []
 
     def _bindings(self, t, marking):
@@ -274,7 +272,7 @@ class ReferenceEngine(EngineAPI):
         for a in t.arcs:
             if a.kind in ("out", "both") and a.expr is not None:
                 pl = self.places[a.place]
-                items = self._ms(a.expr, env, t) if a.kind == "out" else [(v, n, 0) for v, n in need[a.place].items()]
+                items = self._ms(a.expr, env, t)  # a double arc puts back its own inscription
                 for v, n, d in items:
                     if not pl.colour_set.contains(v):
                         raise EvaluationError(f"transition '{t.transition}' puts a value outside colour set "

@@ -226,3 +226,48 @@ def test_transition_without_input_arcs_is_always_enabled(reference):
         [(b, s)] = step(e, s)
         assert b == "Top'gen 1: {}"
         assert place(e, s, "Top'Q 1") == {1: n}
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_double_arc_puts_back_only_its_own_inscription(reference):
+    e = load("place P : C = 1`1 ++ 1`2;\ntrans t [x < y];\narc P <-> t : x;\narc P <-> t : y;"
+             ).engine(reference=reference)
+    [(_, s1)] = step(e, e.initial_state())
+    assert place(e, s1, "Top'P 1") == {1: 1, 2: 1}
+    e = load("place P : C = 3`1;\ntrans t;\narc P <-> t : x;\narc P -> t : x;").engine(reference=reference)
+    s = e.initial_state()
+    counts = []
+    while True:
+        succ = step(e, s)
+        if not succ:
+            break
+        s = succ[0][1]
+        counts.append(place(e, s, "Top'P 1").get(1, 0))
+    assert counts == [2, 1]
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_int_time_is_the_firing_time(reference):
+    e = load("colset T = int timed; colset I = int; var n : T;\nplace P : T = 1`1 @+ 4; place Q : I;\n"
+             "trans t @+ intTime();\narc P -> t : n;\narc t -> Q : intTime();\narc t -> P : n;"
+             ).engine(reference=reference)
+    [(_, s1)] = step(e, e.initial_state())
+    assert e.clock(s1) == 4
+    assert place(e, s1, "Top'Q 1") == {4: 1}
+    assert place(e, s1, "Top'P 1") == {(1, 8): 1}
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_transition_without_arcs_is_a_self_loop(reference):
+    e = load("place P : C = 1`0;\ntrans u;").engine(reference=reference)
+    s0 = e.initial_state()
+    [(b, s1)] = step(e, s0)
+    assert b == "Top'u 1: {}" and s1 == s0
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_variable_only_in_a_conditional_input_is_free(reference):
+    e = load("colset B = bool; var b : B;\nplace P : C = 1`2 ++ 1`1; place F : B = 1`false; place Q : C;\n"
+             "trans t;\narc F -> t : b;\narc P -> t : if b then 1`x else empty;\n"
+             "arc t -> Q : if b then 1`x else empty;").engine(reference=reference)
+    assert sorted(b for b, _ in step(e, e.initial_state())) == [f"Top't 1: {{b=false, x={i}}}" for i in range(4)]
