@@ -46,6 +46,10 @@ class _Lowerer:
         timed = cs.timed
         out: dict = {}
         items = m.items if isinstance(m, TimedMultiset) else [(v, n, 0) for v, n in m.items()]
+        if not timed and any(delay for _, _, delay in items):
+            self.error("E0301", f"the initial marking of place '{d.name}' has a time delay, but colour set "
+                       f"{cs.name} is not timed", d.init.span,
+                       hint="Remove the '@+' or declare the colour set with 'timed'.")
         for v, n, delay in items:
             if not cs.contains(v):
                 self.error("E0303", f"the initial marking of place '{d.name}' contains {_fmt(cs, v)}, which is "
@@ -75,6 +79,10 @@ class _Lowerer:
                     self.error("E0205", f"place '{name}' is in fusion set '{d.fusion}' with colour set {cs.name}, "
                                f"but '{other.name}' in the same set has {other.colour_set.name}", d.span,
                                hint="All places of a fusion set must have the same colour set.")
+                if d.init is not None and self.initial(d, cs, params) != other.initial:
+                    self.error("E0205", f"place '{name}' is in fusion set '{d.fusion}' with an initial marking "
+                               f"different from that of '{other.name}'", d.init.span,
+                               hint="The places of a fusion set are one place: give the initial marking once.")
                 other.aliases.append(iname)
                 local[name] = idx
                 continue

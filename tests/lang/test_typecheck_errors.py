@@ -77,3 +77,17 @@ def test_an_arc_between_two_ambiguous_names_is_an_error():
     with pytest.raises(ModelError) as info:
         cpn.loads(HEAD + "place A : U; trans A; place B : U; trans B;\narc A -> B;", "m.cpnet")
     assert info.value.errors[0].code == "E0203"
+
+
+def test_delay_on_an_untimed_initial_marking_is_an_error():
+    with pytest.raises(ModelError) as info:
+        cpn.loads(HEAD + "place P : INT5 = 1`1 @+ 3;", "m.cpnet")
+    assert info.value.errors[0].code == "E0301"
+
+
+def test_fusion_members_with_different_initial_markings():
+    with pytest.raises(ModelError) as info:
+        cpn.loads(HEAD + "place A : INT5 = 1`1 fusion F;\nplace B : INT5 = 1`0 fusion F;", "m.cpnet")
+    assert info.value.errors[0].code == "E0205"
+    m = cpn.loads(HEAD + "place A : INT5 = 1`1 fusion F;\nplace B : INT5 = 1`1 fusion F;", "m.cpnet")
+    assert m.net.places[0].aliases == ["Top'B 1"]
