@@ -1,10 +1,52 @@
-"""Conveniences shared by both engines, built on `successors` (docs/internals.md)."""
+"""What both engines share: set-up, binding elements (interned ids, their bindings and text), the clock,
+and conveniences built on `successors` (docs/internals.md)."""
 
 from __future__ import annotations
+
+from dataclasses import dataclass
+
+
+@dataclass(frozen=True, slots=True)
+class BindingElement:
+    transition: int  # index into engine.transitions
+    binding: dict
 
 
 class EngineAPI:
     """Mixed into the compiled engine and the reference interpreter."""
+
+    def _setup(self, net, time_condensation: bool) -> None:
+        self.net = net
+        self.places = net.places
+        self.transitions = net.transitions
+        self.is_timed = net.is_timed
+        self.time_condensation = bool(time_condensation) and self.is_timed
+        self.ev = net.checked.evaluator
+        self._be_index: dict = {}
+        self._be: list[tuple[int, tuple]] = []  # binding element id -> (transition, values of its variables)
+
+    def _intern_be(self, t: int, vals: tuple) -> int:
+        key = (t, vals)
+        i = self._be_index.get(key)
+        if i is None:
+            i = len(self._be)
+            self._be_index[key] = i
+            self._be.append(key)
+        return i
+
+    def binding_element(self, be: int) -> BindingElement:
+        t, vals = self._be[be]
+        return BindingElement(t, dict(zip(self.transitions[t].variables, vals)))
+
+    def format_binding_element(self, be: int) -> str:
+        """CPN Tools' text of a binding element: ``Top'Send 1: {a=1, f=3}``."""
+        t, vals = self._be[be]
+        tr = self.transitions[t]
+        parts = [f"{n}={self.net.colsets[self.net.variables[n].data].format(v)}" for n, v in zip(tr.variables, vals)]
+        return f"{tr.name}: {{{', '.join(parts)}}}"
+
+    def clock(self, state) -> int:
+        return state[-1] if self.is_timed else 0
 
     def enabled(self, state) -> list:
         """The enabled binding elements of `state`, in the engine's fixed order."""

@@ -8,7 +8,6 @@ per tuple of those ids (LTSmin's transition groups): most states reuse a result 
 from __future__ import annotations
 
 import operator
-from dataclasses import dataclass
 from itertools import chain
 
 from cpn.engine import codegen
@@ -29,12 +28,6 @@ MEMO_MISS_RATE: float = 0.8
 #: a transition keeps at most this many results; past it they are dropped (MS(8)'s Reply sees 111,537 keys,
 #: each about once)
 MEMO_MAX: int = 1 << 16
-
-
-@dataclass(frozen=True, slots=True)
-class BindingElement:
-    transition: int
-    binding: dict
 
 
 def canonical_key(d: dict):
@@ -86,15 +79,8 @@ class CompiledEngine(EngineAPI):
     reference = False
 
     def __init__(self, net, time_condensation: bool = False):
-        self.net = net
-        self.places = net.places
-        self.transitions = net.transitions
-        self.is_timed = net.is_timed
-        self.time_condensation = bool(time_condensation) and self.is_timed
-        self.ev = net.checked.evaluator
+        self._setup(net, time_condensation)
         self.store = _Places(net.places)
-        self._be_index: dict = {}
-        self._be: list[tuple[int, tuple]] = []
         self._add_memo: list[dict] = [{} for _ in net.places]  # place -> delta id -> {id: id}
         self._sub_memo: list[dict] = [{} for _ in net.places]
         self._members: list[set] = [set() for _ in net.places]  # values known to be in the colour set
@@ -184,20 +170,6 @@ class CompiledEngine(EngineAPI):
             ids.append(0)
         return tuple(ids)
 
-    def binding_element(self, be: int) -> BindingElement:
-        t, vals = self._be[be]
-        tr = self.transitions[t]
-        return BindingElement(t, dict(zip(tr.variables, vals)))
-
-    def format_binding_element(self, be: int) -> str:
-        t, vals = self._be[be]
-        tr = self.transitions[t]
-        parts = []
-        for name, v in zip(tr.variables, vals):
-            cs = self.net.colsets[self.net.variables[name].data]
-            parts.append(f"{name}={cs.format(v)}")
-        return f"{tr.name}: {{{', '.join(parts)}}}"
-
     def marking(self, s: tuple) -> list[dict]:
         d = self.store.dicts
         return [dict(d[p][s[p]]) for p in range(len(self.places))]
@@ -217,25 +189,12 @@ class CompiledEngine(EngineAPI):
         return tuple(frozenset(views[p][s[p]].items()) if self.store.timed[p] else s[p]
                      for p in range(len(self.places)))
 
-    def clock(self, s: tuple) -> int:
-        return s[-1] if self.is_timed else 0
-
     def format_marking(self, s: tuple, p: int) -> str:
         pl = self.places[p]
         return format_multiset(pl.colour_set, self.store.dicts[p][s[p]].items(), timed=pl.timed)
 
     def format_multiset(self, p: int, ms: dict) -> str:
         return format_multiset(self.places[p].colour_set, ms.items())
-
-    # ------------------------------------------------------------------ binding elements
-    def _intern_be(self, t: int, vals: tuple) -> int:
-        key = (t, vals)
-        i = self._be_index.get(key)
-        if i is None:
-            i = len(self._be)
-            self._be_index[key] = i
-            self._be.append(key)
-        return i
 
     # ------------------------------------------------------------------ successors
     def successors(self, s: tuple) -> list[tuple[int, tuple]]:

@@ -24,15 +24,8 @@ class ReferenceEngine(EngineAPI):
     reference = True
 
     def __init__(self, net, time_condensation: bool = False):
-        self.net = net
-        self.places = net.places
-        self.transitions = net.transitions
-        self.is_timed = net.is_timed
-        self.time_condensation = bool(time_condensation) and self.is_timed
-        self.ev = net.checked.evaluator
+        self._setup(net, time_condensation)
         self.uids = {name: sym.uid for name, sym in net.variables.items()}
-        self._be: list = []
-        self._be_index: dict = {}
 
     # -- states are tuples of frozensets of (key, count), plus the clock for timed nets
     def initial_state(self):
@@ -44,9 +37,6 @@ class ReferenceEngine(EngineAPI):
 
     def token_counts(self, s):
         return tuple(sum(n for _, n in fs) for fs in s[: len(self.places)])
-
-    def clock(self, s):
-        return s[-1] if self.is_timed else 0
 
     def untimed(self, s):
         out = []
@@ -63,25 +53,6 @@ class ReferenceEngine(EngineAPI):
     def format_marking(self, s, p):
         pl = self.places[p]
         return format_multiset(pl.colour_set, s[p], timed=pl.timed)
-
-    def binding_element(self, be):
-        from cpn.engine.compiled import BindingElement
-
-        t, vals = self._be[be]
-        return BindingElement(t, dict(zip(self.transitions[t].variables, vals)))
-
-    def format_binding_element(self, be):
-        t, vals = self._be[be]
-        tr = self.transitions[t]
-        parts = [f"{n}={self.net.colsets[self.net.variables[n].data].format(v)}" for n, v in zip(tr.variables, vals)]
-        return f"{tr.name}: {{{', '.join(parts)}}}"
-
-    def _intern(self, t, vals):
-        k = (t, vals)
-        if k not in self._be_index:
-            self._be_index[k] = len(self._be)
-            self._be.append(k)
-        return self._be_index[k]
 
     # -- evaluation helpers
     def _eval(self, e, env, t, what):
@@ -243,7 +214,7 @@ class ReferenceEngine(EngineAPI):
             now = [c for c, p in zip(now, prios) if p == best]
         out = []
         for _, t, assignment, need in now:
-            out.append((self._intern(t.index, tuple(assignment[v] for v in t.variables)),
+            out.append((self._intern_be(t.index, tuple(assignment[v] for v in t.variables)),
                         self._fire(t, marking, assignment, need, f)))
         return out
 

@@ -39,14 +39,7 @@ def translate(path: str | os.PathLike) -> str:
         E0501 when the file cannot be read or is not PNML; E0502 for every construct that has no
         translation (all of them in one error, sorted by position).
     """
-    path = os.fspath(path)
-    try:
-        with open(path, "rb") as fh:
-            data = fh.read()
-    except OSError as exc:
-        raise ModelError([Diagnostic("E0501", f"cannot read the PNML file: {exc.strerror}", Span(path, 1, 1))]) \
-            from None
-    return translate_text(data, path)
+    return translate_with_origins(path).text
 
 
 def translate_text(data: bytes | str, filename: str = "<pnml>") -> str:
