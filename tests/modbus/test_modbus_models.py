@@ -1,0 +1,210 @@
+"""The MODBUS, mMODBUS and Modbus-A models (issue 11): key figures and the thesis's claims on small scenarios.
+
+The claims are checked here in Python over the explored graph (markings without time stamps), so that
+the models are guarded whatever the state of the scenario checker; specs/modbus/ states the same
+properties in the scenario format.
+"""
+
+import os
+
+import pytest
+
+import cpn
+from cpn.statespace import Explorer
+from cpn.statespace.scc import strongly_connected_components
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+MODBUS = os.path.join(ROOT, "models", "modbus", "modbus.cpnet")
+MODBUS_A = os.path.join(ROOT, "models", "modbus", "modbus_a.cpnet")
+SPECS = os.path.join(ROOT, "specs", "modbus")
+
+# record fields in value order (sorted by label): adr, exc, fc, id, ok, reg, src
+ADR, EXC, FC, ID, OK, REG, SRC = range(7)
+A2 = {"CONFIG": '"A"', "ADRS": "[0,3,5,6]", "FCS": "[1,7,20]", "PO": "2"}
+D2 = {"CONFIG": '"D"', "ADRS": "[3,5]", "FCS": "[1,7,20,65]", "PO": "2"}
+
+
+class Explored:
+    def __init__(self, path, sets, time_condensation=True, reference=False):
+        self.model = cpn.load(path, set=sets)
+        self.engine = self.model.engine(time_condensation=time_condensation, reference=reference)
+        self.x = Explorer(self.engine).run()
+        assert self.x.complete
+        self.g = self.x.graph
+        self.place = {p.name: i for i, p in enumerate(self.model.net.places)}
+
+    def view(self, s, name):
+        p = self.place[name]
+        if hasattr(self.engine, "place_view"):
+            return self.engine.place_view(s, p)
+        ms = self.engine.marking(s)[p]
+        out = {}
+        for v, k in ms.items():
+            v = v[0] if self.model.net.places[p].timed else v
+            out[v] = out.get(v, 0) + k
+        return out
+
+    def only(self, s, name):
+        (v,) = self.view(s, name)
+        return v
+
+    def states(self):
+        return (self.g.states[i] for i in range(self.g.n_states))
+
+    def dead(self):
+        return [self.g.states[i] for i in self.g.dead_states()]
+
+    def dead_modulo_time(self):
+        return len({self.engine.untimed(s) for s in self.dead()})
+
+    def has_cycle(self):
+        return any(strongly_connected_components(self.g.n_states, self.g.offsets, self.g.dst).nontrivial)
+
+    def fired(self, transition):
+        names = {self.engine.binding_element(be).transition for be in self.g.bes}
+        return any(self.engine.transitions[t].name == transition for t in names)
+
+
+def slave_frames(e, s):
+    return [f for name in ("Modbus's2b 1", "Bus'Line 1", "Modbus'b2m 1") for f in e.view(s, name) if f[SRC] != 0]
+
+
+@pytest.fixture(scope="module")
+def a2():
+    return Explored(MODBUS, A2)
+
+
+def test_a2_key_figures(a2):
+    # python -m cpn explore models/modbus/modbus.cpnet --time-condensation --set ADRS='[0,3,5,6]' --set FCS='[1,7,20]'
+    assert (a2.g.n_states, a2.g.n_arcs, len(a2.g.dead_states())) == (145, 149, 1)
+
+
+def test_a2_claims_1_2_3_and_the_bus(a2):
+    frames = [(0, c) for c in (1, 7, 20)] + [(a, c) for a in (3, 5, 6) for c in (1, 7, 20)]
+    owners = {3: [1], 5: [2], 6: []}
+    broadcast_delivered = False
+    for s in a2.states():
+        # claim 1: one master state, every slave busy with at most one request
+        assert sum(a2.view(s, "Master'State 1").values()) == 1
+        for k in (1, 2):
+            busy = sum(sum(a2.view(s, f"Slave'{p} {k}").values())
+                       for p in ("Idle", "Processing", "FormatNormal", "FormatError", "WaitEvent"))
+            assert busy == 1
+        # claim 2: nothing is fetched or sent before the previous transaction is closed
+        closed = a2.only(s, "Master'LastClosed 1")
+        assert a2.only(s, "Master'NextId 1") - 1 <= closed + 1
+        assert all(f[ID] <= closed + 1 for f in a2.view(s, "Modbus'm2b 1"))
+        # claim 3: unicast to its owner only (none if absent), broadcast to both slaves
+        i, adr, recipients = a2.only(s, "Bus'Delivered 1")
+        if i:
+            assert list(recipients) == ([1, 2] if adr == 0 else owners[adr])
+            broadcast_delivered |= adr == 0
+        # S-P4: no reply to a broadcast; S-P5: replies from the requested address
+        for f in slave_frames(a2, s):
+            adr_req, fc_req = frames[f[ID] - 1]
+            assert adr_req != 0 and f[ADR] == adr_req
+            assert f[FC] in (fc_req, fc_req + 128)
+        # S-P9: one frame on the line at a time
+        assert sum(a2.view(s, "Bus'Line 1").values()) <= 1
+    assert broadcast_delivered
+
+
+def test_a2_claim_4_one_dead_marking_and_no_cycle(a2):
+    assert a2.dead_modulo_time() == 1
+    (d,) = a2.dead()
+    assert a2.only(d, "Master'LastClosed 1") == 12
+    assert a2.view(d, "Master'Queue 1") == {(): 1}
+    for name in ("Modbus'm2b 1", "Modbus'b2m 1", "Modbus's2b 1", "Modbus'b2s 1", "Bus'Line 1", "Master'Timer 1"):
+        assert not a2.view(d, name)
+    assert not a2.has_cycle()
+    # adr 6 has no slave: 1 + PO sends, then the error path
+    assert a2.fired("Master'GiveUp 1") and not a2.fired("Master'ReplyUnexpected 1")
+
+
+def test_time_stamps_only_multiply_dead_markings():
+    e = Explored(MODBUS, A2, time_condensation=False)
+    assert e.dead_modulo_time() == 1 and len(e.dead()) == 3
+
+
+def test_reference_interpreter_agrees_on_a1():
+    sets = {"ADRS": "[3,5]", "FCS": "[4,5,7]"}
+    compiled, reference = Explored(MODBUS, sets), Explored(MODBUS, sets, reference=True)
+    assert (compiled.g.n_states, compiled.g.n_arcs) == (reference.g.n_states, reference.g.n_arcs) == (79, 81)
+
+
+def test_multislave_answers_with_the_requested_address():
+    e = Explored(MODBUS, {"CONFIG": '"C"', "S2ADRS": "[5,6]", "ADRS": "[3,5,6]", "FCS": "[7]", "PO": "0"})
+    replies = {(f[SRC], f[ADR]) for s in e.states() for f in e.view(s, "Modbus'b2m 1")}
+    assert replies == {(1, 3), (2, 5), (2, 6)}
+
+
+def test_superslave_answers_by_broadcast_within_its_window():
+    e = Explored(MODBUS, D2)
+    super_frames = set()
+    for s in e.states():
+        assert sum(e.view(s, "Slave'WaitEvent 1").values()) == sum(e.view(s, "Slave'Window 1").values())
+        assert sum(e.view(s, "Bus'Line 1").values()) <= 1
+        super_frames |= {(f[SRC], f[ADR]) for f in slave_frames(e, s) if f[FC] in (65, 65 + 128)}
+    assert super_frames == {(1, 0), (2, 5)}  # SuperSlave: broadcast; standard slave: exception (SS-P7)
+    assert e.fired("Slave'WindowExpired 1") and e.fired("Master'SuperAnswer 1")
+    assert e.dead_modulo_time() == 1 and not e.has_cycle()
+
+
+@pytest.mark.parametrize("sets,broken", [
+    ({**D2, "T3": "TW + TBC - 1"}, "collision"),
+    ({**A2, "BCAST_ANY": "true", "MUTANT": '"bcast-reply"'}, "reply to broadcast"),
+    ({"ADRS": "[3,5]", "FCS": "[4]", "MUTANT": '"early-send"'}, "early send"),
+])
+def test_mutants_are_caught(sets, broken):
+    e = Explored(MODBUS, sets)
+    found = set()
+    for s in e.states():
+        if sum(e.view(s, "Bus'Line 1").values()) > 1:
+            found.add("collision")
+        if any(f[ADR] == 0 and f[SRC] != 0 and f[FC] != 65 for f in slave_frames(e, s)):
+            found.add("reply to broadcast")
+        if e.only(s, "Master'NextId 1") - 1 > e.only(s, "Master'LastClosed 1") + 1:
+            found.add("early send")
+    assert broken in found
+
+
+def _modbus_a(**sets):
+    return Explored(MODBUS_A, {k: str(v) for k, v in sets.items()})
+
+
+def test_modbus_a_allocates_ids_by_position():
+    # python -m cpn explore models/modbus/modbus_a.cpnet --time-condensation --set N=4
+    e = _modbus_a(N=4)
+    assert (e.g.n_states, e.g.n_arcs, e.dead_modulo_time()) == (81, 84, 1)
+    (d,) = e.dead()
+    assert e.view(d, "Chain'Slaves 1") == {(k, 0, k): 1 for k in range(1, 5)}  # (position, Default, ID)
+    assert e.only(d, "Master'Stats 1") == (1, 5, 4)  # 1 reset, N + 1 configurations, N acks
+    assert e.only(d, "Master'PollLog 1") == ((0, 0), (4, 1), (3, 1), (2, 1), (1, 1))
+    assert not e.has_cycle()
+
+
+@pytest.mark.parametrize("sets,duplicate,all_allocated", [
+    ({"E3": "true", "ACK_POLICY": '"same"'}, True, False),
+    ({"E3": "true", "ACK_POLICY": '"stop"'}, False, False),
+    ({"E3": "true", "ACK_POLICY": '"next"'}, False, True),
+    ({"E1": "true"}, True, False),
+    ({"MUTANT": '"forward-config"'}, True, False),
+])
+def test_modbus_a_faults_break_the_expected_properties(sets, duplicate, all_allocated):
+    e = _modbus_a(N=3, **sets)
+    dup = any(len([i for (_, mode, i) in e.view(s, "Chain'Slaves 1") if mode == 0 and i > 0])
+              != len({i for (_, mode, i) in e.view(s, "Chain'Slaves 1") if mode == 0 and i > 0})
+              for s in e.states() if e.only(s, "Master'Phase 1") not in (0, 1))
+    allocated = all(e.view(d, "Chain'Slaves 1") == {(k, 0, k): 1 for k in (1, 2, 3)} for d in e.dead())
+    assert dup == duplicate
+    assert allocated == all_allocated
+
+
+def test_scenario_files_name_existing_models_and_properties():
+    files = [os.path.join(d, f) for d, _, fs in os.walk(SPECS) for f in fs if f.endswith(".toml")]
+    assert len(files) >= 17 + 2 + 16
+    for path in files:
+        text = open(path, encoding="utf-8").read()
+        model = next(line.split('"')[1] for line in text.splitlines() if line.startswith("model = "))
+        assert os.path.exists(os.path.normpath(os.path.join(os.path.dirname(path), model))), path
+        assert "[[property]]" in text
