@@ -208,3 +208,19 @@ def test_scenario_files_name_existing_models_and_properties():
         model = next(line.split('"')[1] for line in text.splitlines() if line.startswith("model = "))
         assert os.path.exists(os.path.normpath(os.path.join(os.path.dirname(path), model))), path
         assert "[[property]]" in text
+
+
+def test_modbus_a_42_slaves_reproduces_the_papers_checkpoints():
+    # MODBUS.md 4.3: after the 9th, 18th, 30th and 44th iteration (message of the master), 8, 17, 29 and
+    # all 42 slaves are configured; here on the full state space of the 42-slave chain
+    e = _modbus_a(N=42)
+    configured_after = {}
+    for s in e.states():
+        resets, configs, acks = e.only(s, "Master'Stats 1")
+        phase = e.only(s, "Master'Phase 1")
+        if isinstance(phase, tuple) and phase[0] == 3:  # WaitAck: iteration resets + configs is in flight
+            continue
+        n = sum(1 for (_, mode, i) in e.view(s, "Chain'Slaves 1") if mode == 0 and i > 0)
+        configured_after.setdefault(resets + configs, set()).add(n)
+    assert {i: configured_after[i] for i in (9, 18, 30, 44)} == {9: {8}, 18: {17}, 30: {29}, 44: {42}}
+    assert max(configured_after) == 44
