@@ -224,3 +224,12 @@ def test_modbus_a_42_slaves_reproduces_the_papers_checkpoints():
         configured_after.setdefault(resets + configs, set()).add(n)
     assert {i: configured_after[i] for i in (9, 18, 30, 44)} == {9: {8}, 18: {17}, 30: {29}, 44: {42}}
     assert max(configured_after) == 44
+
+
+def test_exceptions_01_02_04():
+    e = Explored(MODBUS, {"EXTRA": "[(3, 3, 99), (5, 4, 1)]", "FAIL_FCS": "[4]"})
+    replies = {(f[ADR], f[FC], f[EXC]) for s in e.states() for f in e.view(s, "Modbus'b2m 1")}
+    assert replies == {(3, 133, 1), (3, 135, 1), (5, 133, 1),   # unsupported codes 5, 7
+                       (3, 131, 2), (5, 132, 2),                # registers 99 and 1 are not theirs
+                       (3, 132, 4), (5, 132, 4),                # code 4 fails while processing (S7)
+                       (5, 7, 0)}
