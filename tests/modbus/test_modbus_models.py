@@ -6,6 +6,7 @@ properties in the scenario format.
 """
 
 import os
+import tomllib
 
 import pytest
 
@@ -202,12 +203,15 @@ def test_modbus_a_faults_break_the_expected_properties(sets, duplicate, all_allo
 
 def test_scenario_files_name_existing_models_and_properties():
     files = [os.path.join(d, f) for d, _, fs in os.walk(SPECS) for f in fs if f.endswith(".toml")]
-    assert len(files) >= 17 + 2 + 16
+    assert len(files) >= 17 + 2 + 18
     for path in files:
-        text = open(path, encoding="utf-8").read()
-        model = next(line.split('"')[1] for line in text.splitlines() if line.startswith("model = "))
-        assert os.path.exists(os.path.normpath(os.path.join(os.path.dirname(path), model))), path
-        assert "[[property]]" in text
+        with open(path, "rb") as fh:
+            scenario = tomllib.load(fh)
+        model = os.path.normpath(os.path.join(os.path.dirname(path), scenario["model"]))
+        assert os.path.exists(model), path
+        assert scenario["property"], path
+        for prop in scenario["property"]:
+            assert prop["name"].startswith(("S-P", "M-P", "SS-P", "MA")), (path, prop["name"])
 
 
 def test_modbus_a_42_slaves_reproduces_the_papers_checkpoints():
