@@ -1,8 +1,10 @@
-"""`cpn-verify convert FILE.cpn [-o FILE.cpnet]`: translate a CPN Tools net into the `.cpnet` language.
+"""`cpn-verify convert FILE [-o FILE.cpnet]`: translate a CPN Tools or PNML net into the `.cpnet` language.
 
-The translation is written, then loaded through the front end (parser, type checker, lowering) so that
-a net that would not load is reported at once. Exit status: 0 written and loads, 65 the net cannot be
-translated or the translation does not load (the diagnostics name the element of the .cpn file).
+The translation goes to standard output, or to the file named by -o (checked before anything is read),
+never beside the input. It is then loaded through the front end (parser, type checker, lowering) so that
+a net that would not load is reported at once. Exit status: 0 written and loads, 64 bad usage, 65 the
+net cannot be translated or the translation does not load (the diagnostics name the element of the
+input file), 73 the -o file cannot be written.
 """
 
 from __future__ import annotations
@@ -11,8 +13,10 @@ import argparse
 import os
 import sys
 
-EXIT_OK = 0
-EXIT_DATAERR = 65
+from cpn.cli._common import ExitStatus, UsageError, add_quiet_option, prepare_outputs, write_output
+
+EXIT_OK = ExitStatus.OK
+EXIT_DATAERR = ExitStatus.DATAERR
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
@@ -21,9 +25,10 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
         description=__doc__.split("\n\n")[1], formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("model", metavar="FILE", help="a net saved by CPN Tools (.cpn) or a PNML file (.pnml)")
     p.add_argument("-o", "--output", metavar="FILE.cpnet",
-                   help="where to write the translation (default: FILE.cpnet next to the input; '-' for stdout)")
+                   help="write the translation to FILE.cpnet ('-' or no -o: standard output)")
     p.add_argument("--no-check", action="store_true",
                    help="write the translation without loading it through the front end")
+    add_quiet_option(p)
     return p
 
 
@@ -45,31 +50,25 @@ def _check(text: str, name: str):
 
 
 def run(args) -> int:
-    from cpn.errors import ModelError
-
+    (output,) = prepare_outputs(("-o", args.output or "-"))
+    if not os.path.isfile(args.model):
+        raise UsageError(f"no such file: '{args.model}'" if not os.path.exists(args.model)
+                         else f"'{args.model}' is not a file")
     is_pnml = args.model.lower().endswith(".pnml")
-    try:
-        if is_pnml:
-            from cpn.io.pnml import translate_with_origins
+    if is_pnml:
+        from cpn.io.pnml import translate_with_origins
 
-            translation = translate_with_origins(args.model)
-        else:
-            from cpn.io.cpntools import translate_file
-
-            translation = translate_file(args.model)
-    except ModelError as exc:
-        print(exc.render(), file=sys.stderr)
-        return exc.exit_status
-    out = args.output or _default_output(args.model)
-    if out == "-":
-        sys.stdout.write(translation.text)
-        name = _default_output(args.model)
+        translation = translate_with_origins(args.model)
     else:
-        with open(out, "w", encoding="utf-8") as f:
-            f.write(translation.text)
-        name = out
-    for note in getattr(translation, "notes", ()):
-        print(f"note: {note}", file=sys.stderr)
+        from cpn.io.cpntools import translate_file
+
+        translation = translate_file(args.model)
+    out = output.path
+    write_output(output, translation.text)
+    name = out if out != "-" else _default_output(args.model)  # the name a redirection would give it
+    if not args.quiet:
+        for note in getattr(translation, "notes", ()):
+            print(f"note: {note}", file=sys.stderr)
     if args.no_check:
         return EXIT_OK
     err = _check(translation.text, name)
@@ -87,6 +86,6 @@ def run(args) -> int:
         print(f"note: the translation was written to {out if out != '-' else 'standard output'}, "
               "but it does not load", file=sys.stderr)
         return EXIT_DATAERR
-    if out != "-":
+    if out != "-" and not args.quiet:
         print(f"wrote {out}", file=sys.stderr)
     return EXIT_OK

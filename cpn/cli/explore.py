@@ -1,7 +1,8 @@
 """`cpn-verify explore MODEL`: build the state space and print the standard report.
 
 Exit statuses: 0 the state space is complete; 2 partial (a limit stopped the search); 64 bad usage;
-65 bad model. The report goes to stdout; progress (on a terminal only) and errors go to stderr.
+65 bad model; 73 an output file cannot be written (checked before the search starts). The report goes
+to stdout; progress (on a terminal only) and errors go to stderr.
 """
 
 from __future__ import annotations
@@ -12,85 +13,79 @@ import os
 import sys
 import time
 
-EXIT_COMPLETE = 0
-EXIT_PARTIAL = 2
-EXIT_USAGE = 64
-EXIT_DATAERR = 65
+from cpn.cli._common import (
+    ExitStatus,
+    UsageError,
+    add_limit_options,
+    add_output_option,
+    add_quiet_option,
+    add_set_option,
+    check_limits,
+    parse_sets,
+    prepare_outputs,
+    sets_of,
+    write_output,
+)
+from cpn.report._words import noun
+
+EXIT_COMPLETE = ExitStatus.OK
+EXIT_PARTIAL = ExitStatus.UNKNOWN
+EXIT_USAGE = ExitStatus.USAGE
+EXIT_DATAERR = ExitStatus.DATAERR
+
+__all__ = ["add_parser", "explore_engine", "load_engine", "parse_sets", "run"]
 
 DESCRIPTION = """Build the full state space (occurrence graph) of MODEL breadth-first and print
 CPN Tools' standard state space report: statistics, integer and multi-set bounds, home markings,
-dead markings (with the shortest trace to the first one), dead and live transition instances, and
-fairness. A search stopped by a limit is reported as Partial with its unexpanded nodes, which are
-never counted as dead markings."""
+dead markings (each, up to a cap, with its marking and a shortest trace), dead and live transition
+instances, and fairness. A search stopped by a limit is reported as Partial with its unexpanded nodes,
+which are never counted as dead markings. Properties are verified (exit 1 when one is violated) by
+'cpn-verify check'."""
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
     p = subparsers.add_parser("explore", help="build the state space and print the standard report",
                               description=DESCRIPTION)
     p.add_argument("model", metavar="MODEL", help="model file (.cpnet, .pnml or .cpn)")
-    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
-                   help="override a 'val' constant of the model (may be repeated)")
-    p.add_argument("--max-states", type=int, metavar="N", help="stop after N states")
-    p.add_argument("--max-arcs", type=int, metavar="N", help="stop after N arcs")
-    p.add_argument("--max-seconds", type=float, metavar="S", help="stop after S seconds of generation")
-    p.add_argument("--max-memory", type=float, metavar="MB", help="stop when the process uses MB MiB")
+    add_set_option(p)
+    add_limit_options(p)
     p.add_argument("--time-condensation", action="store_true",
                    help="identify states that differ only by a uniform time shift (CPN Tools' CreationTime)")
     p.add_argument("--no-time-growth-check", action="store_true",
                    help="do not stop a timed search whose markings modulo time no longer change")
-    p.add_argument("--json", metavar="FILE", help="write the result as JSON to FILE ('-': stdout, no text)")
-    p.add_argument("--dot", metavar="FILE", help="write the state space and SCC graph as DOT (small nets)")
-    p.add_argument("--graphml", metavar="FILE", help="write the state space and SCC graph as GraphML")
-    p.add_argument("--quiet", action="store_true", help="no progress line")
+    add_output_option(p, "--json", "the result as JSON")
+    add_output_option(p, "--dot", "the state space and SCC graph as DOT (small nets)")
+    add_output_option(p, "--graphml", "the state space and SCC graph as GraphML (small nets)")
+    add_quiet_option(p)
     p.add_argument("--trace-to-dead", action="store_true",
-                   help="show the marking changes of each step of the trace to the first dead marking")
+                   help="show the marking changes of each step of the traces to the dead markings")
+    p.add_argument("--max-listed", type=int, metavar="N", default=None,
+                   help="cut every long listing of the text report (multi-set bounds, dead markings, "
+                   "trace steps, transition instances) at N entries and say how many were left out "
+                   "(default: the caps in docs/statespace.md; 0: no cap); the JSON keeps everything")
     return p
 
 
-def parse_sets(items: list[str]) -> dict[str, str]:
-    out = {}
-    for item in items:
-        name, eq, value = item.partition("=")
-        if not eq or not name.strip():
-            raise ValueError(f"--set expects NAME=VALUE, got '{item}'")
-        out[name.strip()] = value.strip()
-    return out
-
-
 def load_engine(path: str, sets: dict[str, str], time_condensation: bool):
-    """The model's engine; raises ModelError (bad model) or OSError (unreadable file)."""
-    import cpn
+    """The model's engine; raises ModelError (bad model) or ConfigurationError (no such file)."""
+    from cpn.cli._common import load_model
 
-    model = cpn.load(path, set=sets)
-    return model.engine(time_condensation=time_condensation)
+    return load_model(path, sets).engine(time_condensation=time_condensation)
+
+
+def _outputs(args):
+    return prepare_outputs(("--json", args.json), ("--dot", args.dot), ("--graphml", args.graphml))
 
 
 def run(args) -> int:
-    from cpn.errors import ConfigurationError, ModelError
-
-    try:
-        sets = parse_sets(args.set)
-        for name in ("max_states", "max_arcs", "max_seconds", "max_memory"):
-            v = getattr(args, name)
-            if v is not None and v <= 0:
-                raise ValueError(f"--{name.replace('_', '-')} must be positive, got {v:g}")
-    except ValueError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return EXIT_USAGE
+    sets = sets_of(args)
+    check_limits(args)
+    if args.max_listed is not None and args.max_listed < 0:
+        raise UsageError(f"--max-listed must not be negative, got {args.max_listed}")
+    _outputs(args)  # before the model is even loaded: a long run must never be lost to a bad path
     if not os.path.exists(args.model):
-        print(f"error: no such model file: '{args.model}'", file=sys.stderr)
-        return EXIT_USAGE
-    try:
-        engine = load_engine(args.model, sets, args.time_condensation)
-    except ModelError as err:
-        print(err.render(), file=sys.stderr)
-        return EXIT_DATAERR
-    except ConfigurationError as err:
-        print(err.render(), file=sys.stderr)
-        return EXIT_USAGE
-    except OSError as exc:
-        print(f"error: cannot read '{args.model}': {exc}", file=sys.stderr)
-        return EXIT_USAGE
+        raise UsageError(f"no such model file: '{args.model}'")
+    engine = load_engine(args.model, sets, args.time_condensation)
     return explore_engine(engine, args, sets)
 
 
@@ -106,75 +101,83 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
     """Explore, report and export for an already built engine (the part of `run` after loading)."""
     from cpn.errors import EvaluationError
     from cpn.report import build_report, render_text, to_json
-    from cpn.report.graphs import MAX_EXPORT_STATES, TooLargeToExport, write_dot, write_graphml
+    from cpn.report.graphs import MAX_EXPORT_STATES, TooLargeToExport, render_dot, render_graphml
     from cpn.statespace import Explorer
 
+    outputs = {o.option: o for o in _outputs(args)}
+    quiet = bool(getattr(args, "quiet", False))
     options = _options(args)
-    display = _ProgressLine() if (not args.quiet and sys.stderr.isatty()) else None
+    display = _ProgressLine() if (not quiet and sys.stderr.isatty()) else None
     try:
         x = Explorer(engine, options, progress=display).run()
-    except EvaluationError as err:
+    except EvaluationError:
         if display:
             display.close()
-        print(err.render(), file=sys.stderr)
-        return EXIT_DATAERR
+        raise
     if display:
         display.close()
+    memory_default = bool(getattr(args, "max_memory_is_default", False))
     opts = {"set": sets or {}, "max_states": args.max_states, "max_arcs": args.max_arcs,
             "max_seconds": args.max_seconds, "max_memory_mb": args.max_memory,
+            "max_memory_is_default": bool(memory_default),
             "time_condensation": bool(args.time_condensation)}
     report = build_report(x, model=os.path.abspath(args.model), options=opts)
-    json_to_stdout = args.json == "-"
-    if not json_to_stdout:
-        text = render_text(report)
-        if not args.trace_to_dead:
-            text = _without_marking_changes(text)
+    if not any(o.to_stdout for o in outputs.values()):
+        max_listed = getattr(args, "max_listed", None)
+        text = render_text(report, marking_changes=bool(getattr(args, "trace_to_dead", False)),
+                           **({} if max_listed is None else {"max_listed": max_listed or None}))
         sys.stdout.write(text)
-    if args.json:
-        data = json.dumps(to_json(report), indent=2, ensure_ascii=False)
-        if json_to_stdout:
-            sys.stdout.write(data + "\n")
-        else:
-            with open(args.json, "w", encoding="utf-8") as fh:
-                fh.write(data + "\n")
-    for path, writer, kind in ((args.dot, write_dot, "DOT"), (args.graphml, write_graphml, "GraphML")):
-        if not path:
+    if "--json" in outputs:
+        write_output(outputs["--json"], json.dumps(to_json(report), indent=2, ensure_ascii=False) + "\n")
+    for option, render, kind in (("--dot", render_dot, "DOT"), ("--graphml", render_graphml, "GraphML")):
+        if option not in outputs:
             continue
         try:
-            writer(report, path)
+            text = render(report)
         except TooLargeToExport:
             print(f"note: {kind} export skipped: the state space has {x.n_states:,} states and exports are "
                   f"limited to {MAX_EXPORT_STATES:,} (a drawing that large is unreadable); use --json "
                   "for the figures or a --max-states limit for a partial drawing", file=sys.stderr)
+            continue
+        write_output(outputs[option], text)
     if not x.complete:
-        print(f"partial state space: stopped because {x.stop_reason.describe(x.options)}; "
-              f"{x.unexpanded:,} states were not expanded", file=sys.stderr)
+        # a warning about the result, so printed even with --quiet
+        reason = x.stop_reason.describe(x.options)
+        if x.stop_reason.value == "max_memory" and memory_default:
+            reason += " (the default limit: raise it with --max-memory MB, or --max-memory 0 for none)"
+        print(f"partial state space: stopped because {reason}; {x.unexpanded:,} "
+              f"{noun(x.unexpanded, 'state was', 'states were')} not expanded", file=sys.stderr)
         for note in report.notes:
             print(f"note: {note}", file=sys.stderr)
         return EXIT_PARTIAL
     return EXIT_COMPLETE
 
 
-def _without_marking_changes(text: str) -> str:
-    """Drop the per-step marking changes of the dead-marking trace (kept with --trace-to-dead)."""
-    out = []
-    in_trace = False
-    for line in text.split("\n"):
-        if line.startswith("  Shortest trace to dead marking"):
-            in_trace = True
-        elif in_trace and not line.startswith("     "):
-            in_trace = False
-        if in_trace and line.startswith("          "):
-            continue
-        out.append(line)
-    return "\n".join(out)
+# The fields of the progress line, most important first; those that do not fit the terminal are dropped.
+def progress_text(p, width: int) -> str:
+    """The progress line for a terminal `width` columns wide: never longer than width - 1 (no wrap)."""
+    fields = [f"states {p.states:,}", f"arcs {p.arcs:,}", f"{p.seconds:,.1f} s", f"queue {p.queue:,}",
+              f"{p.memory_mb:,.0f} MiB", f"{p.states_per_second:,.0f} states/s"]
+    order = [0, 1, 3, 5, 4, 2]  # display order: states, arcs, queue, states/s, MiB, seconds
+    limit = max(width - 1, 1)
+    for keep in range(len(fields), 0, -1):
+        shown = [fields[i] for i in order if i < keep]
+        line = "exploring  " + "  ".join(shown)
+        if len(line) <= limit:
+            return line
+        line = "  ".join(shown)
+        if len(line) <= limit:
+            return line
+    return line[:limit]
 
 
 class _ProgressLine:
-    """A rich live line on stderr (states, arcs, queue, states/s, memory), shown after one second."""
+    """A rich live line on stderr (states, arcs, queue, states/s, memory), shown after one second and
+    fitted to the terminal's width so that it never wraps."""
 
     def __init__(self):
         self._live = None
+        self._console = None
         self._t0 = time.perf_counter()
 
     def __call__(self, p) -> None:
@@ -184,11 +187,16 @@ class _ProgressLine:
             from rich.console import Console
             from rich.live import Live
 
-            self._live = Live("", console=Console(stderr=True), transient=True, auto_refresh=False)
+            self._console = Console(stderr=True)
+            self._live = Live("", console=self._console, transient=True, auto_refresh=False)
             self._live.start()
-        self._live.update(
-            f"[bold]exploring[/]  states {p.states:,}  arcs {p.arcs:,}  queue {p.queue:,}  "
-            f"{p.states_per_second:,.0f} states/s  {p.memory_mb:,.0f} MiB  {p.seconds:,.1f} s", refresh=True)
+        from rich.text import Text
+
+        line = progress_text(p, self._console.width)
+        text = Text(line, no_wrap=True, overflow="crop")
+        if line.startswith("exploring"):
+            text.stylize("bold", 0, len("exploring"))
+        self._live.update(text, refresh=True)
 
     def close(self) -> None:
         if self._live is not None:

@@ -1,8 +1,8 @@
 """The `cpn-verify` command line: argument parsing, subcommands and exit statuses.
 
-The only module that reads argv, writes to stdout/stderr for the user, or calls sys.exit.
-Each subcommand lives in its own module `cpn.cli.<name>` with `add_parser(subparsers)` and
-`run(args) -> int`.
+The only module that reads argv and calls sys.exit. Each subcommand lives in its own module
+`cpn.cli.<name>` with `add_parser(subparsers)` and `run(args) -> int`; what they share (options, output
+checks, the exit statuses and the mapping of errors to them) is in `cpn.cli._common`.
 """
 
 from __future__ import annotations
@@ -11,23 +11,9 @@ import argparse
 import importlib
 import sys
 
-EXIT_OK = 0
-EXIT_VIOLATED = 1
-EXIT_UNKNOWN = 2
-EXIT_USAGE = 64
-EXIT_DATAERR = 65
-EXIT_SOFTWARE = 70
+from cpn.cli._common import EPILOG, ExitStatus, exit_status_of, render_error
 
-EPILOG = """exit statuses:
-  0   every property holds on a complete state space (lint: no errors)
-  1   a property is violated
-  2   unknown: a limit stopped the search first
-  64  bad usage
-  65  bad model or scenario file
-  70  internal error (a bug in cpn-verify: please report it)
-"""
-
-SUBCOMMANDS = ["lint", "simulate", "explore", "convert", "validate"]
+SUBCOMMANDS = ["lint", "simulate", "explore", "check", "convert", "validate"]
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -49,45 +35,38 @@ def build_parser() -> argparse.ArgumentParser:
                 continue
             raise
         p = module.add_parser(sub)
-        p.set_defaults(_run=module.run)
+        if p.epilog is None:
+            p.epilog = EPILOG
+            p.formatter_class = argparse.RawDescriptionHelpFormatter
+        p.set_defaults(_run=module.run, _parser=p)
     return parser
-
-
-class _UsageError(Exception):
-    pass
 
 
 def main(argv: list[str] | None = None) -> int:
     parser = build_parser()
     try:
-        args = parser.parse_args(argv)
+        args, extra = parser.parse_known_args(argv)
+        if extra:
+            # an unknown flag after a subcommand: that subcommand's usage, not the top level's
+            (getattr(args, "_parser", None) or parser).error(f"unrecognized arguments: {' '.join(extra)}")
     except SystemExit as exc:  # argparse exits 2 on bad usage; our contract says 64
-        code = exc.code if isinstance(exc.code, int) else EXIT_USAGE
-        return EXIT_USAGE if code == 2 else code
+        code = exc.code if isinstance(exc.code, int) else ExitStatus.USAGE
+        return int(ExitStatus.USAGE if code == 2 else code)
     if not getattr(args, "_run", None):
         parser.print_help(sys.stderr)
-        return EXIT_USAGE
+        return int(ExitStatus.USAGE)
     try:
         return int(args._run(args))
-    except KeyboardInterrupt:
-        print("interrupted", file=sys.stderr)
-        return 130
     except BrokenPipeError:
-        return EXIT_OK
-    except Exception as exc:  # noqa: BLE001 - the last line of defence: no traceback for users
-        from cpn.errors import CpnError
+        return int(ExitStatus.OK)
+    except (Exception, KeyboardInterrupt) as exc:  # noqa: BLE001 - the last line of defence
+        status = exit_status_of(exc)
+        if status is ExitStatus.SOFTWARE:
+            import traceback
 
-        if isinstance(exc, CpnError):
-            print(exc.render(), file=sys.stderr)
-            return exc.exit_status
-        import traceback
-
-        traceback.print_exc()
-        print(
-            "error: internal error in cpn-verify (this is a bug, please report it with the model)",
-            file=sys.stderr,
-        )
-        return EXIT_SOFTWARE
+            traceback.print_exc()
+        print(render_error(exc), file=sys.stderr)
+        return int(status)
 
 
 def entry() -> None:

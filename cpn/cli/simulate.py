@@ -3,10 +3,21 @@
 from __future__ import annotations
 
 import argparse
+import json
 import random
-import sys
 
-from cpn.cli.explore import parse_sets
+from cpn.cli._common import (
+    ExitStatus,
+    UsageError,
+    add_output_option,
+    add_quiet_option,
+    add_set_option,
+    load_model,
+    prepare_outputs,
+    sets_of,
+    write_output,
+)
+from cpn.report._words import noun
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
@@ -17,58 +28,59 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p.add_argument("model", metavar="MODEL", help="model file (.cpnet, .pnml or .cpn)")
     p.add_argument("--steps", type=int, default=20, metavar="N", help="at most N steps (default 20)")
     p.add_argument("--seed", type=int, default=0, metavar="S", help="random seed (default 0)")
-    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
-                   help="override a 'val' constant of the model (may be repeated)")
+    add_set_option(p)
     p.add_argument("--show-marking", action="store_true", help="print the final marking")
+    add_output_option(p, "--json", "the trace and the final marking as JSON")
+    add_quiet_option(p)
     return p
 
 
 def run(args) -> int:
-    import cpn
-    from cpn.errors import ConfigurationError, EvaluationError, ModelError
+    from cpn.errors import EvaluationError
 
     if args.steps < 0:
-        print("error: --steps must not be negative", file=sys.stderr)
-        return 64
-    try:
-        sets = parse_sets(args.set)
-        model = cpn.load(args.model, set=sets)
-    except ValueError as exc:
-        print(f"error: {exc}", file=sys.stderr)
-        return 64
-    except ModelError as err:
-        print(err.render(), file=sys.stderr)
-        return 65
-    except ConfigurationError as err:
-        print(err.render(), file=sys.stderr)
-        return 64
+        raise UsageError("--steps must not be negative")
+    sets = sets_of(args)
+    outputs = {o.option: o for o in prepare_outputs(("--json", args.json))}
+    text = not ("--json" in outputs and outputs["--json"].to_stdout)
+    model = load_model(args.model, sets)
     engine = model.engine()
     rng = random.Random(args.seed)
     s = engine.initial_state()
-    trace = []
-    width = len(str(args.steps))
-    print(f"{'step':>{max(width, 4)}}  {'time':>6}  binding element")
-    step = 0
+    steps: list[dict] = []
+    width = max(len(str(args.steps)), 4)
+    if text:
+        print(f"{'step':>{width}}  {'time':>6}  binding element")
+    ended = "steps"
     try:
-        while step < args.steps:
+        while len(steps) < args.steps:
             succ = engine.successors(s)
             if not succ:
-                print(f"dead marking after {step} steps: no binding element is enabled")
+                ended = "dead"
                 break
             be, s = succ[rng.randrange(len(succ))]
-            step += 1
-            trace.append(engine.format_binding_element(be))
-            print(f"{step:>{max(width, 4)}}  {engine.clock(s):>6}  {trace[-1]}")
-        else:
-            print(f"stopped after {step} steps (--steps {args.steps})")
+            steps.append({"step": len(steps) + 1, "time": engine.clock(s),
+                          "binding_element": engine.format_binding_element(be)})
+            if text:
+                print(f"{steps[-1]['step']:>{width}}  {steps[-1]['time']:>6}  {steps[-1]['binding_element']}")
     except EvaluationError as err:
-        err.trace = trace
-        print(err.render(), file=sys.stderr)
-        return 65
-    if args.show_marking:
+        err.trace = [st["binding_element"] for st in steps]
+        raise
+    n = len(steps)
+    if text:
+        if ended == "dead":
+            print(f"dead marking after {n} {noun(n, 'step')}: no binding element is enabled")
+        elif not args.quiet:
+            print(f"stopped after {n} {noun(n, 'step')} (--steps {args.steps})")
+    marking = {p.name: engine.format_marking(s, p.index) for p in engine.places}
+    if args.show_marking and text:
         print()
-        for p in engine.places:
-            text = engine.format_marking(s, p.index)
-            if text != "empty":
-                print(f"{p.name}: {text}")
-    return 0
+        for name, m in marking.items():
+            if m != "empty":
+                print(f"{name}: {m}")
+    if "--json" in outputs:
+        result = {"model": args.model, "seed": args.seed, "max_steps": args.steps, "set": sets,
+                  "steps": steps, "ended": ended, "time": engine.clock(s),
+                  "final_marking": {k: v for k, v in marking.items() if v != "empty"}}
+        write_output(outputs["--json"], json.dumps(result, indent=2, ensure_ascii=False) + "\n")
+    return ExitStatus.OK

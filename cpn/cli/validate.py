@@ -18,6 +18,15 @@ import sys
 import time
 from dataclasses import dataclass, field
 
+from cpn.cli._common import (
+    ExitStatus,
+    UsageError,
+    add_output_option,
+    add_quiet_option,
+    prepare_outputs,
+    write_output,
+)
+
 FIGURES = ("states", "arcs", "arcs_distinct_marking_pairs", "max_tokens_per_marking", "max_tokens_in_place",
            "dead_markings", "deadlock_reachable")
 PROPERTIES = ("OneSafe", "QuasiLiveness", "Liveness", "StableMarking")
@@ -35,7 +44,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    help="validate only instances whose name matches NAME (a glob; may be repeated)")
     p.add_argument("--skip-larger-than", type=int, metavar="N",
                    help="skip instances whose published state count exceeds N")
-    p.add_argument("--json", metavar="FILE", help="also write the results as JSON to FILE")
+    add_output_option(p, "--json", "the results as JSON")
+    add_quiet_option(p)
     return p
 
 
@@ -55,6 +65,7 @@ class Figures:
     scc_nodes: int = 0
     scc_arcs: int = 0  # state-space arcs between two SCCs (CPN Tools' count)
     complete: bool = True
+    stop_message: str = ""
     properties: dict[str, bool] = field(default_factory=dict)
 
     @property
@@ -75,13 +86,15 @@ def explore_figures(engine, max_states: int = MAX_STATES_DEFAULT) -> Figures:
     from cpn.checks.bounds import boundedness
     from cpn.checks.liveness import dead_markings, dead_transitions, live_transitions, scc_summary
     from cpn.statespace import ExploreOptions, Explorer
+    from cpn.statespace.options import default_max_memory_mb
 
-    x = Explorer(engine, ExploreOptions(max_states=max_states)).run()
+    x = Explorer(engine, ExploreOptions(max_states=max_states, max_memory_mb=default_max_memory_mb())).run()
     b = boundedness(x)
     fig = Figures(states=x.n_states, arcs=x.n_arcs, max_tokens_per_marking=b.max_tokens_per_marking,
                   max_tokens_in_place=b.max_tokens_in_place,
                   max_of_one_colour_in_place=b.max_of_one_colour_in_place,
-                  dead_markings=dead_markings(x).count, complete=x.complete)
+                  dead_markings=dead_markings(x).count, complete=x.complete,
+                  stop_message=x.stop_reason.describe(x.options))
     if not x.complete:
         return fig
     g = x.graph
@@ -169,7 +182,7 @@ def validate_instance(directory: str, inst: dict, max_states: int) -> Result:
     if not fig.complete:
         # figures of part of a state space say nothing about the whole (a maximum may come later)
         res.status = "partial"
-        res.reason = f"stopped at --max-states={max_states:,}; nothing compared"
+        res.reason = f"stopped because {fig.stop_message}; nothing compared"
         return res
     res.differences = compare(inst, res.found)
     res.status = "mismatch" if res.differences else "match"
@@ -217,19 +230,20 @@ def format_row(r: Result) -> str:
 
 def run(args) -> int:
     directory = args.directory
+    outputs = {o.option: o for o in prepare_outputs(("--json", args.json))}
+    text = not ("--json" in outputs and outputs["--json"].to_stdout)
+    out = sys.stdout if text else sys.stderr
     spec = os.path.join(directory, "expected.json")
     try:
         with open(spec, encoding="utf-8") as fh:
             corpus = json.load(fh)
     except (OSError, ValueError) as exc:
-        print(f"error: cannot read {spec}: {exc}", file=sys.stderr)
-        return 64
+        raise UsageError(f"cannot read {spec}: {exc}") from None
     instances = corpus["instances"] if isinstance(corpus, dict) else corpus
     chosen = select(instances, args.only, args.skip_larger_than)
     if not chosen:
-        print("error: no instance matches --only", file=sys.stderr)
-        return 64
-    print(_row([n for n, _w, _a in _COLS]))
+        raise UsageError("no instance matches --only")
+    print(_row([n for n, _w, _a in _COLS]), file=out)
     results = []
     for inst, skip in chosen:
         if skip:
@@ -237,23 +251,23 @@ def run(args) -> int:
         else:
             r = validate_instance(directory, inst, args.max_states)
         results.append(r)
-        print(format_row(r), flush=True)
+        print(format_row(r), file=out, flush=True)
         for d in r.differences:
-            print(f"    {d}")
-        if r.reason and r.status != "match":
+            print(f"    {d}", file=out)
+        if r.reason and r.status != "match" and not (args.quiet and r.status in ("skipped", "partial")):
             for line in r.reason.splitlines()[:12]:
-                print(f"    {line}")
+                print(f"    {line}", file=out)
     counts = {s: sum(r.status == s for r in results) for s in ("match", "mismatch", "error", "partial", "skipped")}
     total = sum(r.seconds for r in results)
     print(f"\n{counts['match']} match, {counts['mismatch']} mismatch, {counts['error']} error, "
-          f"{counts['partial']} partial, {counts['skipped']} skipped; {total:.1f} s")
-    if args.json:
+          f"{counts['partial']} partial, {counts['skipped']} skipped; {total:.1f} s", file=out)
+    if "--json" in outputs:
         payload = [{"name": r.name, "format": r.format, "status": r.status, "seconds": round(r.seconds, 3),
                     "found": r.found, "differences": r.differences, "reason": r.reason} for r in results]
-        with open(args.json, "w", encoding="utf-8") as fh:
-            json.dump({"directory": directory, "max_states": args.max_states, "results": payload}, fh, indent=2)
+        write_output(outputs["--json"], json.dumps({"directory": directory, "max_states": args.max_states,
+                                                    "results": payload}, indent=2) + "\n")
     if counts["mismatch"] or counts["error"]:
-        return 1
+        return ExitStatus.VIOLATED
     if counts["partial"]:
-        return 2
-    return 0
+        return ExitStatus.UNKNOWN
+    return ExitStatus.OK

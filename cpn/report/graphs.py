@@ -61,8 +61,8 @@ def _combined(r: Report):
     return nx.union(state_graph(r), nx.MultiDiGraph(scc_graph(r)))
 
 
-def write_dot(r: Report, path: str) -> None:
-    """One DOT file with two digraphs: the state space, then the SCC graph."""
+def render_dot(r: Report) -> str:
+    """DOT text with two digraphs: the state space, then the SCC graph."""
     parts = []
     for name, G in (("statespace", state_graph(r)), ("sccgraph", scc_graph(r))):
         lines = [f"digraph {name} {{"]
@@ -73,16 +73,27 @@ def write_dot(r: Report, path: str) -> None:
             lines.append(f'  "{u}" -> "{v}"' + (f' [label="{_esc(lab)}"]' if lab else "") + ";")
         lines.append("}")
         parts.append("\n".join(lines))
-    with open(path, "w", encoding="utf-8") as f:
-        f.write("\n".join(parts) + "\n")
+    return "\n".join(parts) + "\n"
 
 
-def write_graphml(r: Report, path: str) -> None:
-    """One GraphML file holding the state space and the SCC graph (nodes 'scc<k>') side by side."""
+def render_graphml(r: Report) -> str:
+    """GraphML text holding the state space and the SCC graph (nodes 'scc<k>') side by side."""
     import networkx as nx
 
     G = nx.MultiDiGraph(_combined(r))
-    nx.write_graphml(G, path)
+    return "\n".join(nx.generate_graphml(G)) + "\n"
+
+
+def write_dot(r: Report, path: str) -> None:
+    """`render_dot` written to the file `path`."""
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(render_dot(r))
+
+
+def write_graphml(r: Report, path: str) -> None:
+    """`render_graphml` written to the file `path`."""
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(render_graphml(r))
 
 
 def _esc(s: str) -> str:

@@ -52,6 +52,9 @@ def to_json(r: Report) -> dict:
             "untimed_count": r.dead.untimed_count,
             "unexpanded": r.dead.unexpanded,
             "trace": r.dead_trace.to_json() if r.dead_trace is not None else None,
+            "listed_cap": r.dead_listed_cap,
+            "listed": [{"node": d.state + 1, "marking": d.marking, "time": d.time, "trace": d.trace.to_json()}
+                       for d in r.dead_listed],
         },
         "dead_transitions": r.dead_transitions,
         "live_transitions": r.live_transitions,

@@ -26,6 +26,19 @@ from cpn.checks import (
 )
 from cpn.statespace import Exploration, Trace, shortest_trace
 
+# How many dead markings the report lists with their marking and a shortest trace (text and JSON).
+DEAD_LISTED: int = 10
+
+
+@dataclass(frozen=True)
+class DeadMarking:
+    """One listed dead marking: its state id (0-based), the non-empty places and a shortest trace."""
+
+    state: int
+    marking: dict  # place instance name -> marking text, non-empty places only, in the engine's order
+    time: int | None  # the model time of the state (timed nets), else None
+    trace: Trace
+
 
 @dataclass
 class Report:
@@ -40,11 +53,13 @@ class Report:
     home: HomeMarkings
     fairness: dict | None  # name -> Fairness; None = no infinite occurrence sequences
     fairness_known: bool  # False on a partial space (not computed)
-    dead_trace: Trace | None
+    dead_trace: Trace | None  # the trace to the first dead marking (= dead_listed[0].trace)
     seconds: float  # the whole report: generation plus analysis
     analysis_seconds: float
     generated: str = ""
     notes: list = field(default_factory=list)
+    dead_listed: list = field(default_factory=list)  # list[DeadMarking], the first DEAD_LISTED ones
+    dead_listed_cap: int | None = DEAD_LISTED
 
     @property
     def engine(self):
@@ -56,8 +71,12 @@ class Report:
 
 
 def build_report(x: Exploration, model: str = "<unsaved net>", options: dict | None = None,
-                 trace_to_dead: bool = True) -> Report:
-    """Compute every section of the standard report from an exploration."""
+                 trace_to_dead: bool = True, dead_listed: int | None = DEAD_LISTED) -> Report:
+    """Compute every section of the standard report from an exploration.
+
+    The first `dead_listed` dead markings (all of them for None) are listed with their marking and a
+    shortest trace (with `trace_to_dead`; without it, none is listed).
+    """
     t0 = time.perf_counter()
     engine = x.engine
     names = [t.name for t in engine.transitions]
@@ -74,9 +93,11 @@ def build_report(x: Exploration, model: str = "<unsaved net>", options: dict | N
     if x.complete:
         f = fairness(x, scc.decomposition, arc_t)
         fair = None if f is None else {names[t]: cls for t, cls in f.items()}
-    trace = None
-    if trace_to_dead and dead.states:
-        trace = shortest_trace(x.graph, dead.states[0], engine)
+    listed = []
+    if trace_to_dead:
+        chosen = dead.states if dead_listed is None else dead.states[:dead_listed]
+        listed = [dead_marking(x, i) for i in chosen]
+    trace = listed[0].trace if listed else None
     analysis = time.perf_counter() - t0
     notes = []
     if x.time_growth is not None:
@@ -92,7 +113,21 @@ def build_report(x: Exploration, model: str = "<unsaved net>", options: dict | N
         dead_transitions=dead_t, live_transitions=live_names, home=home, fairness=fair,
         fairness_known=x.complete, dead_trace=trace, seconds=x.seconds + analysis,
         analysis_seconds=analysis, generated=time.strftime("%a %b %d %H:%M:%S %Y"), notes=notes,
+        dead_listed=listed, dead_listed_cap=dead_listed,
     )
 
 
-__all__ = ["Fairness", "Report", "build_report"]
+def dead_marking(x: Exploration, state: int) -> DeadMarking:
+    """State `state` with its non-empty places and a shortest trace from the initial state."""
+    engine = x.engine
+    s = x.graph.states[state]
+    marking = {}
+    for p, place in enumerate(engine.places):
+        text = engine.format_marking(s, p)
+        if text != "empty":
+            marking[place.name] = text
+    timed = bool(getattr(engine, "is_timed", False))
+    return DeadMarking(state, marking, engine.clock(s) if timed else None, shortest_trace(x.graph, state, engine))
+
+
+__all__ = ["DEAD_LISTED", "DeadMarking", "Fairness", "Report", "build_report", "dead_marking"]

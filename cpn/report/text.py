@@ -1,25 +1,33 @@
 """The standard report as text, in CPN Tools' layout (OGNewSaveReport), with our honest additions:
-the partial-search status and unexpanded states, time condensation, dead markings modulo time, and the
-shortest trace to the first dead marking.
+the partial-search status and unexpanded states, time condensation, dead markings modulo time, and each
+dead marking (up to a cap) with its marking and a shortest trace.
 
-Imports `cpn.report.model` only.
+Long listings are cut (multi-set bounds of a counter place can have a million colours) and say how
+many entries were left out; the JSON result keeps everything. Imports `cpn.report.model` only.
 """
 
 from __future__ import annotations
 
+from cpn.report._words import noun
 from cpn.report.model import Report
 
 RULE = "-" * 72
 NAME_WIDTH = 24  # CPN Tools wraps place and transition names of 24 or more characters
+COLUMN_WIDTH = 11  # CPN Tools' column width; a wider number widens its column (two spaces at least)
+
+# Default caps of the text listings (`render_text(max_listed=N)` sets them all to N; None: no cap).
+MULTISET_TERMS: int = 20  # colours of one multi-set bound
+TRACE_STEPS: int = 100  # steps of one trace
+NAMES: int = 100  # transition instances in one list
 
 
 def _heading(title: str) -> list[str]:
     return ["", "", f" {title}", RULE, ""]
 
 
-def _node_list(ids: list[int], total: int) -> str:
+def _node_list(ids, total: int) -> str:
     """CPN Tools' None / All / [a,b] / N [a,b,c,d,e,...] form, with node numbers counted from 1."""
-    if not ids:
+    if not len(ids):
         return "None"
     if len(ids) == total:
         return "All"
@@ -29,30 +37,89 @@ def _node_list(ids: list[int], total: int) -> str:
     return f"{len(ids)} [{shown},...]"
 
 
-def _name_list(names: list[str], total: int) -> list[str]:
+def _cut(n: int, cap: int | None) -> int:
+    return n if cap is None else min(n, cap)
+
+
+def _left_out(n: int, what: str, where: str = "the JSON result lists all") -> str:
+    return f"... {n:,} more {what} not shown ({where}; --max-listed N shows more)"
+
+
+def _name_list(names: list[str], total: int, cap: int | None) -> list[str]:
     if not names:
         return ["     None"]
     if len(names) == total:
         return ["     All"]
-    return [f"     {n}" for n in names]
+    k = _cut(len(names), cap)
+    out = [f"     {n}" for n in names[:k]]
+    if k < len(names):
+        out.append("     " + _left_out(len(names) - k, "transition instances"))
+    return out
 
 
-def _row(name: str, *cols: str) -> list[str]:
-    cells = "".join(c.ljust(11) for c in cols).rstrip()
+def _widths(rows: list[tuple]) -> list[int]:
+    """One width per column: CPN Tools' 11, or the widest cell plus two spaces."""
+    ncols = max((len(cols) for _name, cols in rows), default=0)
+    return [max([COLUMN_WIDTH] + [len(cols[i]) + 2 for _n, cols in rows if i < len(cols)]) for i in range(ncols)]
+
+
+def _row(name: str, cols: tuple, widths: list[int]) -> list[str]:
+    cells = "".join(c.ljust(w) for c, w in zip(cols, widths)).rstrip()
     if len(name) < NAME_WIDTH:
         return [f"     {name.ljust(NAME_WIDTH)}{cells}"]
     return [f"     {name}", " " * (5 + NAME_WIDTH) + cells]
 
 
-def _multiset(name: str, text: str) -> list[str]:
+def _table(rows: list[tuple], header: tuple | None = None) -> list[str]:
+    widths = _widths(rows + ([("", header)] if header else []))
+    out = []
+    if header:
+        out.append(" " * (5 + NAME_WIDTH) + "".join(h.ljust(w) for h, w in zip(header, widths)).rstrip())
+    for name, cols in rows:
+        out += _row(name, cols, widths)
+    return out
+
+
+def _multiset(name: str, text: str, cap: int | None) -> list[str]:
     parts = text.split("++")
+    k = _cut(len(parts), cap)
     lines = [f"     {name}", " " * 25 + (parts[0] + ("++" if len(parts) > 1 else ""))]
-    for i, p in enumerate(parts[1:], 1):
+    for i, p in enumerate(parts[1:k], 1):
         lines.append(p + ("++" if i < len(parts) - 1 else ""))
+    if k < len(parts):
+        lines.append(" " * 25 + _left_out(len(parts) - k, noun(len(parts) - k, "colour")))
     return lines
 
 
-def render_text(r: Report) -> str:
+def _dead_markings(r: Report, marking_changes: bool, steps_cap: int | None) -> list[str]:
+    out = []
+    for d in r.dead_listed:
+        out += ["", f"  Dead marking {d.state + 1}" + ("" if d.time is None else f" (model time {d.time})")]
+        out += [f"          {place}: {text}" for place, text in d.marking.items()] or ["          (every place is empty)"]
+        n = len(d.trace)
+        out.append(f"  Shortest trace to dead marking {d.state + 1} ({n} {noun(n, 'step')})")
+        k = _cut(n, steps_cap)
+        for i, step in enumerate(d.trace.steps[:k], 1):
+            out.append(f"     {i}. {step.text}")
+            if marking_changes:
+                for place, before, after in step.changes:
+                    out.append(f"          {place}: {before} -> {after}")
+        if k < n:
+            out.append("     " + _left_out(n - k, noun(n - k, "step"), "the JSON result has the whole trace"))
+    total = r.dead.count
+    if total > len(r.dead_listed) and r.dead_listed:
+        out += ["", f"  ({len(r.dead_listed)} of {total:,} dead markings listed with a trace; the JSON result "
+                "lists the same ones, and the count)"]
+    return out
+
+
+def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | None | str = "default") -> str:
+    """The report as text. `marking_changes`: show each trace step's marking changes. `max_listed`:
+    one cap for every long listing (None: no cap); by default MULTISET_TERMS, TRACE_STEPS and NAMES."""
+    if max_listed == "default":
+        terms_cap, steps_cap, names_cap = MULTISET_TERMS, TRACE_STEPS, NAMES
+    else:
+        terms_cap = steps_cap = names_cap = max_listed
     x = r.exploration
     g = x.graph
     out = ["CPN Tools state space report for:", r.model, f"Report generated: {r.generated}"]
@@ -61,7 +128,8 @@ def render_text(r: Report) -> str:
 
     out += _heading("Statistics")
     status = "Full" if x.complete else (
-        f"Partial (stopped because {x.stop_reason.describe(x.options)}; {x.unexpanded} unexpanded nodes)")
+        f"Partial (stopped because {x.stop_reason.describe(x.options)}; {x.unexpanded} unexpanded "
+        f"{noun(x.unexpanded, 'node')})")
     out += ["  State Space", f"     Nodes:  {x.n_states}", f"     Arcs:   {x.n_arcs}",
             f"     Secs:   {int(x.seconds)}", f"     Status: {status}", ""]
     out += ["  Scc Graph", f"     Nodes:  {r.scc.nodes}", f"     Arcs:   {r.scc.arcs}",
@@ -74,15 +142,14 @@ def render_text(r: Report) -> str:
     out += _heading("Boundedness Properties")
     if not x.complete:
         out += ["  (bounds of the explored part of a partial state space)", ""]
-    out += ["  Best Integer Bounds", " " * (5 + NAME_WIDTH) + "Upper".ljust(11) + "Lower"]
-    for b in r.bounds.places:
-        out += _row(b.place, str(b.upper), str(b.lower))
+    out += ["  Best Integer Bounds"]
+    out += _table([(b.place, (str(b.upper), str(b.lower))) for b in r.bounds.places], ("Upper", "Lower"))
     out += ["", "  Best Upper Multi-set Bounds"]
     for b in r.bounds.places:
-        out += _multiset(b.place, b.upper_text)
+        out += _multiset(b.place, b.upper_text, terms_cap)
     out += ["", "  Best Lower Multi-set Bounds"]
     for b in r.bounds.places:
-        out += _multiset(b.place, b.lower_text)
+        out += _multiset(b.place, b.lower_text, terms_cap)
     out += ["", "  Token maxima",
             f"     Tokens in one marking:          {r.bounds.max_tokens_per_marking}",
             f"     Tokens in one place:            {r.bounds.max_tokens_in_place}",
@@ -103,21 +170,16 @@ def render_text(r: Report) -> str:
     if r.dead.untimed_count is not None:
         out.append(f"     {r.dead.untimed_count} after removing time stamps")
     if r.dead.unexpanded:
-        out.append(f"     (plus {r.dead.unexpanded} unexpanded nodes, which are not dead markings)")
-    if r.dead_trace is not None:
-        out += ["", f"  Shortest trace to dead marking {r.dead_trace.target + 1} "
-                f"({len(r.dead_trace)} steps)"]
-        for k, step in enumerate(r.dead_trace.steps, 1):
-            out.append(f"     {k}. {step.text}")
-            for place, before, after in step.changes:
-                out.append(f"          {place}: {before} -> {after}")
+        out.append(f"     (plus {r.dead.unexpanded} unexpanded {noun(r.dead.unexpanded, 'node')}, "
+                   f"which {noun(r.dead.unexpanded, 'is not a dead marking', 'are not dead markings')})")
+    out += _dead_markings(r, marking_changes, steps_cap)
     ntrans = len(r.engine.transitions)
     out += ["", "  Dead Transition Instances"]
     out += (["     None seen in the explored part"] if not x.complete and not r.dead_transitions
-            else _name_list(r.dead_transitions, ntrans))
+            else _name_list(r.dead_transitions, ntrans, names_cap))
     out += ["", "  Live Transition Instances"]
     out += (["     Unknown (the state space is partial)"] if r.live_transitions is None
-            else _name_list(r.live_transitions, ntrans))
+            else _name_list(r.live_transitions, ntrans, names_cap))
 
     out += _heading("Fairness Properties")
     if not r.fairness_known:
@@ -125,6 +187,5 @@ def render_text(r: Report) -> str:
     elif r.fairness is None:
         out.append("     No infinite occurrence sequences.")
     else:
-        for name, cls in r.fairness.items():
-            out += _row(name, cls.value)
+        out += _table([(name, (cls.value,)) for name, cls in r.fairness.items()])
     return "\n".join(out) + "\n"

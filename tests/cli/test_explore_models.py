@@ -34,7 +34,7 @@ def test_explore_partial_exit_2(capsys):
     assert main(["explore", os.path.join(MODELS, "counter.cpnet"), "--max-states", "25", "--quiet"]) == 2
     captured = capsys.readouterr()
     assert "Status: Partial" in captured.out
-    assert "24 unexpanded" not in captured.out and "1 unexpanded nodes" in captured.out
+    assert "24 unexpanded" not in captured.out and "1 unexpanded node)" in captured.out
 
 
 def test_explore_time_growth_exit_2_with_hint(capsys):

@@ -49,8 +49,8 @@ def test_text_sections_in_cpn_tools_order():
 def test_text_partial_status_and_unexpanded():
     r = _report(counter(), max_states=7)
     text = render_text(r)
-    assert "Status: Partial (stopped because max_states=7 was reached; 1 unexpanded nodes)" in text
-    assert "  Dead Markings\n     None\n     (plus 1 unexpanded nodes" in text
+    assert "Status: Partial (stopped because max_states=7 was reached; 1 unexpanded node)" in text
+    assert "  Dead Markings\n     None\n     (plus 1 unexpanded node, which is not a dead marking)" in text
     assert "Unknown (the state space is partial)" in text
     d = to_json(r)
     assert d["statespace"]["complete"] is False and d["statespace"]["unexpanded"] == 1

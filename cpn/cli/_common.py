@@ -1,0 +1,263 @@
+"""What every subcommand shares: the exit statuses, the common options (`--set`, limits, outputs,
+`--quiet`), checking output paths before any work, and turning errors into exit statuses in one place.
+
+Imports `cpn.errors`, `cpn.statespace.options` and the standard library.
+"""
+
+from __future__ import annotations
+
+import argparse
+import enum
+import os
+import sys
+from dataclasses import dataclass
+
+STDOUT = "-"
+
+
+class ExitStatus(enum.IntEnum):
+    """The exit statuses of `cpn-verify` (sysexits numbers where they exist)."""
+
+    OK = 0  # done; every property holds on a complete state space; lint: no error
+    VIOLATED = 1  # a property is violated (`cpn-verify check`)
+    UNKNOWN = 2  # a limit stopped the search before anything was violated
+    USAGE = 64  # EX_USAGE: bad options, a missing input file
+    DATAERR = 65  # EX_DATAERR: a bad model or scenario file, an error while evaluating the model
+    SOFTWARE = 70  # EX_SOFTWARE: a bug in cpn-verify
+    CANTCREAT = 73  # EX_CANTCREAT: an output file cannot be written
+    INTERRUPTED = 130  # 128 + SIGINT: interrupted outside a search (a search reports a partial result)
+
+    @staticmethod
+    def worst(statuses) -> ExitStatus:
+        """The most serious of several statuses (for one command over several files)."""
+        return max((ExitStatus(s) for s in statuses), key=_SEVERITY.index, default=ExitStatus.OK)
+
+
+# from least to most serious: a definite violation outranks an unknown result, a file that could not
+# be read or written outranks a bad model, and a bug outranks everything
+_SEVERITY = [ExitStatus.OK, ExitStatus.UNKNOWN, ExitStatus.VIOLATED, ExitStatus.DATAERR, ExitStatus.USAGE,
+             ExitStatus.CANTCREAT, ExitStatus.INTERRUPTED, ExitStatus.SOFTWARE]
+
+EPILOG = """exit statuses:
+  0   done: every property holds on a complete state space (lint: no error)
+  1   a property is violated (only 'cpn-verify check' verifies properties)
+  2   unknown: a limit stopped the search first (a partial report is printed)
+  64  bad usage, or a model file that does not exist
+  65  bad model or scenario file, or an error while evaluating the model
+  70  internal error (a bug in cpn-verify: please report it)
+  73  an output file cannot be created (checked before any work starts)
+
+outputs: every option that names an output file takes '-' for standard output; at most one output may
+go to standard output, and it then replaces the text report.
+"""
+
+
+class UsageError(Exception):
+    """Bad options: exit 64."""
+
+    status = ExitStatus.USAGE
+
+
+class CannotCreate(Exception):
+    """An output file cannot be written: exit 73."""
+
+    status = ExitStatus.CANTCREAT
+
+
+# ---------------------------------------------------------------------- options
+
+QUIET_HELP = ("print only results, warnings and errors: no progress line, no notes, no confirmations "
+              "('ok', 'wrote FILE')")
+
+
+def add_quiet_option(p: argparse.ArgumentParser) -> None:
+    p.add_argument("-q", "--quiet", action="store_true", help=QUIET_HELP)
+
+
+def add_set_option(p: argparse.ArgumentParser) -> None:
+    p.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                   help="override a 'val' constant of the model (may be repeated)")
+
+
+def add_output_option(p: argparse.ArgumentParser, flag: str, what: str, *names: str) -> None:
+    p.add_argument(*names, flag, metavar="FILE", help=f"write {what} to FILE ('-': standard output)")
+
+
+def add_limit_options(p: argparse.ArgumentParser) -> None:
+    from cpn.statespace.options import DEFAULT_MEMORY_SHARE, default_max_memory_mb
+
+    default = default_max_memory_mb()
+    p.add_argument("--max-states", type=int, metavar="N", help="stop after N states")
+    p.add_argument("--max-arcs", type=int, metavar="N", help="stop after N arcs")
+    p.add_argument("--max-seconds", type=float, metavar="S", help="stop after S seconds of generation")
+    p.add_argument("--max-memory", type=float, metavar="MB",
+                   help="stop when the process uses MB MiB of resident memory (default "
+                   f"{_mib(default)}: {DEFAULT_MEMORY_SHARE * 100:.0f}%% of the memory of this machine or of its "
+                   "container limit, so that an unbounded model ends with a partial report; 0: no limit)")
+
+
+def _mib(mb: float | None) -> str:
+    return "none" if mb is None else f"{mb:,.0f}"
+
+
+def check_limits(args) -> None:
+    """Limits must be positive. Without --max-memory the default applies (`args.max_memory_is_default`
+    says so); `--max-memory 0` means no memory limit."""
+    from cpn.statespace.options import default_max_memory_mb
+
+    for name in ("max_states", "max_arcs", "max_seconds", "max_memory"):
+        v = getattr(args, name, None)
+        if v is None or (name == "max_memory" and v == 0):
+            continue
+        if v <= 0:
+            raise UsageError(f"--{name.replace('_', '-')} must be positive, got {v:g}")
+    if hasattr(args, "max_memory"):
+        args.max_memory_is_default = args.max_memory is None
+        if args.max_memory is None:
+            args.max_memory = default_max_memory_mb()
+        elif args.max_memory == 0:
+            args.max_memory = None
+
+
+def parse_sets(items: list[str]) -> dict[str, str]:
+    """`--set NAME=VALUE` items as a dict; raises ValueError for an item without '='."""
+    out = {}
+    for item in items:
+        name, eq, value = item.partition("=")
+        if not eq or not name.strip():
+            raise ValueError(f"--set expects NAME=VALUE, got '{item}'")
+        out[name.strip()] = value.strip()
+    return out
+
+
+def sets_of(args) -> dict[str, str]:
+    try:
+        return parse_sets(getattr(args, "set", []) or [])
+    except ValueError as exc:
+        raise UsageError(str(exc)) from None
+
+
+# ---------------------------------------------------------------------- outputs
+
+
+@dataclass(frozen=True)
+class Output:
+    option: str  # '--json', '-o', ...
+    path: str  # a file name, or '-' for standard output
+
+    @property
+    def to_stdout(self) -> bool:
+        return self.path == STDOUT
+
+
+def prepare_outputs(*pairs: tuple[str, str | None]) -> list[Output]:
+    """Check every output (option, path) before any work: at most one '-', every file writable.
+
+    Raises UsageError (two outputs to standard output) or CannotCreate (a file that cannot be written:
+    its folder is missing, it is a folder, or the system refuses to create it).
+    """
+    outputs = [Output(opt, path) for opt, path in pairs if path]
+    to_stdout = [o.option for o in outputs if o.to_stdout]
+    if len(to_stdout) > 1:
+        raise UsageError(f"only one output can go to standard output, but {' and '.join(to_stdout)} both "
+                         "name '-'")
+    for o in outputs:
+        if not o.to_stdout:
+            check_writable(o.path, o.option)
+    return outputs
+
+
+def check_writable(path: str, option: str) -> None:
+    """Raise CannotCreate unless `path` can be opened for writing; a file it creates is removed again."""
+    if os.path.isdir(path):
+        raise CannotCreate(f"cannot write {option} {path}: it is a folder; name a file inside it")
+    folder = os.path.dirname(os.path.abspath(path))
+    if not os.path.isdir(folder):
+        raise CannotCreate(f"cannot write {option} {path}: the folder {folder} does not exist")
+    existed = os.path.exists(path)
+    try:
+        with open(path, "a", encoding="utf-8"):
+            pass
+    except OSError as exc:
+        raise CannotCreate(f"cannot write {option} {path}: {exc.strerror or exc}") from None
+    if not existed:
+        try:
+            os.remove(path)
+        except OSError:
+            pass
+
+
+def write_output(output: Output, text: str) -> None:
+    """Write `text` to the output (standard output for '-'); raises CannotCreate."""
+    if output.to_stdout:
+        sys.stdout.write(text)
+        sys.stdout.flush()
+        return
+    try:
+        with open(output.path, "w", encoding="utf-8") as fh:
+            fh.write(text)
+    except OSError as exc:
+        raise CannotCreate(f"cannot write {output.option} {output.path}: {exc.strerror or exc}") from None
+
+
+# ---------------------------------------------------------------------- errors to exit statuses
+
+
+def exit_status_of(exc: BaseException) -> ExitStatus:
+    """The exit status for an exception that ends a subcommand (the one mapping of the command line)."""
+    from cpn.errors import CpnError
+
+    if isinstance(exc, (UsageError, CannotCreate)):
+        return exc.status
+    if isinstance(exc, CpnError):
+        return ExitStatus(exc.exit_status)
+    if isinstance(exc, KeyboardInterrupt):
+        return ExitStatus.INTERRUPTED
+    if isinstance(exc, BrokenPipeError):
+        return ExitStatus.OK
+    return ExitStatus.SOFTWARE
+
+
+def render_error(exc: BaseException) -> str:
+    """What the user reads for an exception that ends a subcommand (never a traceback but for bugs)."""
+    from cpn.errors import CpnError
+
+    if isinstance(exc, (UsageError, CannotCreate)):
+        return f"error: {exc}"
+    if isinstance(exc, CpnError):
+        return exc.render()
+    if isinstance(exc, KeyboardInterrupt):
+        return "interrupted"
+    return "error: internal error in cpn-verify (this is a bug, please report it with the model)"
+
+
+
+# ---------------------------------------------------------------------- models
+
+
+def model_warnings(model) -> list:
+    """The model's warnings, plus one for a model without any place or transition (an empty file, or
+    one holding only comments or declarations, is almost always the wrong file)."""
+    from cpn.diagnostics import Diagnostic, Severity, Span
+
+    warnings = list(model.warnings)
+    net = model.net
+    if not net.places and not net.transitions:
+        warnings.insert(0, Diagnostic(
+            "W0103", "the model declares no place and no transition" + (
+                "; the file is empty" if not model.source.strip() else ""),
+            Span(model.path, 1, 1), hint="Check that this is the intended file; a net needs at least one place.",
+            severity=Severity.WARNING))
+    return warnings
+
+
+def load_model(path: str, sets: dict[str, str], *, show_warnings: bool = True):
+    """`cpn.load` for the command line: its warnings go to stderr (never silenced by --quiet)."""
+    import cpn
+    from cpn.diagnostics import render
+
+    model = cpn.load(path, set=sets)
+    if show_warnings:
+        for w in model_warnings(model):
+            print(render(w, model.source), file=sys.stderr)
+    return model

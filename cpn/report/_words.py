@@ -1,0 +1,12 @@
+"""Small wording helpers shared by the report renderers and the command line. Standard library only."""
+
+from __future__ import annotations
+
+
+def noun(n: int, singular: str, plural: str | None = None) -> str:
+    """`singular` for one, `plural` (default: singular + 's') otherwise: "1 step", "2 steps".
+
+    >>> f"{3} {noun(3, 'step')}", f"{1} {noun(1, 'step')}"
+    ('3 steps', '1 step')
+    """
+    return singular if n == 1 else (plural or singular + "s")
