@@ -160,12 +160,11 @@ def progress_text(p, width: int) -> str:
               f"{p.memory_mb:,.0f} MiB", f"{p.states_per_second:,.0f} states/s"]
     order = [0, 1, 3, 5, 4, 2]  # display order: states, arcs, queue, states/s, MiB, seconds
     limit = max(width - 1, 1)
-    for keep in range(len(fields), 0, -1):
-        shown = [fields[i] for i in order if i < keep]
-        line = "exploring  " + "  ".join(shown)
-        if len(line) <= limit:
-            return line
-        line = "  ".join(shown)
+    # first drop fields (keeping at least two), then the label, then fields again, then cut
+    attempts = [("exploring  ", keep) for keep in range(len(fields), 1, -1)]
+    attempts += [("", keep) for keep in range(len(fields), 0, -1)]
+    for label, keep in attempts:
+        line = label + "  ".join(fields[i] for i in order if i < keep)
         if len(line) <= limit:
             return line
     return line[:limit]

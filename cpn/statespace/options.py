@@ -9,7 +9,7 @@ from dataclasses import dataclass
 
 # The command line stops a search at this share of the memory the process may use (physical memory,
 # or less where a container or `ulimit -v` says so). The rest is headroom for the report, which is
-# built after the search stops: it added 13-20% to the peak on the unbounded counter nets measured
+# built after the search stops: it added 10-17% to the peak on the unbounded nets measured
 # (docs/statespace.md, "Limits").
 DEFAULT_MEMORY_SHARE: float = 0.5
 
