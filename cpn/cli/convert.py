@@ -15,9 +15,6 @@ import sys
 
 from cpn.cli._common import ExitStatus, UsageError, add_quiet_option, prepare_outputs, write_output
 
-EXIT_OK = ExitStatus.OK
-EXIT_DATAERR = ExitStatus.DATAERR
-
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
     p = subparsers.add_parser(
@@ -70,7 +67,7 @@ def run(args) -> int:
         for note in getattr(translation, "notes", ()):
             print(f"note: {note}", file=sys.stderr)
     if args.no_check:
-        return EXIT_OK
+        return ExitStatus.OK
     err = _check(translation.text, name)
     if err is not None:
         if is_pnml:
@@ -85,7 +82,7 @@ def run(args) -> int:
         print(mapped.render(), file=sys.stderr)
         print(f"note: the translation was written to {out if out != '-' else 'standard output'}, "
               "but it does not load", file=sys.stderr)
-        return EXIT_DATAERR
+        return ExitStatus.DATAERR
     if out != "-" and not args.quiet:
         print(f"wrote {out}", file=sys.stderr)
-    return EXIT_OK
+    return ExitStatus.OK

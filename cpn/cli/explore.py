@@ -28,11 +28,6 @@ from cpn.cli._common import (
 )
 from cpn.report._words import noun
 
-EXIT_COMPLETE = ExitStatus.OK
-EXIT_PARTIAL = ExitStatus.UNKNOWN
-EXIT_USAGE = ExitStatus.USAGE
-EXIT_DATAERR = ExitStatus.DATAERR
-
 __all__ = ["add_parser", "explore_engine", "load_engine", "parse_sets", "run"]
 
 DESCRIPTION = """Build the full state space (occurrence graph) of MODEL breadth-first and print
@@ -149,8 +144,8 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
               f"{noun(x.unexpanded, 'state was', 'states were')} not expanded", file=sys.stderr)
         for note in report.notes:
             print(f"note: {note}", file=sys.stderr)
-        return EXIT_PARTIAL
-    return EXIT_COMPLETE
+        return ExitStatus.UNKNOWN
+    return ExitStatus.OK
 
 
 # The fields of the progress line, most important first; those that do not fit the terminal are dropped.

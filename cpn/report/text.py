@@ -91,11 +91,20 @@ def _multiset(name: str, text: str, cap: int | None) -> list[str]:
     return lines
 
 
-def _dead_markings(r: Report, marking_changes: bool, steps_cap: int | None) -> list[str]:
+def _short(text: str, cap: int | None) -> str:
+    """A marking on one line, cut after `cap` colours."""
+    parts = text.split("++")
+    if cap is None or len(parts) <= cap:
+        return text
+    return "++".join(parts[:cap]) + f"++... ({len(parts) - cap:,} more {noun(len(parts) - cap, 'colour')})"
+
+
+def _dead_markings(r: Report, marking_changes: bool, steps_cap: int | None, terms_cap: int | None) -> list[str]:
     out = []
     for d in r.dead_listed:
         out += ["", f"  Dead marking {d.state + 1}" + ("" if d.time is None else f" (model time {d.time})")]
-        out += [f"          {place}: {text}" for place, text in d.marking.items()] or ["          (every place is empty)"]
+        out += ([f"          {place}: {_short(text, terms_cap)}" for place, text in d.marking.items()]
+                or ["          (every place is empty)"])
         n = len(d.trace)
         out.append(f"  Shortest trace to dead marking {d.state + 1} ({n} {noun(n, 'step')})")
         k = _cut(n, steps_cap)
@@ -103,7 +112,7 @@ def _dead_markings(r: Report, marking_changes: bool, steps_cap: int | None) -> l
             out.append(f"     {i}. {step.text}")
             if marking_changes:
                 for place, before, after in step.changes:
-                    out.append(f"          {place}: {before} -> {after}")
+                    out.append(f"          {place}: {_short(before, terms_cap)} -> {_short(after, terms_cap)}")
         if k < n:
             out.append("     " + _left_out(n - k, noun(n - k, "step"), "the JSON result has the whole trace"))
     total = r.dead.count
@@ -172,7 +181,7 @@ def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | No
     if r.dead.unexpanded:
         out.append(f"     (plus {r.dead.unexpanded} unexpanded {noun(r.dead.unexpanded, 'node')}, "
                    f"which {noun(r.dead.unexpanded, 'is not a dead marking', 'are not dead markings')})")
-    out += _dead_markings(r, marking_changes, steps_cap)
+    out += _dead_markings(r, marking_changes, steps_cap, terms_cap)
     ntrans = len(r.engine.transitions)
     out += ["", "  Dead Transition Instances"]
     out += (["     None seen in the explored part"] if not x.complete and not r.dead_transitions

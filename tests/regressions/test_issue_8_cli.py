@@ -440,3 +440,18 @@ def test_exit_1_is_promised_only_for_check():
         "--time-condensation models/examples/stop_and_wait.cpnet\n",
         "python3 -m pip install -e '.[test]' && ruff check cpn tests bench && pytest\n",
     ]
+
+
+def test_a_large_dead_marking_is_cut_in_the_text(tmp_path):
+    model = _write(tmp_path, "fill.cpnet", """net Fill;
+colset N = int with 0..29;
+place Todo : N = N.all();
+place Done : N;
+trans MoveAll;
+arc Todo -> MoveAll : N.all();
+arc MoveAll -> Done : N.all();
+""")
+    r = _report(cpn.load(model).engine())
+    text = render_text(r)
+    assert "          Fill'Done 1: 1`0++1`1++" in text and "++1`19++... (10 more colours)" in text
+    assert to_json(r)["dead_markings"]["listed"][0]["marking"]["Fill'Done 1"].endswith("1`29")
