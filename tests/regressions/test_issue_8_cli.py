@@ -455,3 +455,13 @@ arc MoveAll -> Done : N.all();
     text = render_text(r)
     assert "          Fill'Done 1: 1`0++1`1++" in text and "++1`19++... (10 more colours)" in text
     assert to_json(r)["dead_markings"]["listed"][0]["marking"]["Fill'Done 1"].endswith("1`29")
+
+
+def test_max_listed_also_sets_how_many_dead_markings_are_listed(toy, capsys):
+    model, state = toy
+    state["engine"] = _choice(12)
+    assert main(["explore", model, "--max-listed", "0", "--json", "-"]) == 0
+    d = json.loads(capsys.readouterr().out)["dead_markings"]
+    assert len(d["listed"]) == 12 and d["listed_cap"] is None
+    assert main(["explore", model, "--max-listed", "3"]) == 0
+    assert "(3 of 12 dead markings listed with a trace" in capsys.readouterr().out
