@@ -46,6 +46,7 @@ EPILOG = """exit statuses:
   65  bad model or scenario file, or an error while evaluating the model
   70  internal error (a bug in cpn-verify: please report it)
   73  an output file cannot be created (checked before any work starts)
+  130 interrupted (Ctrl-C during a search instead ends it with a partial report and status 2)
 
 outputs: every option that names an output file takes '-' for standard output; at most one output may
 go to standard output, and it then replaces the text report.
