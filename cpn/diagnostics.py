@@ -52,6 +52,8 @@ CODES: dict[str, str] = {
     # foreign formats
     "E0501": "unreadable file",
     "E0502": "unsupported element",
+    # options that do not apply to the model
+    "E0601": "option not applicable to the model",
     # warnings
     "W0101": "unbound port",
     "W0102": "unused declaration",

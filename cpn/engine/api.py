@@ -5,6 +5,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from cpn.engine.clock import clock_reads, refuse_condensation
+
 
 @dataclass(frozen=True, slots=True)
 class BindingElement:
@@ -21,6 +23,15 @@ class EngineAPI:
         self.transitions = net.transitions
         self.is_timed = net.is_timed
         self.time_condensation = bool(time_condensation) and self.is_timed
+        # transition index -> where it reads the clock (only a timed net has a clock that moves)
+        self.clock_reads = clock_reads(net) if self.is_timed else {}
+        self.reads_clock = bool(self.clock_reads)
+        if self.time_condensation and self.reads_clock:
+            refuse_condensation(net, self.clock_reads)
+        # per transition: the timed places it removes tokens from (their timestamps are the times at
+        # which it is examined, besides the state's clock)
+        self.timed_inputs = [sorted({a.place for a in t.arcs if a.kind in ("in", "both") and a.expr is not None
+                                     and self.places[a.place].timed}) for t in self.transitions]
         self.ev = net.checked.evaluator
         self._be_index: dict = {}
         self._be: list[tuple[int, tuple]] = []  # binding element id -> (transition, values of its variables)

@@ -19,6 +19,7 @@ from cpn.values.colours import format_multiset
 from cpn.values.multiset import MultisetError
 
 NEG_INF = float("-inf")
+INF = float("inf")
 #: the priority of a transition without one (CPN Tools' P_NORMAL)
 P_NORMAL: int = 1000
 #: after this many lookups, a transition whose results were reused less than MEMO_MISS_RATE of the time
@@ -112,6 +113,8 @@ class CompiledEngine(EngineAPI):
                 sources.append((d, src))
         glob = dict(RUNTIME)
         glob.update(ns.objects)
+        ev = self.ev
+        glob["TIMEFN"] = lambda _u: ev.time
         for d, src in sources:
             exec(compile(src, f"<cpn function {d.name}>", "exec"), glob)  # noqa: S102 - generated from the AST
         for d, _ in sources:
@@ -136,7 +139,8 @@ class CompiledEngine(EngineAPI):
             gen = codegen.TransitionCodegen(t, self.net, ns, self.ev, read)
             gen.ec.functions = self.functions
             fname, src = gen.generate()
-            uses_time = gen.ec.uses_time
+            # read the clock directly or through the functions it calls (cpn.engine.clock)
+            uses_time = t.index in self.clock_reads
             glob = dict(RUNTIME)
             glob.update(ns.objects)
             glob["EVAL"] = self.ev.eval
@@ -156,8 +160,12 @@ class CompiledEngine(EngineAPI):
                 getter = operator.itemgetter(*read)
             resets = {a.place for a in t.arcs if a.kind == "reset"}
             info = _TInfo(t, fn, read, writes, getter, {}, timed_t, uses_time, resets, gen.blame, filename)
+            info.inputs = [read.index(p) for p in self.timed_inputs[t.index]]
             self._plan.append(info)
         self._fast = [(i.getter, i.memo.get, i) for i in self._plan]
+        self._fixed = [i for i in self._plan if not i.uses_time]
+        self._readers = [i for i in self._plan if i.uses_time]
+        self._stamps_memo: list[dict] = [{} for _ in self.places]
         self._flat = not self.is_timed and not self._has_priorities
         if self._flat:
             self._count = [0]
@@ -288,9 +296,10 @@ class CompiledEngine(EngineAPI):
                     binding[v] = cs.format(local[f"v{i}"])
                 except Exception:  # noqa: BLE001
                     binding[v] = repr(local[f"v{i}"])
-        what = {"guard": f"the guard of transition '{t.transition}'", "arc": f"the inscription of arc "
-                f"{getattr(obj, 'label', '')}", "delay": f"the delay of transition '{t.transition}'",
-                "priority": f"the priority of transition '{t.transition}'"}.get(kind, f"transition '{t.transition}'")
+        # the transition instance ("M'T 2"): a module instantiated twice has two transitions named T
+        what = {"guard": f"the guard of transition '{t.name}'", "arc": f"the inscription of arc "
+                f"{getattr(obj, 'label', '')} of transition '{t.name}'", "delay": f"the delay of transition '{t.name}'",
+                "priority": f"the priority of transition '{t.name}'"}.get(kind, f"transition '{t.name}'")
         bind_text = ", ".join(f"{k}={v}" for k, v in binding.items())
         msg = f"{what} failed for binding <{bind_text}>: {_reason(exc)}" if bind_text else f"{what} failed: {_reason(exc)}"
         span = getattr(obj, "span", None) or t.span
@@ -472,7 +481,7 @@ class CompiledEngine(EngineAPI):
             else:
                 arc = next((a for a in info.t.arcs if a.place == p and a.kind in ("out", "both")), None)
                 raise EvaluationError(
-                    f"transition '{info.t.transition}' puts {_fmt(cs, v)} on place '{self.places[p].name}', "
+                    f"transition '{info.t.name}' puts {_fmt(cs, v)} on place '{self.places[p].name}', "
                     f"outside its colour set {cs.name} = {cs.describe()}",
                     arc.span if arc else info.t.span, info.t.name, None,
                     f"Make the inscription of arc {arc.label if arc else ''} produce values of {cs.name}.",
@@ -545,38 +554,43 @@ class CompiledEngine(EngineAPI):
 
     # ------------------------------------------------------------------ timed nets
     def _timed_successors(self, s: tuple) -> list:
+        """Successors of a state of a timed net (docs/semantics.md, Time).
+
+        Transitions that do not read the clock have bindings and ready times that do not depend on the
+        time: they are computed once per input markings. A transition that reads the clock is bound afresh
+        at each time it is examined (the clock, and the later timestamps of the tokens on the places it
+        removes tokens from), in increasing order, up to the earliest time the others can occur at."""
         clock = s[-1]
-        cands = []  # (ready, be, info, key, recipe or (sets, adds))
-        for info in self._plan:
+        fixed = []  # (ready, info, key, entry)
+        f = INF
+        for info in self._fixed:
             key = info.getter(s)
-            if info.uses_time:
-                key = (key, clock)
             res = info.memo.get(key)
             if res is None:
                 res = self._timed_miss(info, key, clock)
             for entry in res:
-                cands.append((entry[0], info, key, entry))
-        if not cands:
-            return []
-        now = [c for c in cands if c[0] <= clock]
-        if now:
+                r = entry[0]
+                fixed.append((r, info, key, entry))
+                if r < f:
+                    f = r
+        if f < clock:
             f = clock
-        else:
-            f = min(c[0] for c in cands)
-            now = [c for c in cands if c[0] <= f]
+        now = []
+        if self._readers:
+            f, now = self._readers_at(s, clock, f)
+        if f == INF:
+            return []
+        for r, info, key, entry in fixed:
+            if r <= f:
+                now.append((info, key, entry))
         out = []
-        for _ready, info, key, entry in now:
+        for info, key, entry in now:
             if info.timed:
                 be = entry[1]
                 fk = (be, key, f)
                 w = self._fire_memo.get(fk)
                 if w is None:
-                    _, _, keys, consumed, produced, td = entry
-                    if info.uses_time and f != clock:
-                        # outputs and delays that read intTime() are evaluated at the firing time
-                        at_f = self._at_time(info, key[0], f, be)
-                        if at_f is not None:
-                            produced, td = at_f
+                    _, _, keys, consumed, produced, td, _pr = entry
                     w = self._writes(info, keys, consumed, produced, f, td)
                     self._fire_memo[fk] = w
                 sets, adds = w
@@ -596,21 +610,56 @@ class CompiledEngine(EngineAPI):
             else:
                 lst[-1] = f
             out.append((be, tuple(lst)))
-        if self._has_priorities and out:
-            out = self._by_priority(out)
+        if self._has_priorities and len(out) > 1:
+            prio = [entry[-1] if info.uses_time else self._prio.get(entry[1], P_NORMAL) for info, _, entry in now]
+            best = min(prio)
+            out = [o for o, p in zip(out, prio) if p == best]
         return out
 
-    def _at_time(self, info, rkey, f, be):
-        """(produced, delay) of binding element `be` evaluated with the clock at f, or None if it is not
-        a binding at f (a guard that reads the clock)."""
-        key = (rkey, f)
-        res = info.memo.get(key)
-        if res is None:
-            res = self._timed_miss(info, key, f)
-        for entry in res:
-            if entry[1] == be:
-                return entry[4], entry[5]
-        return None
+    def _readers_at(self, s: tuple, clock, f):
+        """The occurrence time (at most f, the earliest time of the transitions that do not read the clock)
+        and the enabled (info, key, entry) of the transitions that read the clock, examined at the clock and
+        at the later timestamps of their own input tokens."""
+        readers = []
+        times = {clock}
+        for info in self._readers:
+            rkey = info.getter(s)
+            stamps = self._stamps(info, rkey, clock)
+            readers.append((info, rkey, stamps))
+            times.update(t for t in stamps if t < f)
+        if f != INF:
+            times.add(f)
+        for t in sorted(times):
+            now = []
+            for info, rkey, stamps in readers:
+                if t != clock and t not in stamps:
+                    continue
+                key = (rkey, t)
+                res = info.memo.get(key)
+                if res is None:
+                    res = self._timed_miss(info, key, t)
+                for entry in res:
+                    if entry[0] <= t:
+                        now.append((info, key, entry))
+            if now or t == f:
+                return t, now
+        return INF, []
+
+    def _stamps(self, info, rkey, clock) -> frozenset:
+        """The timestamps later than the clock of the tokens on the timed places a transition removes
+        tokens from (`rkey`: the ids of the places it reads)."""
+        if not info.inputs:
+            return frozenset()
+        keys = rkey if len(info.read) > 1 else (rkey,)
+        out: set = set()
+        for i in info.inputs:
+            p = info.read[i]
+            memo = self._stamps_memo[p]
+            got = memo.get(keys[i])
+            if got is None:
+                got = memo[keys[i]] = frozenset(ts for (_v, ts) in self.store.dicts[p][keys[i]])
+            out.update(got)
+        return frozenset(t for t in out if t > clock)
 
     def _shift(self, p: int, i: int, f: int) -> int:
         memo = self._shift_memo[p]
@@ -645,17 +694,21 @@ class CompiledEngine(EngineAPI):
                         r = _ready_time(self.store.dicts[p][keys[i]], c)
                         if r > ready:
                             ready = r
-                res.append((ready, be, keys, consumed, produced, td))
+                # the priority travels with the entry: for a transition that reads the clock it may
+                # differ from one time to another
+                res.append((ready, be, keys, consumed, produced, td, pr if pr is not None else P_NORMAL))
             else:
                 sets, adds = self._writes(info, keys, consumed, produced, 0, 0)
                 res.append((NEG_INF, be, sets, adds))
+        if len(info.memo) >= MEMO_MAX:
+            info.memo.clear()
         info.memo[key] = res
         return res
 
 
 class _TInfo:
     __slots__ = ("t", "fn", "read", "writes", "getter", "memo", "timed", "uses_time", "resets", "blame",
-                 "filename", "lookups", "store_results", "frecipes")
+                 "filename", "lookups", "store_results", "frecipes", "inputs")
 
     def __init__(self, t, fn, read, writes, getter, memo, timed, uses_time, resets, blame, filename):
         self.t, self.fn, self.read, self.writes, self.getter = t, fn, read, writes, getter
@@ -664,6 +717,7 @@ class _TInfo:
         self.lookups = 0
         self.store_results = True
         self.frecipes: dict = {}  # binding values -> flat recipe (generated successor function)
+        self.inputs: list[int] = []  # positions in `read` of the timed places it removes tokens from
 
 
 def _const_key(_s):

@@ -59,7 +59,14 @@ class ReferenceEngine(EngineAPI):
         try:
             return self.ev.eval(e, env)
         except (MLError, MultisetError, ArithmeticError, IndexError, TypeError, RecursionError) as exc:
-            raise EvaluationError(f"{what} of transition '{t.transition}' failed: {exc}", e.span, t.name) from None
+            binding = {}
+            for name in t.variables:
+                if self.uids[name] in env:
+                    binding[name] = self.net.colsets[self.net.variables[name].data].format(env[self.uids[name]])
+            text = ", ".join(f"{k}={v}" for k, v in binding.items())
+            raise EvaluationError(f"{what} of transition '{t.name}' failed"
+                                  + (f" for binding <{text}>" if text else "") + f": {exc}",
+                                  e.span, t.name, binding) from None
 
     def _ms(self, e, env, t):
         v = self._eval(e, env, t, "an arc inscription")
@@ -193,30 +200,50 @@ class ReferenceEngine(EngineAPI):
         return need, ready
 
     def successors(self, s):
+        """The enabled binding elements and their successors (docs/semantics.md, Time).
+
+        Each transition is examined at the state's clock and at every later timestamp of a token on the
+        places it removes tokens from, in increasing order; at a time t, its enabled bindings are those
+        whose tokens are ready at t and whose guard holds with the clock at t. The first time at which
+        some transition has an enabled binding is the occurrence time of all the enabled bindings."""
         n = len(self.places)
         marking = [dict(fs) for fs in s[:n]]
         clock = s[-1] if self.is_timed else 0
-        self.ev.time = clock
-        cands = []
-        for t in self.transitions:
-            for assignment in self._bindings(t, marking):
-                r = self._enabled(t, marking, assignment)
-                if r is not None:
-                    cands.append((r[1], t, assignment, r[0]))
-        if not cands:
+        examined = [self._examined_at(t, marking, clock) for t in self.transitions]
+        now = []
+        f = clock
+        for f in sorted(set().union(*examined)) if examined else ():
+            self.ev.time = f
+            for t in self.transitions:
+                if f not in examined[t.index]:
+                    continue
+                for assignment in self._bindings(t, marking):
+                    r = self._enabled(t, marking, assignment)
+                    if r is not None and r[1] <= f:
+                        now.append((t, assignment, r[0]))
+            if now:
+                break
+        if not now:
             return []
-        f = clock if any(c[0] <= clock for c in cands) else min(c[0] for c in cands)
-        now = [c for c in cands if c[0] <= f]
+        self.ev.time = f
         if any(t.priority is not None for t in self.transitions):
             prios = [self._eval(t.priority, self._env(t, a), t, "the priority") if t.priority is not None else 1000
-                     for _, t, a, _ in now]
+                     for t, a, _ in now]
             best = min(prios)
             now = [c for c, p in zip(now, prios) if p == best]
         out = []
-        for _, t, assignment, need in now:
+        for t, assignment, need in now:
             out.append((self._intern_be(t.index, tuple(assignment[v] for v in t.variables)),
                         self._fire(t, marking, assignment, need, f)))
         return out
+
+    def _examined_at(self, t, marking, clock) -> set:
+        """The times at which transition t is examined: the clock and the later timestamps of the tokens
+        on the timed places it removes tokens from."""
+        times = {clock}
+        for p in self.timed_inputs[t.index]:
+            times.update(ts for (_v, ts) in marking[p] if ts > clock)
+        return times
 
     def _fire(self, t, marking, assignment, need, f):
         self.ev.time = f
@@ -246,7 +273,7 @@ class ReferenceEngine(EngineAPI):
                 items = self._ms(a.expr, env, t)  # a double arc puts back its own inscription
                 for v, n, d in items:
                     if not pl.colour_set.contains(v):
-                        raise EvaluationError(f"transition '{t.transition}' puts a value outside colour set "
+                        raise EvaluationError(f"transition '{t.name}' puts a value outside colour set "
                                               f"{pl.colour_set.name} on place '{pl.name}'", a.span, t.name)
                     key = (v, f + td + d) if pl.timed else v
                     if n:

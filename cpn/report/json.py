@@ -34,6 +34,7 @@ def to_json(r: Report) -> dict:
             "time_condensation": bool(x.options.time_condensation),
             "untimed_states": x.untimed_states,
             "time_growth": x.time_growth,
+            "reads_clock": bool(getattr(r.engine, "reads_clock", False)),
             "levels": x.levels,
         },
         "scc": {

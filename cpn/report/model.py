@@ -99,7 +99,7 @@ def build_report(x: Exploration, model: str = "<unsaved net>", options: dict | N
         listed = [dead_marking(x, i) for i in chosen]
     trace = listed[0].trace if listed else None
     analysis = time.perf_counter() - t0
-    notes = []
+    notes = list(x.notes)
     if x.time_growth is not None:
         notes.append(
             "the state space grows only because time grows: after "

@@ -118,7 +118,10 @@ class Explorer:
         progress = self.progress
         next_progress = t0 + opts.progress_interval
 
-        timed_check = bool(getattr(engine, "is_timed", False)) and opts.detect_time_growth
+        # A model that reads the clock (intTime() in a guard, an inscription, a delay) can change its
+        # behaviour at any later time: the markings modulo time say nothing about its future.
+        reads_clock = bool(getattr(engine, "reads_clock", False))
+        timed_check = bool(getattr(engine, "is_timed", False)) and opts.detect_time_growth and not reads_clock
         watcher = _TimeGrowthWatcher(engine) if getattr(engine, "is_timed", False) else None
         if watcher is not None:
             watcher.level(states, 0, 1)
@@ -210,12 +213,18 @@ class Explorer:
             watcher.level(states, watcher.seen_upto, len(states))
         if progress is not None:
             progress(Progress(len(states), len(dst), len(states) - g.expanded, seconds, current_rss_mb()))
+        notes = []
+        if reads_clock and opts.detect_time_growth and stop is not StopReason.COMPLETE:
+            read = engine.clock_reads[min(engine.clock_reads)]
+            notes.append(f"the time-growth watch does not apply to this model: {read.element} of transition "
+                         f"'{read.transition}' reads the clock ({read.span}), so its behaviour may change at any "
+                         "later time; bound the search with --max-states, --max-seconds or --max-memory")
         return Exploration(
             engine=engine, graph=g, options=opts, stop_reason=stop, seconds=seconds,
             peak_memory_mb=peak_rss_mb(), predicate_state=predicate_state,
             untimed_states=len(watcher.untimed) if watcher is not None else None,
             time_growth=watcher.evidence() if stop is StopReason.TIME_GROWS else None,
-            levels=levels,
+            levels=levels, notes=notes,
         )
 
 

@@ -1,0 +1,119 @@
+"""Which transitions read the model clock: `intTime()` or `time()` in a guard, an arc inscription, a delay
+or a priority, directly or through the functions and values they use (docs/semantics.md, Time).
+
+Both engines use this: a transition that reads the clock is bound afresh at every time it is examined,
+time condensation is refused for a model that reads it, and the explorer's time-growth watch does not
+apply to such a model.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from cpn.diagnostics import Diagnostic, Span
+from cpn.errors import ConfigurationError
+from cpn.lang import ast as A
+from cpn.lang.binding import children
+from cpn.lang.builtins import TIME_BUILTINS
+
+
+@dataclass(frozen=True)
+class ClockRead:
+    """Where a transition instance first reads the clock: the span of the `intTime()` (or of the call of
+    the function that reads it) and the element it belongs to."""
+
+    transition: str  # "Page'Trans 1"
+    element: str  # "the guard", "the inscription of arc 'P' -> 'T'", "the delay", "the priority"
+    span: Span | None
+
+
+def clock_reads(net) -> dict[int, ClockRead]:
+    """Transition index -> its first read of the clock, for every transition instance that reads it."""
+    globals_ = _global_readers(net.checked.model.decls)
+    out: dict[int, ClockRead] = {}
+    for t in net.transitions:
+        parts = [("the guard", g) for g in t.guards]
+        parts += [(f"the inscription of arc {a.label}".rstrip(), a.expr) for a in t.arcs]
+        parts += [("the delay", t.delay), ("the priority", t.priority)]
+        for element, e in parts:
+            span = _first_read(e, globals_)
+            if span is not None:
+                out[t.index] = ClockRead(t.name, element, span)
+                break
+    return out
+
+
+def _global_readers(decls) -> dict[int, Span]:
+    """Symbol uid -> span of a clock read, for every global `fun` or `val` that reads the clock (a value
+    counts too: it may hold a function), following calls between them to a fixpoint."""
+    bodies: dict[int, list] = {}
+    stack = list(decls)
+    while stack:
+        d = stack.pop()
+        if isinstance(d, A.ModuleDecl):
+            stack.extend(d.body)
+        elif isinstance(d, A.FunDecl) and d.ref is not None:
+            bodies[d.ref.uid] = [c.body for c in d.clauses]
+        elif isinstance(d, A.ValDecl) and getattr(d.pat, "ref", None) is not None:
+            bodies[d.pat.ref.uid] = [d.expr]
+    readers: dict[int, Span] = {}
+    changed = True
+    while changed:
+        changed = False
+        for uid, exprs in bodies.items():
+            if uid in readers:
+                continue
+            for e in exprs:
+                span = _first_read(e, readers)
+                if span is not None:
+                    readers[uid] = span
+                    changed = True
+                    break
+    return readers
+
+
+def _first_read(e, readers: dict[int, Span]) -> Span | None:
+    """The span of the first clock read in e: a time built-in, or a name of a reader in `readers`."""
+    if e is None:
+        return None
+    stack = [e]
+    while stack:
+        x = stack.pop()
+        if isinstance(x, A.App) and _first_read(x.fn, readers) is not None:
+            return x.span  # the whole call: `intTime()`, `late(x)`
+        if isinstance(x, A.Name) and x.ref is not None:
+            if x.ref.kind == "builtin" and x.ref.name in TIME_BUILTINS:
+                return x.span
+            if x.ref.kind in ("fun", "val") and x.ref.uid in readers:
+                return x.span
+            continue
+        stack.extend(reversed(children(x)))
+    return None
+
+
+class TimeCondensationRefused(ConfigurationError):
+    """Time condensation was asked for a model that reads the clock (exit status 64)."""
+
+    def __init__(self, read: ClockRead, source: str | None):
+        self.read = read
+        self.source = source
+        self.diagnostic = Diagnostic(
+            "E0601",
+            f"time condensation cannot be used: {read.element} of transition '{read.transition}' reads the "
+            "model clock, and time condensation sets the clock to 0 in every state, so the condensed state "
+            "space would be that of another model",
+            read.span,
+            hint="Explore without --time-condensation (a model that reads the clock is not stopped by the "
+                 "time-growth watch; bound an infinite one with --max-states or --max-seconds), or express "
+                 "the timing with token delays (@+) instead of reading intTime().")
+        super().__init__(f"{read.span}: {self.diagnostic.message}" if read.span else self.diagnostic.message)
+
+    def render(self) -> str:
+        return self.diagnostic.render(self.source)
+
+
+def refuse_condensation(net, reads: dict[int, ClockRead]) -> None:
+    """Raise TimeCondensationRefused for the first transition (in net order) that reads the clock."""
+    if reads:
+        first = reads[min(reads)]
+        raise TimeCondensationRefused(first, net.checked.model.source)
