@@ -583,6 +583,8 @@ class CompiledEngine(EngineAPI):
         for r, info, key, entry in fixed:
             if r <= f:
                 now.append((info, key, entry))
+        if self._readers:
+            now.sort(key=_by_transition)  # the fixed order: transitions in net order (stable within one)
         out = []
         for info, key, entry in now:
             if info.timed:
@@ -722,6 +724,10 @@ class _TInfo:
 
 def _const_key(_s):
     return ()
+
+
+def _by_transition(candidate) -> int:
+    return candidate[0].t.index
 
 
 def _ready_time(d: dict, need: dict) -> float:
