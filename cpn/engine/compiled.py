@@ -561,7 +561,8 @@ class CompiledEngine(EngineAPI):
         at each time it is examined (the clock, and the later timestamps of the tokens on the places it
         removes tokens from), in increasing order, up to the earliest time the others can occur at."""
         clock = s[-1]
-        fixed = []  # (ready, info, key, entry)
+        fixed = []  # (info, key, entry); entry[0] is the ready time
+        append = fixed.append
         f = INF
         for info in self._fixed:
             key = info.getter(s)
@@ -569,22 +570,19 @@ class CompiledEngine(EngineAPI):
             if res is None:
                 res = self._timed_miss(info, key, clock)
             for entry in res:
-                r = entry[0]
-                fixed.append((r, info, key, entry))
-                if r < f:
-                    f = r
+                append((info, key, entry))
+                if entry[0] < f:
+                    f = entry[0]
         if f < clock:
             f = clock
-        now = []
         if self._readers:
             f, now = self._readers_at(s, clock, f)
+            now.extend(c for c in fixed if c[2][0] <= f)
+            now.sort(key=_by_transition)  # the fixed order: transitions in net order (stable within one)
+        else:
+            now = [c for c in fixed if c[2][0] <= f]
         if f == INF:
             return []
-        for r, info, key, entry in fixed:
-            if r <= f:
-                now.append((info, key, entry))
-        if self._readers:
-            now.sort(key=_by_transition)  # the fixed order: transitions in net order (stable within one)
         out = []
         for info, key, entry in now:
             if info.timed:
