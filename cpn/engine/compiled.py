@@ -561,30 +561,34 @@ class CompiledEngine(EngineAPI):
         at each time it is examined (the clock, and the later timestamps of the tokens on the places it
         removes tokens from), in increasing order, up to the earliest time the others can occur at."""
         clock = s[-1]
-        fixed = []  # (info, key, entry); entry[0] is the ready time
+        fixed = []  # (ready time, info, key, entry)
         append = fixed.append
-        f = INF
         for info in self._fixed:
             key = info.getter(s)
             res = info.memo.get(key)
             if res is None:
                 res = self._timed_miss(info, key, clock)
             for entry in res:
-                append((info, key, entry))
-                if entry[0] < f:
-                    f = entry[0]
-        if f < clock:
+                append((entry[0], info, key, entry))
+        now = [c for c in fixed if c[0] <= clock]
+        if now:
             f = clock
-        if self._readers:
-            f, now = self._readers_at(s, clock, f)
-            now.extend(c for c in fixed if c[2][0] <= f)
-            now.sort(key=_by_transition)  # the fixed order: transitions in net order (stable within one)
+        elif fixed:
+            f = min(c[0] for c in fixed)
+            now = [c for c in fixed if c[0] <= f]
         else:
-            now = [c for c in fixed if c[2][0] <= f]
+            f = INF
+        if self._readers:
+            t, early = self._readers_at(s, clock, f)
+            if t < f:  # a transition that reads the clock occurs before the others can
+                f, now = t, early
+            else:
+                now.extend(early)
+            now.sort(key=_by_transition)  # the fixed order: transitions in net order (stable within one)
         if f == INF:
             return []
         out = []
-        for info, key, entry in now:
+        for _ready, info, key, entry in now:
             if info.timed:
                 be = entry[1]
                 fk = (be, key, f)
@@ -611,14 +615,14 @@ class CompiledEngine(EngineAPI):
                 lst[-1] = f
             out.append((be, tuple(lst)))
         if self._has_priorities and len(out) > 1:
-            prio = [entry[-1] if info.uses_time else self._prio.get(entry[1], P_NORMAL) for info, _, entry in now]
+            prio = [entry[-1] if info.uses_time else self._prio.get(entry[1], P_NORMAL) for _r, info, _k, entry in now]
             best = min(prio)
             out = [o for o, p in zip(out, prio) if p == best]
         return out
 
     def _readers_at(self, s: tuple, clock, f):
         """The occurrence time (at most f, the earliest time of the transitions that do not read the clock)
-        and the enabled (info, key, entry) of the transitions that read the clock, examined at the clock and
+        and the enabled (ready, info, key, entry) of the transitions that read the clock, examined at the clock and
         at the later timestamps of their own input tokens."""
         readers = []
         times = {clock}
@@ -640,7 +644,7 @@ class CompiledEngine(EngineAPI):
                     res = self._timed_miss(info, key, t)
                 for entry in res:
                     if entry[0] <= t:
-                        now.append((info, key, entry))
+                        now.append((entry[0], info, key, entry))
             if now or t == f:
                 return t, now
         return INF, []
@@ -725,7 +729,7 @@ def _const_key(_s):
 
 
 def _by_transition(candidate) -> int:
-    return candidate[0].t.index
+    return candidate[1].t.index
 
 
 def _ready_time(d: dict, need: dict) -> float:
