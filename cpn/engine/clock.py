@@ -25,6 +25,7 @@ class ClockRead:
     transition: str  # "Page'Trans 1"
     element: str  # "the guard", "the inscription of arc 'P' -> 'T'", "the delay", "the priority"
     span: Span | None
+    via: str | None = None  # "'late' reads it at m.cpnet:2:15" when the read is inside a called function
 
 
 def clock_reads(net) -> dict[int, ClockRead]:
@@ -38,7 +39,9 @@ def clock_reads(net) -> dict[int, ClockRead]:
         for element, e in parts:
             span = _first_read(e, globals_)
             if span is not None:
-                out[t.index] = ClockRead(t.name, element, span)
+                name = _called_reader(e, globals_)
+                via = f"'{name[0]}' reads it at {name[1]}" if name is not None else None
+                out[t.index] = ClockRead(t.name, element, span, via)
                 break
     return out
 
@@ -91,6 +94,22 @@ def _first_read(e, readers: dict[int, Span]) -> Span | None:
     return None
 
 
+def _called_reader(e, readers: dict[int, Span]):
+    """(name, span of its clock read) of the first global function or value read in e that reads the
+    clock, when e does not read it directly first; else None."""
+    stack = [e]
+    while stack:
+        x = stack.pop()
+        if isinstance(x, A.Name) and x.ref is not None:
+            if x.ref.kind == "builtin" and x.ref.name in TIME_BUILTINS:
+                return None
+            if x.ref.kind in ("fun", "val") and x.ref.uid in readers:
+                return x.ref.name, readers[x.ref.uid]
+            continue
+        stack.extend(reversed(children(x)))
+    return None
+
+
 class TimeCondensationRefused(ConfigurationError):
     """Time condensation was asked for a model that reads the clock (exit status 64)."""
 
@@ -103,6 +122,7 @@ class TimeCondensationRefused(ConfigurationError):
             "model clock, and time condensation sets the clock to 0 in every state, so the condensed state "
             "space would be that of another model",
             read.span,
+            notes=[read.via] if read.via else [],
             hint="Explore without --time-condensation (a model that reads the clock is not stopped by the "
                  "time-growth watch; bound an infinite one with --max-states or --max-seconds), or express "
                  "the timing with token delays (@+) instead of reading intTime().")

@@ -82,6 +82,15 @@ def test_a_function_that_reads_the_clock(reference):
     assert e.clock(s1) == 7 and _log(e, s1) == {7: 1}
 
 
+def test_refusal_names_the_function_that_reads_the_clock():
+    src = "colset TU = unit timed;\nfun late(u) = intTime() > 5;\nplace P : TU = 1`();\ntrans T [late()];\n" \
+          "arc P -> T : ();\narc T -> P : () @+ 1;\n"
+    with pytest.raises(TimeCondensationRefused) as info:
+        _engine(src, False, time_condensation=True)
+    assert (info.value.read.span.line, info.value.read.span.col) == (4, 10)
+    assert "note: 'late' reads it at m.cpnet:2:15" in info.value.render()
+
+
 @pytest.mark.parametrize("reference", ENGINES)
 def test_guard_false_at_the_clock_true_at_a_later_own_timestamp(reference):
     """At 0 the binding x=1 is ready but its guard is false; T is examined again at 5, the timestamp of
