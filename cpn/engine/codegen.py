@@ -52,7 +52,6 @@ class ExprCompiler:
         self.varnames = varnames  # transition variable name -> python local name
         self.params = params
         self.var_uids = var_uids
-        self.uses_time = False
 
     def const(self, v: Any) -> str:
         if isinstance(v, (bool, int, str, float)) or v == ():
@@ -94,8 +93,7 @@ class ExprCompiler:
             return self.ns.ref(self.ev.eval(e, {}), "C")
         if k == "builtin":
             if sym.name in TIME_BUILTINS:
-                self.uses_time = True
-                return "TIMEFN"
+                return "TIMEFN"  # the evaluator's clock (cpn.engine.clock finds who reads it)
             return self.ns.ref(BUILTINS[sym.name][1], "B")
         if k == "csop":
             return self.ns.ref(self.ev.eval(e, {}), "S")
