@@ -85,7 +85,8 @@ def _source_line(source: str | None, line: int) -> str | None:
         return None
     lines = source.splitlines()
     if 1 <= line <= len(lines):
-        return lines[line - 1].expandtabs(1)
+        # invisible characters (NUL, other controls) are shown as U+FFFD so that the caret still lines up
+        return "".join(c if c.isprintable() else "\ufffd" for c in lines[line - 1].expandtabs(1))
     return None
 
 

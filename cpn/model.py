@@ -63,7 +63,7 @@ def source_of(path: str) -> str:
 
         return cpntools.translate(path)
     try:
-        with open(path, encoding="utf-8") as fh:
+        with open(path, encoding="utf-8-sig") as fh:
             return fh.read()
     except UnicodeDecodeError as exc:
         raise ModelError([Diagnostic("E0501", f"the file is not UTF-8 text ({exc.reason})", Span(path, 1, 1))]) from None

@@ -19,6 +19,7 @@ from cpn.lang.syntax_errors import SYNTAX_ERRORS, TERMINAL_NAMES
 from cpn.lang.transform import ToAst
 
 MAX_SYNTAX_ERRORS: int = 50
+BOM: str = "\ufeff"
 
 _STMT_START = re.compile(
     r"^[ \t]*(net|colset|var|val|fun|place|port|trans|arc|inhibitor|reset|module|instance)\b|^[ \t]*\}",
@@ -61,8 +62,18 @@ def _found(exc: UnexpectedInput, text: str) -> str:
             return "the end of the file"
         return f"'{tok}'"
     if isinstance(exc, UnexpectedCharacters):
-        return f"'{text[exc.pos_in_stream]}'" if exc.pos_in_stream < len(text) else "the end of the file"
+        return describe_char(text[exc.pos_in_stream]) if exc.pos_in_stream < len(text) else "the end of the file"
     return "the end of the file"
+
+
+def describe_char(ch: str) -> str:
+    """A character for a message: quoted if it is visible, else by its code point ('U+0000')."""
+    if ch.isprintable() and not ch.isspace() or ch == " ":
+        return f"'{ch}'"
+    import unicodedata
+
+    name = unicodedata.name(ch, "")
+    return f"U+{ord(ch):04X}" + (f" ({name.lower()})" if name else "")
 
 
 def _diagnose(exc: UnexpectedInput, text: str, filename: str) -> Diagnostic:
@@ -148,6 +159,10 @@ _OPEN = {"(": ")", "[": "]", "{": "}"}
 _TOKENS = re.compile(r'\(\*.*?\*\)|//[^\n]*|"(?:\\.|[^"\\\n])*"|[()\[\]{}]', re.DOTALL)
 
 
+def _line_col(text: str, pos: int) -> tuple[int, int]:
+    return text.count("\n", 0, pos) + 1, pos - (text.rfind("\n", 0, pos) + 1) + 1
+
+
 def _unbalanced(text: str, filename: str) -> list[tuple[Diagnostic, int, int]]:
     """Statements whose brackets do not balance: (diagnostic, start, end) of each such statement."""
     starts = [m.start() for m in _STMT_START.finditer(text) if m.group(1)] + [len(text)]
@@ -165,6 +180,10 @@ def _unbalanced(text: str, filename: str) -> list[tuple[Diagnostic, int, int]]:
                     stack.pop()
                 elif tok == "}" and not stack:
                     continue  # the end of a module body
+                elif any(_OPEN[t] == tok for t, _ in stack):
+                    # `[(x < 3]`: the ']' has its partner; the '(' opened after it is the one left open
+                    bad = (stack[-1][0], stack[-1][1], "opening", tok, a + m.start())
+                    break
                 else:
                     bad = (tok, a + m.start(), "closing")
                     break
@@ -173,14 +192,16 @@ def _unbalanced(text: str, filename: str) -> list[tuple[Diagnostic, int, int]]:
             if tok is not None:
                 bad = (tok, pos, "opening")
         if bad:
-            tok, pos, kind = bad
-            line = text.count("\n", 0, pos) + 1
-            col = pos - (text.rfind("\n", 0, pos) + 1) + 1
+            tok, pos, kind = bad[:3]
+            line, col = _line_col(text, pos)
             msg = (f"'{tok}' is never closed" if kind == "opening" else f"'{tok}' closes nothing")
+            hint = "Check that every '(', '[' and '{' has its closing partner in the same declaration."
+            if len(bad) > 3:
+                close = bad[3]
+                msg = "'{}' is not closed before the '{}' at {}:{}".format(tok, close, *_line_col(text, bad[4]))
+                hint = f"Add '{_OPEN[tok]}' before the '{close}', or remove the '{tok}'."
             out.append((Diagnostic("E0101", f"unbalanced parentheses or brackets: {msg}",
-                                   Span(filename, line, col, line, col),
-                                   hint="Check that every '(', '[' and '{' has its closing partner in the same "
-                                        "declaration."), a, b))
+                                   Span(filename, line, col, line, col), hint=hint), a, b))
     return out
 
 
@@ -190,6 +211,9 @@ def parse(text: str, filename: str = "<string>") -> A.Model:
     Raises `ModelSyntaxError` with one diagnostic per erroneous statement (at most one per line).
     """
     parser = _parser()
+    if text.startswith(BOM):
+        # a UTF-8 byte-order mark is no part of the text (editors on Windows write one)
+        text = text[len(BOM):]
     diags: list[Diagnostic] = []
     work = text
     seen_lines: set[int] = set()
