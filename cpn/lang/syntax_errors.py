@@ -21,6 +21,19 @@ SYNTAX_ERRORS: list[tuple[str, str, str, list[str]]] = [
     ),
     (
         "E0101",
+        "'@+' in the then-branch of an if-expression: 'e @+ d' delays all of e, as CPN Tools reads it",
+        "Delay the whole expression with '(if .. then .. else ..) @+ d', or parenthesise the branch: "
+        "'if b then (e @+ d) else ..'.",
+        ["val x = if a then b @+ 1 else c;", "arc T -> P : if ok then 1`n @+ d else empty;"],
+    ),
+    (
+        "E0101",
+        "a second '@+': 'e @+ d' delays all of e by everything after the '@+', as CPN Tools reads it",
+        "To delay parts of a multiset differently, write '(e1 @+ d1) +++ (e2 @+ d2)'.",
+        ["val x = 1`a @+ 1 @+ 2;", "arc T -> P : 1`a @+ 1 ++ 1`b @+ 2;"],
+    ),
+    (
+        "E0101",
         "expected 'else': every if-expression in CPN ML needs an else branch",
         "Add 'else E2'; for multisets 'else empty' is common.",
         ["val x = if a then b;"],

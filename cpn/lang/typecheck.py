@@ -699,7 +699,12 @@ class Checker(PageChecks):
         if op == "@+":
             elem = T.TVar()
             e.left = self.infer_ms(e.left, elem, env, "the tokens of '@+'")
-            self.must(self.infer(e.right, env), T.INT, e.right.span, "a time delay (it must be an integer)")
+            dt = self.infer(e.right, env)
+            if not self.unify(dt, T.INT, e.right.span, "a time delay (it must be an integer)"):
+                if isinstance(e.right, A.BinOp) and e.right.op in ("++", "--"):
+                    self.diags[-1].hint = ("'e @+ d' delays all of e by everything after the '@+', as CPN Tools "
+                                           "reads it; to delay one term only, write '(e1 @+ d) ++ e2'.")
+                raise Abort()
             return T.ms(elem)
         if op == "@@":
             self.error("E0206", "absolute timestamps '@@' are not supported; use '@+' delays", e.span)

@@ -28,7 +28,7 @@ def random_net(seed: int) -> str:
         init = {"C": lambda: " ++ ".join(f"{rng.randint(1, 2)}`{rng.randint(0, 2)}" for _ in range(rng.randint(0, 2))),
                 "U": lambda: f"{rng.randint(0, 2)}`()",
                 "P": lambda: " ++ ".join(f"1`({rng.randint(0, 2)},{rng.randint(0, 2)})" for _ in range(rng.randint(0, 2))),
-                "TC": lambda: " ++ ".join(f"1`{rng.randint(0, 2)}@+{rng.randint(0, 3)}" for _ in range(rng.randint(0, 2)))}[k]()
+                "TC": lambda: " ++ ".join(f"(1`{rng.randint(0, 2)}@+{rng.randint(0, 3)})" for _ in range(rng.randint(0, 2)))}[k]()
         lines.append(f"place p{i} : {k}" + (f" = {init}" if init else "") + ";")
     ntrans = rng.randint(1, 4)
 

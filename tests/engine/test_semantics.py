@@ -52,20 +52,20 @@ def test_transition_and_arc_delays_add_up(reference):
 
 @pytest.mark.parametrize("reference", [False, True])
 def test_only_bindings_ready_now_are_enabled(reference):
-    e = load("place P : TC = 1`1 ++ 1`2 @+ 10;\ntrans t;\narc P -> t : x;").engine(reference=reference)
+    e = load("place P : TC = 1`1 ++ (1`2 @+ 10);\ntrans t;\narc P -> t : x;").engine(reference=reference)
     assert [b for b, _ in step(e, e.initial_state())] == ["Top't 1: {x=1}"]
 
 
 @pytest.mark.parametrize("reference", [False, True])
 def test_earliest_binding_wins_when_nothing_is_ready(reference):
-    e = load("place P : TC = 1`2 @+ 7 ++ 1`1 @+ 4;\ntrans t;\narc P -> t : x;").engine(reference=reference)
+    e = load("place P : TC = (1`2 @+ 7) ++ (1`1 @+ 4);\ntrans t;\narc P -> t : x;").engine(reference=reference)
     [(b, s1)] = step(e, e.initial_state())
     assert b == "Top't 1: {x=1}" and e.clock(s1) == 4
 
 
 @pytest.mark.parametrize("reference", [False, True])
 def test_removal_takes_the_latest_ready_token(reference):
-    e = load("place P : TC = 1`1 ++ 1`1 @+ 3; place Z : TU = 1`() @+ 3;\ntrans t;\narc P -> t : x;\n"
+    e = load("place P : TC = 1`1 ++ (1`1 @+ 3); place Z : TU = 1`() @+ 3;\ntrans t;\narc P -> t : x;\n"
              "arc Z -> t : ();").engine(reference=reference)
     [(_, s1)] = step(e, e.initial_state())
     assert e.clock(s1) == 3
@@ -81,7 +81,7 @@ def test_double_arc_on_a_timed_place_renews_the_timestamp(reference):
 
 @pytest.mark.parametrize("reference", [False, True])
 def test_time_condensation_shifts_to_zero(reference):
-    m = load("place P : TC = 1`1 @+ 5 ++ 1`2 @+ 8;\ntrans t;\narc P -> t : x;\narc t -> P : x @+ 1;")
+    m = load("place P : TC = (1`1 @+ 5) ++ (1`2 @+ 8);\ntrans t;\narc P -> t : x;\narc t -> P : x @+ 1;")
     e = m.engine(time_condensation=True, reference=reference)
     [(_, s1)] = step(e, e.initial_state())
     assert e.clock(s1) == 0

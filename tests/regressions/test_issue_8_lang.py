@@ -57,3 +57,66 @@ def test_a_closing_bracket_without_partner_still_closes_nothing():
         parse("val y = (1]);\n", "m.cpnet")
     [d] = info.value.diagnostics
     assert (d.span.line, d.span.col) == (1, 11) and "']' closes nothing" in d.message
+
+
+# ----------------------------------------------------------------------------- item 5
+
+DELAY_NET = """colset U = unit; colset C = int timed; var x : C;
+place S : U = 1`();
+place P : C;
+place Q : C;
+trans Go; arc S -> Go : (); arc Go -> P : {insc};
+trans Take; arc P -> Take : x; arc Take -> Q : x;
+"""
+
+
+def _after_go(model, reference):
+    e = model.engine(reference=reference)
+    [(_, s1)] = e.successors(e.initial_state())
+    return e.format_marking(s1, 1)
+
+
+@pytest.mark.parametrize("reference", [False, True])
+@pytest.mark.parametrize("insc", ["1`0 ++ 1`1 @+ 2", "if true then 1`0 ++ 1`1 else empty @+ 2",
+                                  "(1`0 ++ 1`1) @+ 2"])
+def test_a_delay_applies_to_the_whole_output_inscription(insc, reference):
+    assert _after_go(cpn.loads(DELAY_NET.format(insc=insc)), reference) == "1`0@2+++1`1@2"
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_a_parenthesised_delay_still_delays_one_term(reference):
+    assert _after_go(cpn.loads(DELAY_NET.format(insc="1`0 ++ (1`1 @+ 2)")), reference) == "1`0@0+++1`1@2"
+
+
+def test_timed_sums_of_differently_delayed_terms():
+    m = cpn.loads(DELAY_NET.format(insc="1`0 @+ 1 +++ 1`1 @+ 2"))
+    assert _after_go(m, False) == "1`0@1+++1`1@2"
+
+
+@pytest.mark.parametrize("src,message", [
+    ("val x = if true then 1`1 @+ 1 else empty;", "'@+' in the then-branch"),
+    ("val x = 1`1 @+ 1 @+ 2;", "a second '@+'"),
+])
+def test_an_ambiguous_delay_is_refused_with_a_hint_to_parenthesise(src, message):
+    with pytest.raises(ModelError) as info:
+        parse(src, "m.cpnet")
+    [d] = info.value.diagnostics
+    assert d.code == "E0101" and message in d.message and "(" in d.hint
+
+
+def test_a_delay_that_swallows_a_sum_is_a_type_error_with_a_hint():
+    [d] = _diags(DELAY_NET.format(insc="1`0 @+ 2 ++ 1`1"))
+    assert (d.code, d.span.line, d.span.col) == ("E0301", 5, 50)
+    assert "'(e1 @+ d) ++ e2'" in d.hint
+
+
+def test_cpn_import_reads_the_delay_as_cpn_tools_does(tmp_path):
+    from tests.io.test_cpntools import arc, cpn_xml, page, place, trans
+
+    decls = ('<color id="C1"><id>U</id><unit/></color><color id="C2"><id>C</id><timed/><int/></color>'
+             '<var id="V1"><type><id>C</id></type><id>x</id></var>')
+    body = (place("P1", "S", "U", "1`()") + place("P2", "P", "C") + trans("T1", "Go")
+            + arc("A1", "PtoT", "T1", "P1", "()") + arc("A2", "TtoP", "T1", "P2", "1`0 ++ 1`1 @+ 2"))
+    path = tmp_path / "delay.cpn"
+    path.write_text(cpn_xml(decls, page("PG1", "Top", body)), encoding="iso-8859-1")
+    assert _after_go(cpn.load(path), False) == "1`0@2+++1`1@2"
