@@ -42,6 +42,7 @@ class PageInfo:
     transitions: dict[str, TransInfo] = field(default_factory=dict)
     instances: list[A.InstanceDecl] = field(default_factory=list)
     order: list[str] = field(default_factory=list)  # transition names in declaration order
+    incomplete: set[str] = field(default_factory=set)  # names of transitions with an arc in error
 
 
 @dataclass(eq=False)

@@ -66,7 +66,10 @@ class PageChecks:
                            "level", d.span, hint="CPN ML declarations are global, as in CPN Tools.")
         for d in decls:
             if isinstance(d, A.ArcDecl):
+                before = len(self.diags)
                 self.arc(page, d, env)
+                if len(self.diags) > before:
+                    page.incomplete.update((d.src, d.dst))
         for tname in page.order:
             self.transition(page, page.transitions[tname], env)
         return page
@@ -153,6 +156,14 @@ class PageChecks:
             if ak in ("in", "both", "inhibitor") and _has_delay(expr):
                 self.error("E0206", "delays on input arcs ('preemption') are not supported", expr.span)
                 return
+            delay = _delay_node(expr) if ak == "out" else None
+            if delay is not None and not self.colsets[pd.colset].timed:
+                # CPN Tools: 'e @+ d' is a timed multiset, which an untimed place cannot hold
+                self.error("E0301", f"the inscription of arc '{d.src}' -> '{d.dst}' has a time delay, but place "
+                           f"'{place}' holds {pd.colset}, which is not timed", delay.span,
+                           hint=f"Declare the colour set timed ('colset {pd.colset} = ... timed;'), or remove "
+                                "the '@+': tokens of an untimed place carry no time stamp.", place=place)
+                return
         info.arcs.append(ArcInfo(d, ak, place, trans, expr))
 
     def transition(self, page: PageInfo, info: TransInfo, env: Env) -> None:
@@ -183,6 +194,8 @@ class PageChecks:
         for v, cs, sym in sink:
             info.ran.append((v, cs))
             self.variables[v] = sym
+        if d.delay is not None and ok and d.name not in page.incomplete:
+            self._check_delay_has_effect(page, info)
         if d.priority is not None:
             t = self.infer_top(d.priority, env)
             if t is None:
@@ -232,6 +245,22 @@ class PageChecks:
                        f"'{sym.data}' is too large to try every value)", span, hint=hint.strip(), name=v)
         info.variables = sorted(used)
         info.free = free
+
+    def _check_delay_has_effect(self, page: PageInfo, info: TransInfo) -> None:
+        """A transition delay applies to the tokens put on timed places (as in CPN Tools); with no timed
+        output place it has no effect, which is an error as in CPN Tools rather than a silent no-op."""
+        d = info.decl
+        outputs = [a for a in info.arcs if a.kind in ("out", "both")]
+        colsets = [self.colsets.get(page.places[a.place].colset) for a in outputs]
+        if None in colsets or any(cs.timed for cs in colsets):
+            return
+        places = sorted({f"'{a.place}' ({page.places[a.place].colset})" for a in outputs})
+        found = ("it has no output arcs" if not places else f"its output place {places[0]} is not timed"
+                 if len(places) == 1 else f"its output places {', '.join(places)} are not timed")
+        self.error("E0301", f"transition '{d.name}' has a delay, but {found}: the delay has no effect",
+                   d.delay.span, hint="A delay gives the tokens put on timed places a later time stamp: declare the "
+                   "colour set of an output place timed ('colset C = ... timed;'), or remove the '@+'.",
+                   transition=d.name)
 
     def _first_use(self, info: TransInfo, v: str) -> Span:
         for a in info.arcs:
@@ -318,6 +347,23 @@ def _has_delay(e) -> bool:
     if isinstance(e, A.If):
         return _has_delay(e.then) or _has_delay(e.else_)
     return False
+
+
+def _delay_node(e):
+    """The first '@+' of an output inscription, wherever it delays the tokens the arc produces."""
+    if isinstance(e, A.BinOp):
+        if e.op == "@+":
+            return e
+        if e.op in ("++", "+++", "--"):
+            return _delay_node(e.left) or _delay_node(e.right)
+        return None
+    if isinstance(e, A.If):
+        return _delay_node(e.then) or _delay_node(e.else_)
+    if isinstance(e, A.Case):
+        return next((n for n in (_delay_node(b) for _, b in e.rules) if n is not None), None)
+    if isinstance(e, A.Let):
+        return _delay_node(e.body)
+    return None
 
 
 def _replace_ran(e):

@@ -50,7 +50,8 @@ def random_net(seed: int) -> str:
         guard = rng.choice(["", "", "[x <> y]", "[x = nx(y)]", "[b]", "[x <= y]"])
         delay = f" @+ {rng.randint(0, 2)}" if timed and rng.random() < 0.3 else ""
         prio = ""
-        lines.append(f"trans t{t} {guard}{delay}{prio};")
+        at = len(lines)
+        lines.append("")
         used = rng.sample(places, k=rng.randint(1, min(3, len(places))))
         for name, k in used:
             kind = rng.choice(["->", "->", "->", "<->", "inhibitor", "reset"])
@@ -72,6 +73,9 @@ def random_net(seed: int) -> str:
             if rng.random() < 0.2:
                 v = f"if b then 1`{value(k)} else empty"
             lines.append(f"arc t{t} -> {name} : {v};")
+        if not any(k == "TC" for _, k in outs):
+            delay = ""  # a transition delay without a timed output place is an error (E0301)
+        lines[at] = f"trans t{t} {guard}{delay}{prio};"
     return "\n".join(lines) + "\n"
 
 

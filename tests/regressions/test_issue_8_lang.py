@@ -120,3 +120,52 @@ def test_cpn_import_reads_the_delay_as_cpn_tools_does(tmp_path):
     path = tmp_path / "delay.cpn"
     path.write_text(cpn_xml(decls, page("PG1", "Top", body)), encoding="iso-8859-1")
     assert _after_go(cpn.load(path), False) == "1`0@2+++1`1@2"
+
+
+# ----------------------------------------------------------------------------- item 2
+
+UNTIMED = """colset U = unit; colset UT = unit timed;
+place P : U = 1`();
+place Q : U;
+place Z : UT;
+"""
+
+
+def test_an_arc_delay_into_an_untimed_place_is_a_type_error():
+    [d] = _diags(UNTIMED + "trans T;\narc P -> T;\narc T -> Q : () @+ 5;\n")
+    assert (d.code, d.span.line, d.span.col, d.params["place"]) == ("E0301", 7, 14, "Q")
+    assert "timed" in d.hint
+
+
+def test_a_delay_inside_an_if_into_an_untimed_place_is_a_type_error():
+    [d] = _diags(UNTIMED + "trans T;\narc P -> T;\narc T -> Q : if true then 1`() else empty @+ 5;\n")
+    assert (d.code, d.span.line) == ("E0301", 7)
+
+
+def test_a_transition_delay_without_a_timed_output_is_a_type_error():
+    diags = _diags(UNTIMED + "trans T @+ 5;\narc P -> T;\narc T -> Q;\ntrans S @+ 1;\narc Q -> S;\n")
+    assert [(d.code, d.span.line, d.span.col, d.params["transition"]) for d in diags] == [
+        ("E0301", 5, 12, "T"), ("E0301", 8, 12, "S")]
+    assert all("timed" in d.hint for d in diags)
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_a_transition_delay_applies_to_the_timed_outputs_only(reference):
+    m = cpn.loads(UNTIMED + "trans T @+ 5;\narc P -> T;\narc T -> Q;\narc T -> Z;\n")
+    e = m.engine(reference=reference)
+    [(_, s1)] = e.successors(e.initial_state())
+    assert (e.format_marking(s1, 1), e.format_marking(s1, 2)) == ("1`()", "1`()@5")
+
+
+def test_a_delay_into_an_untimed_place_of_a_cpn_file_is_reported_at_the_arc(tmp_path):
+    from tests.io.test_cpntools import arc, cpn_xml, page, place, trans
+
+    decls = '<color id="C1"><id>U</id><unit/></color>'
+    body = (place("P1", "S", "U", "1`()") + place("P2", "P", "U") + trans("T1", "Go")
+            + arc("A1", "PtoT", "T1", "P1", "()") + arc("A2", "TtoP", "T1", "P2", "()@+5"))
+    path = tmp_path / "untimed.cpn"
+    path.write_text(cpn_xml(decls, page("PG1", "Top", body)), encoding="iso-8859-1")
+    with pytest.raises(ModelError) as info:
+        cpn.load(path)
+    [d] = info.value.diagnostics
+    assert d.code == "E0301" and d.span.file == str(path) and "not timed" in d.message
