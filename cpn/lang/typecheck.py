@@ -15,12 +15,13 @@ from cpn.lang import types as T
 from cpn.lang.builtins import BUILTINS, COLSET_OPS, MLError, parse_type
 from cpn.lang.checked import Abort, ArcInfo, CheckedModel, Env, PageInfo, TransInfo
 from cpn.lang.evaluate import Evaluator
+from cpn.lang.multisets import MultisetInference
 from cpn.lang.pages import PageChecks
 from cpn.lang.symbols import ConInfo, Symbol
 from cpn.values import colours as C
 
 
-class Checker(PageChecks):
+class Checker(PageChecks, MultisetInference):
     def __init__(self, model: A.Model, overrides: dict[str, str] | None = None):
         self.model = model
         self.file = model.file
@@ -675,20 +676,6 @@ class Checker(PageChecks):
             return T.INT, v, T.ms(v)
         raise Abort()
 
-    def infer_ms(self, e: A.Expr, elem: T.Type, env: Env, what: str) -> A.Expr:
-        """Infer e where a multiset over `elem` is expected; a single value is wrapped in ToMs."""
-        t = self.infer(e, env)
-        pt = T.prune(t)
-        if isinstance(pt, T.TCon) and pt.name == "ms":
-            self.must(pt.args[0], elem, e.span, what)
-            return e
-        if isinstance(pt, T.TVar):
-            # not known yet (e.g. a recursive call): a multiset, as CPN ML's ++ requires
-            self.must(pt, T.ms(elem), e.span, what)
-            return e
-        self.must(t, elem, e.span, what)
-        return A.ToMs(e.span, e, ty=T.ms(elem))
-
     def _i_BinOp(self, e, env):
         op = e.op
         if op in ("++", "--", "+++"):
@@ -699,12 +686,7 @@ class Checker(PageChecks):
         if op == "@+":
             elem = T.TVar()
             e.left = self.infer_ms(e.left, elem, env, "the tokens of '@+'")
-            dt = self.infer(e.right, env)
-            if not self.unify(dt, T.INT, e.right.span, "a time delay (it must be an integer)"):
-                if isinstance(e.right, A.BinOp) and e.right.op in ("++", "--"):
-                    self.diags[-1].hint = ("'e @+ d' delays all of e by everything after the '@+', as CPN Tools "
-                                           "reads it; to delay one term only, write '(e1 @+ d) ++ e2'.")
-                raise Abort()
+            self.infer_delay(e, env)
             return T.ms(elem)
         if op == "@@":
             self.error("E0206", "absolute timestamps '@@' are not supported; use '@+' delays", e.span)

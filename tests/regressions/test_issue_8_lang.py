@@ -169,3 +169,63 @@ def test_a_delay_into_an_untimed_place_of_a_cpn_file_is_reported_at_the_arc(tmp_
         cpn.load(path)
     [d] = info.value.diagnostics
     assert d.code == "E0301" and d.span.file == str(path) and "not timed" in d.message
+
+
+# ----------------------------------------------------------------------------- item 4
+
+LISTS = """colset Worker = with w1 | w2;
+colset Decision = with yes | no;
+colset WorkerxDecision = product Worker * Decision;
+colset WL = list WorkerxDecision;
+var w : Worker;
+var ws : WL;
+fun decide w = [(w, yes), (w, no)];
+place Idle : Worker = [w1, w2];
+place Out : WorkerxDecision;
+place Lists : WL = [(w1, yes)];
+trans Decide;
+arc Idle -> Decide : w;
+arc Decide -> Out : decide w;
+trans Collect;
+arc Out -> Collect : [(w, yes), (w, no)];
+arc Collect -> Idle : if w = w1 then [w] else [] ++ 1`w;
+trans Keep;
+arc Lists -> Keep : ws;
+arc Keep -> Lists : ws;
+"""
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_a_list_of_colours_is_accepted_where_a_multiset_is_expected(reference):
+    from cpn.statespace import Explorer
+
+    e = cpn.loads(LISTS).engine(reference=reference)
+    s0 = e.initial_state()
+    # an initial marking given as a list; a place whose colour set is a list holds one list token
+    assert (e.format_marking(s0, 0), e.format_marking(s0, 2)) == ("1`w1++1`w2", "1`[(w1,yes)]")
+    succ = {e.format_binding_element(be): s for be, s in e.successors(s0)}
+    assert e.format_marking(succ["Top'Decide 1: {w=w1}"], 1) == "1`(w1,yes)++1`(w1,no)"
+    x = Explorer(e).run()
+    assert (x.n_states, x.n_arcs, x.complete) == (4, 12, True)
+
+
+def test_a_list_of_the_wrong_colour_is_still_a_type_error():
+    [d] = _diags(LISTS.replace("arc Decide -> Out : decide w;", "arc Decide -> Out : [w];"))
+    assert (d.code, d.span.line) == ("E0301", 13)
+
+
+def test_a_list_of_colours_on_an_arc_of_a_cpn_file(tmp_path):
+    from tests.io.test_cpntools import arc, cpn_xml, page, place, trans
+
+    decls = ('<color id="C1"><id>Worker</id><enum><id>w1</id><id>w2</id></enum></color>'
+             '<color id="C2"><id>Decision</id><enum><id>yes</id><id>no</id></enum></color>'
+             '<color id="C3"><id>WorkerxDecision</id><product><id>Worker</id><id>Decision</id></product></color>'
+             '<var id="V1"><type><id>Worker</id></type><id>w</id></var>'
+             '<ml id="M1">fun decide w = [(w, yes), (w, no)]</ml>')
+    body = (place("P1", "Idle", "Worker", "[w1]") + place("P2", "Out", "WorkerxDecision") + trans("T1", "Decide")
+            + arc("A1", "PtoT", "T1", "P1", "w") + arc("A2", "TtoP", "T1", "P2", "decide w"))
+    path = tmp_path / "lists.cpn"
+    path.write_text(cpn_xml(decls, page("PG1", "Top", body)), encoding="iso-8859-1")
+    e = cpn.load(path).engine()
+    [(_, s1)] = e.successors(e.initial_state())
+    assert e.format_marking(s1, 1) == "1`(w1,yes)++1`(w1,no)"

@@ -1,0 +1,95 @@
+"""Type inference where a multiset is expected (arc inscriptions, initial markings, operands of '++' and
+'@+'): a single value means ``1`value``, and a list of values means the multiset of its elements, as in
+CPN Tools, whose multisets are lists.
+
+A mixin of `cpn.lang.typecheck.Checker`, which provides inference and diagnostics.
+Imports `cpn.lang.*` and layer 0.
+"""
+
+from __future__ import annotations
+
+from cpn.lang import ast as A
+from cpn.lang import types as T
+from cpn.lang.checked import Abort, Env
+
+
+def _is_ms(t) -> bool:
+    return isinstance(t, T.TCon) and t.name == "ms"
+
+
+def _is_list(t) -> bool:
+    return isinstance(t, T.TCon) and t.name == "list"
+
+
+class MultisetInference:
+    """Inference of expressions in a multiset context (mixed into the Checker)."""
+
+    def infer_ms(self, e: A.Expr, elem: T.Type, env: Env, what: str) -> A.Expr:
+        """Infer e where a multiset over `elem` is expected and return the expression to use: a single value
+        is wrapped in ToMs, a list of values becomes the multiset of its elements.
+
+        The expected element type is passed down through '++', '--', '+++', '@+' and the branches of 'if',
+        so that ``1`x ++ f y`` with `f y` a list of colours is read as CPN Tools reads it.
+        """
+        if isinstance(e, A.BinOp) and e.op in ("++", "--", "+++"):
+            e.left = self.infer_ms(e.left, elem, env, f"the left operand of '{e.op}'")
+            e.right = self.infer_ms(e.right, elem, env, f"the right operand of '{e.op}'")
+            e.ty = T.ms(elem)
+            return e
+        if isinstance(e, A.BinOp) and e.op == "@+":
+            e.left = self.infer_ms(e.left, elem, env, "the tokens of '@+'")
+            self.infer_delay(e, env)
+            e.ty = T.ms(elem)
+            return e
+        if isinstance(e, A.If):
+            self.must(self.infer(e.cond, env), T.BOOL, e.cond.span, "the condition of 'if'")
+            e.then = self.infer_ms(e.then, elem, env, what)
+            e.else_ = self.infer_ms(e.else_, elem, env, what)
+            if isinstance(e.then, A.ToMs) and isinstance(e.else_, A.ToMs):
+                # two single values: ``1`(if c then a else b)``, the form the engines bind tokens with
+                e.then, e.else_, e.ty = e.then.expr, e.else_.expr, elem
+                return A.ToMs(e.span, e, ty=T.ms(elem))
+            e.ty = T.ms(elem)
+            return e
+        t = self.infer(e, env)
+        pt = T.prune(t)
+        if _is_ms(pt):
+            self.must(pt.args[0], elem, e.span, what)
+            return e
+        if isinstance(pt, T.TVar):
+            # not known yet (e.g. a recursive call): a multiset, as CPN ML's ++ requires
+            self.must(pt, T.ms(elem), e.span, what)
+            return e
+        pe = T.prune(elem)
+        if _is_list(pt) and not _is_list(pe) and not isinstance(pe, T.TVar):
+            # a list where a multiset of non-lists is expected: its elements are the tokens (CPN Tools)
+            self.must(pt.args[0], elem, e.span, what)
+            return self.list_as_multiset(e, elem)
+        self.must(t, elem, e.span, what)
+        return A.ToMs(e.span, e, ty=T.ms(elem))
+
+    def list_as_multiset(self, e: A.Expr, elem: T.Type) -> A.Expr:
+        """The multiset of the elements of list expression e: a list literal becomes ``1`a ++ 1`b`` (so that
+        its variables can be bound by tokens on an input arc), any other list ``list_to_ms e``."""
+        mst = T.ms(elem)
+        if isinstance(e, A.ListE):
+            if not e.items:
+                empty = A.Name(e.span, "empty", ty=mst)
+                empty.ref = self.builtin_syms["empty"]
+                return empty
+            out: A.Expr = A.ToMs(e.items[0].span, e.items[0], ty=mst)
+            for x in e.items[1:]:
+                out = A.BinOp(e.span, "++", out, A.ToMs(x.span, x, ty=mst), ty=mst)
+            return out
+        fn = A.Name(e.span, "list_to_ms", ty=T.TFun(T.lst(elem), mst))
+        fn.ref = self.builtin_syms["list_to_ms"]
+        return A.App(e.span, fn, e, ty=mst)
+
+    def infer_delay(self, e: A.BinOp, env: Env) -> None:
+        """The delay d of `tokens @+ d`: an integer."""
+        dt = self.infer(e.right, env)
+        if not self.unify(dt, T.INT, e.right.span, "a time delay (it must be an integer)"):
+            if isinstance(e.right, A.BinOp) and e.right.op in ("++", "--"):
+                self.diags[-1].hint = ("'e @+ d' delays all of e by everything after the '@+', as CPN Tools "
+                                       "reads it; to delay one term only, write '(e1 @+ d) ++ e2'.")
+            raise Abort()
