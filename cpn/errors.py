@@ -19,8 +19,14 @@ class ConfigurationError(CpnError):
 
     exit_status = 64
 
+    def __init__(self, message: str = "", hint: str | None = None, code: str | None = None):
+        super().__init__(message)
+        self.hint = hint
+        self.code = code  # a stable code from `cpn.diagnostics.CODES`, when the error has one
+
     def render(self) -> str:
-        return f"error: {self}"
+        head = f"error[{self.code}]" if self.code else "error"
+        return f"{head}: {self}" + (f"\nhint: {self.hint}" if self.hint else "")
 
 
 class ModelError(CpnError):

@@ -9,6 +9,7 @@ import os
 
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import ConfigurationError, ModelError
+from cpn.lang.overrides import parse_overrides
 from cpn.lang.parser import parse as _parse
 from cpn.lang.typecheck import check as _check
 from cpn.net.lower import lower as _lower
@@ -71,9 +72,10 @@ def source_of(path: str) -> str:
 
 def loads(text: str, filename: str = "<string>", set: dict | None = None) -> Model:  # noqa: A002
     """Load a model from `.cpnet` source text."""
+    overrides = parse_overrides(_normalise_overrides(set))  # once, before checking: a bad value is a usage error
     try:
         model = _parse(text, filename)
-        checked = _check(model, _normalise_overrides(set))
+        checked = _check(model, overrides)
         net = _lower(checked)
     except RecursionError:
         raise ModelError([Diagnostic("E0206", "the model is nested too deeply to be read (expressions or "

@@ -13,6 +13,7 @@ from cpn.lang import ast as A
 from cpn.lang import types as T
 from cpn.lang.binding import all_vars, children, guard_binder, guard_conjuncts, pattern_vars
 from cpn.lang.checked import Abort, ArcInfo, Env, PageInfo, TransInfo
+from cpn.lang.resolve import suggestion
 from cpn.lang.symbols import Symbol
 from cpn.values import colours as C
 
@@ -91,10 +92,12 @@ class PageChecks:
         src_t, dst_t = d.src in page.transitions, d.dst in page.transitions
         for nm, sp, known in ((d.src, d.src_span, src_p or src_t), (d.dst, d.dst_span, dst_p or dst_t)):
             if not known:
-                cand = did_you_mean(nm, list(page.places) + list(page.transitions))
+                cands = {n: f"the transition '{n}' (declared at {self._where(t.decl.name_span)})"
+                         for n, t in page.transitions.items()}
+                cands.update({n: f"the place '{n}' (declared at {self._where(p.name_span)})"
+                              for n, p in page.places.items()})
                 self.error("E0201", f"unknown place or transition '{nm}' on page '{page.name}'", sp,
-                           hint=f"Did you mean '{cand}'?" if cand else "Declare it with 'place' or 'trans'.",
-                           name=nm)
+                           hint=suggestion(nm, cands) or "Declare it with 'place' or 'trans'.", name=nm)
                 return
         if kind in ("inhibitor", "reset", "<->"):
             if not (src_p and dst_t):

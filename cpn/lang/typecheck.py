@@ -12,17 +12,19 @@ from cpn.diagnostics import Diagnostic, Severity, Span
 from cpn.errors import ModelError
 from cpn.lang import ast as A
 from cpn.lang import types as T
-from cpn.lang.builtins import BUILTINS, COLSET_OPS, MLError, parse_type
+from cpn.lang.builtins import BUILTINS, MLError, parse_type
 from cpn.lang.checked import Abort, ArcInfo, CheckedModel, Env, PageInfo, TransInfo
 from cpn.lang.evaluate import Evaluator
 from cpn.lang.multisets import MultisetInference
+from cpn.lang.overrides import OverrideChecks, parse_overrides
 from cpn.lang.pages import PageChecks
+from cpn.lang.resolve import NameResolution
 from cpn.lang.symbols import ConInfo, Symbol
 from cpn.values import colours as C
 
 
-class Checker(PageChecks, MultisetInference):
-    def __init__(self, model: A.Model, overrides: dict[str, str] | None = None):
+class Checker(NameResolution, PageChecks, MultisetInference, OverrideChecks):
+    def __init__(self, model: A.Model, overrides: dict | None = None):
         self.model = model
         self.file = model.file
         self.diags: list[Diagnostic] = []
@@ -32,7 +34,9 @@ class Checker(PageChecks, MultisetInference):
         self.globals: dict[str, Symbol] = {}
         self.variables: dict[str, Symbol] = {}
         self.ev = Evaluator(self.colsets, {})
-        self.overrides = dict(overrides or {})
+        self.overrides = parse_overrides(overrides)
+        self.init_resolution()
+        self.override_problems: list = []
         self.used_overrides: set[str] = set()
         self.pending: list[tuple] = []
         self.net_name = "Top"
@@ -71,12 +75,18 @@ class Checker(PageChecks, MultisetInference):
                 self.net_name = d.name
             elif isinstance(d, A.ColsetDecl):
                 self.colset_decl(d)
+                if d.name not in self.colsets:
+                    self.failed_names.add(d.name)
             elif isinstance(d, A.VarDecl):
                 self.var_decl(d)
+                self.failed_names.update(n for n, _ in d.names if n not in self.variables)
             elif isinstance(d, A.ValDecl):
                 self.val_decl(d)
+                if d.pat.ref is None:
+                    self.failed_names.add(d.name)
             elif isinstance(d, A.FunDecl):
-                self.fun_decl(d)
+                if self.fun_decl(d) is None and isinstance(d.name, str):
+                    self.failed_names.add(d.name)
             elif isinstance(d, A.ModuleDecl):
                 if d.name in modules:
                     first = modules[d.name].span
@@ -87,11 +97,8 @@ class Checker(PageChecks, MultisetInference):
                     modules[d.name] = d
             else:
                 top_decls.append(d)
-        for name in sorted(set(self.overrides) - self.used_overrides):
-            cand = did_you_mean(name, [n for n, s in self.globals.items() if s.kind == "val"])
-            self.error("E0305", f"there is no 'val {name}' in the model to override", None,
-                       hint=f"Did you mean '{cand}'?" if cand else "Only constants declared with 'val' can be set.",
-                       name=name)
+        self.unused_overrides()
+        self.raise_override_problems()
         self.module_decls = modules
         top = self.page(self.net_name, None, top_decls)
         pages = {name: self.page(name, m, m.body) for name, m in modules.items()}
@@ -114,15 +121,6 @@ class Checker(PageChecks, MultisetInference):
             return False
         self.globals[sym.name] = sym  # a later val or fun shadows an earlier one, as in SML
         return True
-
-    def lookup_colset(self, name: str, span: Span) -> C.ColourSet | None:
-        cs = self.colsets.get(name)
-        if cs is None:
-            cand = did_you_mean(name, self.colsets)
-            hint = (f"Did you mean '{cand}' (declared at {self._where(self.cs_spans[cand])})? Colour-set names are "
-                    "case-sensitive." if cand else "Declare it with 'colset NAME = ...;' before its first use.")
-            self.error("E0201", f"unknown colour set '{name}'", span, hint=hint, name=name)
-        return cs
 
     def const_int(self, e: A.Expr | None, what: str) -> int | None:
         if e is None:
@@ -268,40 +266,30 @@ class Checker(PageChecks, MultisetInference):
 
     def val_decl(self, d: A.ValDecl) -> None:
         name = d.name
-        expr = d.expr
+        given = None
         if name in self.overrides:
             self.used_overrides.add(name)
-            expr = self.parse_override(name, self.overrides[name], d)
-            if expr is None:
+            given = self.override_value(d, self.overrides[name])
+        if given is not None:
+            t, value = given
+        else:
+            expr = d.expr
+            t = self.infer_top(expr)
+            if t is None:
                 return
-        t = self.infer_top(expr)
-        if t is None:
-            return
-        if d.type_expr is not None:
-            at = self.type_of_annotation(d.type_expr)
-            if at is not None and not self.unify(t, at, expr.span, f"the value of '{name}'"):
+            if d.type_expr is not None:
+                at = self.type_of_annotation(d.type_expr)
+                if at is not None and not self.unify(t, at, expr.span, f"the value of '{name}'"):
+                    return
+            try:
+                value = self.ev.eval(expr, {})
+            except (MLError, RecursionError) as exc:
+                self.error("E0401", f"evaluating 'val {name}' failed: {exc}", expr.span)
                 return
-        d.expr = expr
-        try:
-            value = self.ev.eval(expr, {})
-        except (MLError, RecursionError) as exc:
-            self.error("E0401", f"evaluating 'val {name}' failed: {exc}", expr.span)
-            return
         sym = Symbol(name, "val", T.Scheme(T.free_vars(t), t), d.pat.span)
         self._declare_global(sym)
         d.pat.ref = sym
         self.ev.globals[sym.uid] = value
-
-    def parse_override(self, name: str, text: str, d: A.ValDecl) -> A.Expr | None:
-        from cpn.lang.parser import parse
-
-        try:
-            m = parse(f"val {name} = {text};", f"--set {name}")
-        except ModelError:
-            self.error("E0305", f"the value given for '{name}' with --set is not a CPN ML expression: {text!r}",
-                       d.span, hint=f"Write it as in the model, e.g. --set {name}=8 or --set '{name}=\"text\"'.")
-            return None
-        return m.decls[0].expr
 
     def fun_decl(self, d: A.FunDecl, env: Env | None = None) -> Symbol | None:
         outer = env or self.genv
@@ -447,36 +435,6 @@ class Checker(PageChecks, MultisetInference):
         return True
 
     # ------------------------------------------------------------------ expressions
-    def resolve_name(self, name: str, env: Env, span: Span) -> Symbol | None:
-        sym = env.lookup(name)
-        if sym is not None:
-            return sym
-        if name in self.builtin_syms:
-            return self.builtin_syms[name]
-        if "." in name:
-            cs, _, op = name.rpartition(".")
-            if cs in self.colsets and op in COLSET_OPS:
-                return Symbol(name, "csop", None, span, (cs, op))
-        return None
-
-    def unknown_name(self, name: str, env: Env, span: Span) -> None:
-        names = set(self.globals) | set(self.builtin_syms)
-        e = env
-        while e is not None:
-            names |= set(e.names)
-            e = e.parent
-        cand = did_you_mean(name, names)
-        if "." in name:
-            cs, _, op = name.rpartition(".")
-            if cs in self.colsets:
-                hint = f"Colour sets have the functions {', '.join(sorted(COLSET_OPS))}."
-            else:
-                hint = f"Did you mean '{cand}'?" if cand else "This library function is not supported (docs/cpnml.md)."
-        else:
-            hint = (f"Did you mean '{cand}'?" if cand else
-                    "Declare it with 'val', 'var' or 'fun' before its first use.")
-        self.error("E0201", f"unknown name '{name}'", span, hint=hint, name=name)
-
     def infer(self, e: A.Expr, env: Env) -> T.Type:
         t = getattr(self, "_i_" + type(e).__name__)(e, env)
         e.ty = t
@@ -770,8 +728,9 @@ class Checker(PageChecks, MultisetInference):
     # ------------------------------------------------------------------ pages
 
 
-def check(model: A.Model, overrides: dict[str, str] | None = None) -> CheckedModel:
-    """Resolve names and check types of a parsed model; raises ModelError with every error found."""
+def check(model: A.Model, overrides: dict | None = None) -> CheckedModel:
+    """Resolve names and check types of a parsed model; raises ModelError with every error found, or
+    ConfigurationError when a value in `overrides` (name -> CPN ML text or parsed `Override`) does not fit."""
     return Checker(model, overrides).check()
 
 

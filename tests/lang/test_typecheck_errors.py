@@ -3,7 +3,7 @@
 import pytest
 
 import cpn
-from cpn.errors import ModelError
+from cpn.errors import ConfigurationError, ModelError
 
 HEAD = "colset INT5 = int with 0..5;\ncolset U = unit;\nvar x : INT5;\n"
 
@@ -49,15 +49,16 @@ def test_did_you_mean_colour_set():
 
 
 def test_unknown_override_is_reported():
-    with pytest.raises(ModelError) as info:
+    # a bad value given from outside the model is a usage error (exit 64), not a model error
+    with pytest.raises(ConfigurationError) as info:
         cpn.loads("val N = 3;", "m.cpnet", set={"M": "4"})
-    assert info.value.errors[0].code == "E0305"
+    assert info.value.code == "E0305" and len(info.value.problems) == 1
 
 
 def test_override_of_wrong_type():
-    with pytest.raises(ModelError) as info:
+    with pytest.raises(ConfigurationError) as info:
         cpn.loads("val N = 3;\ncolset C = int with 1..N;", "m.cpnet", set={"N": '"x"'})
-    assert info.value.errors[0].code == "E0301"
+    assert info.value.code == "E0305" and "expected an int for 'N'" in str(info.value)
 
 
 def test_override_changes_colour_set():

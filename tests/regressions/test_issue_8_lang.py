@@ -229,3 +229,139 @@ def test_a_list_of_colours_on_an_arc_of_a_cpn_file(tmp_path):
     e = cpn.load(path).engine()
     [(_, s1)] = e.successors(e.initial_state())
     assert e.format_marking(s1, 1) == "1`(w1,yes)++1`(w1,no)"
+
+
+# ----------------------------------------------------------------------------- item 13
+
+SETS = """val N = 3;
+colset S = int with 0..N;
+colset P2 = product S * S;
+var x : S;
+place P : S = S.all();
+place Q : P2;
+trans T [x < N];
+arc P -> T : x;
+arc T -> Q : (x, x);
+"""
+
+
+@pytest.mark.parametrize("value,expected", [
+    ("abc", "expected an int for 'N' declared at m.cpnet:1:5, found 'abc'"),
+    ("1.5", "expected an int for 'N' declared at m.cpnet:1:5, found a real"),
+    ('"x"', "expected an int for 'N' declared at m.cpnet:1:5, found a string"),
+    ("1 +", "not a CPN ML expression"),
+    ("1 div 0", "evaluating the value failed"),
+])
+def test_a_bad_set_value_is_one_usage_error_naming_the_value(value, expected):
+    from cpn.errors import ConfigurationError
+
+    with pytest.raises(ConfigurationError) as info:
+        cpn.loads(SETS, "m.cpnet", set={"N": value})
+    exc = info.value
+    assert (exc.code, exc.exit_status) == ("E0305", 64)
+    assert str(exc).startswith(f"--set N={value}: ") and expected in str(exc)
+    assert str(exc).count("\n") == 0
+
+
+def test_an_unknown_constant_is_a_usage_error_with_a_suggestion():
+    from cpn.errors import ConfigurationError
+
+    with pytest.raises(ConfigurationError) as info:
+        cpn.loads(SETS.replace("val N", "val Limit").replace("..N", "..Limit").replace("< N", "< Limit"),
+                  "m.cpnet", set={"Limt": "3"})
+    assert [p.message for p in info.value.problems] == ["the model has no constant 'val Limt'"]
+    assert "'Limit'" in info.value.hint
+
+
+@pytest.mark.parametrize("value", ["-1", " - 1", "~1"])
+def test_a_negative_number_may_be_written_with_a_minus(value):
+    m = cpn.loads("val D = 3;\ncolset C = int with ~5..5;\nplace P : C = 1`D;", "m.cpnet", set={"D": value})
+    assert m.net.places[0].initial == {-1: 1}
+
+
+def test_set_values_are_parsed_before_checking_and_leave_the_model_unchanged():
+    from cpn.lang.overrides import parse_overrides
+    from cpn.lang.typecheck import check
+
+    model = parse(SETS, "m.cpnet")
+    original = model.decls[0].expr
+    overrides = parse_overrides({"N": "-2"})
+    assert overrides["N"].text == "-2"
+    with pytest.raises(ModelError):  # 0..~2 is an empty range: a model error, reported once
+        check(model, overrides)
+    assert model.decls[0].expr is original  # the declaration still holds the model's own value
+
+
+@pytest.mark.parametrize("argv", [["lint"], ["explore", "--quiet"], ["simulate"]])
+@pytest.mark.parametrize("value", ["N=abc", "N=1.5", "NOPE=3"])
+def test_the_command_line_exits_64_with_one_error(tmp_path, capsys, argv, value):
+    from cpn.cli.main import main
+
+    path = tmp_path / "m.cpnet"
+    path.write_text(SETS)
+    assert main(argv + ["--set", value, str(path)]) == 64
+    err = capsys.readouterr().err
+    assert err.count("error") == 1 and f"--set {value}" in err
+
+
+def test_one_unknown_colour_set_is_reported_once():
+    src = """colset S = int with 0..3;
+colset P2 = product Foo * S;
+var x : Foo;
+var y : S;
+place P : Foo = 1`1;
+place Q : P2;
+trans T [x < 3];
+arc P -> T : x;
+arc T -> Q : (x, y);
+"""
+    [d] = _diags(src)
+    assert (d.code, d.span.line, d.params["name"]) == ("E0201", 2, "Foo")
+    assert d.notes == ["also used at 3:9, 5:11"]
+
+
+def test_a_failed_declaration_causes_no_follow_on_errors():
+    [d] = _diags("val N = abc;\ncolset S = int with 0..N;\nvar x : S;\nplace P : S = S.all();\ntrans T [x < N];\n"
+                 "arc P -> T : x;\n")
+    assert (d.code, d.span.line, d.params["name"]) == ("E0201", 1, "abc")
+
+
+# ----------------------------------------------------------------------------- item 19
+
+MISSPELT = """colset Worker = int with 0..3;
+val Limit = 3;
+var worker : Worker;
+fun next w = (w + 1) mod Limit;
+place Idle : Worker = Worker.all();
+place Busy : Worker;
+trans Start [worker < Limit];
+trans Stop;
+arc Idle -> Start : worker;
+arc Start -> Busy : worker;
+arc Busy -> Stop : worker;
+arc Stop -> Idle : next worker;
+"""
+
+
+@pytest.mark.parametrize("old,new,line,hint", [
+    ("place Busy : Worker;", "place Busy : Workr;", 6, "Did you mean 'Worker' (declared at 1:1)?"),
+    ("arc Idle -> Start : worker;", "arc Idle -> Start : workr;", 9,
+     "Did you mean the variable 'worker' (declared at 3:5)?"),
+    ("[worker < Limit]", "[worker < Limt]", 7, "Did you mean the constant 'Limit' (declared at 2:5)?"),
+    ("next worker;", "nxt worker;", 12, "Did you mean the function 'next' (declared at 4:1)?"),
+    ("arc Busy -> Stop", "arc Bussy -> Stop", 11, "Did you mean the place 'Busy' (declared at 6:7)?"),
+    ("arc Idle -> Start", "arc Idle -> Strat", 9, "Did you mean the transition 'Start' (declared at 7:7)?"),
+    ("Worker.all()", "Worker.al()", 5, "Did you mean 'Worker.all'?"),
+    ("(w + 1) mod Limit", "(w + 1) mod Limit + lenght []", 4, "Did you mean the library function 'length'?"),
+])
+def test_unknown_names_get_a_suggestion_naming_what_the_candidate_is(old, new, line, hint):
+    [d] = _diags(MISSPELT.replace(old, new))
+    assert (d.code, d.span.line) == ("E0201", line)
+    assert d.hint.startswith(hint)
+
+
+@pytest.mark.parametrize("old,new", [("[worker < Limit]", "[worker < q]"),
+                                     ("place Busy : Worker;", "place Busy : Colour;")])
+def test_no_suggestion_without_a_strong_candidate(old, new):
+    [d] = _diags(MISSPELT.replace(old, new))
+    assert "Did you mean" not in d.hint
