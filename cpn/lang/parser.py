@@ -15,7 +15,7 @@ from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import ModelSyntaxError
 from cpn.lang import ast as A
-from cpn.lang.syntax_errors import SYNTAX_ERRORS, TERMINAL_NAMES
+from cpn.lang.syntax_errors import CASE_RULE_DELAY, SYNTAX_ERRORS, TERMINAL_NAMES
 from cpn.lang.transform import ToAst
 
 MAX_SYNTAX_ERRORS: int = 50
@@ -101,6 +101,9 @@ def _diagnose(exc: UnexpectedInput, text: str, filename: str) -> Diagnostic:
         prev = exc.token_history[-1] if exc.token_history else None
         if prev is not None and str(prev) == "=":
             label = next(i for i, row in enumerate(SYNTAX_ERRORS) if row[1].startswith("'=='"))
+    if isinstance(exc, UnexpectedToken) and _case_rule_delay(text, exc.pos_in_stream):
+        code, message, hint = CASE_RULE_DELAY
+        return Diagnostic(code, message, span, hint=hint, params={"found": found})
     missing_semi = _missing_semicolon(exc, text, filename)
     if missing_semi is not None:
         return missing_semi
@@ -118,6 +121,17 @@ def _diagnose(exc: UnexpectedInput, text: str, filename: str) -> Diagnostic:
     expected = _expected_text(exc)
     msg = f"unexpected {found}" + (f", expected {expected}" if expected else "")
     return Diagnostic("E0101", msg, span, params={"found": found})
+
+
+_CASE_RULE_DELAY = re.compile(r"\bcase\b[^;]*=>[^;|]*@\+[^;|]*\|\s*_?\Z")
+
+
+def _case_rule_delay(text: str, pos: int | None) -> bool:
+    """The statement up to the error reads `case .. => e @+ d |`: the '@+' took the next rule as its delay."""
+    if pos is None:
+        return False
+    stmt = text[text.rfind(";", 0, pos) + 1:pos + 1]
+    return bool(_CASE_RULE_DELAY.search(stmt))
 
 
 def _missing_semicolon(exc: UnexpectedInput, text: str, filename: str) -> Diagnostic | None:

@@ -96,6 +96,9 @@ def test_timed_sums_of_differently_delayed_terms():
 @pytest.mark.parametrize("src,message", [
     ("val x = if true then 1`1 @+ 1 else empty;", "'@+' in the then-branch"),
     ("val x = 1`1 @+ 1 @+ 2;", "a second '@+'"),
+    ("val x = if true then 1`1 +++ 1`2 else empty;", "'+++' in the then-branch"),
+    ("val x = case 1 of 0 => 1`1 @+ 1 | _ => empty;", "'@+' in a rule of 'case'"),
+    ("fun f x = case x of 0 => 1`1 @+ 1 | _ => empty;", "'@+' in a rule of 'case'"),
 ])
 def test_an_ambiguous_delay_is_refused_with_a_hint_to_parenthesise(src, message):
     with pytest.raises(ModelError) as info:
