@@ -368,3 +368,22 @@ def test_unknown_names_get_a_suggestion_naming_what_the_candidate_is(old, new, l
 def test_no_suggestion_without_a_strong_candidate(old, new):
     [d] = _diags(MISSPELT.replace(old, new))
     assert "Did you mean" not in d.hint
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_a_list_of_colours_on_an_input_arc(reference):
+    src = """colset W = with w1 | w2; colset D = with yes | no; colset WD = product W * D;
+var w : W;
+fun decide w = [(w, yes), (w, no)];
+place Idle : W = [w1, w2];
+place Out : WD = [(w1, yes), (w1, no), (w2, yes)];
+place Done : W;
+trans T;
+arc Idle -> T : w;
+arc Out -> T : decide w;
+arc T -> Done : [w, w];
+"""
+    e = cpn.loads(src).engine(reference=reference)
+    [(be, s1)] = e.successors(e.initial_state())
+    assert e.format_binding_element(be) == "Top'T 1: {w=w1}"
+    assert (e.format_marking(s1, 1), e.format_marking(s1, 2)) == ("1`(w2,yes)", "2`w1")
