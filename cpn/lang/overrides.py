@@ -133,6 +133,19 @@ class OverrideChecks:
                                   (f"; this model has {', '.join(sorted(vals))}." if vals else
                                    "; this model has none."))
 
+    def note_overrides(self, errors: list) -> None:
+        """A model error on a line that names a constant given from outside says so (the value may be why)."""
+        used = [self.overrides[n] for n in sorted(self.used_overrides)]
+        if not used:
+            return
+        lines = self.model.source.splitlines()
+        for d in errors:
+            if d.span is None or d.span.file != self.file or not 1 <= d.span.line <= len(lines):
+                continue
+            for ov in used:
+                if re.search(rf"(?<![\w'])(?<!\w\.){re.escape(ov.name)}(?![\w'])", lines[d.span.line - 1]):
+                    d.notes.append(f"'{ov.name}' is given with {ov}")
+
     def raise_override_problems(self) -> None:
         if not self.override_problems:
             return

@@ -107,6 +107,7 @@ class Checker(NameResolution, PageChecks, MultisetInference, OverrideChecks):
             self.check_instances(p, pages)
         errors = [d for d in self.diags if d.severity is Severity.ERROR]
         if errors:
+            self.note_overrides(errors)
             raise ModelError(self.diags, {self.file: self.model.source})
         return CheckedModel(self.model, self.net_name, self.colsets, self.cstypes, self.variables, self.globals,
                             self.ev, top, pages, [d for d in self.diags if d.severity is Severity.WARNING])

@@ -290,8 +290,10 @@ def test_set_values_are_parsed_before_checking_and_leave_the_model_unchanged():
     original = model.decls[0].expr
     overrides = parse_overrides({"N": "-2"})
     assert overrides["N"].text == "-2"
-    with pytest.raises(ModelError):  # 0..~2 is an empty range: a model error, reported once
+    with pytest.raises(ModelError) as info:  # 0..~2 is an empty range: a model error, reported once
         check(model, overrides)
+    [d] = info.value.diagnostics
+    assert (d.code, d.span.line, d.notes) == ("E0304", 2, ["'N' is given with --set N=-2"])
     assert model.decls[0].expr is original  # the declaration still holds the model's own value
 
 
