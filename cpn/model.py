@@ -9,7 +9,7 @@ import os
 
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import ConfigurationError, ModelError
-from cpn.lang.overrides import parse_overrides
+from cpn.lang.overrides import parse_overrides, usage_error
 from cpn.lang.parser import parse as _parse
 from cpn.lang.typecheck import check as _check
 from cpn.net.lower import lower as _lower
@@ -85,6 +85,16 @@ def loads(text: str, filename: str = "<string>", set: dict | None = None) -> Mod
     return Model(filename, text, net, checked.warnings)
 
 
+def _original_position(span: Span, translation) -> str:
+    """Where a position of the translation of a .cpn or .pnml file comes from, in that file."""
+    if span.file.lower().endswith(".pnml (as .cpnet)"):
+        found = translation.locate(span.line)
+    else:
+        located = translation.locate(span.line, span.col)
+        found = located[0] if located is not None else None
+    return str(found if found is not None else span)
+
+
 def load(path: str | os.PathLike, set: dict | None = None) -> Model:  # noqa: A002
     """Load a model file (`.cpnet`, `.pnml`, `.cpn`), check it and flatten it.
 
@@ -119,6 +129,12 @@ def load(path: str | os.PathLike, set: dict | None = None) -> Model:  # noqa: A0
             model = loads(translation.text, generated, set)
         except ModelError as exc:
             raise fmt.remap_error(exc, translation, generated) from None
+        except ConfigurationError as exc:
+            problems = getattr(exc, "problems", None)
+            if not problems:
+                raise
+            # a --set value that does not fit names the constant's declaration in the file the user has
+            raise usage_error(problems, lambda span: _original_position(span, translation)) from None
         model.path = path
         model.translation = translation
         return model

@@ -10,9 +10,10 @@ from __future__ import annotations
 
 import re
 from dataclasses import dataclass
-from typing import Any
+from typing import Any, Callable
 
 from cpn._util import did_you_mean
+from cpn.diagnostics import Span
 from cpn.errors import ConfigurationError, ModelError
 from cpn.lang import ast as A
 from cpn.lang import types as T
@@ -36,9 +37,26 @@ class Override:
 
 @dataclass(frozen=True)
 class OverrideProblem:
+    """Why a given value does not fit; `{declared}` in the message stands for the position of `declared`."""
+
     override: Override
     message: str
     hint: str | None = None
+    declared: Span | None = None
+
+    def text(self, where: Callable[[Span], str] = str) -> str:
+        declared = where(self.declared) if self.declared is not None else "?"
+        return f"{self.override}: {self.message.replace('{declared}', declared)}"
+
+
+def usage_error(problems: list[OverrideProblem], where: Callable[[Span], str] = str) -> ConfigurationError:
+    """One usage error for every value that does not fit; `where` writes a declaration's position."""
+    lines = [p.text(where) for p in problems]
+    hints = [p.hint for p in problems if p.hint]
+    exc = ConfigurationError(lines[0] if len(lines) == 1 else "\n".join(["bad --set values:"] + ["  " + x for x in lines]),
+                             hint=hints[0] if len(hints) == 1 else None, code="E0305")
+    exc.problems = list(problems)
+    return exc
 
 
 def parse_override(name: str, text: str) -> Override:
@@ -84,7 +102,7 @@ class OverrideChecks:
     def override_value(self, d: A.ValDecl, ov: Override) -> tuple[T.Type, Any] | None:
         """(type, value) of the constant declared by d with the value given by ov, or None when ov does not
         fit: then the problem is recorded and the model's own value is used, so that nothing follows from it."""
-        where = f"{self.file}:{d.pat.span.line}:{d.pat.span.col}"
+        where = "{declared}"
         expected = self.infer_top(d.expr)
         if expected is not None and d.type_expr is not None:
             at = self.type_of_annotation(d.type_expr)
@@ -102,16 +120,17 @@ class OverrideChecks:
                 hint = (f"A string is written in quotes: --set '{d.name}=\"{ov.text}\"'."
                         if expected is not None and T.prune(expected) == T.STRING else None)
                 self.override_problem(ov, f"expected {want}, found '{first.params['name']}', a name the model "
-                                      "does not declare", hint)
+                                      "does not declare", hint, d.pat.span)
             else:
                 detail = first.message if first is not None else "it does not type-check"
-                self.override_problem(ov, f"expected {want}, but {detail}")
+                self.override_problem(ov, f"expected {want}, but {detail}", declared=d.pat.span)
             return None
         if expected is not None:
             try:
                 T.unify(found, expected)
             except T.UnifyError:
-                self.override_problem(ov, f"expected {want}, found {_article(T.show(found))}")
+                self.override_problem(ov, f"expected {want}, found {_article(T.show(found))}",
+                                      declared=d.pat.span)
                 return None
         try:
             value = self.ev.eval(ov.expr, {})
@@ -120,8 +139,9 @@ class OverrideChecks:
             return None
         return found, value
 
-    def override_problem(self, ov: Override, message: str, hint: str | None = None) -> None:
-        self.override_problems.append(OverrideProblem(ov, message, hint))
+    def override_problem(self, ov: Override, message: str, hint: str | None = None,
+                         declared: Span | None = None) -> None:
+        self.override_problems.append(OverrideProblem(ov, message, hint, declared))
 
     def unused_overrides(self) -> None:
         vals = [n for n, s in self.globals.items() if s.kind == "val"]
@@ -147,12 +167,5 @@ class OverrideChecks:
                     d.notes.append(f"'{ov.name}' is given with {ov}")
 
     def raise_override_problems(self) -> None:
-        if not self.override_problems:
-            return
-        lines = [f"{p.override}: {p.message}" for p in self.override_problems]
-        hints = [p.hint for p in self.override_problems if p.hint]
-        exc = ConfigurationError("\n".join(lines) if len(lines) == 1 else
-                                 "\n".join(["bad --set values:"] + ["  " + x for x in lines]),
-                                 hint=hints[0] if len(hints) == 1 else None, code="E0305")
-        exc.problems = list(self.override_problems)
-        raise exc
+        if self.override_problems:
+            raise usage_error(self.override_problems)

@@ -389,3 +389,18 @@ arc T -> Done : [w, w];
     [(be, s1)] = e.successors(e.initial_state())
     assert e.format_binding_element(be) == "Top'T 1: {w=w1}"
     assert (e.format_marking(s1, 1), e.format_marking(s1, 2)) == ("1`(w2,yes)", "2`w1")
+
+
+def test_a_bad_set_value_for_a_cpn_file_names_the_declaration_in_the_cpn_file(tmp_path):
+    from cpn.errors import ConfigurationError
+    from tests.io.test_cpntools import DECLS, arc, cpn_xml, page, place, trans
+
+    body = place("P1", "A", "S", "1`0") + trans("T1", "T", cond="[x &lt; N]") + arc("A1", "PtoT", "T1", "P1", "x")
+    path = tmp_path / "n.cpn"
+    path.write_text(cpn_xml(DECLS, page("PG1", "Top", body)), encoding="iso-8859-1")
+    assert cpn.load(path, set={"N": "-1"}).net.places[0].name == "Top'A 1"
+    with pytest.raises(ConfigurationError) as info:
+        cpn.load(path, set={"N": "1.5"})
+    text = str(info.value)
+    assert text.startswith(f"--set N=1.5: expected an int for 'N' declared at {path}:")
+    assert "as .cpnet" not in text
