@@ -18,6 +18,7 @@ from cpn.errors import ConfigurationError, ModelError
 from cpn.lang import ast as A
 from cpn.lang import types as T
 from cpn.lang.builtins import MLError
+from cpn.lang.parser import parse
 
 _NAME = re.compile(r"[A-Za-z][A-Za-z0-9_']*\Z")
 _NEGATIVE = re.compile(r"\s*-\s*(\d+(?:\.\d+)?)\s*\Z")
@@ -61,8 +62,6 @@ def usage_error(problems: list[OverrideProblem], where: Callable[[Span], str] = 
 
 def parse_override(name: str, text: str) -> Override:
     """Parse the value of one constant; `-1` is read as CPN ML's `~1`. Raises ConfigurationError."""
-    from cpn.lang.parser import parse
-
     if not _NAME.match(name):
         raise ConfigurationError(f"--set {name}={text}: '{name}' is not the name of a constant",
                                  hint="Write --set NAME=VALUE with the name of a 'val' of the model.", code="E0305")
@@ -71,12 +70,12 @@ def parse_override(name: str, text: str) -> Override:
     if neg:
         ml = "~" + neg.group(1)
     try:
-        model = parse(f"val {name} = {ml};", f"--set {name}")
-        [decl] = model.decls
-        if not isinstance(decl, A.ValDecl):
+        decls = parse(f"val {name} = {ml};", f"--set {name}").decls
+        if len(decls) != 1 or not isinstance(decls[0], A.ValDecl):
             raise ModelError([])
+        decl = decls[0]
     except ModelError as exc:
-        first = exc.diagnostics[0].message if exc.diagnostics else "more than one declaration"
+        first = exc.diagnostics[0].message if exc.diagnostics else "it is more than one expression"
         last = f"val {name} = {ml};".rfind(";") + 1
         if exc.diagnostics and exc.diagnostics[0].span and exc.diagnostics[0].span.col == last:
             first = first.replace("found ';'", "found the end of the value")

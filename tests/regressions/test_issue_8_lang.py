@@ -253,6 +253,7 @@ arc T -> Q : (x, x);
     ("1.5", "expected an int for 'N' declared at m.cpnet:1:5, found a real"),
     ('"x"', "expected an int for 'N' declared at m.cpnet:1:5, found a string"),
     ("1 +", "not a CPN ML expression"),
+    ("3; val M = 4", "not a CPN ML expression"),
     ("1 div 0", "evaluating the value failed"),
 ])
 def test_a_bad_set_value_is_one_usage_error_naming_the_value(value, expected):
