@@ -113,9 +113,9 @@ def random_timed_net(seed: int) -> str:
         places.append((f"p{i}", k))
         init = {"C": lambda: " ++ ".join(f"{rng.randint(1, 2)}`{rng.randint(0, 2)}" for _ in range(rng.randint(0, 2))),
                 "U": lambda: f"{rng.randint(0, 2)}`()",
-                "TC": lambda: " ++ ".join(f"1`{rng.randint(0, 2)}{d()}" for _ in range(rng.randint(0, 3))),
-                "TU": lambda: " ++ ".join(f"{rng.randint(1, 2)}`(){d()}" for _ in range(rng.randint(0, 2))),
-                "TP": lambda: " ++ ".join(f"1`({rng.randint(0, 2)},{rng.randint(0, 2)}){d()}"
+                "TC": lambda: " ++ ".join(f"(1`{rng.randint(0, 2)}{d()})" for _ in range(rng.randint(0, 3))),
+                "TU": lambda: " ++ ".join(f"({rng.randint(1, 2)}`(){d()})" for _ in range(rng.randint(0, 2))),
+                "TP": lambda: " ++ ".join(f"(1`({rng.randint(0, 2)},{rng.randint(0, 2)}){d()})"
                                           for _ in range(rng.randint(0, 2)))}[k]()
         lines.append(f"place p{i} : {k}" + (f" = {init}" if init else "") + ";")
 
