@@ -127,7 +127,7 @@ def test_transition_examined_at_the_clock_of_a_later_state(reference):
 def test_input_inscription_and_delay_read_the_new_time(reference):
     """The input inscription `intTime()` selects the token whose value is the time the binding occurs at
     (5, when the token is ready), and the transition delay reads that time too."""
-    e = _engine("colset T = int timed; var n : T;\nplace P : T = 1`5 @+ 5 ++ 1`0 @+ 5; place Q : T;\n"
+    e = _engine("colset T = int timed; var n : T;\nplace P : T = (1`5 ++ 1`0) @+ 5; place Q : T;\n"
                 "trans t @+ intTime();\narc P -> t : intTime();\narc t -> Q : intTime();\n", reference)
     [(_, s1)] = e.successors(e.initial_state())
     assert e.clock(s1) == 5
