@@ -1,0 +1,132 @@
+"""Running a scenario: load the model with the run's values, compile the properties, explore once with
+the on-the-fly checks attached, then decide every property on the graph.
+
+Imports `cpn.model`, `cpn.statespace`, `cpn.checks.*` and layer 0.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+from cpn.checks._common import TransitionIndex
+from cpn.checks.predicates import PredicateError, PropertyLanguage
+from cpn.checks.properties import Check, DeadlockFree, GraphView, build_checks
+from cpn.checks.scenario import PropertySpec, Run, Scenario
+from cpn.checks.verdict import Status, Verdict, evidence_to
+from cpn.statespace import ExploreOptions, Explorer
+
+
+@dataclass
+class PropertyResult:
+    spec: PropertySpec
+    verdict: Verdict
+    seconds: float
+
+
+@dataclass
+class RunResult:
+    """The outcome of one run of a scenario: the exploration and one verdict per property."""
+
+    scenario: Scenario
+    run: Run
+    exploration: object
+    engine: object
+    results: list[PropertyResult]
+    explore_seconds: float
+    check_seconds: float
+    options: dict = field(default_factory=dict)
+
+    @property
+    def status(self) -> Status:
+        statuses = {r.verdict.status for r in self.results}
+        for s in (Status.ERROR, Status.VIOLATED, Status.UNKNOWN):
+            if s in statuses:
+                return s
+        return Status.HOLDS
+
+
+class _DeadlockWatch:
+    """Wraps an engine: sees every state the explorer expands, in order, and notes the first dead one."""
+
+    def __init__(self, engine):
+        self._engine = engine
+        self.expanded = 0
+        self.first_dead: int | None = None
+
+    def __getattr__(self, name):
+        return getattr(self._engine, name)
+
+    def successors(self, s):
+        out = self._engine.successors(s)
+        if not out and self.first_dead is None:
+            self.first_dead = self.expanded
+        self.expanded += 1
+        return out
+
+
+class _Monitor:
+    """The explorer's stop predicate: evaluates the on-the-fly checks on every stored state, in order."""
+
+    def __init__(self, checks: list[Check], watch: _DeadlockWatch | None, stop_at_first: bool):
+        self.checks = checks
+        self.watch = watch
+        self.stop_at_first = stop_at_first
+        self.sid = 0
+
+    def __call__(self, state) -> bool:
+        sid = self.sid
+        self.sid += 1
+        found = False
+        for c in self.checks:
+            if c.observe(sid, state):
+                found = True
+        if self.watch is not None and self.watch.first_dead is not None:
+            found = True
+        return found and self.stop_at_first
+
+
+def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, progress=None) -> RunResult:
+    """Explore one run of a scenario and decide its properties.
+
+    Raises ModelError (the model or a property text is wrong) and ConfigurationError (no model file).
+    `overrides` replaces exploration options of the scenario (`max_states`, ...).
+    """
+    from cpn.model import load
+
+    opts = {**scenario.explore, **{k: v for k, v in (overrides or {}).items() if v is not None}}
+    model = load(scenario.model, set=run.values)
+    engine = model.engine(time_condensation=bool(opts.get("time_condensation", False)))
+    index = TransitionIndex(engine)
+    lang = PropertyLanguage(model.net.checked, engine, index)
+    checks = build_checks(scenario.properties, lang, scenario.source)
+    fly = [c for c in checks if c.on_the_fly and not isinstance(c, DeadlockFree)]
+    needs_deadlock = any(isinstance(c, DeadlockFree) for c in checks)
+    watch = _DeadlockWatch(engine) if needs_deadlock else None
+    stop_first = bool(opts.get("stop_at_first_violation", False))
+    monitor = _Monitor(fly, watch, stop_first) if (fly or watch is not None) else None
+    options = ExploreOptions(max_states=opts.get("max_states"), max_arcs=opts.get("max_arcs"),
+                             max_seconds=opts.get("max_seconds"), max_memory_mb=opts.get("max_memory_mb"),
+                             stop_predicate=monitor, time_condensation=bool(opts.get("time_condensation", False)),
+                             detect_time_growth=bool(opts.get("detect_time_growth", True)))
+    t0 = time.perf_counter()
+    x = Explorer(watch if watch is not None else engine, options, progress=progress).run()
+    explore_seconds = time.perf_counter() - t0
+    x.engine = engine
+    note = None
+    if x.stop_reason.value == "predicate":
+        note = "stop_at_first_violation is set and a violation (or witness) was found"
+    view = GraphView(x, engine, lang, note)
+    results = []
+    t1 = time.perf_counter()
+    for c in checks:
+        if isinstance(c, DeadlockFree) and watch is not None:
+            c.found = watch.first_dead
+        t = time.perf_counter()
+        try:
+            verdict = c.decide(view)
+        except PredicateError as exc:
+            ev = evidence_to(x.graph, exc.state_id) if exc.state_id is not None else None
+            verdict = Verdict(Status.ERROR, str(exc), ev)
+        results.append(PropertyResult(c.spec, verdict, time.perf_counter() - t))
+    return RunResult(scenario, run, x, engine, results, explore_seconds, time.perf_counter() - t1, opts)

@@ -1,0 +1,399 @@
+"""Property texts: CPN ML expressions over markings, type-checked against the net and compiled once.
+
+A property text is parsed by the model's parser and typed by the model's type checker in a scope that adds,
+to the model's declarations, the place instances by the names the report prints (`Page'place n`, and
+ASK-CTL's `Mark.Page'place n`), `sum`/`forall`/`exists` over every instance of a module's place, and
+`enabled "transition or binding element"`. It is then compiled to a Python function of a state by the
+engine's expression compiler, as inscriptions are. Errors point into the scenario file (docs/specs.md).
+Imports `cpn.lang`, `cpn.engine`, `cpn.values` and layer 0.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import re
+from collections.abc import Callable
+
+from cpn._util import did_you_mean
+from cpn.diagnostics import Diagnostic, Span
+from cpn.engine.codegen import ExprCompiler, Namespace
+from cpn.engine.runtime import RUNTIME
+from cpn.errors import ModelError
+from cpn.lang import ast as A
+from cpn.lang import types as T
+from cpn.lang.builtins import BUILTINS, MLError, parse_type
+from cpn.lang.checked import Env
+from cpn.lang.parser import parse
+from cpn.lang.symbols import Symbol
+from cpn.lang.typecheck import Checker
+from cpn.values.multiset import Multiset, MultisetError
+
+PREFIX = "val it = "
+CTL_UNARY = {"AG": "AG", "AF": "AF", "EF": "EF", "EG": "EG", "AX": "AX", "EX": "EX",
+             "INV": "AG", "POS": "EF", "EV": "AF", "ALONG": "EG"}
+CTL_BINARY = {"AU", "EU"}
+_INSTANCE = re.compile(r"^(.*) (\d+)$")
+
+
+class PredicateError(Exception):
+    """A property text raised an ML exception in some marking."""
+
+    def __init__(self, message: str, state_id: int | None):
+        super().__init__(message)
+        self.state_id = state_id
+
+
+class MarkingContext:
+    """The marking a compiled predicate reads: the state, its id, and (when known) the finished graph."""
+
+    def __init__(self, engine, transition_of: Callable[[int], int]):
+        self.engine = engine
+        self.transition_of = transition_of
+        self.state = None
+        self.sid: int | None = None
+        self.graph = None
+        n = len(engine.places)
+        self._columns = hasattr(engine, "place_view")
+        self._cache: list[dict] = [{} for _ in range(n)]
+        self._enabled_state = None
+        self._enabled: list[int] = []
+
+    def mk(self, s, p: int) -> Multiset:
+        if self._columns:
+            key = s[p]
+            m = self._cache[p].get(key)
+            if m is None:
+                m = Multiset(self.engine.place_view(s, p))
+                self._cache[p][key] = m
+            return m
+        ms = self.engine.marking(s)[p]
+        if getattr(self.engine.places[p], "timed", False) and getattr(self.engine, "is_timed", False):
+            view: dict = {}
+            for (v, _ts), k in ms.items():
+                view[v] = view.get(v, 0) + k
+            ms = view
+        return Multiset(ms)
+
+    def enabled_bes(self) -> list[int]:
+        g, sid = self.graph, self.sid
+        if g is not None and sid is not None and g.is_expanded(sid):
+            return list(g.bes[g.offsets[sid]:g.offsets[sid + 1]])
+        if self._enabled_state is not self.state:
+            self._enabled_state = self.state
+            self._enabled = [be for be, _ in self.engine.successors(self.state)]
+        return self._enabled
+
+
+class _Accessor:
+    """The value of a place name in a property: instance number -> marking of the current state."""
+
+    def __init__(self, ctx: MarkingContext, name: str, instances: dict[int, int]):
+        self.ctx = ctx
+        self.name = name
+        self.instances = instances
+        self.places = sorted(set(instances.values()))
+
+    def __call__(self, i):
+        p = self.instances.get(i)
+        if p is None:
+            raise MLError(f"'{self.name}' has no instance {i} (it has {_ranges(sorted(self.instances))})")
+        return self.ctx.mk(self.ctx.state, p)
+
+
+def _ranges(nums: list[int]) -> str:
+    if not nums:
+        return "none"
+    if nums == list(range(nums[0], nums[-1] + 1)) and len(nums) > 2:
+        return f"{nums[0]}..{nums[-1]}"
+    return ", ".join(map(str, nums))
+
+
+def _accessor_arg(a):
+    if not isinstance(a, _Accessor):
+        raise MLError("sum, forall and exists take a place name (Page'place), not another function")
+    return a
+
+
+def _sum(a):
+    acc = Multiset()
+    for p in _accessor_arg(a).places:
+        acc = acc + a.ctx.mk(a.ctx.state, p)
+    return acc
+
+
+def _forall(a):
+    _accessor_arg(a)
+    return lambda f: all(f(a.ctx.mk(a.ctx.state, p)) for p in a.places)
+
+
+def _exists(a):
+    _accessor_arg(a)
+    return lambda f: any(f(a.ctx.mk(a.ctx.state, p)) for p in a.places)
+
+
+@dataclasses.dataclass
+class Compiled:
+    """A compiled property text: `fn(state_id, state)` returns its value; `uses_enabled` says it reads
+    the enabled binding elements (then it is evaluated on the finished graph, not during generation)."""
+
+    text: str
+    expr: A.Expr
+    fn: Callable
+    uses_enabled: bool
+    span: Span | None
+
+
+class PropertyLanguage:
+    """The scope and compiler of property texts for one net and one engine."""
+
+    def __init__(self, checked, engine, transition_of: Callable[[int], int]):
+        self.checked = checked
+        self.engine = engine
+        self.transition_index = transition_of
+        self.ctx = MarkingContext(engine, transition_of)
+        self.ev = checked.evaluator
+        self._checker = _checker_for(checked)
+        self.accessors: dict[str, _Accessor] = {}
+        names: dict[str, Symbol] = {}
+        self.symbols: dict[int, _Accessor] = {}
+        groups: dict[str, dict[int, int]] = {}
+        self.place_cstype: dict[str, T.Type] = {}
+        for p in engine.places:
+            for full in [p.name, *getattr(p, "aliases", [])]:
+                m = _INSTANCE.match(full)
+                if not m:
+                    continue
+                groups.setdefault(m.group(1), {})[int(m.group(2))] = p.index
+                self.place_cstype[m.group(1)] = checked.cstypes.get(p.colour_set.name, T.TVar())
+        for base, inst in groups.items():
+            acc = _Accessor(self.ctx, base, inst)
+            self.accessors[base] = acc
+            for spelling in (base, f"Mark.{base}"):
+                sym = Symbol(spelling, "val", T.TFun(T.INT, T.ms(self.place_cstype[base])))
+                names[spelling] = sym
+                self.symbols[sym.uid] = acc
+                self.ev.globals[sym.uid] = acc
+        self.transition_names = _transition_names(engine)
+        self._be_texts: dict[str, int] | None = None
+        self._enabled_cache: dict[str, Callable[[], bool]] = {}
+        self.special: dict[str, Symbol] = {}
+        for name, ty, value in (("sum", "(int -> 'a ms) -> 'a ms", _sum),
+                                ("forall", "(int -> 'a ms) -> ('a ms -> bool) -> bool", _forall),
+                                ("exists", "(int -> 'a ms) -> ('a ms -> bool) -> bool", _exists),
+                                ("enabled", "string -> bool", self._enabled)):
+            if name in checked.globals:
+                continue  # the model's own declaration wins
+            sym = Symbol(name, "val", parse_type(ty))  # a Scheme: polymorphic where the type says 'a
+            names[name] = sym
+            self.special[name] = sym
+            self.ev.globals[sym.uid] = value
+        self.env = self._checker.genv.child(names)
+        self.ctl_symbols: dict[str, Symbol] = {}
+        for name in CTL_UNARY:
+            self.ctl_symbols[name] = Symbol(name, "builtin", T.TFun(T.BOOL, T.BOOL))
+        for name in CTL_BINARY:
+            self.ctl_symbols[name] = Symbol(name, "builtin", T.TFun(T.TTuple([T.BOOL, T.BOOL]), T.BOOL))
+        self.ctl_env = self.env.child(self.ctl_symbols)
+
+    # ------------------------------------------------------------------ binding-element atoms
+    def resolve_transitions(self, name: str) -> list[int] | None:
+        """Transition instance indices named by `Page'trans n` or (every instance) `Page'trans`."""
+        return self.transition_names.get(name)
+
+    def _enabled(self, text: str) -> bool:
+        test = self._enabled_cache.get(text)
+        if test is None:
+            test = self._enabled_test(text)
+            self._enabled_cache[text] = test
+        return test()
+
+    def _enabled_test(self, text: str) -> Callable[[], bool]:
+        ctx = self.ctx
+        ts = self.resolve_transitions(text)
+        if ts is not None:
+            wanted = set(ts)
+            return lambda: any(ctx.transition_of(be) in wanted for be in ctx.enabled_bes())
+        fmt = self.engine.format_binding_element
+        norm = _norm_be(text)
+        return lambda: any(_norm_be(fmt(be)) == norm for be in ctx.enabled_bes())
+
+    # ------------------------------------------------------------------ checking
+    def check(self, text: str, origin, fallback: Span, want: T.Type, what: str, ctl: bool = False) -> A.Expr:
+        """Parse and type `text`; raise ModelError with spans in the scenario file."""
+        try:
+            m = parse(f"{PREFIX}{text};", fallback.file)
+        except ModelError as exc:
+            raise _remap(exc, text, origin, fallback) from None
+        if len(m.decls) != 1 or not isinstance(m.decls[0], A.ValDecl):
+            raise _remap(ModelError([Diagnostic("E0101", f"{what} must be one expression", None)]), text, origin,
+                         fallback)
+        expr = m.decls[0].expr
+        ck = self._checker
+        ck.diags = []
+        t = ck.infer_top(expr, self.ctl_env if ctl else self.env)
+        if t is not None:
+            ck.unify(t, want, expr.span, what)
+        if not ck.diags:
+            self._validate(expr, ck)
+        if ck.diags:
+            raise _remap(ModelError(list(ck.diags)), text, origin, fallback)
+        return expr
+
+    def _validate(self, expr: A.Expr, ck) -> None:
+        for node in walk(expr):
+            if not isinstance(node, A.App) or not isinstance(node.fn, A.Name) or node.fn.ref is None:
+                continue
+            uid = node.fn.ref.uid
+            acc = self.symbols.get(uid)
+            if acc is not None and isinstance(node.arg, A.Const) and node.arg.value not in acc.instances:
+                ck.error("E0603", f"'{acc.name}' has no instance {node.arg.value}", node.arg.span,
+                         hint=f"Its instances are {_ranges(sorted(acc.instances))}.")
+            if node.fn.ref in (self.special.get("sum"), self.special.get("forall"), self.special.get("exists")):
+                if not (isinstance(node.arg, A.Name) and node.arg.ref is not None and node.arg.ref.uid in self.symbols):
+                    ck.error("E0603", f"'{node.fn.name}' takes a place name (Page'place) as its first argument",
+                             node.arg.span, hint=f"For example: {node.fn.name} Slave'Idle.")
+            if node.fn.ref is self.special.get("enabled"):
+                if not (isinstance(node.arg, A.Const) and isinstance(node.arg.value, str)):
+                    ck.error("E0603", "'enabled' takes a transition or binding element as a string literal",
+                             node.arg.span, hint="For example: enabled \"Master'Send 1\".")
+                elif self.resolve_transitions(node.arg.value) is None and not self._known_be(node.arg.value):
+                    tname = node.arg.value.split(":")[0].strip()
+                    cand = did_you_mean(tname, list(self.transition_names))
+                    ck.error("E0603", f"no transition instance or binding element '{node.arg.value}' in the net",
+                             node.arg.span, hint=f"Did you mean '{cand}'?" if cand else
+                             "Name a transition instance as the report prints it: \"Page'trans 1\".")
+
+    def _known_be(self, text: str) -> bool:
+        tname = text.split(":")[0].strip()
+        return ":" in text and tname in self.transition_names
+
+    # ------------------------------------------------------------------ compiling
+    def compile(self, text: str, origin, fallback: Span, want: T.Type, what: str) -> Compiled:
+        expr = self.check(text, origin, fallback, want, what)
+        return self.compile_checked(text, expr, fallback)
+
+    def compile_checked(self, text: str, expr: A.Expr, span: Span | None) -> Compiled:
+        uses_enabled = any(isinstance(n, A.Name) and n.ref is self.special.get("enabled") and n.ref is not None
+                           for n in walk(expr))
+        ns = Namespace()
+        comp = _PredicateCompiler(ns, self.ev, {}, {}, {})
+        comp.places = self.symbols
+        body = comp.expr(expr)
+        glob = dict(RUNTIME)
+        glob.update(ns.objects)
+        glob["EVAL"] = self.ev.eval
+        glob["CTX"] = self.ctx
+        glob["MK"] = self.ctx.mk
+        src = f"def _property(I, S):\n    CTX.sid = I\n    CTX.state = S\n    return {body}\n"
+        exec(compile(src, f"<property {text[:40]}>", "exec"), glob)  # noqa: S102 - generated from the typed AST
+        raw = glob["_property"]
+
+        def fn(sid, state, raw=raw):
+            try:
+                return raw(sid, state)
+            except (MLError, MultisetError, ZeroDivisionError, IndexError, RecursionError) as exc:
+                raise PredicateError(f"evaluating '{text}' failed: {exc}", sid) from None
+
+        return Compiled(text, expr, fn, uses_enabled, span)
+
+    def constant(self, text: str, origin, fallback: Span, want: T.Type, what: str):
+        """The value of a text that reads no marking (an expected bound: `N`, `ADDR.all()`)."""
+        expr = self.check(text, origin, fallback, want, what)
+        if any(isinstance(n, A.Name) and n.ref is not None and (n.ref.uid in self.symbols
+               or n.ref in self.special.values()) for n in walk(expr)):
+            raise _remap(ModelError([Diagnostic("E0602", f"{what} must not read the marking", expr.span)]), text,
+                         origin, fallback)
+        try:
+            return self.ev.eval(expr, {})
+        except (MLError, MultisetError) as exc:
+            raise _remap(ModelError([Diagnostic("E0401", f"evaluating {what} failed: {exc}", expr.span)]), text,
+                         origin, fallback) from None
+
+
+class _PredicateCompiler(ExprCompiler):
+    places: dict[int, _Accessor] = {}
+
+    def _c_App(self, e):
+        if isinstance(e.fn, A.Name) and e.fn.ref is not None and isinstance(e.arg, A.Const):
+            acc = self.places.get(e.fn.ref.uid)
+            if acc is not None and e.arg.value in acc.instances:
+                return f"MK(S, {acc.instances[e.arg.value]})"
+        return super()._c_App(e)
+
+
+def _norm_be(text: str) -> str:
+    return re.sub(r"\s+", "", text)
+
+
+def _transition_names(engine) -> dict[str, list[int]]:
+    out: dict[str, list[int]] = {}
+    for t in engine.transitions:
+        out.setdefault(t.name, []).append(t.index)
+        m = _INSTANCE.match(t.name)
+        if m:
+            out.setdefault(m.group(1), []).append(t.index)
+    return out
+
+
+def walk(e):
+    """Every expression node under `e`, `e` included."""
+    stack = [e]
+    while stack:
+        n = stack.pop()
+        if isinstance(n, A.Expr):
+            yield n
+            for f in dataclasses.fields(n):
+                if f.name in ("span", "ty", "ref"):
+                    continue
+                stack.append(getattr(n, f.name))
+        elif isinstance(n, (list, tuple)):
+            stack.extend(n)
+
+
+def _checker_for(checked) -> Checker:
+    """A type checker in the scope of a checked model (its colour sets, globals and evaluator)."""
+    ck = Checker.__new__(Checker)
+    ck.model = checked.model
+    ck.file = checked.model.file
+    ck.diags = []
+    ck.colsets = checked.colsets
+    ck.cstypes = checked.cstypes
+    ck.cs_spans = {}
+    ck.globals = checked.globals
+    ck.variables = {}
+    ck.ev = checked.evaluator
+    ck.overrides = {}
+    ck.used_overrides = set()
+    ck.pending = []
+    ck.net_name = checked.net_name
+    ck.builtin_syms = {name: Symbol(name, "builtin", parse_type(ty)) for name, (ty, _) in BUILTINS.items()}
+    ck.genv = Env(checked.globals)
+    ck.ran_counter = 0
+    ck.ran_sink = None
+    ck.predefined = set()
+    return ck
+
+
+def _remap(exc: ModelError, text: str, origin, fallback: Span) -> ModelError:
+    """The same diagnostics, with spans moved from the wrapped text into the scenario file."""
+    wrapped = f"{PREFIX}{text};"
+    starts = [0]
+    for line in wrapped.splitlines(keepends=True):
+        starts.append(starts[-1] + len(line))
+    out = []
+    for d in exc.diagnostics:
+        s = d.span
+        if origin is None or s is None or s.line < 1 or s.line > len(starts) - 1:
+            span = fallback
+        else:
+            a = starts[s.line - 1] + s.col - 1 - len(PREFIX)
+            if s.end_line and s.end_col and s.end_line <= len(starts) - 1:
+                b = starts[s.end_line - 1] + s.end_col - 1 - len(PREFIX)
+            else:
+                b = a
+            a = max(0, min(a, len(text)))
+            b = max(a, min(b, max(len(text) - 1, 0)))
+            span = origin.span(a, b)
+        out.append(dataclasses.replace(d, span=span))
+    src = origin.source if origin is not None else None
+    return ModelError(out, {fallback.file: src} if src is not None else {})

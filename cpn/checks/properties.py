@@ -1,0 +1,673 @@
+"""The property kinds of docs/specs.md: each turns a `PropertySpec` into a check with one `Verdict`.
+
+Invariants, reachability and deadlock freedom observe states while the graph is generated (`observe`);
+every check then decides on the graph it has (`decide`): a violation found in a partial graph is real
+(every stored state is reachable, every expanded state's arcs are complete), anything else that needs
+the whole graph is unknown with the reason the search stopped. Imports `cpn.checks.*`,
+`cpn.statespace`, `cpn.lang` (types) and layer 0.
+"""
+
+from __future__ import annotations
+
+from array import array
+from collections import deque
+
+from cpn.checks.ctl import And, Atom, Kripke, Not, Or, Temporal
+from cpn.checks.predicates import CTL_BINARY, CTL_UNARY, PredicateError, PropertyLanguage, walk
+from cpn.checks.scenario import PropertySpec
+from cpn.checks.verdict import Evidence, Status, Verdict, evidence_to, path_evidence
+from cpn.diagnostics import Diagnostic, Span
+from cpn.errors import ModelError
+from cpn.lang import ast as A
+from cpn.lang import types as T
+from cpn.statespace.scc import strongly_connected_components
+from cpn.values.multiset import Multiset
+
+
+class GraphView:
+    """What the checks share about one finished (or stopped) exploration, computed at most once."""
+
+    def __init__(self, exploration, engine, lang: PropertyLanguage, stop_note: str | None = None):
+        self.x = exploration
+        self.g = exploration.graph
+        self.engine = engine
+        self.lang = lang
+        self.complete = exploration.complete
+        self.stop_note = stop_note
+        self._labels = None
+        self._kripke = None
+        self._scc = None
+        self._atom_cache: dict = {}
+
+    @property
+    def reason(self) -> str:
+        x = self.x
+        why = self.stop_note or x.stop_reason.describe(x.options)
+        return (f"the state space is partial: the search stopped because {why}; "
+                f"{x.unexpanded:,} of {x.n_states:,} states were not expanded")
+
+    def labels(self) -> array:
+        """The transition instance of every arc."""
+        if self._labels is None:
+            self._labels = self.lang.transition_index.arc_transitions(self.g.bes)
+        return self._labels
+
+    def kripke(self, fairness: list[set] | None = None) -> Kripke:
+        if fairness:
+            return Kripke(self.g.n_states, self.g.offsets, self.g.dst, self.labels(), fairness)
+        if self._kripke is None:
+            self._kripke = Kripke(self.g.n_states, self.g.offsets, self.g.dst, self.labels())
+        return self._kripke
+
+    def scc(self):
+        if self._scc is None:
+            self._scc = strongly_connected_components(self.g.n_states, self.g.offsets, self.g.dst)
+        return self._scc
+
+    def truth(self, compiled) -> bytearray:
+        """The states where a compiled predicate holds (evaluated once per predicate)."""
+        got = self._atom_cache.get(id(compiled))
+        if got is None:
+            ctx = self.lang.ctx
+            ctx.graph = self.g
+            fn = compiled.fn
+            got = bytearray(1 if fn(i, s) else 0 for i, s in enumerate(self.g.states))
+            self._atom_cache[id(compiled)] = got
+        return got
+
+
+class Check:
+    """One property. `on_the_fly` checks get `observe(state_id, state)` for every stored state, in order."""
+
+    on_the_fly = False
+
+    def __init__(self, spec: PropertySpec):
+        self.spec = spec
+        self.found: int | None = None  # the first state observed to violate (or witness) the property
+
+    def observe(self, sid: int, state) -> bool:
+        return False
+
+    def decide(self, view: GraphView) -> Verdict:
+        raise NotImplementedError
+
+
+def _state_name(view: GraphView, sid: int) -> str:
+    depth = 0
+    v = sid
+    while v > 0:
+        v = view.g.parent[v]
+        depth += 1
+    return f"marking {sid + 1} ({depth} step{'s' if depth != 1 else ''} from the initial marking)"
+
+
+# ----------------------------------------------------------------------------- on the fly
+class Invariant(Check):
+    def __init__(self, spec, pred):
+        super().__init__(spec)
+        self.pred = pred
+        self.on_the_fly = not pred.uses_enabled
+
+    def observe(self, sid, state):
+        if self.found is None and not self.pred.fn(sid, state):
+            self.found = sid
+            return True
+        return False
+
+    def decide(self, view):
+        if not self.on_the_fly:
+            t = view.truth(self.pred)
+            self.found = next((i for i in range(view.g.n_states) if not t[i] and view.g.is_expanded(i)), None)
+        if self.found is not None:
+            return Verdict.violated(f"false in {_state_name(view, self.found)}", evidence_to(view.g, self.found))
+        if view.complete:
+            return Verdict.holds(f"true in all {view.g.n_states:,} reachable markings")
+        return Verdict.unknown(f"true in the {view.g.n_states:,} markings found; {view.reason}")
+
+
+class Reachable(Check):
+    def __init__(self, spec, pred):
+        super().__init__(spec)
+        self.pred = pred
+        self.on_the_fly = not pred.uses_enabled
+
+    def observe(self, sid, state):
+        if self.found is None and self.pred.fn(sid, state):
+            self.found = sid
+            return True
+        return False
+
+    def decide(self, view):
+        if not self.on_the_fly:
+            t = view.truth(self.pred)
+            self.found = next((i for i in range(view.g.n_states) if t[i] and view.g.is_expanded(i)), None)
+        if self.found is not None:
+            return Verdict.holds(f"witness: {_state_name(view, self.found)}", evidence_to(view.g, self.found))
+        if view.complete:
+            return Verdict.violated(f"no reachable marking satisfies it ({view.g.n_states:,} markings)")
+        return Verdict.unknown(f"not found in the {view.g.n_states:,} markings found; {view.reason}")
+
+
+class DeadlockFree(Check):
+    on_the_fly = True  # through the engine proxy of the gate (dead states are seen when expanded)
+
+    def decide(self, view):
+        dead = self.found
+        if dead is None:
+            off = view.g.offsets
+            dead = next((i for i in range(len(off) - 1) if off[i] == off[i + 1]), None)
+        if dead is not None:
+            return Verdict.violated(f"{_state_name(view, dead)} is dead", evidence_to(view.g, dead))
+        if view.complete:
+            return Verdict.holds(f"none of the {view.g.n_states:,} reachable markings is dead")
+        return Verdict.unknown(f"no dead marking among the {view.g.expanded:,} expanded markings; {view.reason}")
+
+
+# ----------------------------------------------------------------------------- on the graph
+class DeadMarkings(Check):
+    def __init__(self, spec, pred):
+        super().__init__(spec)
+        self.pred = pred
+
+    def decide(self, view):
+        g = view.g
+        dead = g.dead_states()
+        f = self.spec.fields
+        if self.pred is not None:
+            ctx = view.lang.ctx
+            ctx.graph = g
+            for d in dead:
+                if not self.pred.fn(d, g.states[d]):
+                    return Verdict.violated(f"dead {_state_name(view, d)} does not satisfy the predicate",
+                                            evidence_to(g, d))
+        ev = evidence_to(g, dead[0]) if dead else None
+        if "count" in f and len(dead) != f["count"] and (view.complete or len(dead) > f["count"]):
+            return Verdict.violated(f"{len(dead):,} dead markings, expected {f['count']:,}", ev, count=len(dead))
+        if "count_modulo_time" in f:
+            n = len({view.engine.untimed(g.states[d]) for d in dead})
+            if n != f["count_modulo_time"] and (view.complete or n > f["count_modulo_time"]):
+                return Verdict.violated(f"{n:,} dead markings modulo time, expected {f['count_modulo_time']:,}", ev,
+                                        count_modulo_time=n)
+        if not view.complete:
+            return Verdict.unknown(f"{len(dead):,} dead markings so far; {view.reason}")
+        return Verdict.holds(f"{len(dead):,} dead marking{'s' if len(dead) != 1 else ''}", count=len(dead))
+
+
+class Bound(Check):
+    def __init__(self, spec, places: list[int] | None, fn, upper, lower, upper_ms, lower_ms):
+        super().__init__(spec)
+        self.places = places  # place instances, or None for an integer expression
+        self.fn = fn
+        self.upper, self.lower, self.upper_ms, self.lower_ms = upper, lower, upper_ms, lower_ms
+
+    def decide(self, view):
+        g = view.g
+        results = []
+        if self.places is None:
+            ctx = view.lang.ctx
+            ctx.graph = g
+            values = (self.fn.fn(i, s) for i, s in enumerate(g.states))
+            results.append((self.spec.fields.get("expr"), *self._extremes(values), None))
+        else:
+            for p in self.places:
+                name = view.engine.places[p].name
+                ms_of = view.lang.ctx.mk
+                values = (size for size in (sum(ms_of(s, p)._d.values()) for s in g.states))
+                results.append((name, *self._extremes(values), p))
+        problems, unknowns, holds = [], [], []
+        evidence = None
+        for name, hi, hi_at, lo, lo_at, p in results:
+            for which, want, got, at, worse in (("upper", self.upper, hi, hi_at, lambda a, b: a > b),
+                                                ("lower", self.lower, lo, lo_at, lambda a, b: a < b)):
+                if want is None:
+                    continue
+                if got == want and view.complete:
+                    holds.append(f"{name}: {which} bound {got}")
+                elif got != want and (view.complete or worse(got, want)):
+                    problems.append(f"{name}: best {which} bound is {got}, expected {want}")
+                    evidence = evidence or evidence_to(g, at)
+                else:
+                    unknowns.append(f"{name}: {which} bound {got} so far, expected {want}")
+            if p is not None:
+                for which, want in (("upper", self.upper_ms), ("lower", self.lower_ms)):
+                    if want is None:
+                        continue
+                    got, bad_at = self._ms_bound(view, p, which, want)
+                    if bad_at is not None:
+                        problems.append(f"{name}: a marking breaks the expected {which} multiset bound "
+                                        f"{view.engine.format_multiset(p, dict(want._d))}")
+                        evidence = evidence or evidence_to(g, bad_at)
+                    elif view.complete and got != want:
+                        problems.append(f"{name}: best {which} multiset bound is "
+                                        f"{view.engine.format_multiset(p, dict(got._d))}, expected "
+                                        f"{view.engine.format_multiset(p, dict(want._d))}")
+                    elif view.complete:
+                        holds.append(f"{name}: {which} multiset bound")
+                    else:
+                        unknowns.append(f"{name}: {which} multiset bound")
+        if problems:
+            return Verdict.violated("; ".join(problems), evidence)
+        if unknowns:
+            return Verdict.unknown("; ".join(unknowns) + f"; {view.reason}")
+        return Verdict.holds("; ".join(holds))
+
+    @staticmethod
+    def _extremes(values):
+        hi = lo = None
+        hi_at = lo_at = 0
+        for i, v in enumerate(values):
+            if hi is None or v > hi:
+                hi, hi_at = v, i
+            if lo is None or v < lo:
+                lo, lo_at = v, i
+        return hi, hi_at, lo, lo_at
+
+    @staticmethod
+    def _ms_bound(view, p, which, want: Multiset):
+        """(best multiset bound found, first marking that breaks `want` or None)."""
+        acc: dict | None = None
+        bad = None
+        ms_of = view.lang.ctx.mk
+        for i, s in enumerate(view.g.states):
+            m = ms_of(s, p)
+            d = m._d
+            if which == "upper":
+                if bad is None and not m <= want:
+                    bad = i
+                acc = dict(d) if acc is None else acc
+                for v, k in d.items():
+                    if acc.get(v, 0) < k:
+                        acc[v] = k
+            else:
+                if bad is None and not want <= m:
+                    bad = i
+                acc = dict(d) if acc is None else {v: min(k, d.get(v, 0)) for v, k in acc.items() if d.get(v, 0)}
+        return Multiset(acc or {}), bad
+
+
+class DeadTransitions(Check):
+    def __init__(self, spec, expected: set[int], names: dict[int, str]):
+        super().__init__(spec)
+        self.expected = expected
+        self.names = names
+
+    def decide(self, view):
+        labels = view.labels()
+        occurring = set(labels)
+        all_t = {t.index for t in view.engine.transitions}
+        dead = all_t - occurring
+        names = view.engine.transitions
+        alive_but_expected = sorted(self.expected & occurring)
+        if alive_but_expected:
+            t = alive_but_expected[0]
+            arc = next(a for a in range(len(labels)) if labels[a] == t)
+            src = _arc_source(view.g, arc)
+            ev = evidence_to(view.g, src, then=[src, view.g.dst[arc]])
+            return Verdict.violated(f"{', '.join(names[i].name for i in alive_but_expected)} can occur "
+                                    "(expected to be dead)", ev)
+        if not view.complete:
+            return Verdict.unknown(f"{len(dead):,} transition instances have not occurred so far; {view.reason}")
+        unexpected = sorted(dead - self.expected)
+        if unexpected:
+            return Verdict.violated(f"dead but not expected to be: {', '.join(names[i].name for i in unexpected)}",
+                                    dead=[names[i].name for i in sorted(dead)])
+        return Verdict.holds(f"{len(dead)} dead transition instance{'s' if len(dead) != 1 else ''}"
+                             + (f": {', '.join(names[i].name for i in sorted(dead))}" if dead else ""))
+
+
+def _arc_source(g, arc: int) -> int:
+    import bisect
+
+    return bisect.bisect_right(g.offsets, arc) - 1
+
+
+class LiveTransitions(Check):
+    def __init__(self, spec, transitions: list[int] | None):
+        super().__init__(spec)
+        self.transitions = transitions
+
+    def decide(self, view):
+        if not view.complete:
+            return Verdict.unknown(view.reason)
+        dec = view.scc()
+        labels = view.labels()
+        g = view.g
+        terms = sorted(dec.terminal_components(), key=lambda c: min(dec.nodes(c)))
+        present = []
+        for c in terms:
+            seen = set()
+            for u in dec.nodes(c):
+                seen.update(labels[g.offsets[u]:g.offsets[u + 1]])
+            present.append(seen)
+        wanted = self.transitions if self.transitions is not None else [t.index for t in view.engine.transitions]
+        bad = [t for t in wanted if not all(t in s for s in present)]
+        if not bad:
+            return Verdict.holds(f"{len(wanted)} transition instance{'s' if len(wanted) != 1 else ''} live")
+        t = bad[0]
+        c = next(c for c, s in zip(terms, present) if t not in s)
+        at = min(dec.nodes(c))
+        names = ", ".join(view.engine.transitions[i].name for i in bad)
+        return Verdict.violated(f"not live: {names}; {view.engine.transitions[t].name} can never occur after "
+                                f"{_state_name(view, at)}", evidence_to(g, at))
+
+
+class Home(Check):
+    def __init__(self, spec, pred):
+        super().__init__(spec)
+        self.pred = pred
+
+    def decide(self, view):
+        if not view.complete:
+            return Verdict.unknown(view.reason)
+        g = view.g
+        n = g.n_states
+        if self.pred is None and not self.spec.fields.get("initial"):
+            dec = view.scc()
+            terms = sorted(dec.terminal_components(), key=lambda c: min(dec.nodes(c)))
+            if len(terms) == 1:
+                return Verdict.holds(f"{len(dec.nodes(terms[0])):,} home markings")
+            at = min(dec.nodes(terms[1]))
+            return Verdict.violated(f"no home marking: {len(terms)} terminal strongly connected components; "
+                                    f"none of them can be left, e.g. after {_state_name(view, at)}",
+                                    evidence_to(g, at))
+        if self.pred is not None:
+            target = view.truth(self.pred)
+        else:
+            target = bytearray(n)
+            target[0] = 1
+        k = view.kripke()
+        reach = k.eu(bytearray([1]) * n, target)
+        bad = next((i for i in range(n) if not reach[i]), None)
+        if bad is None:
+            return Verdict.holds("reachable from every reachable marking")
+        return Verdict.violated(f"cannot be reached from {_state_name(view, bad)}", evidence_to(g, bad))
+
+
+class NoLivelock(Check):
+    def __init__(self, spec, progress: set[int] | None):
+        super().__init__(spec)
+        self.progress = progress
+
+    def decide(self, view):
+        g = view.g
+        n = g.n_states
+        labels = None
+        avoid = -1
+        if self.progress:
+            t_of = view.labels()
+            labels = array("b", (1 if t in self.progress else 0 for t in t_of))
+            avoid = 1
+        dec = strongly_connected_components(n, g.offsets, g.dst, labels, avoid)
+        best = None
+        for c in range(dec.count):
+            if dec.nontrivial[c]:
+                m = min(dec.nodes(c))
+                if best is None or m < best[0]:
+                    best = (m, c)
+        if best is None:
+            if view.complete:
+                return Verdict.holds("no cycle" + (" avoids the progress transitions" if self.progress else ""))
+            return Verdict.unknown(f"no such cycle among the expanded markings; {view.reason}")
+        s, c = best
+        inside = set(dec.nodes(c))
+        cycle, arcs = _cycle(g, s, inside, labels, avoid)
+        what = "a cycle without progress" if self.progress else "a cycle"
+        return Verdict.violated(f"{what} of {len(cycle)} step{'s' if len(cycle) != 1 else ''} through "
+                                f"{_state_name(view, s)}", evidence_to(g, s, cycle=cycle, cycle_arcs=arcs))
+
+
+def _cycle(g, s: int, inside: set, labels, avoid) -> tuple[list[int], list[int]]:
+    """A shortest cycle s -> ... -> s inside the SCC, using no arc labelled `avoid`: (states, arc indices)."""
+    parent: dict[int, tuple[int, int]] = {}
+    queue = deque([s])
+    seen = {s}
+    while queue:
+        u = queue.popleft()
+        for a in range(g.offsets[u], g.offsets[u + 1]):
+            if labels is not None and labels[a] == avoid:
+                continue
+            v = g.dst[a]
+            if v == s:
+                states, arcs = [s], [a]
+                while u != s:
+                    pu, pa = parent[u]
+                    states.append(u)
+                    arcs.append(pa)
+                    u = pu
+                return states[::-1], arcs[::-1]
+            if v in inside and v not in seen:
+                seen.add(v)
+                parent[v] = (u, a)
+                queue.append(v)
+    raise AssertionError("a state of a nontrivial SCC lies on a cycle")
+
+
+class Ctl(Check):
+    def __init__(self, spec, formula, atoms: list, fairness: list[set]):
+        super().__init__(spec)
+        self.formula = formula
+        self.atoms = atoms
+        self.fairness = fairness
+
+    def decide(self, view):
+        if not view.complete:
+            return Verdict.unknown(view.reason)
+        k = view.kripke(self.fairness)
+        atoms = [view.truth(a) for a in self.atoms]
+        memo: dict = {}
+        sat = k.label(self.formula, atoms, memo)
+        if sat[0]:
+            return Verdict.holds("true in the initial marking")
+        path, cycle = k.explain(self.formula, atoms, 0, False, memo)
+        arcs = getattr(k, "last_cycle_arcs", None) if cycle else None
+        if arcs is not None and len(arcs) != len(cycle):
+            arcs = None
+        ev = path_evidence(view.g, path, cycle, arcs) if len(path) > 1 or cycle else None
+        end = path[-1]
+        if cycle:
+            msg = f"false in the initial marking: a {'fair ' if self.fairness else ''}cycle through {_state_name(view, end)}"
+        elif len(path) > 1 and k.dead[end]:
+            msg = f"false in the initial marking: the path ends in dead {_state_name(view, end)}"
+        elif len(path) > 1:
+            msg = f"false in the initial marking: see {_state_name(view, end)}"
+        else:
+            msg = "false in the initial marking"
+        return Verdict.violated(msg, ev)
+
+
+# ----------------------------------------------------------------------------- building checks
+def build_checks(specs: list[PropertySpec], lang: PropertyLanguage, source: str) -> list[Check]:
+    """A check per property; raises ModelError with every property text error of the scenario."""
+    diags: list[Diagnostic] = []
+    out = []
+    for spec in specs:
+        try:
+            out.append(_build(spec, lang))
+        except ModelError as exc:
+            diags.extend(exc.diagnostics)
+    if diags:
+        file = specs[0].span.file
+        raise ModelError(diags, {file: source})
+    return out
+
+
+def _text(spec: PropertySpec, key: str):
+    return spec.fields[key], spec.texts.get(key), spec.spans.get(key, spec.span)
+
+
+def _pred(spec, lang, key, want, what):
+    text, origin, span = _text(spec, key)
+    return lang.compile(text, origin, span, want, what)
+
+
+def _names(spec: PropertySpec, lang: PropertyLanguage, key: str) -> list[int]:
+    out: list[int] = []
+    diags = []
+    for name in spec.fields[key]:
+        ts = lang.resolve_transitions(name)
+        if ts is None:
+            from cpn._util import did_you_mean
+
+            cand = did_you_mean(name, list(lang.transition_names))
+            diags.append(Diagnostic("E0603", f"no transition instance '{name}' in the net",
+                                    _element_span(spec, key, name),
+                                    hint=f"Did you mean '{cand}'?" if cand else
+                                    "Name it as the report prints it: \"Page'trans 1\", or \"Page'trans\" for "
+                                    "every instance."))
+        else:
+            out.extend(ts)
+    if diags:
+        raise ModelError(diags)
+    return out
+
+
+def _element_span(spec: PropertySpec, key: str, name: str) -> Span:
+    span = spec.spans.get(key, spec.span)
+    origin = next((o for o in spec.texts.values() if o is not None), None)
+    source = origin.source if origin is not None else None
+    if source is None:
+        return span
+    lines = source.splitlines()
+    for ln in range(span.line, min(len(lines), span.line + 50) + 1):
+        col = lines[ln - 1].find(f'"{name}"')
+        if col >= 0:
+            return Span(span.file, ln, col + 2, ln, col + 1 + len(name))
+    return span
+
+
+def _build(spec: PropertySpec, lang: PropertyLanguage) -> Check:
+    k = spec.kind
+    f = spec.fields
+    if k == "invariant":
+        return Invariant(spec, _pred(spec, lang, "expr", T.BOOL, "an invariant"))
+    if k == "reachable":
+        return Reachable(spec, _pred(spec, lang, "expr", T.BOOL, "a reachability predicate"))
+    if k == "deadlock_free":
+        return DeadlockFree(spec)
+    if k == "dead_markings":
+        pred = _pred(spec, lang, "expr", T.BOOL, "a dead-marking predicate") if "expr" in f else None
+        return DeadMarkings(spec, pred)
+    if k == "bound":
+        return _bound(spec, lang)
+    if k == "dead_transitions":
+        ts = _names(spec, lang, "expected")
+        return DeadTransitions(spec, set(ts), {})
+    if k == "live_transitions":
+        return LiveTransitions(spec, _names(spec, lang, "transitions") if "transitions" in f else None)
+    if k == "home":
+        pred = _pred(spec, lang, "expr", T.BOOL, "a home predicate") if "expr" in f else None
+        return Home(spec, pred)
+    if k == "no_livelock":
+        return NoLivelock(spec, set(_names(spec, lang, "progress")) if f.get("progress") else None)
+    if k == "ctl":
+        return _ctl(spec, lang)
+    raise AssertionError(k)
+
+
+def _bound(spec, lang) -> Check:
+    f = spec.fields
+
+    def const(key, want, what):
+        v = f.get(key)
+        if v is None or isinstance(v, int):
+            return v
+        text, origin, span = _text(spec, key)
+        return lang.constant(text, origin, span, want, what)
+
+    places = None
+    fn = None
+    if "place" in f:
+        name = f["place"]
+        places = _place_instances(spec, lang, name)
+        cst = lang.place_cstype[_base(name, lang)]
+    else:
+        fn = _pred(spec, lang, "expr", T.INT, "a bounded integer expression")
+        cst = None
+    upper = const("upper", T.INT, "an upper bound")
+    lower = const("lower", T.INT, "a lower bound")
+    upper_ms = const("upper_multiset", T.ms(cst), "an upper multiset bound") if cst is not None else None
+    lower_ms = const("lower_multiset", T.ms(cst), "a lower multiset bound") if cst is not None else None
+    return Bound(spec, places, fn, upper, lower, upper_ms, lower_ms)
+
+
+def _base(name: str, lang) -> str:
+    if name in lang.accessors:
+        return name
+    return name.rsplit(" ", 1)[0]
+
+
+def _place_instances(spec, lang, name: str) -> list[int]:
+    acc = lang.accessors.get(name)
+    if acc is not None:
+        return acc.places
+    base, _, num = name.rpartition(" ")
+    acc = lang.accessors.get(base)
+    if acc is not None and num.isdigit() and int(num) in acc.instances:
+        return [acc.instances[int(num)]]
+    from cpn._util import did_you_mean
+
+    cand = did_you_mean(name, [f"{b} {i}" for b, a in lang.accessors.items() for i in a.instances] + list(lang.accessors))
+    text, origin, span = _text(spec, "place")
+    raise ModelError([Diagnostic("E0603", f"no place instance '{name}' in the net",
+                                 origin.span(0, len(text) - 1) if origin else span,
+                                 hint=f"Did you mean '{cand}'?" if cand else
+                                 "Name it as the report prints it: \"Page'place 1\", or \"Page'place\" for every "
+                                 "instance.")])
+
+
+def _ctl(spec, lang) -> Check:
+    text, origin, span = _text(spec, "formula")
+    expr = lang.check(text, origin, span, T.BOOL, "a CTL formula", ctl=True)
+    ctl_syms = {id(s): n for n, s in lang.ctl_symbols.items()}
+    atoms = []
+
+    def temporal(e) -> bool:
+        return any(isinstance(n, A.Name) and n.ref is not None and id(n.ref) in ctl_syms for n in walk(e))
+
+    def conv(e):
+        if not temporal(e):
+            atoms.append(lang.compile_checked(_slice(text, origin, e), e, span))
+            return Atom(len(atoms) - 1)
+        if isinstance(e, A.App) and isinstance(e.fn, A.Name) and e.fn.ref is not None and id(e.fn.ref) in ctl_syms:
+            op = ctl_syms[id(e.fn.ref)]
+            if op in CTL_BINARY:
+                a, b = e.arg.items
+                return Temporal(op, (conv(a), conv(b)))
+            return Temporal(CTL_UNARY[op], (conv(e.arg),))
+        if isinstance(e, A.App) and isinstance(e.fn, A.Name) and e.fn.name == "not":
+            return Not(conv(e.arg))
+        if isinstance(e, A.BinOp) and e.op in ("andalso", "orelse"):
+            return (And if e.op == "andalso" else Or)(conv(e.left), conv(e.right))
+        if isinstance(e, A.If):
+            c = conv(e.cond)
+            return Or(And(c, conv(e.then)), And(Not(c), conv(e.else_)))
+        if isinstance(e, A.Annot):
+            return conv(e.expr)
+        raise _ctl_error(e, text, origin, span)
+
+    formula = conv(expr)
+    fairness = []
+    if spec.fields.get("fairness"):
+        for name in spec.fields["fairness"]:
+            ts = lang.resolve_transitions(name)
+            if ts is None:
+                raise ModelError([Diagnostic("E0603", f"no transition instance '{name}' in the net",
+                                             _element_span(spec, "fairness", name))])
+            fairness.append(set(ts))
+    return Ctl(spec, formula, atoms, fairness)
+
+
+def _slice(text, origin, e) -> str:
+    return text if e.span is None else text  # the whole formula names the atom in errors
+
+
+def _ctl_error(e, text, origin, span) -> ModelError:
+    from cpn.checks.predicates import _remap
+
+    return _remap(ModelError([Diagnostic(
+        "E0602", "a temporal operator can only be combined with not, andalso, orelse and if-then-else",
+        e.span, hint="Move the temporal operator out of the function, let or case expression.")]),
+        text, origin, span)
+
+
+__all__ = ["Check", "Evidence", "GraphView", "PredicateError", "Status", "build_checks"]
