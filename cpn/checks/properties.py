@@ -523,11 +523,9 @@ def _names(spec: PropertySpec, lang: PropertyLanguage, key: str) -> list[int]:
 
 def _element_span(spec: PropertySpec, key: str, name: str) -> Span:
     span = spec.spans.get(key, spec.span)
-    origin = next((o for o in spec.texts.values() if o is not None), None)
-    source = origin.source if origin is not None else None
-    if source is None:
+    if not spec.source:
         return span
-    lines = source.splitlines()
+    lines = spec.source.splitlines()
     for ln in range(span.line, min(len(lines), span.line + 50) + 1):
         col = lines[ln - 1].find(f'"{name}"')
         if col >= 0:

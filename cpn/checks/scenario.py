@@ -63,6 +63,7 @@ class PropertySpec:
     spans: dict = field(default_factory=dict)  # field -> Span of its value
     texts: dict = field(default_factory=dict)  # field -> TextOrigin (string fields only)
     description: str = ""
+    source: str = ""  # the scenario file's text (for positions inside arrays)
 
 
 @dataclass
@@ -411,7 +412,7 @@ def _properties(r: _Reader, props) -> list[PropertySpec]:
         texts = {k: r.origin(table, k) for k, v in fields.items() if isinstance(v, str)}
         if not bad:
             out.append(PropertySpec(i, name, kind, fields, r.value_span(table, "kind"), spans, texts,
-                                    str(p.get("description", ""))))
+                                    str(p.get("description", "")), r.text))
     return out
 
 

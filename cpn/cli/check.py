@@ -1,0 +1,197 @@
+"""`cpn-verify check [SCENARIO|DIR]...`: prove the properties of scenario files, the CI gate.
+
+Parses the arguments, runs each scenario (`cpn.checks.gate`), prints the summary and the counterexamples,
+writes the reports. Exit statuses (DESIGN.md 4): 0 every property holds on a complete state space; 1 a
+property is violated; 2 unknown (a limit stopped a search first); 64 bad usage; 65 bad model or scenario
+file (or a property text that fails in some marking); 70 internal error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import os
+import sys
+
+EXIT_OK = 0
+EXIT_VIOLATED = 1
+EXIT_UNKNOWN = 2
+EXIT_USAGE = 64
+EXIT_DATAERR = 65
+
+DEFAULT_DIR = "specs"
+
+DESCRIPTION = """Explore the state space of each scenario (a TOML file naming a model, the values of its
+constants, exploration limits and the properties the protocol must have; docs/specs.md) and give each
+property a verdict: holds, violated (with the shortest counterexample), or unknown (a limit stopped the
+search). With no argument, every *.toml under specs/ is checked. Reports (text, JSON, Markdown) are
+written per scenario run under --reports."""
+
+
+def add_parser(subparsers) -> argparse.ArgumentParser:
+    p = subparsers.add_parser("check", help="prove the properties of scenario files (the CI gate)",
+                              description=DESCRIPTION)
+    p.add_argument("paths", nargs="*", metavar="SCENARIO|DIR", help=f"scenario files or folders (default: {DEFAULT_DIR}/)")
+    p.add_argument("--reports", metavar="DIR", default="reports",
+                   help="folder for the per-run reports (default: reports)")
+    p.add_argument("--no-reports", action="store_true", help="write no per-run report files")
+    p.add_argument("--junit", metavar="FILE", help="write JUnit XML (one test case per property)")
+    p.add_argument("--sarif", metavar="FILE", help="write SARIF 2.1.0 (violations located in the spec files)")
+    p.add_argument("--baseline", metavar="DIR",
+                   help="compare with the JSON reports of an earlier run in DIR and print what changed")
+    p.add_argument("--trace-format", choices=("text", "json"), default="text",
+                   help="how counterexamples are printed (default: text)")
+    p.add_argument("--max-states", type=int, metavar="N", help="override every scenario's state limit")
+    p.add_argument("--max-seconds", type=float, metavar="S", help="override every scenario's time limit")
+    p.add_argument("--no-timings", action="store_true",
+                   help="leave run times out of the output and reports (byte-identical reruns)")
+    p.add_argument("--quiet", action="store_true", help="print only the summary table")
+    return p
+
+
+def run(args) -> int:
+    from cpn import __version__
+    from cpn.checks.gate import run_scenario
+    from cpn.checks.scenario import load_scenario, scenario_files
+    from cpn.errors import ConfigurationError, EvaluationError, ModelError
+    from cpn.report.verdicts import report_name, run_report
+
+    for name in ("max_states", "max_seconds"):
+        v = getattr(args, name)
+        if v is not None and v <= 0:
+            print(f"error: --{name.replace('_', '-')} must be positive, got {v:g}", file=sys.stderr)
+            return EXIT_USAGE
+    paths = args.paths or [DEFAULT_DIR]
+    for p in paths:
+        if not os.path.exists(p):
+            print(f"error: no such scenario file or folder: '{p}'", file=sys.stderr)
+            return EXIT_USAGE
+    files = scenario_files(paths)
+    if not files:
+        print(f"error: no scenario (*.toml) in {', '.join(paths)}", file=sys.stderr)
+        return EXIT_USAGE
+    overrides = {"max_states": args.max_states, "max_seconds": args.max_seconds}
+    docs: list[dict] = []
+    bad_files = 0
+    timings = not args.no_timings
+    for path in files:
+        try:
+            scenario = load_scenario(path)
+        except ModelError as err:
+            print(err.render(), file=sys.stderr)
+            bad_files += 1
+            continue
+        for r in scenario.runs:
+            try:
+                result = run_scenario(scenario, r, overrides)
+            except (ModelError, EvaluationError) as err:
+                if len(scenario.runs) > 1:
+                    print(f"in run {r.name}:", file=sys.stderr)
+                print(err.render(), file=sys.stderr)
+                bad_files += 1
+                continue
+            except ConfigurationError as err:
+                print(f"{path}: {err.render()}", file=sys.stderr)
+                bad_files += 1
+                continue
+            doc = run_report(result, timings=timings)
+            docs.append(doc)
+            if not args.quiet:
+                _print_run(doc, args.trace_format)
+            if not args.no_reports:
+                _write_reports(args.reports, report_name(r.name), doc)
+    _print_summary(docs, timings)
+    if args.junit:
+        from cpn.report.junit import render_junit
+
+        _write(args.junit, render_junit(docs, timings))
+    if args.sarif:
+        from cpn.report.sarif import render_sarif
+
+        _write(args.sarif, json.dumps(render_sarif(docs, __version__), indent=2, ensure_ascii=False) + "\n")
+    if args.baseline:
+        _print_baseline(args.baseline, docs)
+    statuses = {d["verdict"] for d in docs}
+    if bad_files or "error" in statuses:
+        return EXIT_DATAERR
+    if "violated" in statuses:
+        return EXIT_VIOLATED
+    if "unknown" in statuses:
+        return EXIT_UNKNOWN
+    return EXIT_OK
+
+
+def _print_run(doc: dict, trace_format: str) -> None:
+    from cpn.report.verdicts import render_steps
+
+    for p in doc["properties"]:
+        if p["verdict"] == "holds":
+            continue
+        where = f"{os.path.relpath(doc['file'])}:{p['line']}:{p['column']}"
+        print(f"{where}: {p['verdict']}: {doc['run']}: '{p['name']}' ({p['kind']}): {p['message']}")
+        if "trace" in p:
+            if trace_format == "json":
+                print(json.dumps({"run": doc["run"], "property": p["name"], **p["trace"]}, ensure_ascii=False))
+            else:
+                print("\n".join(render_steps(p["trace"], indent="    ")))
+        print()
+
+
+def _print_summary(docs: list[dict], timings: bool) -> None:
+    if not docs:
+        return
+    rows = []
+    for d in docs:
+        st = d["statespace"]
+        counts = {}
+        for p in d["properties"]:
+            counts[p["verdict"]] = counts.get(p["verdict"], 0) + 1
+        tally = ", ".join(f"{n} {v}" for v, n in sorted(counts.items(), key=lambda kv: _ORDER[kv[0]]))
+        space = f"{st['states']:,}" + ("" if st["complete"] else " (partial)")
+        secs = f"{st.get('seconds', 0) + st.get('check_seconds', 0):.2f}" if timings else "-"
+        rows.append((d["run"], space, secs, d["verdict"], tally))
+    head = ("scenario", "states", "seconds", "verdict", "properties")
+    widths = [max(len(r[i]) for r in rows + [head]) for i in range(5)]
+    line = "  ".join(f"{h:<{widths[i]}}" if i in (0, 3, 4) else f"{h:>{widths[i]}}" for i, h in enumerate(head))
+    print(line.rstrip())
+    for r in rows:
+        print("  ".join(f"{c:<{widths[i]}}" if i in (0, 3, 4) else f"{c:>{widths[i]}}" for i, c in enumerate(r)).rstrip())
+    for d in docs:
+        bad = [p for p in d["properties"] if p["verdict"] != "holds"]
+        for p in bad:
+            print(f"  {p['verdict']:<9} {d['run']}: {p['name']}")
+
+
+_ORDER = {"error": 0, "violated": 1, "unknown": 2, "holds": 3}
+
+
+def _print_baseline(folder: str, docs: list[dict]) -> None:
+    from cpn.report.baseline import compare, load_reports
+
+    old = load_reports(folder)
+    if not old:
+        print(f"\nbaseline: no check reports in '{folder}'")
+        return
+    changes = compare(old, docs)
+    print(f"\nchanges since the baseline in '{folder}':")
+    if not changes:
+        print("  none")
+    for c in changes:
+        print(f"  {'REGRESSION ' if c.is_regression else ''}{c.text}")
+
+
+def _write_reports(folder: str, stem: str, doc: dict) -> None:
+    from cpn.report.verdicts import render_markdown, render_text
+
+    os.makedirs(folder, exist_ok=True)
+    _write(os.path.join(folder, f"{stem}.json"), json.dumps(doc, indent=2, ensure_ascii=False) + "\n")
+    _write(os.path.join(folder, f"{stem}.txt"), render_text(doc))
+    _write(os.path.join(folder, f"{stem}.md"), render_markdown(doc))
+
+
+def _write(path: str, text: str) -> None:
+    folder = os.path.dirname(path)
+    if folder:
+        os.makedirs(folder, exist_ok=True)
+    with open(path, "w", encoding="utf-8") as fh:
+        fh.write(text)

@@ -1,0 +1,51 @@
+"""SARIF 2.1.0 of scenario runs: each violated (or undecided) property is a result located at the
+property's line in its scenario file, so code hosts annotate the spec file in a pull request.
+
+Imports `cpn.report.verdicts` and the standard library only.
+"""
+
+from __future__ import annotations
+
+import os
+
+from cpn.report.verdicts import render_steps
+
+SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
+LEVELS = {"violated": "error", "error": "error", "unknown": "warning"}
+
+
+def render_sarif(docs: list[dict], version: str, base: str | None = None) -> dict:
+    """The SARIF log (a dict to dump as JSON). URIs are relative to `base` (default: the working folder)."""
+    base = base or os.getcwd()
+    kinds = sorted({p["kind"] for d in docs for p in d["properties"]})
+    rules = [{"id": f"cpn/{k}", "name": k.replace("_", " "),
+              "shortDescription": {"text": f"a '{k}' property of a scenario (docs/specs.md)"}} for k in kinds]
+    results = []
+    for d in docs:
+        uri = os.path.relpath(d["file"], base).replace(os.sep, "/")
+        for p in d["properties"]:
+            level = LEVELS.get(p["verdict"])
+            if level is None:
+                continue
+            text = f"{d['run']}: property '{p['name']}' is {p['verdict']}: {p['message']}"
+            if "trace" in p and p["verdict"] == "violated":
+                text += "\n" + "\n".join(render_steps(p["trace"], indent="  "))
+            results.append({
+                "ruleId": f"cpn/{p['kind']}",
+                "ruleIndex": kinds.index(p["kind"]),
+                "level": level,
+                "message": {"text": text},
+                "locations": [{"physicalLocation": {
+                    "artifactLocation": {"uri": uri},
+                    "region": {"startLine": max(1, p["line"]), "startColumn": max(1, p["column"])}}}],
+                "properties": {"scenario": d["run"], "verdict": p["verdict"]},
+            })
+    return {
+        "$schema": SARIF_SCHEMA,
+        "version": "2.1.0",
+        "runs": [{
+            "tool": {"driver": {"name": "cpn-verify", "version": version,
+                                "informationUri": "https://github.com/cpn-verify/cpn-verify", "rules": rules}},
+            "results": results,
+        }],
+    }
