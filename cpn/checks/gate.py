@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 
 from cpn.checks._common import TransitionIndex
 from cpn.checks.predicates import PredicateError, PropertyLanguage
-from cpn.checks.properties import Check, DeadlockFree, GraphView, build_checks
+from cpn.checks.properties import Check, DeadlockFree, GraphView, Reachable, build_checks
 from cpn.checks.scenario import PropertySpec, Run, Scenario
 from cpn.checks.verdict import Status, Verdict, evidence_to
 from cpn.statespace import ExploreOptions, Explorer
@@ -68,22 +68,27 @@ class _DeadlockWatch:
 class _Monitor:
     """The explorer's stop predicate: evaluates the on-the-fly checks on every stored state, in order."""
 
-    def __init__(self, checks: list[Check], watch: _DeadlockWatch | None, stop_at_first: bool):
+    def __init__(self, checks: list[Check], watch: _DeadlockWatch | None, stop_at_first: bool, only_witnesses: bool):
         self.checks = checks
         self.watch = watch
         self.stop_at_first = stop_at_first
+        self.only_witnesses = only_witnesses  # every property of the scenario is a `reachable` one
         self.sid = 0
 
     def __call__(self, state) -> bool:
         sid = self.sid
         self.sid += 1
-        found = False
+        violated = False
         for c in self.checks:
-            if c.observe(sid, state):
-                found = True
+            if c.observe(sid, state) and not isinstance(c, Reachable):
+                violated = True
         if self.watch is not None and self.watch.first_dead is not None:
-            found = True
-        return found and self.stop_at_first
+            violated = True
+        if not self.stop_at_first:
+            return False
+        # a violation fails the gate whatever else holds; a witness stops the search only when nothing
+        # else is waiting for the rest of the graph
+        return violated or (self.only_witnesses and all(c.found is not None for c in self.checks))
 
 
 def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, progress=None) -> RunResult:
@@ -104,7 +109,8 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     needs_deadlock = any(isinstance(c, DeadlockFree) for c in checks)
     watch = _DeadlockWatch(engine) if needs_deadlock else None
     stop_first = bool(opts.get("stop_at_first_violation", False))
-    monitor = _Monitor(fly, watch, stop_first) if (fly or watch is not None) else None
+    only_witnesses = all(isinstance(c, Reachable) and c.on_the_fly for c in checks)
+    monitor = _Monitor(fly, watch, stop_first, only_witnesses) if (fly or watch is not None) else None
     options = ExploreOptions(max_states=opts.get("max_states"), max_arcs=opts.get("max_arcs"),
                              max_seconds=opts.get("max_seconds"), max_memory_mb=opts.get("max_memory_mb"),
                              stop_predicate=monitor, time_condensation=bool(opts.get("time_condensation", False)),
