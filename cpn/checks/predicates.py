@@ -213,9 +213,28 @@ class PropertyLanguage:
         if ts is not None:
             wanted = set(ts)
             return lambda: any(ctx.transition_of(be) in wanted for be in ctx.enabled_bes())
+        match = self.binding_pattern(text)
+        return lambda: any(match(be) for be in ctx.enabled_bes())
+
+    def binding_pattern(self, text: str) -> Callable[[int], bool]:
+        """A test of binding elements for `Page'trans n: {var=value, ...}`, where the braces may list only
+        some of the variables (`{ok=true}`: every binding with ok=true); without an instance number, any
+        instance matches."""
+        tname, _, rest = text.partition(":")
+        ts = set(self.resolve_transitions(tname.strip()) or ())
+        want = _binding_values(rest)
         fmt = self.engine.format_binding_element
-        norm = _norm_be(text)
-        return lambda: any(_norm_be(fmt(be)) == norm for be in ctx.enabled_bes())
+        t_of = self.transition_index
+        cache: dict[int, bool] = {}
+
+        def match(be: int) -> bool:
+            got = cache.get(be)
+            if got is None:
+                got = t_of(be) in ts and _binding_values(fmt(be).partition(":")[2]).items() >= want.items()
+                cache[be] = got
+            return got
+
+        return match
 
     # ------------------------------------------------------------------ checking
     def check(self, text: str, origin, fallback: Span, want: T.Type, what: str, ctl: bool = False) -> A.Expr:
@@ -264,8 +283,11 @@ class PropertyLanguage:
                              "Name a transition instance as the report prints it: \"Page'trans 1\".")
 
     def _known_be(self, text: str) -> bool:
-        tname = text.split(":")[0].strip()
-        return ":" in text and tname in self.transition_names
+        tname, colon, rest = text.partition(":")
+        if not colon or tname.strip() not in self.transition_names:
+            return False
+        names = {v for t in self.transition_names[tname.strip()] for v in self.engine.transitions[t].variables}
+        return set(_binding_values(rest)) <= names
 
     # ------------------------------------------------------------------ compiling
     def compile(self, text: str, origin, fallback: Span, want: T.Type, what: str) -> Compiled:
@@ -321,8 +343,25 @@ class _PredicateCompiler(ExprCompiler):
         return super()._c_App(e)
 
 
-def _norm_be(text: str) -> str:
-    return re.sub(r"\s+", "", text)
+def _binding_values(text: str) -> dict[str, str]:
+    """{var: value text} of ``{a=1, f=(1,3)}`` (blanks removed; commas inside brackets kept)."""
+    body = re.sub(r"\s+", "", text).strip()
+    if body.startswith("{") and body.endswith("}"):
+        body = body[1:-1]
+    out: dict[str, str] = {}
+    depth, start = 0, 0
+    for i, c in enumerate(body + ","):
+        if c in "([{":
+            depth += 1
+        elif c in ")]}":
+            depth -= 1
+        elif c == "," and depth == 0:
+            item = body[start:i]
+            start = i + 1
+            if item:
+                k, _, v = item.partition("=")
+                out[k] = v
+    return out
 
 
 def _transition_names(engine) -> dict[str, list[int]]:

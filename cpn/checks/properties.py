@@ -52,9 +52,13 @@ class GraphView:
             self._labels = self.lang.transition_index.arc_transitions(self.g.bes)
         return self._labels
 
-    def kripke(self, fairness: list[set] | None = None) -> Kripke:
+    def kripke(self, fairness: list | None = None) -> Kripke:
+        """The graph for CTL; with fairness (binding-element tests), arcs are labelled by binding element."""
         if fairness:
-            return Kripke(self.g.n_states, self.g.offsets, self.g.dst, self.labels(), fairness)
+            bes = self.g.bes
+            distinct = sorted(set(bes))
+            sets = [{be for be in distinct if test(be)} for test in fairness]
+            return Kripke(self.g.n_states, self.g.offsets, self.g.dst, bes, sets)
         if self._kripke is None:
             self._kripke = Kripke(self.g.n_states, self.g.offsets, self.g.dst, self.labels())
         return self._kripke
@@ -93,6 +97,8 @@ class Check:
 
 
 def _state_name(view: GraphView, sid: int) -> str:
+    if sid == 0:
+        return "the initial marking (marking 1)"
     depth = 0
     v = sid
     while v > 0:
@@ -645,13 +651,13 @@ def _ctl(spec, lang) -> Check:
 
     formula = conv(expr)
     fairness = []
-    if spec.fields.get("fairness"):
-        for name in spec.fields["fairness"]:
-            ts = lang.resolve_transitions(name)
-            if ts is None:
-                raise ModelError([Diagnostic("E0603", f"no transition instance '{name}' in the net",
-                                             _element_span(spec, "fairness", name))])
-            fairness.append(set(ts))
+    for name in spec.fields.get("fairness", []):
+        if lang.resolve_transitions(name) is None and not lang._known_be(name):
+            raise ModelError([Diagnostic("E0603", f"no transition instance or binding element '{name}' in the net",
+                                         _element_span(spec, "fairness", name),
+                                         hint="Write \"Page'trans 1\", \"Page'trans\" (every instance) or "
+                                              "\"Page'trans 1: {var=value}\" (the bindings with that value).")])
+        fairness.append(lang.binding_pattern(name))
     return Ctl(spec, formula, atoms, fairness)
 
 

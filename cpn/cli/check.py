@@ -173,7 +173,9 @@ def _print_baseline(folder: str, docs: list[dict]) -> None:
         print(f"\nbaseline: no check reports in '{folder}'")
         return
     changes = compare(old, docs)
-    print(f"\nchanges since the baseline in '{folder}':")
+    broke = sum(c.is_regression for c in changes)
+    head = f"{broke} propert{'y' if broke == 1 else 'ies'} broke; " if broke else ""
+    print(f"\n{head}changes since the baseline in '{folder}':")
     if not changes:
         print("  none")
     for c in changes:

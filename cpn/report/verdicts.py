@@ -20,19 +20,46 @@ def trace_steps(engine, graph, evidence: Evidence | None) -> dict:
     """{"steps": [...], "cycle": [...]}: the evidence as printable, replayable steps."""
     if evidence is None:
         return {"steps": [], "cycle": []}
-    steps = [_step(engine, graph, i + 1, u, v, be)
-             for i, (u, v, be) in enumerate(zip(evidence.path, evidence.path[1:], evidence.arcs))]
-    cycle = []
+    pairs = list(zip(evidence.path, evidence.path[1:], evidence.arcs))
     prev = evidence.path[-1]
-    n = len(steps)
-    for i, (v, be) in enumerate(zip(evidence.cycle, evidence.cycle_arcs)):
-        cycle.append(_step(engine, graph, n + i + 1, prev, v, be))
+    for v, be in zip(evidence.cycle, evidence.cycle_arcs):
+        pairs.append((prev, v, be))
         prev = v
-    return {"steps": steps, "cycle": cycle, "target": evidence.path[-1] + 1}
+    states = [graph.states[evidence.path[0]]] + [graph.states[v] for _, v, _ in pairs]
+    shown, texts = engine, None
+    if getattr(engine, "time_condensation", False):
+        # condensed states keep timestamps relative to their clock: replay the trace on the same net
+        # without condensation to print the model time and the absolute timestamps
+        replayed = _replay_absolute(engine, [be for _, _, be in pairs])
+        if replayed is not None:
+            shown, states, texts = replayed
+    out = []
+    for i, (u, v, be) in enumerate(pairs):
+        text = texts[i] if texts is not None else engine.format_binding_element(be)
+        out.append(_step(shown, states[i], states[i + 1], i + 1, u, v, text))
+    n = len(evidence.path) - 1
+    return {"steps": out[:n], "cycle": out[n:], "target": evidence.path[-1] + 1}
 
 
-def _step(engine, graph, k: int, u: int, v: int, be: int) -> dict:
-    su, sv = graph.states[u], graph.states[v]
+def _replay_absolute(engine, bes: list[int]):
+    """(uncondensed engine, its states along the trace, binding element texts) or None if it diverges."""
+    from cpn.engine import compile_net
+
+    plain = compile_net(engine.net, time_condensation=False, reference=bool(getattr(engine, "reference", False)))
+    state = plain.initial_state()
+    states, texts = [state], []
+    for be in bes:
+        want = engine.format_binding_element(be)
+        nxt = next((t for b, t in plain.successors(state) if plain.format_binding_element(b) == want), None)
+        if nxt is None:
+            return None
+        state = nxt
+        states.append(state)
+        texts.append(want)
+    return plain, states, texts
+
+
+def _step(engine, su, sv, k: int, u: int, v: int, text: str) -> dict:
     mu, mv = engine.marking(su), engine.marking(sv)
     consumed, produced = {}, {}
     for p, place in enumerate(engine.places):
@@ -46,14 +73,36 @@ def _step(engine, graph, k: int, u: int, v: int, be: int) -> dict:
             consumed[place.name] = format_multiset(place.colour_set, minus.items(), timed=timed)
         if plus:
             produced[place.name] = format_multiset(place.colour_set, plus.items(), timed=timed)
-    b = engine.binding_element(be)
-    t = b.transition if isinstance(b.transition, int) else b.transition.index
-    net = engine.net
-    binding = {n: net.colsets[net.variables[n].data].format(x) if n in net.variables else repr(x)
-               for n, x in b.binding.items()}
-    return {"step": k, "time": engine.clock(sv), "binding_element": engine.format_binding_element(be),
-            "transition": engine.transitions[t].name, "binding": binding, "consumed": consumed,
-            "produced": produced, "from": u + 1, "to": v + 1}
+    tname, _, rest = text.partition(": ")
+    binding = {}
+    for item in _split_binding(rest):
+        name, _, value = item.partition("=")
+        binding[name] = value
+    return {"step": k, "time": engine.clock(sv), "binding_element": text, "transition": tname,
+            "binding": binding, "consumed": consumed, "produced": produced, "from": u + 1, "to": v + 1}
+
+
+def _split_binding(text: str) -> list[str]:
+    """The `var=value` items of ``{a=1, f=(1,3)}`` (commas inside brackets and strings kept)."""
+    body = text.strip()
+    if body.startswith("{") and body.endswith("}"):
+        body = body[1:-1]
+    items, depth, start, quoted = [], 0, 0, False
+    for i, c in enumerate(body):
+        if c == '"':
+            quoted = not quoted
+        elif quoted:
+            continue
+        elif c in "([{":
+            depth += 1
+        elif c in ")]}":
+            depth -= 1
+        elif c == "," and depth == 0:
+            items.append(body[start:i].strip())
+            start = i + 1
+    if body[start:].strip():
+        items.append(body[start:].strip())
+    return items
 
 
 def render_steps(trace: dict, indent: str = "    ") -> list[str]:

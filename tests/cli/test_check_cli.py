@@ -123,6 +123,7 @@ def test_baseline_names_the_property_that_broke(tmp_path, capsys):
     code, out, _ = run([spec, "--baseline", str(tmp_path / "before")], tmp_path, capsys)
     assert code == 1
     assert "REGRESSION gate: 'never two' holds -> violated" in out
+    assert "1 property broke; changes since the baseline" in out
 
 
 def test_parameter_table_expands_to_one_run_per_row(tmp_path, capsys):
