@@ -11,7 +11,9 @@ Imports `cpn.statespace` and the standard library only.
 
 from __future__ import annotations
 
+import operator
 from array import array
+from bisect import bisect_left
 from collections import deque
 from dataclasses import dataclass
 
@@ -51,28 +53,16 @@ class Temporal:
 class Kripke:
     """The graph the formulas are evaluated on: n states, CSR successors, arc labels, predecessors."""
 
-    def __init__(self, n: int, offsets, dst, labels, fairness: list[set] | None = None):
+    def __init__(self, n: int, offsets, dst, labels, fairness: list[set] | None = None, predecessors=None,
+                 full_scc=None):
         self.n = n
         self.offsets = offsets
         self.dst = dst
-        self.labels = labels  # per arc: the transition (an int), for fairness
+        self.labels = labels  # per arc: a label (transition or binding element), for fairness
         self.fairness = [set(f) for f in (fairness or [])]
-        self.dead = bytearray(1 if offsets[i] == offsets[i + 1] else 0 for i in range(n))
-        # predecessors in CSR form
-        count = array("i", [0]) * (n + 1)
-        for v in dst:
-            count[v + 1] += 1
-        for i in range(n):
-            count[i + 1] += count[i]
-        self.pred_off = array("q", count)
-        fill = array("i", count)
-        pred = array("i", [0]) * len(dst)
-        for u in range(n):
-            for a in range(offsets[u], offsets[u + 1]):
-                v = dst[a]
-                pred[fill[v]] = u
-                fill[v] += 1
-        self.pred = pred
+        self.dead = bytearray(map(operator.eq, offsets[:n], offsets[1:n + 1]))
+        self.pred_off, self.pred = predecessors if predecessors is not None else reverse_csr(n, offsets, dst)
+        self.full_scc = full_scc
         self._fair = None
 
     def successors(self, u: int):
@@ -111,26 +101,33 @@ class Kripke:
     def eg_seeds(self, phi: bytearray) -> tuple[bytearray, object]:
         """phi-states where a fair path staying in phi can stay forever: dead phi-states and the states of
         fair nontrivial SCCs of the phi-sub-graph. Also returns the decomposition."""
-        dec = strongly_connected_components(self.n, self.offsets, self.dst, keep_node=phi)
+        if self.full_scc is not None and 0 not in phi:
+            dec = self.full_scc  # the sub-graph is the whole graph: its decomposition is already known
+        else:
+            dec = strongly_connected_components(self.n, self.offsets, self.dst, keep_node=phi)
         seeds = bytearray(self.n)
         ok = bytearray(dec.count)
         for c in range(dec.count):
             ok[c] = dec.nontrivial[c]
         if self.fairness:
-            have = [set() for _ in range(dec.count)]
-            comp = dec.comp
+            # one bit per fairness set: a label's mask says which sets it belongs to
+            masks: dict = {}
+            for k, f in enumerate(self.fairness):
+                for lab in f:
+                    masks[lab] = masks.get(lab, 0) | (1 << k)
+            full = (1 << len(self.fairness)) - 1
+            have = [0] * dec.count
+            comp, offsets, dst, labels = dec.comp, self.offsets, self.dst, self.labels
+            get = masks.get
             for u in range(self.n):
                 cu = comp[u]
-                if cu < 0 or not ok[cu] or not phi[u]:
+                if cu < 0 or not ok[cu] or have[cu] == full:
                     continue
-                for a in range(self.offsets[u], self.offsets[u + 1]):
-                    if comp[self.dst[a]] == cu:
-                        lab = self.labels[a]
-                        for k, f in enumerate(self.fairness):
-                            if lab in f:
-                                have[cu].add(k)
+                for a in range(offsets[u], offsets[u + 1]):
+                    if comp[dst[a]] == cu:
+                        have[cu] |= get(labels[a], 0)
             for c in range(dec.count):
-                if ok[c] and len(have[c]) < len(self.fairness):
+                if ok[c] and have[c] != full:
                     ok[c] = 0
         comp = dec.comp
         for v in range(self.n):
@@ -342,6 +339,22 @@ class Kripke:
         return [start], []
 
 
+def reverse_csr(n: int, offsets, dst) -> tuple[array, array]:
+    """Predecessors in CSR form: (pred_off, pred), the sources of the arcs into v being
+    pred[pred_off[v]:pred_off[v+1]]. Sorting the arc indices by destination runs at C speed."""
+    m = len(dst)
+    src = array("i")
+    for u in range(n):
+        k = offsets[u + 1] - offsets[u]
+        if k:
+            src.extend(array("i", [u]) * k)
+    order = sorted(range(m), key=dst.__getitem__)
+    pred = array("i", map(src.__getitem__, order))
+    ends = array("i", map(dst.__getitem__, order))
+    pred_off = array("q", (bisect_left(ends, v) for v in range(n + 1)))
+    return pred_off, pred
+
+
 def _not(a: bytearray) -> bytearray:
     return a.translate(_NOT)
 
@@ -349,9 +362,10 @@ def _not(a: bytearray) -> bytearray:
 _NOT = bytes([1, 0] + [0] * 254)
 
 
+# 0/1 bytes combine as big integers: one C operation instead of a Python loop per state
 def _and(a: bytearray, b: bytearray) -> bytearray:
-    return bytearray(x & y for x, y in zip(a, b))
+    return bytearray((int.from_bytes(a, "little") & int.from_bytes(b, "little")).to_bytes(len(a), "little"))
 
 
 def _or(a: bytearray, b: bytearray) -> bytearray:
-    return bytearray(x | y for x, y in zip(a, b))
+    return bytearray((int.from_bytes(a, "little") | int.from_bytes(b, "little")).to_bytes(len(a), "little"))

@@ -11,12 +11,13 @@ Imports `cpn.lang`, `cpn.engine`, `cpn.values` and layer 0.
 from __future__ import annotations
 
 import dataclasses
+import operator
 import re
 from collections.abc import Callable
 
 from cpn._util import did_you_mean
 from cpn.diagnostics import Diagnostic, Span
-from cpn.engine.codegen import ExprCompiler, Namespace
+from cpn.engine.codegen import ExprCompiler, Namespace, Unsupported
 from cpn.engine.runtime import RUNTIME
 from cpn.errors import ModelError
 from cpn.lang import ast as A
@@ -298,8 +299,7 @@ class PropertyLanguage:
         uses_enabled = any(isinstance(n, A.Name) and n.ref is self.special.get("enabled") and n.ref is not None
                            for n in walk(expr))
         ns = Namespace()
-        comp = _PredicateCompiler(ns, self.ev, {}, {}, {})
-        comp.places = self.symbols
+        comp = _PredicateCompiler(ns, self.ev, self.symbols, getattr(self.engine, "functions", {}) or {})
         body = comp.expr(expr)
         glob = dict(RUNTIME)
         glob.update(ns.objects)
@@ -309,12 +309,32 @@ class PropertyLanguage:
         src = f"def _property(I, S):\n    CTX.sid = I\n    CTX.state = S\n    return {body}\n"
         exec(compile(src, f"<property {text[:40]}>", "exec"), glob)  # noqa: S102 - generated from the typed AST
         raw = glob["_property"]
+        errors = (MLError, MultisetError, ZeroDivisionError, IndexError, RecursionError)
+        reads = sorted({p for n in walk(expr) if isinstance(n, A.Name) and n.ref is not None
+                        and n.ref.uid in self.symbols for p in self.symbols[n.ref.uid].places})
+        if uses_enabled or not hasattr(self.engine, "place_view"):
+            def fn(sid, state, raw=raw):
+                try:
+                    return raw(sid, state)
+                except errors as exc:
+                    raise PredicateError(f"evaluating '{text}' failed: {exc}", sid) from None
+        else:
+            # The value depends only on the markings of the places the text reads, which states share:
+            # memoised by their intern ids, as the engine memoises a transition's bindings.
+            key_of = (lambda s: ()) if not reads else operator.itemgetter(*reads)
+            memo: dict = {}
+            get = memo.get
 
-        def fn(sid, state, raw=raw):
-            try:
-                return raw(sid, state)
-            except (MLError, MultisetError, ZeroDivisionError, IndexError, RecursionError) as exc:
-                raise PredicateError(f"evaluating '{text}' failed: {exc}", sid) from None
+            def fn(sid, state, raw=raw):
+                key = key_of(state)
+                v = get(key, fn)
+                if v is fn:
+                    try:
+                        v = raw(sid, state)
+                    except errors as exc:
+                        raise PredicateError(f"evaluating '{text}' failed: {exc}", sid) from None
+                    memo[key] = v
+                return v
 
         return Compiled(text, expr, fn, uses_enabled, span)
 
@@ -333,7 +353,51 @@ class PropertyLanguage:
 
 
 class _PredicateCompiler(ExprCompiler):
-    places: dict[int, _Accessor] = {}
+    """The engine's expression compiler, plus place access and one-clause `fn` (so that `forall P (fn m
+    => ...)` runs as a Python lambda, not in the tree-walking evaluator: 20x faster on DP(10))."""
+
+    def __init__(self, ns, ev, places: dict[int, _Accessor], functions: dict):
+        super().__init__(ns, ev, {}, {}, {})
+        self.places = places
+        self.functions = functions
+        self.locals: dict[int, str] = {}
+
+    def _c_Name(self, e):
+        sym = e.ref
+        if sym is not None and sym.kind == "local":
+            py = self.locals.get(sym.uid)
+            if py is None:
+                raise Unsupported()
+            return py
+        return super()._c_Name(e)
+
+    def fallback(self, e):
+        node = self.ns.ref(e, "X")
+        used = {n.ref.uid for n in walk(e) if isinstance(n, A.Name) and n.ref is not None and n.ref.kind == "local"}
+        items = ", ".join(f"{uid}: {py}" for uid, py in self.locals.items() if uid in used)
+        return f"EVAL({node}, {{{items}}})"
+
+    def _c_Fn(self, e):
+        if len(e.rules) != 1:
+            raise Unsupported()
+        pat, body = e.rules[0]
+        names = _pattern_names(pat)
+        if names is None:
+            raise Unsupported()
+        saved = dict(self.locals)
+        params = []
+        for uid in names:
+            py = f"_L{uid}" if uid is not None else "_"
+            params.append(py)
+            if uid is not None:
+                self.locals[uid] = py
+        try:
+            code = self.expr(body)
+        finally:
+            self.locals = saved
+        if isinstance(pat, A.PTuple):
+            return f"(lambda _t: (lambda {', '.join(params)}: {code})(*_t))"
+        return f"(lambda {params[0]}: {code})"
 
     def _c_App(self, e):
         if isinstance(e.fn, A.Name) and e.fn.ref is not None and isinstance(e.arg, A.Const):
@@ -341,6 +405,23 @@ class _PredicateCompiler(ExprCompiler):
             if acc is not None and e.arg.value in acc.instances:
                 return f"MK(S, {acc.instances[e.arg.value]})"
         return super()._c_App(e)
+
+
+def _pattern_names(pat) -> list | None:
+    """Symbol uids bound by a pattern of plain variables (None for '_'), or None for other patterns."""
+    if isinstance(pat, A.PWild):
+        return [None]
+    if isinstance(pat, A.PVar) and pat.ref is not None and pat.ref.kind == "local":
+        return [pat.ref.uid]
+    if isinstance(pat, A.PTuple):
+        out = []
+        for p in pat.items:
+            got = _pattern_names(p)
+            if got is None or len(got) != 1 or isinstance(p, A.PTuple):
+                return None
+            out.extend(got)
+        return out
+    return None
 
 
 def _binding_values(text: str) -> dict[str, str]:

@@ -9,10 +9,11 @@ the whole graph is unknown with the reason the search stopped. Imports `cpn.chec
 
 from __future__ import annotations
 
+import operator
 from array import array
 from collections import deque
 
-from cpn.checks.ctl import And, Atom, Kripke, Not, Or, Temporal
+from cpn.checks.ctl import And, Atom, Kripke, Not, Or, Temporal, reverse_csr
 from cpn.checks.predicates import CTL_BINARY, CTL_UNARY, PredicateError, PropertyLanguage, walk
 from cpn.checks.scenario import PropertySpec
 from cpn.checks.verdict import Evidence, Status, Verdict, evidence_to, path_evidence
@@ -36,6 +37,7 @@ class GraphView:
         self.stop_note = stop_note
         self._labels = None
         self._kripke = None
+        self._pred = None
         self._scc = None
         self._atom_cache: dict = {}
 
@@ -54,13 +56,16 @@ class GraphView:
 
     def kripke(self, fairness: list | None = None) -> Kripke:
         """The graph for CTL; with fairness (binding-element tests), arcs are labelled by binding element."""
+        if self._pred is None:
+            self._pred = reverse_csr(self.g.n_states, self.g.offsets, self.g.dst)
         if fairness:
             bes = self.g.bes
             distinct = sorted(set(bes))
             sets = [{be for be in distinct if test(be)} for test in fairness]
-            return Kripke(self.g.n_states, self.g.offsets, self.g.dst, bes, sets)
+            return Kripke(self.g.n_states, self.g.offsets, self.g.dst, bes, sets, self._pred, self.scc())
         if self._kripke is None:
-            self._kripke = Kripke(self.g.n_states, self.g.offsets, self.g.dst, self.labels())
+            self._kripke = Kripke(self.g.n_states, self.g.offsets, self.g.dst, self.g.bes, None, self._pred,
+                                  self.scc())
         return self._kripke
 
     def scc(self):
@@ -218,8 +223,9 @@ class Bound(Check):
             for p in self.places:
                 name = view.engine.places[p].name
                 ms_of = view.lang.ctx.mk
-                values = (size for size in (sum(ms_of(s, p)._d.values()) for s in g.states))
-                results.append((name, *self._extremes(values), p))
+                first = _first_states(view, p)
+                hi, hi_at, lo, lo_at = self._extremes(sum(ms_of(g.states[i], p)._d.values()) for i in first)
+                results.append((name, hi, first[hi_at], lo, first[lo_at], p))
         problems, unknowns, holds = [], [], []
         evidence = None
         for name, hi, hi_at, lo, lo_at, p in results:
@@ -274,8 +280,8 @@ class Bound(Check):
         acc: dict | None = None
         bad = None
         ms_of = view.lang.ctx.mk
-        for i, s in enumerate(view.g.states):
-            m = ms_of(s, p)
+        for i in _first_states(view, p):
+            m = ms_of(view.g.states[i], p)
             d = m._d
             if which == "upper":
                 if bad is None and not m <= want:
@@ -289,6 +295,19 @@ class Bound(Check):
                     bad = i
                 acc = dict(d) if acc is None else {v: min(k, d.get(v, 0)) for v, k in acc.items() if d.get(v, 0)}
         return Multiset(acc or {}), bad
+
+
+def _first_states(view: GraphView, p: int) -> list[int]:
+    """For each distinct marking of place p, the first (smallest, so shallowest) state that has it, in
+    increasing order; every state when states are not tuples of place columns."""
+    states = view.g.states
+    if not hasattr(view.engine, "place_view"):
+        return list(range(len(states)))
+    first: dict = {}
+    setdefault = first.setdefault
+    for i, key in enumerate(map(operator.itemgetter(p), states)):
+        setdefault(key, i)
+    return sorted(first.values())
 
 
 class DeadTransitions(Check):
@@ -381,6 +400,11 @@ class Home(Check):
         else:
             target = bytearray(n)
             target[0] = 1
+        # from every state some terminal SCC is reachable, and every state of a terminal SCC reaches all of
+        # it: the target is reachable from everywhere iff every terminal SCC contains a target state
+        dec = view.scc()
+        if all(any(target[v] for v in dec.nodes(c)) for c in dec.terminal_components()):
+            return Verdict.holds("reachable from every reachable marking")
         k = view.kripke()
         reach = k.eu(bytearray([1]) * n, target)
         bad = next((i for i in range(n) if not reach[i]), None)
