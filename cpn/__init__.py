@@ -7,6 +7,7 @@
 ["Top't 1: {}"]
 """
 
+from cpn.checks.gate import check
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import (
     ConfigurationError,
@@ -26,6 +27,6 @@ __version__ = "0.1.0"
 
 __all__ = [
     "ConfigurationError", "CpnError", "Diagnostic", "EvaluationError", "InternalError", "Model", "ModelError",
-    "ModelNameError", "ModelSyntaxError", "ModelTypeError", "Net", "Span", "load", "loads", "parse",
+    "ModelNameError", "ModelSyntaxError", "ModelTypeError", "Net", "Span", "check", "load", "loads", "parse",
     "__version__",
 ]

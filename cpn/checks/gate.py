@@ -136,3 +136,19 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
             verdict = Verdict(Status.ERROR, str(exc), ev)
         results.append(PropertyResult(c.spec, verdict, time.perf_counter() - t))
     return RunResult(scenario, run, x, engine, results, explore_seconds, time.perf_counter() - t1, opts)
+
+
+def check(path, **overrides) -> list[RunResult]:
+    """Every run of the scenario file `path` (docs/specs.md), with its verdicts.
+
+    Examples
+    --------
+    >>> import cpn
+    >>> [(p.spec.name, p.verdict.status.value) for p in cpn.check("specs/examples/dp.toml")[0].results][:1]
+    ... # doctest: +SKIP
+    [('the only dead marking: everyone holds the left fork', 'holds')]
+    """
+    from cpn.checks.scenario import load_scenario
+
+    scenario = load_scenario(path)
+    return [run_scenario(scenario, run, overrides) for run in scenario.runs]

@@ -13,6 +13,8 @@ import json
 import os
 import sys
 
+from cpn.cli.explore import _ProgressLine
+
 EXIT_OK = 0
 EXIT_VIOLATED = 1
 EXIT_UNKNOWN = 2
@@ -82,8 +84,9 @@ def run(args) -> int:
             bad_files += 1
             continue
         for r in scenario.runs:
+            display = _ProgressLine() if (not args.quiet and sys.stderr.isatty()) else None
             try:
-                result = run_scenario(scenario, r, overrides)
+                result = run_scenario(scenario, r, overrides, progress=display)
             except (ModelError, EvaluationError) as err:
                 if len(scenario.runs) > 1:
                     print(f"in run {r.name}:", file=sys.stderr)
@@ -94,6 +97,9 @@ def run(args) -> int:
                 print(f"{path}: {err.render()}", file=sys.stderr)
                 bad_files += 1
                 continue
+            finally:
+                if display is not None:
+                    display.close()
             doc = run_report(result, timings=timings)
             docs.append(doc)
             if not args.quiet:
