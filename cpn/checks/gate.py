@@ -80,7 +80,13 @@ class _Monitor:
         self.sid += 1
         violated = False
         for c in self.checks:
-            if c.observe(sid, state) and not isinstance(c, Reachable):
+            if c.error is not None:
+                continue
+            try:
+                if c.observe(sid, state) and not isinstance(c, Reachable):
+                    violated = True
+            except PredicateError as exc:
+                c.error = exc  # decided: the property's text fails in this marking (exit status 65)
                 violated = True
         if self.watch is not None and self.watch.first_dead is not None:
             violated = True
@@ -130,6 +136,8 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
             c.found = watch.first_dead
         t = time.perf_counter()
         try:
+            if c.error is not None:
+                raise c.error
             verdict = c.decide(view)
         except PredicateError as exc:
             ev = evidence_to(x.graph, exc.state_id) if exc.state_id is not None else None

@@ -93,6 +93,7 @@ class Check:
     def __init__(self, spec: PropertySpec):
         self.spec = spec
         self.found: int | None = None  # the first state observed to violate (or witness) the property
+        self.error: PredicateError | None = None  # the property's text failed in a marking
 
     def observe(self, sid: int, state) -> bool:
         return False

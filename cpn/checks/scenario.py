@@ -283,10 +283,13 @@ def loads_scenario(text: str, path: str = "<scenario>") -> Scenario:
     explore = _explore(r, data.get("explore", {}))
     rows = _parameters(r, data.get("parameters"))
     props = _properties(r, data.get("property", []))
-    if r.diags:
-        raise ModelError(r.diags, {path: text})
     base = os.path.dirname(os.path.abspath(path))
     model_path = model if os.path.isabs(model) else os.path.normpath(os.path.join(base, model))
+    if model and not os.path.isfile(model_path):
+        r.error("E0602", f"no model file '{model}' (looked for {model_path})", r.value_span((), "model"),
+                hint="The model path is relative to the scenario file.")
+    if r.diags:
+        raise ModelError(r.diags, {path: text})
     runs = []
     for row in rows:
         label = ",".join(f"{k}={_show(v)}" for k, v in row.items())

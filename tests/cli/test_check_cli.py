@@ -66,6 +66,10 @@ def test_a_violation_prints_the_shortest_trace_at_the_property_line(tmp_path, ca
      "no transition instance"),
     ("[[property]\nkind = 1\n", ":2:", "error[E0601]: not valid TOML"),
     ('[parameters]\nN = "1..x"\n', ":3:5: error[E0604]", "inclusive range"),
+    ('[[parameters]]\nN = 1\n[[parameters]]\nM = 2\n', ":4:3: error[E0604]", "the first row sets N"),
+    ('[[property]]\nkind = "ctl"\nformula = "AG (List.all (fn x => AF x) [true])"\n', ":4:", "error[E0602]"),
+    ('[[property]]\nkind = "invariant"\nexpr = "enabled \\"C\'Dec 1\\""\n', ":4:17: error[E0603]",
+     "no transition instance or binding element"),
 ])
 def test_malformed_scenarios_give_positioned_errors_and_exit_65(tmp_path, capsys, body, where, code):
     path = write(tmp_path, "bad.toml", body)
@@ -74,6 +78,30 @@ def test_malformed_scenarios_give_positioned_errors_and_exit_65(tmp_path, capsys
     assert f"{path}{where}" in err, err
     assert code in err
     assert "Traceback" not in err
+
+
+def test_a_missing_model_is_an_error_at_the_model_line(tmp_path, capsys):
+    path = tmp_path / "m.toml"
+    path.write_text('name = "m"\nmodel = "nowhere.cpnet"\n', encoding="utf-8")
+    code, _, err = run([str(path)], tmp_path, capsys)
+    assert code == 65 and f"{path}:2:9: error[E0602]: no model file 'nowhere.cpnet'" in err
+
+
+def test_a_property_that_fails_in_a_marking_is_an_error_with_exit_65(tmp_path, capsys):
+    body = '[[property]]\nname = "div"\nkind = "invariant"\nexpr = "10 div (2 - size (C\'P 1) - 1) >= 0"\n'
+    code, out, err = run([write(tmp_path, "e.toml", body)], tmp_path, capsys)
+    assert code == 65
+    assert "error: e: 'div' (invariant): evaluating" in out
+
+
+def test_parameter_rows(tmp_path, capsys):
+    model = COUNTER.replace("colset N = int with 0..3;", "val M = 3;\ncolset N = int with 0..M;").replace(
+        "[n < 3]", "[n < M]")
+    body = ('[[parameters]]\nM = 2\n[[parameters]]\nM = 1\n'
+            '[[property]]\nname = "top"\nkind = "bound"\nexpr = "ms_to_col (C\'P 1)"\nupper = "M"\n')
+    code, out, _ = run([write(tmp_path, "rows.toml", body, model=model), "--no-timings"], tmp_path, capsys)
+    assert code == 0
+    assert [line.split()[:2] for line in out.splitlines()[1:3]] == [["rows[M=2]", "3"], ["rows[M=1]", "2"]]
 
 
 def test_reports_junit_sarif_and_trace_json(tmp_path, capsys):
