@@ -46,8 +46,9 @@ class Or:
 
 @dataclass(frozen=True)
 class Temporal:
-    op: str  # EX AX EF AF EG AG EU AU
+    op: str  # EX AX EF AF EG AG EU AU, and EXB AXB (only arcs whose label `arcs` accepts)
     args: tuple
+    arcs: object = None
 
 
 class Kripke:
@@ -63,6 +64,7 @@ class Kripke:
         self.dead = bytearray(map(operator.eq, offsets[:n], offsets[1:n + 1]))
         self.pred_off, self.pred = predecessors if predecessors is not None else reverse_csr(n, offsets, dst)
         self.full_scc = full_scc
+        self.arc_hints: dict = {}  # (u, v) -> arc index, for steps of explanations that need one arc
         self._fair = None
 
     def successors(self, u: int):
@@ -85,6 +87,18 @@ class Kripke:
             if target[v]:
                 for u in self.predecessors(v):
                     out[u] = 1
+        return out
+
+    def exb(self, phi: bytearray, accept) -> bytearray:
+        """States with an arc whose label `accept`s, to a (fair) phi-state."""
+        target = _and(phi, self.fair())
+        out = bytearray(self.n)
+        offsets, dst, labels = self.offsets, self.dst, self.labels
+        for u in range(self.n):
+            for a in range(offsets[u], offsets[u + 1]):
+                if target[dst[a]] and accept(labels[a]):
+                    out[u] = 1
+                    break
         return out
 
     def eu(self, phi: bytearray, psi: bytearray) -> bytearray:
@@ -170,6 +184,10 @@ class Kripke:
             return _or(self.label(f.left, atoms, memo), self.label(f.right, atoms, memo))
         a = [self.label(x, atoms, memo) for x in f.args]
         op = f.op
+        if op == "EXB":
+            return self.exb(a[0], f.arcs)
+        if op == "AXB":
+            return _not(self.exb(_not(a[0]), f.arcs))
         if op == "EX":
             return self.ex(a[0])
         if op == "AX":
@@ -317,6 +335,13 @@ class Kripke:
             phi = _not(a[0]) if op == "AF" else a[0]
             got = self.lasso(start, phi)
             return got if got is not None else ([start], [])
+        if (op == "EXB" and value) or (op == "AXB" and not value):
+            target = _and(a[0] if op == "EXB" else _not(a[0]), self.fair())
+            for x in range(self.offsets[start], self.offsets[start + 1]):
+                if target[self.dst[x]] and f.arcs(self.labels[x]):
+                    self.arc_hints[(start, self.dst[x])] = x  # this arc, not any arc between the two
+                    return [start, self.dst[x]], []
+            return [start], []
         if (op == "EX" and value) or (op == "AX" and not value):
             target = _and(a[0] if op == "EX" else _not(a[0]), self.fair())
             for v in self.successors(start):

@@ -33,6 +33,7 @@ PREFIX = "val it = "
 CTL_UNARY = {"AG": "AG", "AF": "AF", "EF": "EF", "EG": "EG", "AX": "AX", "EX": "EX",
              "INV": "AG", "POS": "EF", "EV": "AF", "ALONG": "EG"}
 CTL_BINARY = {"AU", "EU"}
+CTL_ARC = {"EXB", "AXB"}  # ASK-CTL's modal operators over the binding element that occurs
 _INSTANCE = re.compile(r"^(.*) (\d+)$")
 
 
@@ -194,6 +195,8 @@ class PropertyLanguage:
             self.ctl_symbols[name] = Symbol(name, "builtin", T.TFun(T.BOOL, T.BOOL))
         for name in CTL_BINARY:
             self.ctl_symbols[name] = Symbol(name, "builtin", T.TFun(T.TTuple([T.BOOL, T.BOOL]), T.BOOL))
+        for name in CTL_ARC:
+            self.ctl_symbols[name] = Symbol(name, "builtin", T.TFun(T.TTuple([T.STRING, T.BOOL]), T.BOOL))
         self.ctl_env = self.env.child(self.ctl_symbols)
 
     # ------------------------------------------------------------------ binding-element atoms

@@ -14,7 +14,7 @@ from array import array
 from collections import deque
 
 from cpn.checks.ctl import And, Atom, Kripke, Not, Or, Temporal, reverse_csr
-from cpn.checks.predicates import CTL_BINARY, CTL_UNARY, PredicateError, PropertyLanguage, walk
+from cpn.checks.predicates import CTL_ARC, CTL_BINARY, CTL_UNARY, PredicateError, PropertyLanguage, walk
 from cpn.checks.scenario import PropertySpec
 from cpn.checks.verdict import Evidence, Status, Verdict, evidence_to, path_evidence
 from cpn.diagnostics import Diagnostic, Span
@@ -493,7 +493,7 @@ class Ctl(Check):
         arcs = getattr(k, "last_cycle_arcs", None) if cycle else None
         if arcs is not None and len(arcs) != len(cycle):
             arcs = None
-        ev = path_evidence(view.g, path, cycle, arcs) if len(path) > 1 or cycle else None
+        ev = path_evidence(view.g, path, cycle, arcs, k.arc_hints) if len(path) > 1 or cycle else None
         end = path[-1]
         if cycle:
             msg = f"false in the initial marking: a {'fair ' if self.fairness else ''}cycle through {_state_name(view, end)}"
@@ -659,6 +659,16 @@ def _ctl(spec, lang) -> Check:
             return Atom(len(atoms) - 1)
         if isinstance(e, A.App) and isinstance(e.fn, A.Name) and e.fn.ref is not None and id(e.fn.ref) in ctl_syms:
             op = ctl_syms[id(e.fn.ref)]
+            if op in CTL_ARC:
+                pat, phi = e.arg.items
+                if not (isinstance(pat, A.Const) and isinstance(pat.value, str)) or (
+                        lang.resolve_transitions(pat.value) is None and not lang._known_be(pat.value)):
+                    from cpn.checks.predicates import _remap
+
+                    raise _remap(ModelError([Diagnostic(
+                        "E0603", f"'{op}' takes a transition or binding element of the net as a string literal",
+                        pat.span, hint="For example: EXB (\"Slave'Reply\", true).")]), text, origin, span)
+                return Temporal(op, (conv(phi),), lang.binding_pattern(pat.value))
             if op in CTL_BINARY:
                 a, b = e.arg.items
                 return Temporal(op, (conv(a), conv(b)))

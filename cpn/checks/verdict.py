@@ -72,10 +72,15 @@ def _arc_between(graph: StateGraph, u: int, v: int) -> int:
 
 
 def path_evidence(graph: StateGraph, path: list[int], cycle: list[int] | None = None,
-                  cycle_arcs: list[int] | None = None) -> Evidence:
-    """Evidence for an explicit path of states (path[0] must be 0: the initial state)."""
+                  cycle_arcs: list[int] | None = None, arc_hints: dict | None = None) -> Evidence:
+    """Evidence for an explicit path of states (path[0] must be 0: the initial state); `arc_hints` maps
+    a step (u, v) to the arc index it must take."""
     assert path and path[0] == 0
     ev = evidence_to(graph, 0, then=path, cycle=cycle, cycle_arcs=cycle_arcs)
+    if arc_hints:
+        arcs = tuple(graph.bes[arc_hints[(u, v)]] if (u, v) in arc_hints else be
+                     for u, v, be in zip(ev.path, ev.path[1:], ev.arcs))
+        ev = Evidence(ev.path, arcs, ev.cycle, ev.cycle_arcs)
     return ev
 
 

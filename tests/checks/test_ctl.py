@@ -80,6 +80,10 @@ class Brute:
             return self.sat(f.left, atoms) | self.sat(f.right, atoms)
         a = [self.sat(x, atoms) for x in f.args]
         op = f.op
+        if op in ("EXB", "AXB"):
+            target = (a[0] if op == "EXB" else all_ - a[0]) & self.fair
+            some = {u for u in range(self.n) if any(f.arcs(lab) and v in target for lab, v in self.succ[u])}
+            return some if op == "EXB" else all_ - some
         if op == "EX":
             return self.ex(a[0])
         if op == "AX":
@@ -110,7 +114,10 @@ def formula(rng, depth, n_atoms):
         return And(formula(rng, depth - 1, n_atoms), formula(rng, depth - 1, n_atoms))
     if k == 2:
         return Or(formula(rng, depth - 1, n_atoms), formula(rng, depth - 1, n_atoms))
-    op = rng.choice(["EX", "AX", "EF", "AF", "EG", "AG", "EU", "AU"])
+    op = rng.choice(["EX", "AX", "EF", "AF", "EG", "AG", "EU", "AU", "EXB", "AXB"])
+    if op in ("EXB", "AXB"):
+        labels = frozenset(rng.sample(range(3), rng.randint(1, 2)))
+        return Temporal(op, (formula(rng, depth - 1, n_atoms),), labels.__contains__)
     if op in ("EU", "AU"):
         return Temporal(op, (formula(rng, depth - 1, n_atoms), formula(rng, depth - 1, n_atoms)))
     return Temporal(op, (formula(rng, depth - 1, n_atoms),))

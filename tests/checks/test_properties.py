@@ -82,6 +82,10 @@ def test_loop_livelock_and_fairness(tmp_path):
         prop("fair Go is not enough", "ctl", formula=f"AF ({stop})", fairness=["L'Go 1"]),
         prop("can stop", "ctl", formula=f"AG (EF ({stop}))"),
         prop("Go enabled again", "ctl", formula="AG (enabled \"L'Go 1\" orelse EF (enabled \"L'Go\"))"),
+        prop("Stop can end it", "ctl", formula=f"EXB (\"L'Stop 1\", {stop})"),
+        prop("Go never ends it", "ctl", formula=f"AG (AXB (\"L'Go\", not ({stop})))"),
+        prop("after Go only Back", "ctl", formula="AG (AXB (\"L'Go 1\", enabled \"L'Back 1\"))"),
+        prop("Spin always stays", "ctl", formula="AXB (\"L'Spin 1\", size (L'B 1) = 1)"),
         prop("live", "live_transitions", transitions=["L'Go 1"]),
         prop("deadlock", "deadlock_free"),
     ])
@@ -91,7 +95,10 @@ def test_loop_livelock_and_fairness(tmp_path):
     assert {k: x.status for k, x in v.items()} == {
         "terminates": V, "spin is a livelock": V, "progress": H, "eventually stops": V,
         "stops if Stop is fair": H, "fair Go is not enough": V, "can stop": H, "Go enabled again": V,
-        "live": V, "deadlock": V}
+        "live": V, "deadlock": V, "Stop can end it": V, "Go never ends it": H, "after Go only Back": H,
+        "Spin always stays": V}
+    spin = v["Spin always stays"].evidence  # the counterexample is the Spin step, not the Go step
+    assert spin.path == (0, 0) and r.engine.format_binding_element(spin.arcs[0]) == "L'Spin 1: {}"
     spin = v["spin is a livelock"].evidence
     assert spin.path == (0,) and spin.cycle == (0,)  # the Spin self-loop at the initial marking
     fair_go = v["fair Go is not enough"].evidence
