@@ -6,6 +6,7 @@ Imports `cpn.model`, `cpn.statespace`, `cpn.checks.*` and layer 0.
 
 from __future__ import annotations
 
+import dataclasses
 import time
 from dataclasses import dataclass, field
 
@@ -14,6 +15,7 @@ from cpn.checks.predicates import PredicateError, PropertyLanguage
 from cpn.checks.properties import Check, DeadlockFree, GraphView, Reachable, build_checks
 from cpn.checks.scenario import PropertySpec, Run, Scenario
 from cpn.checks.verdict import Status, Verdict, evidence_to
+from cpn.errors import ModelError
 from cpn.statespace import ExploreOptions, Explorer
 
 
@@ -106,7 +108,10 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     from cpn.model import load
 
     opts = {**scenario.explore, **{k: v for k, v in (overrides or {}).items() if v is not None}}
-    model = load(scenario.model, set=run.values)
+    try:
+        model = load(scenario.model, set=run.values)
+    except ModelError as exc:
+        raise _at_scenario(exc, scenario) from None
     engine = model.engine(time_condensation=bool(opts.get("time_condensation", False)))
     index = TransitionIndex(engine)
     lang = PropertyLanguage(model.net.checked, engine, index)
@@ -144,6 +149,23 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
             verdict = Verdict(Status.ERROR, str(exc), ev)
         results.append(PropertyResult(c.spec, verdict, time.perf_counter() - t))
     return RunResult(scenario, run, x, engine, results, explore_seconds, time.perf_counter() - t1, opts)
+
+
+def _at_scenario(exc: ModelError, scenario: Scenario) -> ModelError:
+    """A value of the scenario that the model rejects (E0305: no such `val`, or not CPN ML) is reported
+    at its line in the scenario file."""
+    diags = []
+    for d in exc.diagnostics:
+        name = d.params.get("name") if d.params else None
+        if d.code == "E0305" and d.span is None and name in scenario.value_spans:
+            d = dataclasses.replace(d, span=scenario.value_spans[name])
+        elif d.code == "E0305" and name is None:
+            for n, span in scenario.value_spans.items():
+                if f"'{n}'" in d.message:
+                    d = dataclasses.replace(d, span=span)
+                    break
+        diags.append(d)
+    return ModelError(diags, {**exc.sources, scenario.path: scenario.source})
 
 
 def check(path, **overrides) -> list[RunResult]:

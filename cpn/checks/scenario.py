@@ -86,6 +86,7 @@ class Scenario:
     explore: dict
     runs: list[Run]
     properties: list[PropertySpec]
+    value_spans: dict = field(default_factory=dict)  # constant name -> Span of its value in [set] or a row
 
 
 def _line_col(text: str, offset: int) -> tuple[int, int]:
@@ -294,7 +295,14 @@ def loads_scenario(text: str, path: str = "<scenario>") -> Scenario:
     for row in rows:
         label = ",".join(f"{k}={_show(v)}" for k, v in row.items())
         runs.append(Run(f"{name}[{label}]" if row else name, dict(row), {**values, **row}))
-    return Scenario(path, text, name, model_path, str(data.get("description", "")), values, explore, runs, props)
+    spans = {k: r.value_span(("set",), k) for k in values}
+    if isinstance(data.get("parameters"), dict):
+        spans.update({k: r.value_span(("parameters",), k) for k in data["parameters"]})
+    elif isinstance(data.get("parameters"), list):
+        for i, row in enumerate(data["parameters"], 1):
+            spans.update({k: r.value_span(("parameters", i), k) for k in row if k not in spans})
+    return Scenario(path, text, name, model_path, str(data.get("description", "")), values, explore, runs, props,
+                    spans)
 
 
 def _show(v) -> str:

@@ -169,3 +169,10 @@ def test_a_livelock_prints_a_lasso(tmp_path, capsys):
     code, out, _ = run([write(tmp_path, "l.toml", body, model=LOOP)], tmp_path, capsys)
     assert code == 1
     assert "then forever, the cycle back to marking 1:" in out and "L'Spin 1: {}" in out
+
+
+def test_a_value_the_model_does_not_declare_is_an_error_in_the_scenario(tmp_path, capsys):
+    path = write(tmp_path, "v.toml", "[set]\nNN = 3\n")
+    code, _, err = run([path], tmp_path, capsys)
+    assert code == 65
+    assert f"{path}:3:6: error[E0305]: there is no 'val NN' in the model to override" in err
