@@ -697,7 +697,21 @@ def _ctl(spec, lang) -> Check:
 
 
 def _slice(text, origin, e) -> str:
-    return text if e.span is None else text  # the whole formula names the atom in errors
+    """The source text of a sub-expression of a property text (for messages about one CTL atom)."""
+    from cpn.checks.predicates import PREFIX
+
+    sp = e.span
+    if sp is None or sp.end_line is None or sp.end_col is None:
+        return text
+    wrapped = f"{PREFIX}{text};"
+    starts = [0]
+    for line in wrapped.splitlines(keepends=True):
+        starts.append(starts[-1] + len(line))
+    if sp.end_line >= len(starts):
+        return text
+    a = starts[sp.line - 1] + sp.col - 1 - len(PREFIX)
+    b = starts[sp.end_line - 1] + sp.end_col - len(PREFIX)
+    return text[a:b].strip() if 0 <= a < b <= len(text) else text
 
 
 def _ctl_error(e, text, origin, span) -> ModelError:
