@@ -309,7 +309,12 @@ class PropertyLanguage:
         glob["EVAL"] = self.ev.eval
         glob["CTX"] = self.ctx
         glob["MK"] = self.ctx.mk
-        src = f"def _property(I, S):\n    CTX.sid = I\n    CTX.state = S\n    return {body}\n"
+        ev, engine = self.ev, self.engine
+        uses_time = comp.uses_time or any(isinstance(n, A.Name) and n.name in ("intTime", "time") for n in walk(expr))
+        glob["TIMEFN"] = lambda _u: engine.clock(self.ctx.state)
+        glob["SETTIME"] = lambda s: setattr(ev, "time", engine.clock(s))
+        clock = "    SETTIME(S)\n" if uses_time else ""
+        src = f"def _property(I, S):\n    CTX.sid = I\n    CTX.state = S\n{clock}    return {body}\n"
         exec(compile(src, f"<property {text[:40]}>", "exec"), glob)  # noqa: S102 - generated from the typed AST
         raw = glob["_property"]
         errors = (MLError, MultisetError, ZeroDivisionError, IndexError, RecursionError)
@@ -324,7 +329,9 @@ class PropertyLanguage:
         else:
             # The value depends only on the markings of the places the text reads, which states share:
             # memoised by their intern ids, as the engine memoises a transition's bindings.
-            key_of = (lambda s: ()) if not reads else operator.itemgetter(*reads)
+            if uses_time and getattr(self.engine, "is_timed", False):
+                reads.append(len(self.engine.places))  # the clock, the last item of a timed state
+            key_of = (lambda s: ()) if not reads else (lambda s, g=operator.itemgetter(*reads): (g(s),))
             memo: dict = {}
             get = memo.get
 

@@ -160,3 +160,20 @@ def test_on_the_fly_finds_the_same_violation_as_the_full_graph(tmp_path, stop):
         assert not r.exploration.complete
     else:
         assert v["never two (graph)"].evidence.path == v["never two"].evidence.path
+
+
+def test_the_clock_in_a_property(tmp_path):
+    timed = """net T;
+colset U = unit timed;
+place A : U = 1`();
+place B : U;
+trans Go;
+arc A -> Go;
+arc Go -> B : () @+ 5;
+trans Back;
+arc B -> Back;
+"""
+    body = prop("late", "reachable", expr="intTime () >= 5") + prop("early", "invariant", expr="intTime () < 5")
+    r, v = verdicts(tmp_path, timed, body)
+    assert v["late"].status is Status.HOLDS and v["early"].status is Status.VIOLATED
+    assert len(v["early"].evidence.path) - 1 == 2  # Go at 0, Back at 5
