@@ -54,6 +54,11 @@ CODES: dict[str, str] = {
     "E0502": "unsupported element",
     # options that do not apply to the model
     "E0601": "option not applicable to the model",
+    # scenario files (docs/specs.md)
+    "E0701": "scenario file is not valid TOML",
+    "E0702": "bad scenario key or value",
+    "E0703": "name not in the net",
+    "E0704": "bad parameter table",
     # warnings
     "W0101": "unbound port",
     "W0102": "unused declaration",
