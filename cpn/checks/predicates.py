@@ -253,7 +253,8 @@ class PropertyLanguage:
         expr = m.decls[0].expr
         ck = self._checker
         ck.diags = []
-        t = ck.infer_top(expr, self.ctl_env if ctl else self.env)
+        expr = self._quoted_places(expr, ck)
+        t = ck.infer_top(expr, self.ctl_env if ctl else self.env) if not ck.diags else None
         if t is not None:
             ck.unify(t, want, expr.span, what)
         if not ck.diags:
@@ -261,6 +262,32 @@ class PropertyLanguage:
         if ck.diags:
             raise _remap(ModelError(list(ck.diags)), text, origin, fallback)
         return expr
+
+    def _quoted_places(self, expr: A.Expr, ck) -> A.Expr:
+        """`Mark "Page'a place" 1`: a place whose name is not an identifier (declared with a string)
+        is named by a string after `Mark`; the pair becomes the place's accessor."""
+        def fix(node):
+            if (isinstance(node, A.App) and isinstance(node.fn, A.Name) and node.fn.name == "Mark"
+                    and isinstance(node.arg, A.Const) and isinstance(node.arg.value, str)):
+                name = node.arg.value
+                if name not in self.accessors:
+                    cand = did_you_mean(name, list(self.accessors))
+                    ck.error("E0603", f"no place '{name}' in the net", node.arg.span,
+                             hint=f"Did you mean '{cand}'?" if cand else "Write the place as Page'place, without "
+                             "the instance number, which follows the string: Mark \"Page'a place\" 1.")
+                    return node
+                return A.Name(node.span, f"Mark.{name}")
+            for f in dataclasses.fields(node):
+                if f.name in ("span", "ty", "ref"):
+                    continue
+                v = getattr(node, f.name)
+                if isinstance(v, A.Expr):
+                    setattr(node, f.name, fix(v))
+                elif isinstance(v, list):
+                    v[:] = [fix(x) if isinstance(x, A.Expr) else _fix_rule(x, fix) for x in v]
+            return node
+
+        return fix(expr)
 
     def _validate(self, expr: A.Expr, ck) -> None:
         for node in walk(expr):
@@ -415,6 +442,13 @@ class _PredicateCompiler(ExprCompiler):
             if acc is not None and e.arg.value in acc.instances:
                 return f"MK(S, {acc.instances[e.arg.value]})"
         return super()._c_App(e)
+
+
+def _fix_rule(x, fix):
+    """Rewrite the expressions inside a (pattern, expression) rule or (label, expression) field."""
+    if isinstance(x, tuple):
+        return tuple(fix(y) if isinstance(y, A.Expr) else y for y in x)
+    return x
 
 
 def _pattern_names(pat) -> list | None:

@@ -177,3 +177,11 @@ arc B -> Back;
     r, v = verdicts(tmp_path, timed, body)
     assert v["late"].status is Status.HOLDS and v["early"].status is Status.VIOLATED
     assert len(v["early"].evidence.path) - 1 == 2  # Go at 0, Back at 5
+
+
+def test_a_place_named_by_a_string(tmp_path):
+    net = 'net Q;\ncolset U = unit;\nplace "to send" : U = 2`();\nplace sent : U;\ntrans go;\narc "to send" -> go;\n' \
+          'arc go -> sent;\n'
+    body = prop("conserved", "invariant", expr="size (Mark \"Q'to send\" 1) + size (Q'sent 1) = 2")
+    r, v = verdicts(tmp_path, net, body)
+    assert v["conserved"].status is Status.HOLDS
