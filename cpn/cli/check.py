@@ -30,9 +30,20 @@ search). With no argument, every *.toml under specs/ is checked. Reports (text, 
 written per scenario run under --reports."""
 
 
+EPILOG = """exit statuses:
+  0   every property holds on a complete state space
+  1   a property is violated
+  2   unknown: a limit stopped a search before a property was decided
+  64  bad usage
+  65  bad model or scenario file, or a property text that fails in some marking
+  70  internal error (a bug in cpn-verify: please report it)
+"""
+
+
 def add_parser(subparsers) -> argparse.ArgumentParser:
     p = subparsers.add_parser("check", help="prove the properties of scenario files (the CI gate)",
-                              description=DESCRIPTION)
+                              description=DESCRIPTION, epilog=EPILOG,
+                              formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("paths", nargs="*", metavar="SCENARIO|DIR", help=f"scenario files or folders (default: {DEFAULT_DIR}/)")
     p.add_argument("--reports", metavar="DIR", default="reports",
                    help="folder for the per-run reports (default: reports)")
@@ -66,7 +77,8 @@ def run(args) -> int:
     paths = args.paths or [DEFAULT_DIR]
     for p in paths:
         if not os.path.exists(p):
-            print(f"error: no such scenario file or folder: '{p}'", file=sys.stderr)
+            hint = "" if args.paths else " (name scenario files or folders, or run from the folder that holds specs/)"
+            print(f"error: no such scenario file or folder: '{p}'{hint}", file=sys.stderr)
             return EXIT_USAGE
     files = scenario_files(paths)
     if not files:
