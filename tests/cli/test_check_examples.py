@@ -45,3 +45,19 @@ def test_the_guide_files_exist_and_run_the_gate():
     guide = (ROOT / "docs/ci-guide.md").read_text(encoding="utf-8")
     for path in ("docs/ci/github-workflow.yml", "docs/ci/pre-commit-config.yaml", "docs/ci/broken"):
         assert path in guide and os.path.exists(ROOT / path)
+
+
+def test_output_does_not_depend_on_the_hash_seed(tmp_path):
+    import subprocess
+    import sys
+
+    outs = []
+    for seed in ("1", "2"):
+        rep = tmp_path / seed
+        res = subprocess.run([sys.executable, "-m", "cpn", "check", "docs/ci/broken", "specs/examples/stations.toml",
+                              "--no-timings", "--reports", str(rep), "--sarif", str(rep / "s.sarif")],
+                             cwd=ROOT, capture_output=True, text=True, env={**os.environ, "PYTHONHASHSEED": seed})
+        assert res.returncode == 1
+        files = {p.name: p.read_text(encoding="utf-8") for p in sorted(rep.iterdir())}
+        outs.append((res.stdout, files))
+    assert outs[0] == outs[1]
