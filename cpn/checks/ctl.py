@@ -322,7 +322,6 @@ class Kripke:
             return [start], []
         op = f.op
         a = [self.label(x, atoms, memo) for x in f.args]
-        n = self.n
         if (op == "AG" and not value) or (op == "EF" and value):
             target = _not(a[0]) if op == "AG" else a[0]
             target = _and(target, self.fair())
@@ -360,7 +359,6 @@ class Kripke:
                     return path, []
             got = self.lasso(start, npsi)
             return got if got is not None else ([start], [])
-        del n
         return [start], []
 
 

@@ -16,7 +16,7 @@ from collections import deque
 from cpn.checks.ctl import And, Atom, Kripke, Not, Or, Temporal, reverse_csr
 from cpn.checks.predicates import CTL_ARC, CTL_BINARY, CTL_UNARY, PredicateError, PropertyLanguage, walk
 from cpn.checks.scenario import PropertySpec
-from cpn.checks.verdict import Evidence, Status, Verdict, evidence_to, path_evidence
+from cpn.checks.verdict import Status, Verdict, evidence_to, path_evidence
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import ModelError
 from cpn.lang import ast as A
@@ -312,10 +312,9 @@ def _first_states(view: GraphView, p: int) -> list[int]:
 
 
 class DeadTransitions(Check):
-    def __init__(self, spec, expected: set[int], names: dict[int, str]):
+    def __init__(self, spec, expected: set[int]):
         super().__init__(spec)
         self.expected = expected
-        self.names = names
 
     def decide(self, view):
         labels = view.labels()
@@ -580,7 +579,7 @@ def _build(spec: PropertySpec, lang: PropertyLanguage) -> Check:
         return _bound(spec, lang)
     if k == "dead_transitions":
         ts = _names(spec, lang, "expected")
-        return DeadTransitions(spec, set(ts), {})
+        return DeadTransitions(spec, set(ts))
     if k == "live_transitions":
         return LiveTransitions(spec, _names(spec, lang, "transitions") if "transitions" in f else None)
     if k == "home":
@@ -723,4 +722,4 @@ def _ctl_error(e, text, origin, span) -> ModelError:
         text, origin, span)
 
 
-__all__ = ["Check", "Evidence", "GraphView", "PredicateError", "Status", "build_checks"]
+__all__ = ["Check", "GraphView", "PredicateError", "Status", "build_checks"]
