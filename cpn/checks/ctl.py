@@ -308,17 +308,12 @@ class Kripke:
         if isinstance(f, Not):
             return self.explain(f.arg, atoms, start, not value, memo)
         if isinstance(f, (And, Or)):
-            parts = [f.left, f.right]
-            # an And that is false, or an Or that is true, is explained by one part; otherwise by the
-            # first part with a temporal operator
-            decisive = (isinstance(f, And) and not value) or (isinstance(f, Or) and value)
+            # a false And, or a true Or, is explained by one part with that value; otherwise both parts have
+            # the value and either explains it. Parts with a temporal operator explain more than atoms.
+            parts = sorted([f.left, f.right], key=lambda p: not _temporal(p))
             for p in parts:
-                v = bool(self.label(p, atoms, memo)[start])
-                if decisive and v == value and isinstance(p, (Temporal, Not, And, Or)):
+                if bool(self.label(p, atoms, memo)[start]) == value:
                     return self.explain(p, atoms, start, value, memo)
-            for p in parts:
-                if isinstance(p, (Temporal, Not, And, Or)):
-                    return self.explain(p, atoms, start, bool(self.label(p, atoms, memo)[start]), memo)
             return [start], []
         op = f.op
         a = [self.label(x, atoms, memo) for x in f.args]
@@ -360,6 +355,16 @@ class Kripke:
             got = self.lasso(start, npsi)
             return got if got is not None else ([start], [])
         return [start], []
+
+
+def _temporal(f) -> bool:
+    if isinstance(f, Temporal):
+        return True
+    if isinstance(f, Not):
+        return _temporal(f.arg)
+    if isinstance(f, (And, Or)):
+        return _temporal(f.left) or _temporal(f.right)
+    return False
 
 
 def reverse_csr(n: int, offsets, dst) -> tuple[array, array]:
