@@ -33,10 +33,12 @@ def trace_steps(engine, graph, evidence: Evidence | None) -> dict:
         replayed = _replay_absolute(engine, [be for _, _, be in pairs])
         if replayed is not None:
             shown, states, texts = replayed
+    arcs = _ArcTokens(engine)
     out = []
     for i, (u, v, be) in enumerate(pairs):
         text = texts[i] if texts is not None else engine.format_binding_element(be)
-        out.append(_step(shown, states[i], states[i + 1], i + 1, u, v, text))
+        tokens = arcs(engine.binding_element(be), shown.clock(states[i + 1]))
+        out.append(_step(shown, states[i], states[i + 1], i + 1, u, v, text, tokens))
     n = len(evidence.path) - 1
     return {"steps": out[:n], "cycle": out[n:], "target": evidence.path[-1] + 1}
 
@@ -59,11 +61,50 @@ def _replay_absolute(engine, bes: list[int]):
     return plain, states, texts
 
 
-def _step(engine, su, sv, k: int, u: int, v: int, text: str) -> dict:
+class _ArcTokens:
+    """The tokens a binding element takes from and puts on each untimed place, from the transition's arc
+    inscriptions (so a token that a double arc takes and puts back shows as both). Evaluated with the
+    reference interpreter's arc evaluation; None when an inscription cannot be evaluated here."""
+
+    def __init__(self, engine):
+        from cpn.engine import compile_net
+
+        self.ref = compile_net(engine.net, reference=True)
+
+    def __call__(self, b, clock) -> dict | None:
+        ref = self.ref
+        t = ref.transitions[b.transition if isinstance(b.transition, int) else b.transition.index]
+        try:
+            env = ref._env(t, b.binding)
+            ref.ev.time = clock
+            out: dict[int, tuple[dict, dict]] = {}
+            for a in t.arcs:
+                if a.kind not in ("in", "out", "both") or a.expr is None or ref.places[a.place].timed:
+                    continue
+                take, put = out.setdefault(a.place, ({}, {}))
+                for v, n, _ in ref._ms(a.expr, env, t):
+                    if a.kind in ("in", "both"):
+                        take[v] = take.get(v, 0) + n
+                    if a.kind in ("out", "both"):
+                        put[v] = put.get(v, 0) + n
+            resets = {a.place for a in t.arcs if a.kind == "reset"}
+        except Exception:  # noqa: BLE001 - printing falls back to the change of the marking
+            return None
+        return {p: d for p, d in out.items() if p not in resets}
+
+
+def _step(engine, su, sv, k: int, u: int, v: int, text: str, tokens: dict | None = None) -> dict:
     mu, mv = engine.marking(su), engine.marking(sv)
     consumed, produced = {}, {}
     for p, place in enumerate(engine.places):
         a, b = mu[p], mv[p]
+        if tokens is not None and p in tokens:
+            take, put = tokens[p]
+            if take:
+                consumed[place.name] = format_multiset(place.colour_set, take.items())
+            if put:
+                produced[place.name] = format_multiset(place.colour_set, put.items())
+            continue
         if a == b:
             continue
         minus = {x: n - b.get(x, 0) for x, n in a.items() if n > b.get(x, 0)}

@@ -169,6 +169,8 @@ def test_a_livelock_prints_a_lasso(tmp_path, capsys):
     code, out, _ = run([write(tmp_path, "l.toml", body, model=LOOP)], tmp_path, capsys)
     assert code == 1
     assert "then forever, the cycle back to marking 1:" in out and "L'Spin 1: {}" in out
+    # the token Spin takes from A and puts back is shown as consumed and produced
+    assert "L'A 1  - 1`()" in out and "L'A 1  + 1`()" in out
 
 
 def test_a_value_the_model_does_not_declare_is_an_error_in_the_scenario(tmp_path, capsys):
