@@ -56,6 +56,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    help="how counterexamples are printed (default: text)")
     p.add_argument("--max-states", type=int, metavar="N", help="override every scenario's state limit")
     p.add_argument("--max-seconds", type=float, metavar="S", help="override every scenario's time limit")
+    p.add_argument("--stop-at-first-violation", action="store_true",
+                   help="stop each search at the first violated invariant or dead marking (fail fast)")
     p.add_argument("--no-timings", action="store_true",
                    help="leave run times out of the output and reports (byte-identical reruns)")
     p.add_argument("--quiet", action="store_true", help="print only the summary table")
@@ -84,7 +86,8 @@ def run(args) -> int:
     if not files:
         print(f"error: no scenario (*.toml) in {', '.join(paths)}", file=sys.stderr)
         return EXIT_USAGE
-    overrides = {"max_states": args.max_states, "max_seconds": args.max_seconds}
+    overrides = {"max_states": args.max_states, "max_seconds": args.max_seconds,
+                 "stop_at_first_violation": True if args.stop_at_first_violation else None}
     docs: list[dict] = []
     bad_files = 0
     timings = not args.no_timings

@@ -2,7 +2,8 @@
 
 Traces are rendered as steps (time, binding element, binding, tokens removed and added per place
 instance). Every renderer receives the JSON document, so reports re-read from disk (`--baseline`)
-and fresh ones look the same. Imports `cpn.checks`, `cpn.statespace`, `cpn.values` and layer 0.
+and fresh ones look the same. Imports `cpn.checks`, `cpn.engine` (to replay a trace without time
+condensation, and the reference interpreter's arc evaluation), `cpn.values` and layer 0.
 """
 
 from __future__ import annotations

@@ -178,3 +178,12 @@ def test_a_value_the_model_does_not_declare_is_an_error_in_the_scenario(tmp_path
     code, _, err = run([path], tmp_path, capsys)
     assert code == 65
     assert f"{path}:3:6: error[E0305]: there is no 'val NN' in the model to override" in err
+
+
+def test_stop_at_first_violation_from_the_command_line(tmp_path, capsys):
+    spec = write(tmp_path, "bad.toml", VIOLATED)
+    code, out, _ = run([spec, "--stop-at-first-violation", "--no-timings"], tmp_path, capsys)
+    assert code == 1
+    doc = json.loads((tmp_path / "reports" / "bad.json").read_text(encoding="utf-8"))
+    assert doc["statespace"]["complete"] is False and doc["statespace"]["stop_reason"] == "predicate"
+    assert [p["verdict"] for p in doc["properties"]] == ["unknown", "violated"]
