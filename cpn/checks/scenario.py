@@ -252,8 +252,17 @@ def load_scenario(path: str | os.PathLike) -> Scenario:
     return loads_scenario(text, path)
 
 
+_BARE_RANGE = re.compile(r"^([ \t]*[A-Za-z_][A-Za-z0-9_']*[ \t]*=[ \t]*)(-?\d+[ \t]*\.\.[ \t]*-?\d+)([ \t]*(#.*)?)$",
+                         re.MULTILINE)
+
+
 def loads_scenario(text: str, path: str = "<scenario>") -> Scenario:
-    """Read a scenario from TOML text (`path` names it in errors and anchors the model path)."""
+    """Read a scenario from TOML text (`path` names it in errors and anchors the model path).
+
+    A parameter range may be written bare, `N = 1..8`, as well as quoted, `N = "1..8"` (TOML itself
+    only allows the quoted form).
+    """
+    text = _BARE_RANGE.sub(lambda m: f'{m.group(1)}"{m.group(2)}"{m.group(3)}', text)
     try:
         data = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:

@@ -157,7 +157,7 @@ def test_baseline_names_the_property_that_broke(tmp_path, capsys):
 def test_parameter_table_expands_to_one_run_per_row(tmp_path, capsys):
     model = COUNTER.replace("colset N = int with 0..3;", "val M = 3;\ncolset N = int with 0..M;").replace(
         "[n < 3]", "[n < M]")
-    body = '[parameters]\nM = "1..3"\n[[property]]\nname = "top"\nkind = "reachable"\nexpr = "C\'P 1 = (1`M)"\n'
+    body = '[parameters]\nM = 1..3  # bare\n[[property]]\nname = "top"\nkind = "reachable"\nexpr = "C\'P 1 = (1`M)"\n'
     code, out, _ = run([write(tmp_path, "p.toml", body, model=model), "--no-timings"], tmp_path, capsys)
     assert code == 0
     assert [line.split()[0] for line in out.splitlines()[1:4]] == ["p[M=1]", "p[M=2]", "p[M=3]"]
