@@ -107,7 +107,11 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     """
     from cpn.model import load
 
-    opts = {**scenario.explore, **{k: v for k, v in (overrides or {}).items() if v is not None}}
+    overrides = dict(overrides or {})
+    default_memory = overrides.pop("default_max_memory_mb", None)
+    opts = {**scenario.explore, **{k: v for k, v in overrides.items() if v is not None}}
+    if "max_memory_mb" not in opts and default_memory is not None:
+        opts["max_memory_mb"] = default_memory
     try:
         model = load(scenario.model, set=run.values)
     except ModelError as exc:

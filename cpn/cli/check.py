@@ -13,13 +13,17 @@ import json
 import os
 import sys
 
+from cpn.cli._common import (
+    ExitStatus,
+    UsageError,
+    add_limit_options,
+    add_output_option,
+    add_quiet_option,
+    check_limits,
+    prepare_outputs,
+    write_output,
+)
 from cpn.cli.explore import _ProgressLine
-
-EXIT_OK = 0
-EXIT_VIOLATED = 1
-EXIT_UNKNOWN = 2
-EXIT_USAGE = 64
-EXIT_DATAERR = 65
 
 DEFAULT_DIR = "specs"
 
@@ -30,37 +34,27 @@ search). With no argument, every *.toml under specs/ is checked. Reports (text, 
 written per scenario run under --reports."""
 
 
-EPILOG = """exit statuses:
-  0   every property holds on a complete state space
-  1   a property is violated
-  2   unknown: a limit stopped a search before a property was decided
-  64  bad usage
-  65  bad model or scenario file, or a property text that fails in some marking
-  70  internal error (a bug in cpn-verify: please report it)
-"""
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
     p = subparsers.add_parser("check", help="prove the properties of scenario files (the CI gate)",
-                              description=DESCRIPTION, epilog=EPILOG,
-                              formatter_class=argparse.RawDescriptionHelpFormatter)
+                              description=DESCRIPTION)
     p.add_argument("paths", nargs="*", metavar="SCENARIO|DIR", help=f"scenario files or folders (default: {DEFAULT_DIR}/)")
     p.add_argument("--reports", metavar="DIR", default="reports",
                    help="folder for the per-run reports (default: reports)")
     p.add_argument("--no-reports", action="store_true", help="write no per-run report files")
-    p.add_argument("--junit", metavar="FILE", help="write JUnit XML (one test case per property)")
-    p.add_argument("--sarif", metavar="FILE", help="write SARIF 2.1.0 (violations located in the spec files)")
+    add_output_option(p, "--junit", "JUnit XML (one test case per property)")
+    add_output_option(p, "--sarif", "SARIF 2.1.0 (violations located in the spec files)")
     p.add_argument("--baseline", metavar="DIR",
                    help="compare with the JSON reports of an earlier run in DIR and print what changed")
     p.add_argument("--trace-format", choices=("text", "json"), default="text",
                    help="how counterexamples are printed (default: text)")
-    p.add_argument("--max-states", type=int, metavar="N", help="override every scenario's state limit")
-    p.add_argument("--max-seconds", type=float, metavar="S", help="override every scenario's time limit")
+    add_limit_options(p)  # override the limits of every scenario ([explore] in the file)
     p.add_argument("--stop-at-first-violation", action="store_true",
                    help="stop each search at the first violated invariant or dead marking (fail fast)")
     p.add_argument("--no-timings", action="store_true",
                    help="leave run times out of the output and reports (byte-identical reruns)")
-    p.add_argument("--quiet", action="store_true", help="print only the summary table")
+    add_quiet_option(p)
     return p
 
 
@@ -71,23 +65,21 @@ def run(args) -> int:
     from cpn.errors import ConfigurationError, EvaluationError, ModelError
     from cpn.report.verdicts import report_name, run_report
 
-    for name in ("max_states", "max_seconds"):
-        v = getattr(args, name)
-        if v is not None and v <= 0:
-            print(f"error: --{name.replace('_', '-')} must be positive, got {v:g}", file=sys.stderr)
-            return EXIT_USAGE
+    check_limits(args)
+    outputs = {o.option: o for o in prepare_outputs(("--junit", args.junit), ("--sarif", args.sarif))}
     paths = args.paths or [DEFAULT_DIR]
     for p in paths:
         if not os.path.exists(p):
             hint = "" if args.paths else " (name scenario files or folders, or run from the folder that holds specs/)"
-            print(f"error: no such scenario file or folder: '{p}'{hint}", file=sys.stderr)
-            return EXIT_USAGE
+            raise UsageError(f"no such scenario file or folder: '{p}'{hint}")
     files = scenario_files(paths)
     if not files:
-        print(f"error: no scenario (*.toml) in {', '.join(paths)}", file=sys.stderr)
-        return EXIT_USAGE
-    overrides = {"max_states": args.max_states, "max_seconds": args.max_seconds,
+        raise UsageError(f"no scenario (*.toml) in {', '.join(paths)}")
+    overrides = {"max_states": args.max_states, "max_arcs": args.max_arcs, "max_seconds": args.max_seconds,
+                 # the default memory limit applies only where a scenario sets none
+                 "default_max_memory_mb" if args.max_memory_is_default else "max_memory_mb": args.max_memory,
                  "stop_at_first_violation": True if args.stop_at_first_violation else None}
+    stdout_taken = any(o.to_stdout for o in outputs.values())
     docs: list[dict] = []
     bad_files = 0
     timings = not args.no_timings
@@ -117,29 +109,31 @@ def run(args) -> int:
                     display.close()
             doc = run_report(result, timings=timings)
             docs.append(doc)
-            if not args.quiet:
+            if not args.quiet and not stdout_taken:
                 _print_run(doc, args.trace_format)
             if not args.no_reports:
                 _write_reports(args.reports, report_name(r.name), doc)
-    _print_summary(docs, timings)
-    if args.junit:
+    if not stdout_taken:
+        _print_summary(docs, timings)
+    if "--junit" in outputs:
         from cpn.report.junit import render_junit
 
-        _write(args.junit, render_junit(docs, timings))
-    if args.sarif:
+        write_output(outputs["--junit"], render_junit(docs, timings))
+    if "--sarif" in outputs:
         from cpn.report.sarif import render_sarif
 
-        _write(args.sarif, json.dumps(render_sarif(docs, __version__), indent=2, ensure_ascii=False) + "\n")
-    if args.baseline:
+        write_output(outputs["--sarif"], json.dumps(render_sarif(docs, __version__), indent=2, ensure_ascii=False)
+                     + "\n")
+    if args.baseline and not stdout_taken:
         _print_baseline(args.baseline, docs)
     statuses = {d["verdict"] for d in docs}
     if bad_files or "error" in statuses:
-        return EXIT_DATAERR
+        return ExitStatus.DATAERR
     if "violated" in statuses:
-        return EXIT_VIOLATED
+        return ExitStatus.VIOLATED
     if "unknown" in statuses:
-        return EXIT_UNKNOWN
-    return EXIT_OK
+        return ExitStatus.UNKNOWN
+    return ExitStatus.OK
 
 
 def _print_run(doc: dict, trace_format: str) -> None:

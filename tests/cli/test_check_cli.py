@@ -106,6 +106,7 @@ def test_parameter_rows(tmp_path, capsys):
 
 def test_reports_junit_sarif_and_trace_json(tmp_path, capsys):
     spec = write(tmp_path, "bad.toml", VIOLATED)
+    (tmp_path / "out").mkdir()
     junit, sarif = tmp_path / "out" / "junit.xml", tmp_path / "out" / "check.sarif"
     code, out, _ = run([spec, "--junit", str(junit), "--sarif", str(sarif), "--trace-format", "json"], tmp_path,
                        capsys)
@@ -187,3 +188,11 @@ def test_stop_at_first_violation_from_the_command_line(tmp_path, capsys):
     doc = json.loads((tmp_path / "reports" / "bad.json").read_text(encoding="utf-8"))
     assert doc["statespace"]["complete"] is False and doc["statespace"]["stop_reason"] == "predicate"
     assert [p["verdict"] for p in doc["properties"]] == ["unknown", "violated"]
+
+
+def test_outputs_are_checked_before_any_work(tmp_path, capsys):
+    spec = write(tmp_path, "ok.toml", HOLDS)
+    code, out, err = run([spec, "--junit", str(tmp_path / "missing" / "j.xml")], tmp_path, capsys)
+    assert code == 73 and "does not exist" in err and not out
+    code, out, _ = run([spec, "--sarif", "-", "--no-timings"], tmp_path, capsys)
+    assert code == 0 and json.loads(out)["version"] == "2.1.0"  # the SARIF alone on standard output
