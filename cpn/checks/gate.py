@@ -25,6 +25,18 @@ class PropertyResult:
     verdict: Verdict
     seconds: float
 
+    @property
+    def as_expected(self) -> bool:
+        return self.verdict.status.value == self.spec.expect
+
+    @property
+    def gate_status(self) -> Status:
+        """HOLDS when the verdict is the expected one; VIOLATED when the expectation is missed either way."""
+        v = self.verdict.status
+        if v in (Status.ERROR, Status.UNKNOWN):
+            return v
+        return Status.HOLDS if self.as_expected else Status.VIOLATED
+
 
 @dataclass
 class RunResult:
@@ -41,7 +53,10 @@ class RunResult:
 
     @property
     def status(self) -> Status:
-        statuses = {r.verdict.status for r in self.results}
+        """The run's outcome for the gate: the worst verdict that is not the one its property expects (a
+        property with `expect = "violated"` that is violated counts as holding; one that holds counts as
+        violated: the bug it stands for is no longer caught)."""
+        statuses = {r.gate_status for r in self.results}
         for s in (Status.ERROR, Status.VIOLATED, Status.UNKNOWN):
             if s in statuses:
                 return s

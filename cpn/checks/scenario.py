@@ -64,6 +64,7 @@ class PropertySpec:
     texts: dict = field(default_factory=dict)  # field -> TextOrigin (string fields only)
     description: str = ""
     source: str = ""  # the scenario file's text (for positions inside arrays)
+    expect: str = "holds"  # the verdict the gate expects: 'violated' for a mutant that must be caught
 
 
 @dataclass
@@ -408,7 +409,7 @@ def _properties(r: _Reader, props) -> list[PropertySpec]:
                     + f"The kinds are {', '.join(KINDS)} (docs/specs.md).")
             continue
         required, optional = KINDS[kind]
-        allowed = required | optional | {"kind", "name", "description"}
+        allowed = required | optional | {"kind", "name", "description", "expect"}
         bad = False
         for k in p:
             if k not in allowed:
@@ -426,13 +427,18 @@ def _properties(r: _Reader, props) -> list[PropertySpec]:
             r.error("E0602", f"two properties are named '{name}'", r.value_span(table, "name"),
                     hint=f"Property {names[name]} has the same name; names identify properties in reports.")
         names[name] = i
-        fields = {k: v for k, v in p.items() if k not in ("kind", "name", "description")}
+        expect = p.get("expect", "holds")
+        if expect not in ("holds", "violated"):
+            r.error("E0602", f"'expect' must be \"holds\" or \"violated\", not {expect!r}", r.value_span(table, "expect"),
+                    hint="A mutant scenario writes expect = \"violated\" on the property its bug must break.")
+            bad = True
+        fields = {k: v for k, v in p.items() if k not in ("kind", "name", "description", "expect")}
         bad |= not _check_fields(r, table, kind, fields)
         spans = {k: r.value_span(table, k) for k in p}
         texts = {k: r.origin(table, k) for k, v in fields.items() if isinstance(v, str)}
         if not bad:
             out.append(PropertySpec(i, name, kind, fields, r.value_span(table, "kind"), spans, texts,
-                                    str(p.get("description", "")), r.text))
+                                    str(p.get("description", "")), r.text, expect))
     return out
 
 

@@ -137,13 +137,13 @@ def run(args) -> int:
 
 
 def _print_run(doc: dict, trace_format: str) -> None:
-    from cpn.report.verdicts import render_steps
+    from cpn.report.verdicts import label, render_steps
 
     for p in doc["properties"]:
-        if p["verdict"] == "holds":
+        if p.get("gate", p["verdict"]) == "holds":
             continue
         where = f"{os.path.relpath(doc['file'])}:{p['line']}:{p['column']}"
-        print(f"{where}: {p['verdict']}: {doc['run']}: '{p['name']}' ({p['kind']}): {p['message']}")
+        print(f"{where}: {label(p)}: {doc['run']}: '{p['name']}' ({p['kind']}): {p['message']}")
         if "trace" in p:
             if trace_format == "json":
                 print(json.dumps({"run": doc["run"], "property": p["name"], **p["trace"]}, ensure_ascii=False))
@@ -153,15 +153,18 @@ def _print_run(doc: dict, trace_format: str) -> None:
 
 
 def _print_summary(docs: list[dict], timings: bool) -> None:
+    from cpn.report.verdicts import label
+
     if not docs:
         return
     rows = []
     for d in docs:
         st = d["statespace"]
-        counts = {}
+        counts: dict[str, int] = {}
         for p in d["properties"]:
-            counts[p["verdict"]] = counts.get(p["verdict"], 0) + 1
-        tally = ", ".join(f"{n} {v}" for v, n in sorted(counts.items(), key=lambda kv: _ORDER[kv[0]]))
+            counts[label(p)] = counts.get(label(p), 0) + 1
+        tally = ", ".join(f"{n} {v}" for v, n in sorted(counts.items(), key=lambda kv: (_ORDER[kv[0].split()[0]],
+                                                                                        kv[0])))
         space = f"{st['states']:,}" + ("" if st["complete"] else " (partial)")
         secs = f"{st.get('seconds', 0) + st.get('check_seconds', 0):.2f}" if timings else "-"
         rows.append((d["run"], space, secs, d["verdict"], tally))
@@ -172,9 +175,9 @@ def _print_summary(docs: list[dict], timings: bool) -> None:
     for r in rows:
         print("  ".join(f"{c:<{widths[i]}}" if i in (0, 3, 4) else f"{c:>{widths[i]}}" for i, c in enumerate(r)).rstrip())
     for d in docs:
-        bad = [p for p in d["properties"] if p["verdict"] != "holds"]
+        bad = [p for p in d["properties"] if p.get("gate", p["verdict"]) != "holds"]
         for p in bad:
-            print(f"  {p['verdict']:<9} {d['run']}: {p['name']}")
+            print(f"  {label(p):<9} {d['run']}: {p['name']}")
 
 
 _ORDER = {"error": 0, "violated": 1, "unknown": 2, "holds": 3}

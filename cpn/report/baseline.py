@@ -55,8 +55,10 @@ def compare(old: dict[str, dict], new: list[dict]) -> list[Change]:
             if q is None:
                 changes.append(Change(run, "new", f"{run}: new property '{name}' is {p['verdict']}"))
             elif q["verdict"] != p["verdict"]:
-                kind = ("broke" if q["verdict"] == "holds" else
-                        "fixed" if p["verdict"] == "holds" else "verdict")
+                # judged as the gate judges (a mutant's expected violation counts as holding)
+                was, now = q.get("gate", q["verdict"]), p.get("gate", p["verdict"])
+                kind = ("broke" if was == "holds" and now != "holds" else
+                        "fixed" if now == "holds" and was != "holds" else "verdict")
                 changes.append(Change(run, kind, f"{run}: '{name}' {q['verdict']} -> {p['verdict']}"
                                       + (f": {p['message']}" if p["verdict"] != "holds" else "")))
         for name in oldp.keys() - newp.keys():

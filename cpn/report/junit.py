@@ -14,6 +14,10 @@ import xml.etree.ElementTree as ET
 from cpn.report.verdicts import render_steps
 
 
+def _gate(p: dict) -> str:
+    return p.get("gate", p["verdict"])
+
+
 def render_junit(docs: list[dict], timings: bool = True) -> str:
     root = ET.Element("testsuites", name="cpn-verify check")
     totals = {"tests": 0, "failures": 0, "errors": 0, "skipped": 0}
@@ -21,9 +25,9 @@ def render_junit(docs: list[dict], timings: bool = True) -> str:
     for doc in docs:
         props = doc["properties"]
         counts = {"tests": len(props),
-                  "failures": sum(p["verdict"] == "violated" for p in props),
-                  "errors": sum(p["verdict"] == "error" for p in props),
-                  "skipped": sum(p["verdict"] == "unknown" for p in props)}
+                  "failures": sum(_gate(p) == "violated" for p in props),
+                  "errors": sum(_gate(p) == "error" for p in props),
+                  "skipped": sum(_gate(p) == "unknown" for p in props)}
         secs = doc["statespace"].get("seconds", 0.0) + doc["statespace"].get("check_seconds", 0.0)
         total_time += secs
         suite = ET.SubElement(root, "testsuite", name=doc["run"], **{k: str(v) for k, v in counts.items()},
@@ -34,7 +38,11 @@ def render_junit(docs: list[dict], timings: bool = True) -> str:
             case = ET.SubElement(suite, "testcase", name=p["name"], classname=doc["run"],
                                  file=doc["file"], line=str(p["line"]),
                                  time=f"{p.get('seconds', 0.0):.3f}" if timings else "0")
-            if p["verdict"] == "violated":
+            if _gate(p) == "violated" and p["verdict"] == "holds":
+                ET.SubElement(case, "failure", type=p["kind"],
+                              message="expected to be violated, but holds: the bug this scenario stands for is "
+                              "no longer caught")
+            elif _gate(p) == "violated":
                 el = ET.SubElement(case, "failure", message=p["message"], type=p["kind"])
                 el.text = "\n".join(render_steps(p.get("trace", {}), indent="")) if "trace" in p else p["message"]
             elif p["verdict"] == "error":

@@ -24,10 +24,14 @@ def render_sarif(docs: list[dict], version: str, base: str | None = None) -> dic
     for d in docs:
         uri = os.path.relpath(d["file"], base).replace(os.sep, "/")
         for p in d["properties"]:
-            level = LEVELS.get(p["verdict"])
+            gate = p.get("gate", p["verdict"])
+            level = LEVELS.get(gate)
             if level is None:
                 continue
             text = f"{d['run']}: property '{p['name']}' is {p['verdict']}: {p['message']}"
+            if p.get("expect", "holds") != "holds":
+                text = (f"{d['run']}: property '{p['name']}' is {p['verdict']}, expected {p['expect']}"
+                        + (f": {p['message']}" if p["message"] else ""))
             if "trace" in p and p["verdict"] == "violated":
                 text += "\n" + "\n".join(render_steps(p["trace"], indent="  "))
             results.append({

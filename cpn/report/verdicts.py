@@ -184,6 +184,9 @@ def run_report(result, timings: bool = True) -> dict:
         v = r.verdict
         doc = {"name": r.spec.name, "kind": r.spec.kind, "line": r.spec.span.line, "column": r.spec.span.col,
                "verdict": v.status.value, "message": v.message}
+        if r.spec.expect != "holds":
+            doc["expect"] = r.spec.expect
+        doc["gate"] = r.gate_status.value  # the verdict as the gate counts it (see 'expect')
         if r.spec.description:
             doc["description"] = r.spec.description
         if timings:
@@ -259,18 +262,26 @@ def render_text(doc: dict) -> str:
     out.append(f"  verdict     {doc['verdict']}")
     out.append("")
     for p in doc["properties"]:
-        out.append(f"  {p['verdict']:<9} {p['name']}  [{p['kind']}]")
+        out.append(f"  {label(p):<9} {p['name']}  [{p['kind']}]")
         if p["message"]:
             out.append(f"            {p['message']}")
         if p["verdict"] != "holds" or "trace" in p:
             out.append(f"            at {_where(doc, p)}")
         if "trace" in p:
-            label = "witness" if p["verdict"] == "holds" else "counterexample"
+            what = "witness" if p["verdict"] == "holds" else "counterexample"
             n = len(p["trace"]["steps"])
             lasso = f", then a cycle of {len(p['trace']['cycle'])}" if p["trace"]["cycle"] else ""
-            out.append(f"            {label}: {n} step{'s' if n != 1 else ''}{lasso}")
+            out.append(f"            {what}: {n} step{'s' if n != 1 else ''}{lasso}")
             out.extend(render_steps(p["trace"], indent="              "))
     return "\n".join(out) + "\n"
+
+
+def label(p: dict) -> str:
+    """A property's verdict as printed: 'violated (expected)' when its scenario expects the violation,
+    'holds (expected violated)' when it expects one that did not happen."""
+    if p.get("expect", "holds") == "holds":
+        return p["verdict"]
+    return f"{p['verdict']} (expected)" if p["verdict"] == p["expect"] else f"{p['verdict']} (expected {p['expect']})"
 
 
 def render_markdown(doc: dict) -> str:
@@ -283,7 +294,7 @@ def render_markdown(doc: dict) -> str:
            "| property | kind | verdict | detail |", "|---|---|---|---|"]
     for p in doc["properties"]:
         msg = p["message"].replace("|", "\\|")
-        out.append(f"| {p['name']} | {p['kind']} | {p['verdict']} | {msg} |")
+        out.append(f"| {p['name']} | {p['kind']} | {label(p)} | {msg} |")
     for p in doc["properties"]:
         if "trace" in p and p["verdict"] != "holds":
             out += ["", f"## {p['name']}: counterexample", "", "```"]

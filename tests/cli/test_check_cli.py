@@ -196,3 +196,19 @@ def test_outputs_are_checked_before_any_work(tmp_path, capsys):
     assert code == 73 and "does not exist" in err and not out
     code, out, _ = run([spec, "--sarif", "-", "--no-timings"], tmp_path, capsys)
     assert code == 0 and json.loads(out)["version"] == "2.1.0"  # the SARIF alone on standard output
+
+
+def test_expected_violations_pass_the_gate_and_missed_ones_fail_it(tmp_path, capsys):
+    caught = VIOLATED + 'expect = "violated"\n'
+    code, out, _ = run([write(tmp_path, "mutant.toml", caught), "--no-timings"], tmp_path, capsys)
+    assert code == 0
+    assert "1 violated (expected), 1 holds" in out
+    missed = HOLDS + 'expect = "violated"\n'
+    junit = tmp_path / "j.xml"
+    code, out, _ = run([write(tmp_path, "missed.toml", missed), "--junit", str(junit)], tmp_path, capsys)
+    assert code == 1
+    assert "holds (expected violated)" in out
+    text = junit.read_text(encoding="utf-8")
+    assert check_junit(text) == [] and "no longer caught" in text
+    code, _, err = run([write(tmp_path, "bad.toml", HOLDS + 'expect = "fails"\n')], tmp_path, capsys)
+    assert code == 65 and ":7:10: error[E0602]: 'expect' must be" in err
