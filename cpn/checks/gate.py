@@ -15,7 +15,8 @@ from cpn.checks.predicates import PredicateError, PropertyLanguage
 from cpn.checks.properties import Check, DeadlockFree, GraphView, Reachable, build_checks
 from cpn.checks.scenario import PropertySpec, Run, Scenario
 from cpn.checks.verdict import Status, Verdict, evidence_to
-from cpn.errors import ModelError
+from cpn.diagnostics import Diagnostic
+from cpn.errors import ConfigurationError, ModelError
 from cpn.statespace import ExploreOptions, Explorer
 
 
@@ -131,6 +132,10 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
         model = load(scenario.model, set=run.values)
     except ModelError as exc:
         raise _at_scenario(exc, scenario) from None
+    except ConfigurationError as exc:
+        if getattr(exc, "code", None) != "E0305":
+            raise
+        raise _values_at_scenario(exc, scenario) from None
     engine = model.engine(time_condensation=bool(opts.get("time_condensation", False)))
     index = TransitionIndex(engine)
     lang = PropertyLanguage(model.net.checked, engine, index)
@@ -185,6 +190,23 @@ def _at_scenario(exc: ModelError, scenario: Scenario) -> ModelError:
                     break
         diags.append(d)
     return ModelError(diags, {**exc.sources, scenario.path: scenario.source})
+
+
+def _values_at_scenario(exc, scenario: Scenario) -> ModelError:
+    """A value of [set] or of a parameter row that the model refuses (E0305), at its line in the scenario."""
+    import re
+
+    diags = []
+    for line in str(exc).splitlines():
+        m = re.match(r"\s*--set ([^=\s]+)=.*?: (.*)$", line)
+        if not m:
+            continue
+        name, message = m.group(1), m.group(2)
+        diags.append(Diagnostic("E0305", f"the value of '{name}': {message}", scenario.value_spans.get(name),
+                                hint=None if "not a CPN ML expression" in message else exc.hint))
+    if not diags:
+        diags = [Diagnostic("E0305", str(exc), None, hint=exc.hint)]
+    return ModelError(diags, {scenario.path: scenario.source})
 
 
 def check(path, **overrides) -> list[RunResult]:

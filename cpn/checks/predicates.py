@@ -22,7 +22,7 @@ from cpn.engine.runtime import RUNTIME
 from cpn.errors import ModelError
 from cpn.lang import ast as A
 from cpn.lang import types as T
-from cpn.lang.builtins import BUILTINS, MLError, parse_type
+from cpn.lang.builtins import MLError, parse_type
 from cpn.lang.checked import Env
 from cpn.lang.parser import parse
 from cpn.lang.symbols import Symbol
@@ -152,6 +152,7 @@ class PropertyLanguage:
         self.checked = checked
         self.engine = engine
         self.transition_index = transition_of
+        self._clock_readers: dict | None = None
         self.ctx = MarkingContext(engine, transition_of)
         self.ev = checked.evaluator
         self._checker = _checker_for(checked)
@@ -272,7 +273,7 @@ class PropertyLanguage:
                 name = node.arg.value
                 if name not in self.accessors:
                     cand = did_you_mean(name, list(self.accessors))
-                    ck.error("E0603", f"no place '{name}' in the net", node.arg.span,
+                    ck.error("E0703", f"no place '{name}' in the net", node.arg.span,
                              hint=f"Did you mean '{cand}'?" if cand else "Write the place as Page'place, without "
                              "the instance number, which follows the string: Mark \"Page'a place\" 1.")
                     return node
@@ -296,20 +297,20 @@ class PropertyLanguage:
             uid = node.fn.ref.uid
             acc = self.symbols.get(uid)
             if acc is not None and isinstance(node.arg, A.Const) and node.arg.value not in acc.instances:
-                ck.error("E0603", f"'{acc.name}' has no instance {node.arg.value}", node.arg.span,
+                ck.error("E0703", f"'{acc.name}' has no instance {node.arg.value}", node.arg.span,
                          hint=f"Its instances are {_ranges(sorted(acc.instances))}.")
             if node.fn.ref in (self.special.get("sum"), self.special.get("forall"), self.special.get("exists")):
                 if not (isinstance(node.arg, A.Name) and node.arg.ref is not None and node.arg.ref.uid in self.symbols):
-                    ck.error("E0603", f"'{node.fn.name}' takes a place name (Page'place) as its first argument",
+                    ck.error("E0703", f"'{node.fn.name}' takes a place name (Page'place) as its first argument",
                              node.arg.span, hint=f"For example: {node.fn.name} Slave'Idle.")
             if node.fn.ref is self.special.get("enabled"):
                 if not (isinstance(node.arg, A.Const) and isinstance(node.arg.value, str)):
-                    ck.error("E0603", "'enabled' takes a transition or binding element as a string literal",
+                    ck.error("E0703", "'enabled' takes a transition or binding element as a string literal",
                              node.arg.span, hint="For example: enabled \"Master'Send 1\".")
                 elif self.resolve_transitions(node.arg.value) is None and not self._known_be(node.arg.value):
                     tname = node.arg.value.split(":")[0].strip()
                     cand = did_you_mean(tname, list(self.transition_names))
-                    ck.error("E0603", f"no transition instance or binding element '{node.arg.value}' in the net",
+                    ck.error("E0703", f"no transition instance or binding element '{node.arg.value}' in the net",
                              node.arg.span, hint=f"Did you mean '{cand}'?" if cand else
                              "Name a transition instance as the report prints it: \"Page'trans 1\".")
 
@@ -337,7 +338,7 @@ class PropertyLanguage:
         glob["CTX"] = self.ctx
         glob["MK"] = self.ctx.mk
         ev, engine = self.ev, self.engine
-        uses_time = comp.uses_time or any(isinstance(n, A.Name) and n.name in ("intTime", "time") for n in walk(expr))
+        uses_time = self._reads_clock(expr)
         glob["TIMEFN"] = lambda _u: engine.clock(self.ctx.state)
         glob["SETTIME"] = lambda s: setattr(ev, "time", engine.clock(s))
         clock = "    SETTIME(S)\n" if uses_time else ""
@@ -375,12 +376,20 @@ class PropertyLanguage:
 
         return Compiled(text, expr, fn, uses_enabled, span)
 
+    def _reads_clock(self, expr: A.Expr) -> bool:
+        """Whether the text reads the clock, directly or through the model's functions and values."""
+        from cpn.engine import clock
+
+        if self._clock_readers is None:
+            self._clock_readers = clock._global_readers(self.checked.model.decls)
+        return clock._first_read(expr, self._clock_readers) is not None
+
     def constant(self, text: str, origin, fallback: Span, want: T.Type, what: str):
         """The value of a text that reads no marking (an expected bound: `N`, `ADDR.all()`)."""
         expr = self.check(text, origin, fallback, want, what)
         if any(isinstance(n, A.Name) and n.ref is not None and (n.ref.uid in self.symbols
                or n.ref in self.special.values()) for n in walk(expr)):
-            raise _remap(ModelError([Diagnostic("E0602", f"{what} must not read the marking", expr.span)]), text,
+            raise _remap(ModelError([Diagnostic("E0702", f"{what} must not read the marking", expr.span)]), text,
                          origin, fallback)
         try:
             return self.ev.eval(expr, {})
@@ -515,26 +524,15 @@ def walk(e):
 
 
 def _checker_for(checked) -> Checker:
-    """A type checker in the scope of a checked model (its colour sets, globals and evaluator)."""
-    ck = Checker.__new__(Checker)
-    ck.model = checked.model
-    ck.file = checked.model.file
-    ck.diags = []
+    """A type checker in the scope of a checked model: a fresh checker (its own bookkeeping, whatever the
+    checker keeps) whose colour sets, global names and evaluator are those of the model."""
+    ck = Checker(checked.model, {})
     ck.colsets = checked.colsets
     ck.cstypes = checked.cstypes
-    ck.cs_spans = {}
     ck.globals = checked.globals
-    ck.variables = {}
     ck.ev = checked.evaluator
-    ck.overrides = {}
-    ck.used_overrides = set()
-    ck.pending = []
     ck.net_name = checked.net_name
-    ck.builtin_syms = {name: Symbol(name, "builtin", parse_type(ty)) for name, (ty, _) in BUILTINS.items()}
     ck.genv = Env(checked.globals)
-    ck.ran_counter = 0
-    ck.ran_sink = None
-    ck.predefined = set()
     return ck
 
 

@@ -539,7 +539,7 @@ def _names(spec: PropertySpec, lang: PropertyLanguage, key: str) -> list[int]:
             from cpn._util import did_you_mean
 
             cand = did_you_mean(name, list(lang.transition_names))
-            diags.append(Diagnostic("E0603", f"no transition instance '{name}' in the net",
+            diags.append(Diagnostic("E0703", f"no transition instance '{name}' in the net",
                                     _element_span(spec, key, name),
                                     hint=f"Did you mean '{cand}'?" if cand else
                                     "Name it as the report prints it: \"Page'trans 1\", or \"Page'trans\" for "
@@ -636,7 +636,7 @@ def _place_instances(spec, lang, name: str) -> list[int]:
 
     cand = did_you_mean(name, [f"{b} {i}" for b, a in lang.accessors.items() for i in a.instances] + list(lang.accessors))
     text, origin, span = _text(spec, "place")
-    raise ModelError([Diagnostic("E0603", f"no place instance '{name}' in the net",
+    raise ModelError([Diagnostic("E0703", f"no place instance '{name}' in the net",
                                  origin.span(0, len(text) - 1) if origin else span,
                                  hint=f"Did you mean '{cand}'?" if cand else
                                  "Name it as the report prints it: \"Page'place 1\", or \"Page'place\" for every "
@@ -665,7 +665,7 @@ def _ctl(spec, lang) -> Check:
                     from cpn.checks.predicates import _remap
 
                     raise _remap(ModelError([Diagnostic(
-                        "E0603", f"'{op}' takes a transition or binding element of the net as a string literal",
+                        "E0703", f"'{op}' takes a transition or binding element of the net as a string literal",
                         pat.span, hint="For example: EXB (\"Slave'Reply\", true).")]), text, origin, span)
                 return Temporal(op, (conv(phi),), lang.binding_pattern(pat.value))
             if op in CTL_BINARY:
@@ -687,7 +687,7 @@ def _ctl(spec, lang) -> Check:
     fairness = []
     for name in spec.fields.get("fairness", []):
         if lang.resolve_transitions(name) is None and not lang._known_be(name):
-            raise ModelError([Diagnostic("E0603", f"no transition instance or binding element '{name}' in the net",
+            raise ModelError([Diagnostic("E0703", f"no transition instance or binding element '{name}' in the net",
                                          _element_span(spec, "fairness", name),
                                          hint="Write \"Page'trans 1\", \"Page'trans\" (every instance) or "
                                               "\"Page'trans 1: {var=value}\" (the bindings with that value).")])
@@ -717,7 +717,7 @@ def _ctl_error(e, text, origin, span) -> ModelError:
     from cpn.checks.predicates import _remap
 
     return _remap(ModelError([Diagnostic(
-        "E0602", "a temporal operator can only be combined with not, andalso, orelse and if-then-else",
+        "E0702", "a temporal operator can only be combined with not, andalso, orelse and if-then-else",
         e.span, hint="Move the temporal operator out of the function, let or case expression.")]),
         text, origin, span)
 

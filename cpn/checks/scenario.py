@@ -249,7 +249,7 @@ def load_scenario(path: str | os.PathLike) -> Scenario:
         with open(path, encoding="utf-8") as fh:
             text = fh.read()
     except UnicodeDecodeError as exc:
-        raise ModelError([Diagnostic("E0601", f"the file is not UTF-8 text ({exc.reason})", Span(path, 1, 1))]) from None
+        raise ModelError([Diagnostic("E0701", f"the file is not UTF-8 text ({exc.reason})", Span(path, 1, 1))]) from None
     return loads_scenario(text, path)
 
 
@@ -271,24 +271,24 @@ def loads_scenario(text: str, path: str = "<scenario>") -> Scenario:
         m = re.search(r"\(at line (\d+), column (\d+)\)", msg)
         line, col = (int(m.group(1)), int(m.group(2))) if m else (1, 1)
         msg = re.sub(r"\s*\(at line \d+, column \d+\)", "", msg).rstrip(".")
-        raise ModelError([Diagnostic("E0601", f"not valid TOML: {msg[:1].lower() + msg[1:]}",
+        raise ModelError([Diagnostic("E0701", f"not valid TOML: {msg[:1].lower() + msg[1:]}",
                                      Span(path, line, col, line, col),
                                      hint="Check quotes and brackets; TOML is described at https://toml.io.")],
                          {path: text}) from None
     r = _Reader(path, text)
     for key in data:
         if key not in TOP_KEYS:
-            r.error("E0602", f"unknown key '{key}' in a scenario", r.key_span((), key),
+            r.error("E0702", f"unknown key '{key}' in a scenario", r.key_span((), key),
                     hint=f"A scenario has the keys {', '.join(sorted(TOP_KEYS))} (docs/specs.md).")
     model = data.get("model")
     if not isinstance(model, str) or not model:
-        r.error("E0602", "a scenario must name its model: model = \"path/to/model.cpnet\"",
+        r.error("E0702", "a scenario must name its model: model = \"path/to/model.cpnet\"",
                 r.value_span((), "model") if "model" in data else Span(path, 1, 1),
                 hint="Give the model file relative to the scenario file.")
         model = ""
     name = data.get("name", os.path.splitext(os.path.basename(path))[0])
     if not isinstance(name, str):
-        r.error("E0602", "'name' must be a string", r.value_span((), "name"))
+        r.error("E0702", "'name' must be a string", r.value_span((), "name"))
         name = str(name)
     values = _values(r, data.get("set", {}), ("set",))
     explore = _explore(r, data.get("explore", {}))
@@ -297,7 +297,7 @@ def loads_scenario(text: str, path: str = "<scenario>") -> Scenario:
     base = os.path.dirname(os.path.abspath(path))
     model_path = model if os.path.isabs(model) else os.path.normpath(os.path.join(base, model))
     if model and not os.path.isfile(model_path):
-        r.error("E0602", f"no model file '{model}' (looked for {model_path})", r.value_span((), "model"),
+        r.error("E0702", f"no model file '{model}' (looked for {model_path})", r.value_span((), "model"),
                 hint="The model path is relative to the scenario file.")
     if r.diags:
         raise ModelError(r.diags, {path: text})
@@ -323,32 +323,32 @@ def _show(v) -> str:
 
 def _values(r: _Reader, table, where: tuple) -> dict:
     if not isinstance(table, dict):
-        r.error("E0602", f"'{where[0]}' must be a table of constant values", r.table_span(where))
+        r.error("E0702", f"'{where[0]}' must be a table of constant values", r.table_span(where))
         return {}
     out = {}
     for k, v in table.items():
         if isinstance(v, (bool, int, str)):
             out[k] = v
         else:
-            r.error("E0602", f"the value of '{k}' must be an integer, a boolean or a string (CPN ML text)",
+            r.error("E0702", f"the value of '{k}' must be an integer, a boolean or a string (CPN ML text)",
                     r.value_span(where, k))
     return out
 
 
 def _explore(r: _Reader, table) -> dict:
     if not isinstance(table, dict):
-        r.error("E0602", "'explore' must be a table", r.table_span(("explore",)))
+        r.error("E0702", "'explore' must be a table", r.table_span(("explore",)))
         return {}
     out = {}
     for k, v in table.items():
         want = EXPLORE_KEYS.get(k)
         if want is None:
-            r.error("E0602", f"unknown exploration option '{k}'", r.key_span(("explore",), k),
+            r.error("E0702", f"unknown exploration option '{k}'", r.key_span(("explore",), k),
                     hint=f"The options are {', '.join(sorted(EXPLORE_KEYS))}.")
             continue
         ok = isinstance(v, want) and (want is bool or not isinstance(v, bool))
         if not ok or (want is not bool and v <= 0):
-            r.error("E0602", f"'{k}' must be {'true or false' if want is bool else 'a positive number'}",
+            r.error("E0702", f"'{k}' must be {'true or false' if want is bool else 'a positive number'}",
                     r.value_span(("explore",), k))
             continue
         out[k] = v
@@ -367,14 +367,14 @@ def _parameters(r: _Reader, params) -> list[dict]:
             if isinstance(v, str):
                 m = _RANGE.match(v)
                 if not m or int(m.group(1)) > int(m.group(2)):
-                    r.error("E0604", f"'{k}' must be an inclusive range \"a..b\" with a <= b, or a list of values",
+                    r.error("E0704", f"'{k}' must be an inclusive range \"a..b\" with a <= b, or a list of values",
                             r.value_span(("parameters",), k), hint=f'Write {k} = "1..8" or {k} = [1, 2, 4].')
                     continue
                 axes.append((k, list(range(int(m.group(1)), int(m.group(2)) + 1))))
             elif isinstance(v, list) and v and all(isinstance(x, (int, bool, str)) for x in v):
                 axes.append((k, v))
             else:
-                r.error("E0604", f"'{k}' must be a range \"a..b\" or a non-empty list of values",
+                r.error("E0704", f"'{k}' must be a range \"a..b\" or a non-empty list of values",
                         r.value_span(("parameters",), k))
         return [dict(zip([k for k, _ in axes], combo)) for combo in itertools.product(*[v for _, v in axes])]
     if isinstance(params, list) and params and all(isinstance(row, dict) for row in params):
@@ -382,19 +382,19 @@ def _parameters(r: _Reader, params) -> list[dict]:
         rows = []
         for i, row in enumerate(params, 1):
             if list(row) != keys and set(row) != set(keys):
-                r.error("E0604", f"parameter row {i} sets {', '.join(sorted(row))}, the first row sets "
+                r.error("E0704", f"parameter row {i} sets {', '.join(sorted(row))}, the first row sets "
                         f"{', '.join(sorted(keys))}", r.table_span(("parameters", i)),
                         hint="Every row gives a value to the same constants.")
             rows.append(_values(r, row, ("parameters", i)))
         return rows
-    r.error("E0604", "'parameters' must be a table of ranges or lists, or an array of rows [[parameters]]",
+    r.error("E0704", "'parameters' must be a table of ranges or lists, or an array of rows [[parameters]]",
             r.table_span(("parameters",)))
     return [{}]
 
 
 def _properties(r: _Reader, props) -> list[PropertySpec]:
     if not isinstance(props, list) or not all(isinstance(p, dict) for p in props):
-        r.error("E0602", "properties are written as [[property]] tables", r.key_span((), "property"))
+        r.error("E0702", "properties are written as [[property]] tables", r.key_span((), "property"))
         return []
     out = []
     names: dict[str, int] = {}
@@ -404,7 +404,7 @@ def _properties(r: _Reader, props) -> list[PropertySpec]:
         if kind not in KINDS:
             close = [k for k in KINDS if isinstance(kind, str) and (k.startswith(kind[:4]) or kind in k)]
             span = r.value_span(table, "kind") if "kind" in p else r.table_span(table)
-            r.error("E0602", f"unknown property kind {kind!r}" if kind is not None else "a property needs a 'kind'",
+            r.error("E0702", f"unknown property kind {kind!r}" if kind is not None else "a property needs a 'kind'",
                     span, hint=(f"Did you mean '{close[0]}'? " if close else "")
                     + f"The kinds are {', '.join(KINDS)} (docs/specs.md).")
             continue
@@ -413,23 +413,23 @@ def _properties(r: _Reader, props) -> list[PropertySpec]:
         bad = False
         for k in p:
             if k not in allowed:
-                r.error("E0602", f"a '{kind}' property has no field '{k}'", r.key_span(table, k),
+                r.error("E0702", f"a '{kind}' property has no field '{k}'", r.key_span(table, k),
                         hint=f"Its fields are {', '.join(sorted(allowed - {'kind'}))}.")
                 bad = True
         for k in sorted(required - set(p)):
-            r.error("E0602", f"a '{kind}' property needs the field '{k}'", r.value_span(table, "kind"))
+            r.error("E0702", f"a '{kind}' property needs the field '{k}'", r.value_span(table, "kind"))
             bad = True
         name = p.get("name", f"{kind}#{i}")
         if not isinstance(name, str) or not name:
-            r.error("E0602", "'name' must be a non-empty string", r.value_span(table, "name"))
+            r.error("E0702", "'name' must be a non-empty string", r.value_span(table, "name"))
             name = f"{kind}#{i}"
         if name in names:
-            r.error("E0602", f"two properties are named '{name}'", r.value_span(table, "name"),
+            r.error("E0702", f"two properties are named '{name}'", r.value_span(table, "name"),
                     hint=f"Property {names[name]} has the same name; names identify properties in reports.")
         names[name] = i
         expect = p.get("expect", "holds")
         if expect not in ("holds", "violated"):
-            r.error("E0602", f"'expect' must be \"holds\" or \"violated\", not {expect!r}", r.value_span(table, "expect"),
+            r.error("E0702", f"'expect' must be \"holds\" or \"violated\", not {expect!r}", r.value_span(table, "expect"),
                     hint="A mutant scenario writes expect = \"violated\" on the property its bug must break.")
             bad = True
         fields = {k: v for k, v in p.items() if k not in ("kind", "name", "description", "expect")}
@@ -448,7 +448,7 @@ def _check_fields(r: _Reader, table: tuple, kind: str, f: dict) -> bool:
     def bad(key, what, hint=None):
         nonlocal ok
         ok = False
-        r.error("E0602", f"'{key}' of a '{kind}' property must be {what}", r.value_span(table, key), hint=hint)
+        r.error("E0702", f"'{key}' of a '{kind}' property must be {what}", r.value_span(table, key), hint=hint)
 
     for k in ("expr", "formula", "place", "upper_multiset", "lower_multiset"):
         if k in f and (not isinstance(f[k], str) or not f[k].strip()):
@@ -466,19 +466,19 @@ def _check_fields(r: _Reader, table: tuple, kind: str, f: dict) -> bool:
         bad("initial", "true or false")
     if kind == "dead_markings" and not f:
         ok = False
-        r.error("E0602", "a 'dead_markings' property needs 'count', 'count_modulo_time' or 'expr'",
+        r.error("E0702", "a 'dead_markings' property needs 'count', 'count_modulo_time' or 'expr'",
                 r.value_span(table, "kind"), hint="Use kind = \"deadlock_free\" to require no dead marking.")
     if kind == "bound":
         if ("place" in f) == ("expr" in f):
             ok = False
-            r.error("E0602", "a 'bound' property needs exactly one of 'place' and 'expr'", r.value_span(table, "kind"))
+            r.error("E0702", "a 'bound' property needs exactly one of 'place' and 'expr'", r.value_span(table, "kind"))
         if not {"upper", "lower", "upper_multiset", "lower_multiset"} & set(f):
             ok = False
-            r.error("E0602", "a 'bound' property needs 'upper', 'lower', 'upper_multiset' or 'lower_multiset'",
+            r.error("E0702", "a 'bound' property needs 'upper', 'lower', 'upper_multiset' or 'lower_multiset'",
                     r.value_span(table, "kind"))
         if "expr" in f and {"upper_multiset", "lower_multiset"} & set(f):
             ok = False
-            r.error("E0602", "multiset bounds are given for a 'place', not for an 'expr'", r.value_span(table, "kind"))
+            r.error("E0702", "multiset bounds are given for a 'place', not for an 'expr'", r.value_span(table, "kind"))
     return ok
 
 

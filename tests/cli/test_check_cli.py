@@ -54,21 +54,21 @@ def test_a_violation_prints_the_shortest_trace_at_the_property_line(tmp_path, ca
 
 
 @pytest.mark.parametrize("body, where, code", [
-    ("[explore]\nmax_state = 3\n", ":3:1: error[E0602]", "unknown exploration option"),
-    ('[[property]]\nkind = "invarant"\n', ":3:8: error[E0602]", "Did you mean 'invariant'"),
+    ("[explore]\nmax_state = 3\n", ":3:1: error[E0702]", "unknown exploration option"),
+    ('[[property]]\nkind = "invarant"\n', ":3:8: error[E0702]", "Did you mean 'invariant'"),
     ('[[property]]\nkind = "invariant"\nexpr = "size (C\'Q 1) = 1"\n', ":4:15: error[E0201]", "unknown name"),
     ('[[property]]\nkind = "invariant"\nexpr = """\nsize (C\'P 1)\n  = true"""\n', ":6:5: error[E0301]",
      "type mismatch"),
     ('[[property]]\nkind = "invariant"\nexpr = "size (C\'P 1) = "\n', ":4:", "error[E0101]"),
-    ('[[property]]\nkind = "invariant"\nexpr = "size (C\'P 7) = 1"\n', ":4:19: error[E0603]", "no instance 7"),
-    ('[[property]]\nkind = "bound"\nplace = "C\'P 2"\nupper = 1\n', ":4:10: error[E0603]", "Did you mean"),
-    ('[[property]]\nkind = "dead_transitions"\nexpected = ["C\'Inc 1", "C\'Dec 1"]\n', ":4:25: error[E0603]",
+    ('[[property]]\nkind = "invariant"\nexpr = "size (C\'P 7) = 1"\n', ":4:19: error[E0703]", "no instance 7"),
+    ('[[property]]\nkind = "bound"\nplace = "C\'P 2"\nupper = 1\n', ":4:10: error[E0703]", "Did you mean"),
+    ('[[property]]\nkind = "dead_transitions"\nexpected = ["C\'Inc 1", "C\'Dec 1"]\n', ":4:25: error[E0703]",
      "no transition instance"),
-    ("[[property]\nkind = 1\n", ":2:", "error[E0601]: not valid TOML"),
-    ('[parameters]\nN = "1..x"\n', ":3:5: error[E0604]", "inclusive range"),
-    ('[[parameters]]\nN = 1\n[[parameters]]\nM = 2\n', ":4:3: error[E0604]", "the first row sets N"),
-    ('[[property]]\nkind = "ctl"\nformula = "AG (List.all (fn x => AF x) [true])"\n', ":4:", "error[E0602]"),
-    ('[[property]]\nkind = "invariant"\nexpr = "enabled \\"C\'Dec 1\\""\n', ":4:17: error[E0603]",
+    ("[[property]\nkind = 1\n", ":2:", "error[E0701]: not valid TOML"),
+    ('[parameters]\nN = "1..x"\n', ":3:5: error[E0704]", "inclusive range"),
+    ('[[parameters]]\nN = 1\n[[parameters]]\nM = 2\n', ":4:3: error[E0704]", "the first row sets N"),
+    ('[[property]]\nkind = "ctl"\nformula = "AG (List.all (fn x => AF x) [true])"\n', ":4:", "error[E0702]"),
+    ('[[property]]\nkind = "invariant"\nexpr = "enabled \\"C\'Dec 1\\""\n', ":4:17: error[E0703]",
      "no transition instance or binding element"),
 ])
 def test_malformed_scenarios_give_positioned_errors_and_exit_65(tmp_path, capsys, body, where, code):
@@ -84,7 +84,7 @@ def test_a_missing_model_is_an_error_at_the_model_line(tmp_path, capsys):
     path = tmp_path / "m.toml"
     path.write_text('name = "m"\nmodel = "nowhere.cpnet"\n', encoding="utf-8")
     code, _, err = run([str(path)], tmp_path, capsys)
-    assert code == 65 and f"{path}:2:9: error[E0602]: no model file 'nowhere.cpnet'" in err
+    assert code == 65 and f"{path}:2:9: error[E0702]: no model file 'nowhere.cpnet'" in err
 
 
 def test_a_property_that_fails_in_a_marking_is_an_error_with_exit_65(tmp_path, capsys):
@@ -178,7 +178,7 @@ def test_a_value_the_model_does_not_declare_is_an_error_in_the_scenario(tmp_path
     path = write(tmp_path, "v.toml", "[set]\nNN = 3\n")
     code, _, err = run([path], tmp_path, capsys)
     assert code == 65
-    assert f"{path}:3:6: error[E0305]: there is no 'val NN' in the model to override" in err
+    assert f"{path}:3:6: error[E0305]: the value of 'NN': the model has no constant 'val NN'" in err
 
 
 def test_stop_at_first_violation_from_the_command_line(tmp_path, capsys):
@@ -211,4 +211,4 @@ def test_expected_violations_pass_the_gate_and_missed_ones_fail_it(tmp_path, cap
     text = junit.read_text(encoding="utf-8")
     assert check_junit(text) == [] and "no longer caught" in text
     code, _, err = run([write(tmp_path, "bad.toml", HOLDS + 'expect = "fails"\n')], tmp_path, capsys)
-    assert code == 65 and ":7:10: error[E0602]: 'expect' must be" in err
+    assert code == 65 and ":7:10: error[E0702]: 'expect' must be" in err
