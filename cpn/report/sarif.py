@@ -48,8 +48,7 @@ def render_sarif(docs: list[dict], version: str, base: str | None = None) -> dic
         "$schema": SARIF_SCHEMA,
         "version": "2.1.0",
         "runs": [{
-            "tool": {"driver": {"name": "cpn-verify", "version": version,
-                                "informationUri": "https://github.com/cpn-verify/cpn-verify", "rules": rules}},
+            "tool": {"driver": {"name": "cpn-verify", "version": version, "rules": rules}},
             "results": results,
         }],
     }
