@@ -509,12 +509,14 @@ def _transition_names(engine) -> dict[str, list[int]]:
 
 
 def walk(e):
-    """Every expression node under `e`, `e` included."""
+    """Every expression node under `e`, `e` included, also inside the declarations of a `let` and the
+    clauses and rules of functions and cases (a place read there is still a read)."""
     stack = [e]
     while stack:
         n = stack.pop()
-        if isinstance(n, A.Expr):
-            yield n
+        if dataclasses.is_dataclass(n) and not isinstance(n, type):
+            if isinstance(n, A.Expr):
+                yield n
             for f in dataclasses.fields(n):
                 if f.name in ("span", "ty", "ref"):
                     continue

@@ -185,3 +185,16 @@ def test_a_place_named_by_a_string(tmp_path):
     body = prop("conserved", "invariant", expr="size (Mark \"Q'to send\" 1) + size (Q'sent 1) = 2")
     r, v = verdicts(tmp_path, net, body)
     assert v["conserved"].status is Status.HOLDS
+
+
+def test_a_place_read_inside_a_let_declaration_is_read_in_every_marking(tmp_path):
+    # the memo key of a predicate is the places it reads: a read inside `let val` must count too
+    body = "".join([
+        prop("let read", "invariant", expr="let val x = ms_to_col (C'P 1) in x <= 0 end"),
+        prop("fun read", "invariant", expr="let fun f () = ms_to_col (C'P 1) in f () <= 2 end"),
+        prop("let read holds", "invariant", expr="let val x = ms_to_col (C'P 1) in x <= 3 end"),
+    ])
+    _, v = verdicts(tmp_path, COUNTER, body)
+    assert v["let read"].status is Status.VIOLATED and path_len(v["let read"]) == 1
+    assert v["fun read"].status is Status.VIOLATED and path_len(v["fun read"]) == 3
+    assert v["let read holds"].status is Status.HOLDS
