@@ -18,8 +18,8 @@ from cpn.io._pnml_xml import Element
 class _Term:
     """A translated PNML term: CPN ML text, whether it is a multiset, and its sort when known.
 
-    `expansion` lists the (multiplicity, value text) pairs of a multiset made of `all` expansions, so
-    that `numberof` and `tuple` can expand them further."""
+    `expansion` lists the (multiplicity, value text) pairs of a multiset made of `all` expansions,
+    partition elements and sums of single values, so that `numberof` and `tuple` can expand them further."""
 
     text: str
     is_ms: bool = False
@@ -92,6 +92,12 @@ class TermTranslator:
                        code="E0501")
             return _Term("()")
         ident, sort = self.consts[ref]
+        if sort.base is not None and expect is sort.base:
+            # A partition element where a value of the partitioned sort is expected: the element is
+            # the set of constants it lists (ISO/IEC 15909-2, partitions), so it stands for their sum.
+            members = [c for c in sort.base.consts if sort.element_of[c] == ident]
+            exp = [(1, c) for c in members]
+            return _Term(_ms_text(exp), is_ms=True, sort=sort.base, atomic=False, expansion=exp)
         return _Term(ident, sort=sort)
 
     def t_dotconstant(self, el, where, expect):
@@ -185,6 +191,12 @@ class TermTranslator:
         return _Term("empty", is_ms=True, expansion=[])
 
     def t_tuple(self, el, where, expect):
+        parts = [s for s in el.elements() if s.tag != "subterm" or s.elements()]
+        if len(parts) == 1 and (expect is None or expect.kind != "product"):
+            # GreatSPN wraps every term of a sort that is not a product in a one-component tuple
+            # (`<tuple><subterm><variable/></subterm></tuple>`); the contest's tools read the term itself.
+            inner = parts[0].elements()[0] if parts[0].tag == "subterm" else parts[0]
+            return self.term(inner, where, expect)
         comp = expect.parts if expect is not None and expect.kind == "product" else []
         terms = []
         for i, s in enumerate(el.elements()):
@@ -201,7 +213,8 @@ class TermTranslator:
         for t in terms:
             if t.is_ms:
                 if t.expansion is None:
-                    self.error(el, f"a tuple in {where} has a multiset component that is not 'all'")
+                    self.error(el, f"a tuple in {where} has a multiset component that is not made of "
+                                   "'all', constants, variables and partition elements")
                     return _Term("empty", is_ms=True)
                 choices.append(t.items())
             else:
@@ -219,9 +232,11 @@ class TermTranslator:
         if len(terms) == 1:
             return terms[0]
         exp = None
-        if all(t.expansion is not None for t in terms):
+        if all(t.expansion is not None or not t.is_ms for t in terms):
+            # a sum of constants, variables and 'all's is known element by element, so that a tuple
+            # can have it as a component (`<pr1, tx2, bs1+bs2>`, VehicularWifi-COL)
             def exp(terms=terms):
-                return [kv for t in terms for kv in t.items()]
+                return [kv for t in terms for kv in (t.items() if t.is_ms else [(1, t.paren())])]
         return _Term(" ++ ".join(t.as_ms() for t in terms), is_ms=True, sort=expect, atomic=False, expansion=exp)
 
     def t_subtract(self, el, where, expect):
