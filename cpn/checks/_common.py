@@ -26,20 +26,61 @@ def has_place_columns(engine, states: list) -> bool:
     return isinstance(s0, tuple) and len(s0) in (n, n + 1) and all(type(x) is int for x in s0[:n])
 
 
-def place_representatives(engine, states: list) -> list[dict]:
-    """Per place, {key: a state} with one state for every distinct marking the place takes.
+def place_markings(engine, states: list) -> list[list[tuple[object, dict, int]]]:
+    """Per place, every distinct marking it takes over `states`: (key, untimed multiset, tokens).
 
-    With the documented state layout the key is the place's intern id (computed at C speed with
-    zip/itemgetter); otherwise it is a canonical form of the place's marking (slow path).
+    With the compiled engine's state layout (docs/internals.md: item p of a state is the intern id of
+    place p's multiset) the key is that id: the distinct ids come from one C-speed pass per place
+    column (`set(map(itemgetter(p), states))`) and each id's untimed multiset and token count are read
+    from the engine's intern tables, so the work per distinct marking is one place's, not a whole
+    state's. Otherwise (the reference engine) the key is a canonical form of the place's marking and
+    every state's marking is read once. The multisets are the engine's own: do not mutate them.
     """
     n = len(engine.places)
-    if has_place_columns(engine, states):
-        return [dict(zip(map(itemgetter(p), states), states)) for p in range(n)]
-    out: list[dict] = [{} for _ in range(n)]
+    tables = _intern_tables(engine)
+    if tables is not None and has_place_columns(engine, states):
+        views, counts = tables
+        ids: list[set] = [set() for _ in range(n)]
+        adders = [s.update for s in ids]
+        getters = [itemgetter(p) for p in range(n)]
+        for chunk in state_chunks(states):
+            for add, get in zip(adders, getters):
+                add(map(get, chunk))
+        out = []
+        for p in range(n):
+            vp, cp = views[p], counts[p]
+            out.append([(i, vp[i], cp[i]) for i in sorted(ids[p])])
+        return out
+    seen: list[dict] = [{} for _ in range(n)]
     for s in states:
         for p, ms in enumerate(engine.marking(s)):
-            out[p].setdefault(frozenset(ms.items()), s)
-    return out
+            key = frozenset(ms.items())
+            if key not in seen[p]:
+                um = untimed_multiset(engine, p, ms)
+                seen[p][key] = (key, um, sum(um.values()))
+    return [list(d.values()) for d in seen]
+
+
+# states per chunk when reading place columns: a chunk's tuples stay in the processor's cache while every
+# column is read from them (2.5 to 4 times faster than reading each column over all states: 102 places
+# x 20,754 states of Peterson-PT-2, 0.72-1.12 s -> 0.28-0.29 s on a loaded machine)
+CHUNK_STATES: int = 1024
+
+
+def state_chunks(states: list):
+    """The states in consecutive slices of CHUNK_STATES."""
+    for k in range(0, len(states), CHUNK_STATES):
+        yield states[k:k + CHUNK_STATES]
+
+
+def _intern_tables(engine):
+    """The compiled engine's per-place intern tables (untimed multisets, token counts), or None."""
+    store = getattr(engine, "store", None)
+    views = getattr(store, "views", None)
+    counts = getattr(store, "counts", None)
+    if views is None or counts is None or len(views) != len(engine.places):
+        return None
+    return views, counts
 
 
 def untimed_multiset(engine, p: int, ms: dict) -> dict:

@@ -7,8 +7,9 @@ markings each place takes (the engine interns them), not over states, so it cost
 from __future__ import annotations
 
 from dataclasses import dataclass
+from operator import itemgetter
 
-from cpn.checks._common import place_representatives, untimed_multiset
+from cpn.checks._common import has_place_columns, place_markings, state_chunks
 from cpn.statespace import Exploration
 
 
@@ -37,38 +38,37 @@ def boundedness(x: Exploration) -> Boundedness:
 
     Upper multiset bound: for each colour, the largest multiplicity over all markings; lower: the
     smallest (0 for a colour missing from some marking). On a partial state space these are bounds of
-    the explored part only.
+    the explored part only. One pass over the distinct markings of each place (`place_markings`);
+    only the tokens per marking need the states themselves (one C-speed pass over the columns of
+    the places whose token count varies).
     """
     engine = x.engine
     states = x.graph.states
-    reps = place_representatives(engine, states)
+    markings = place_markings(engine, states)
+    fmt = getattr(engine, "format_multiset", None)
     out = []
-    count_tables = []
     for p, place in enumerate(engine.places):
         upper_ms: dict = {}
         lower_ms: dict | None = None
-        counts: dict = {}
         hi_colour = 0
-        for key, s in reps[p].items():
-            ms = untimed_multiset(engine, p, engine.marking(s)[p])
-            ms = {v: n for v, n in ms.items() if n}
-            counts[key] = sum(ms.values())
+        for _key, ms, _count in markings[p]:
+            if 0 in ms.values():
+                ms = {v: n for v, n in ms.items() if n}
             for v, n in ms.items():
                 if n > upper_ms.get(v, 0):
                     upper_ms[v] = n
-                if n > hi_colour:
-                    hi_colour = n
+                    if n > hi_colour:
+                        hi_colour = n
             if lower_ms is None:
                 lower_ms = dict(ms)
-            else:
-                lower_ms = {v: min(n, ms[v]) for v, n in lower_ms.items() if v in ms}
+            elif lower_ms:
+                lower_ms = {v: (n if n < ms[v] else ms[v]) for v, n in lower_ms.items() if v in ms}
         lower_ms = lower_ms or {}
-        count_tables.append(counts)
-        fmt = getattr(engine, "format_multiset", None)
+        counts = [c for _k, _ms, c in markings[p]]
         out.append(PlaceBounds(
             place=place.name,
-            upper=max(counts.values(), default=0),
-            lower=min(counts.values(), default=0),
+            upper=max(counts, default=0),
+            lower=min(counts, default=0),
             upper_multiset=upper_ms,
             lower_multiset=lower_ms,
             upper_text=fmt(p, upper_ms) if fmt else _fmt(upper_ms),
@@ -77,30 +77,41 @@ def boundedness(x: Exploration) -> Boundedness:
         ))
     return Boundedness(
         places=out,
-        max_tokens_per_marking=_max_tokens_per_marking(engine, states, reps, count_tables),
+        max_tokens_per_marking=_max_tokens_per_marking(engine, states, markings),
         max_tokens_in_place=max((b.upper for b in out), default=0),
         max_of_one_colour_in_place=max((b.max_of_one_colour for b in out), default=0),
     )
 
 
-def _max_tokens_per_marking(engine, states, reps, count_tables) -> int:
+def _max_tokens_per_marking(engine, states, markings) -> int:
+    """The most tokens in one state. A place whose markings all hold the same number of tokens adds
+    that number to every state; only the others are read state by state."""
     if not states:
         return 0
-    from cpn.checks._common import has_place_columns
-
-    if has_place_columns(engine, states):
-        from operator import itemgetter
-
-        columns = []
-        for p, counts in enumerate(count_tables):
-            if all(type(k) is int for k in counts):
-                table = [0] * (max(counts, default=0) + 1)
-                for k, n in counts.items():
-                    table[k] = n
-                columns.append(map(table.__getitem__, map(itemgetter(p), states)))
-            else:
-                columns.append(map(counts.__getitem__, map(itemgetter(p), states)))
-        return max(map(sum, zip(*columns)), default=0)
+    constant = 0
+    varying = []
+    for p, row in enumerate(markings):
+        counts = {c for _k, _ms, c in row}
+        if len(counts) == 1:
+            constant += counts.pop()
+        else:
+            varying.append(p)
+    if not varying:
+        return constant
+    if has_place_columns(engine, states) and all(type(k) is int for p in varying for k, _ms, _c in markings[p]):
+        tables = []
+        for p in varying:
+            table = [0] * (max(k for k, _ms, _c in markings[p]) + 1)
+            for k, _ms, c in markings[p]:
+                table[k] = c
+            tables.append((table.__getitem__, itemgetter(p)))
+        best = 0
+        for chunk in state_chunks(states):
+            columns = [map(count, map(get, chunk)) for count, get in tables]
+            m = max(columns[0]) if len(columns) == 1 else max(map(sum, zip(*columns)))
+            if m > best:
+                best = m
+        return constant + best
     return max(sum(engine.token_counts(s)) for s in states)
 
 

@@ -74,5 +74,6 @@ def to_json(r: Report) -> dict:
             "max_of_one_colour_in_place": r.bounds.max_of_one_colour_in_place,
         },
         "report_seconds": round(r.seconds, 3),
+        "report_part_seconds": {part: round(sec, 3) for part, sec in r.part_seconds.items()},
         "notes": r.notes,
     }

@@ -60,6 +60,8 @@ class Report:
     notes: list = field(default_factory=list)
     dead_listed: list = field(default_factory=list)  # list[DeadMarking], the first DEAD_LISTED ones
     dead_listed_cap: int | None = DEAD_LISTED
+    # seconds of each part of the analysis, in the order computed (see REPORT_PARTS)
+    part_seconds: dict = field(default_factory=dict)
 
     @property
     def engine(self):
@@ -70,34 +72,76 @@ class Report:
         return bool(getattr(self.engine, "is_timed", False))
 
 
+# the parts of the analysis, in the order build_report computes them (keys of Report.part_seconds)
+REPORT_PARTS: tuple = ("transitions", "scc", "bounds", "dead_markings", "dead_transitions", "live_transitions",
+                       "home_markings", "fairness", "trace")
+
+
 def build_report(x: Exploration, model: str = "<unsaved net>", options: dict | None = None,
-                 trace_to_dead: bool = True, dead_listed: int | None = DEAD_LISTED) -> Report:
+                 trace_to_dead: bool = True, dead_listed: int | None = DEAD_LISTED, progress=None) -> Report:
     """Compute every section of the standard report from an exploration.
 
     The first `dead_listed` dead markings (all of them for None) are listed with their marking and a
     shortest trace (with `trace_to_dead`; without it, none is listed).
+
+    `progress(part, done, total)`, when given, is called as each part (a name of REPORT_PARTS) starts
+    (done 0), as fairness advances (done transition instances out of total) and when a part ends
+    (done == total); it must not raise. The checks compute; only the caller displays.
     """
     t0 = time.perf_counter()
+    parts: dict[str, float] = {}
+    clock = [t0]
+
+    def start(part: str) -> None:
+        if progress is not None:
+            progress(part, 0, 1)
+
+    def done(part: str) -> None:
+        now = time.perf_counter()
+        parts[part] = now - clock[0]
+        clock[0] = now
+        if progress is not None:
+            progress(part, 1, 1)
+
     engine = x.engine
     names = [t.name for t in engine.transitions]
+    start("transitions")
     tindex = TransitionIndex(engine)
     arc_t = tindex.arc_transitions(x.graph.bes)
+    done("transitions")
+    start("scc")
     scc = scc_summary(x)
+    done("scc")
+    start("bounds")
     bounds = boundedness(x)
+    done("bounds")
+    start("dead_markings")
     dead = dead_markings(x)
+    done("dead_markings")
+    start("dead_transitions")
     dead_t = [names[t] for t in dead_transitions(x, tindex)]
+    done("dead_transitions")
+    start("live_transitions")
     live = live_transitions(x, scc, arc_t)
     live_names = None if live is None else [names[t] for t in live]
+    done("live_transitions")
+    start("home_markings")
     home = home_markings(x, scc)
+    done("home_markings")
+    start("fairness")
     fair: dict | None = None
     if x.complete:
-        f = fairness(x, scc.decomposition, arc_t)
+        step = None if progress is None else (lambda k, total: progress("fairness", k, total))
+        f = fairness(x, scc.decomposition, arc_t, progress=step)
         fair = None if f is None else {names[t]: cls for t, cls in f.items()}
+    done("fairness")
+    start("trace")
     listed = []
     if trace_to_dead:
         chosen = dead.states if dead_listed is None else dead.states[:dead_listed]
         listed = [dead_marking(x, i) for i in chosen]
     trace = listed[0].trace if listed else None
+    done("trace")
     analysis = time.perf_counter() - t0
     notes = list(x.notes)
     if x.time_growth is not None:
@@ -113,7 +157,7 @@ def build_report(x: Exploration, model: str = "<unsaved net>", options: dict | N
         dead_transitions=dead_t, live_transitions=live_names, home=home, fairness=fair,
         fairness_known=x.complete, dead_trace=trace, seconds=x.seconds + analysis,
         analysis_seconds=analysis, generated=time.strftime("%a %b %d %H:%M:%S %Y"), notes=notes,
-        dead_listed=listed, dead_listed_cap=dead_listed,
+        dead_listed=listed, dead_listed_cap=dead_listed, part_seconds=parts,
     )
 
 
@@ -130,4 +174,4 @@ def dead_marking(x: Exploration, state: int) -> DeadMarking:
     return DeadMarking(state, marking, engine.clock(s) if timed else None, shortest_trace(x.graph, state, engine))
 
 
-__all__ = ["DEAD_LISTED", "DeadMarking", "Fairness", "Report", "build_report", "dead_marking"]
+__all__ = ["DEAD_LISTED", "REPORT_PARTS", "DeadMarking", "Fairness", "Report", "build_report", "dead_marking"]

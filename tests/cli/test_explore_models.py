@@ -63,6 +63,7 @@ def _json_with_seed(seed: str, model: str, *args: str) -> dict:
         d["statespace"].pop(k)
     d["scc"].pop("seconds")
     d.pop("report_seconds")
+    d.pop("report_part_seconds")
     return d
 
 
