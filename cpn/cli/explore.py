@@ -120,8 +120,13 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
     # --max-listed N: every text cap and the number of dead markings listed become N (0: no cap)
     max_listed = getattr(args, "max_listed", None)
     caps = {} if max_listed is None else {"max_listed": max_listed if max_listed > 0 else None}
-    report = build_report(x, model=os.path.abspath(args.model), options=opts,
-                          **({} if max_listed is None else {"dead_listed": caps["max_listed"]}))
+    report_line = _ReportLine() if display else None
+    try:
+        report = build_report(x, model=os.path.abspath(args.model), options=opts, progress=report_line,
+                              **({} if max_listed is None else {"dead_listed": caps["max_listed"]}))
+    finally:
+        if report_line:
+            report_line.close()
     if not any(o.to_stdout for o in outputs.values()):
         sys.stdout.write(render_text(report, marking_changes=bool(getattr(args, "trace_to_dead", False)), **caps))
     if "--json" in outputs:
@@ -193,6 +198,37 @@ class _ProgressLine:
         if line.startswith("exploring"):
             text.stylize("bold", 0, len("exploring"))
         self._live.update(text, refresh=True)
+
+    def close(self) -> None:
+        if self._live is not None:
+            self._live.stop()
+            self._live = None
+
+
+class _ReportLine:
+    """A rich live line on stderr while the report is built (its part, fairness's transition instances),
+    shown after one second, like the search's line."""
+
+    def __init__(self):
+        self._live = None
+        self._t0 = time.perf_counter()
+        self._shown = 0.0
+
+    def __call__(self, part: str, done: int, total: int) -> None:
+        seconds = time.perf_counter() - self._t0
+        if seconds - self._shown < 0.2:
+            return  # at most five updates a second: fairness reports every transition instance
+        self._shown = seconds
+        if self._live is None:
+            if seconds < 1.0:
+                return
+            from rich.console import Console
+            from rich.live import Live
+
+            self._live = Live("", console=Console(stderr=True), transient=True, auto_refresh=False)
+            self._live.start()
+        step = f"  {done:,}/{total:,}" if total > 1 else ""
+        self._live.update(f"[bold]report[/]  {part.replace('_', ' ')}{step}  {seconds:,.1f} s", refresh=True)
 
     def close(self) -> None:
         if self._live is not None:

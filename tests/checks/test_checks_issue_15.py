@@ -240,3 +240,58 @@ def test_transition_index_is_unchanged():
     x = Explorer(e).run()
     arc_t = TransitionIndex(e).arc_transitions(x.graph.bes)
     assert [e.binding_element(be).transition for be in x.graph.bes] == list(arc_t)
+
+
+# ---------------------------------------------------------------------- seconds and progress of the report
+
+def test_report_gives_each_part_its_seconds_and_calls_progress():
+    import nets
+
+    from cpn.report import build_report, to_json
+    from cpn.report.model import REPORT_PARTS
+
+    calls = []
+    x = Explorer(nets.just_net()).run()
+    report = build_report(x, progress=lambda part, done, total: calls.append((part, done, total)))
+    assert list(report.part_seconds) == list(REPORT_PARTS)
+    assert all(s >= 0 for s in report.part_seconds.values())
+    data = to_json(report)
+    assert list(data["report_part_seconds"]) == list(REPORT_PARTS)
+    assert isinstance(data["report_seconds"], float)  # the existing key keeps its meaning
+    # every part starts (0/1) and ends (1/1), in order; fairness counts its transition instances
+    assert [c[0] for c in calls if c[1:] == (0, 1)] == list(REPORT_PARTS)
+    assert [c[0] for c in calls if c[1:] == (1, 1)] == list(REPORT_PARTS)
+    ntrans = len(x.engine.transitions)
+    assert [c for c in calls if c[0] == "fairness" and c[2] == ntrans] == [
+        ("fairness", k, ntrans) for k in range(1, ntrans + 1)]
+
+
+def test_report_progress_line_on_a_terminal_only(monkeypatch, capsys, tmp_path):
+    import argparse
+    import io
+
+    from _toy import dining_philosophers
+
+    import cpn.cli.explore as explore
+
+    clock = iter(range(0, 10_000, 2))  # every reading two seconds later: the line shows at once
+    monkeypatch.setattr(explore.time, "perf_counter", lambda: float(next(clock)))
+
+    class Terminal(io.StringIO):
+        def isatty(self):
+            return True
+
+    def run(quiet: bool, terminal: bool) -> str:
+        err = Terminal() if terminal else io.StringIO()
+        monkeypatch.setattr(sys, "stderr", err)
+        args = argparse.Namespace(model=str(tmp_path / "toy.cpnet"), set=[], max_states=None, max_arcs=None,
+                                  max_seconds=None, max_memory=None, time_condensation=False,
+                                  no_time_growth_check=False, json=None, dot=None, graphml=None, quiet=quiet,
+                                  trace_to_dead=False)
+        assert explore.explore_engine(dining_philosophers(3), args) == 0
+        return err.getvalue()
+
+    shown = run(quiet=False, terminal=True)
+    assert "report" in shown and "fairness" in shown
+    assert run(quiet=True, terminal=True) == ""
+    assert run(quiet=False, terminal=False) == ""
