@@ -1,7 +1,7 @@
 """Report-versus-search benchmark: the standard report's cost beside the search's, per model.
 
 Usage:
-  python bench/report.py [MODEL_OR_NAME ...] [--repeat 3] [--json FILE] [--figures DIR]
+  python bench/report.py [MODEL_OR_NAME ...] [--repeat 3] [--json FILE] [--figures DIR] [--baseline ROOT]
 
 Without models it runs every instance of the validation corpus (`../shared/validation/expected.json`);
 a name is an instance of that corpus, anything else a model path. Every measurement runs in a fresh
@@ -12,6 +12,11 @@ seconds of each part of the report when the report gives them (`Report.part_seco
 
 `--figures DIR` writes each model's JSON result (`to_json`) without its timing keys, to compare two
 versions of the code figure by figure (`diff -r`).
+
+`--baseline ROOT` measures a second checkout of the project side by side, in the same run: for each
+model the runs alternate between ROOT's code and this one (same machine, same minutes), and the table
+gets the baseline's report seconds and ratio. ROOT needs only its `cpn` package: this script is run from
+here with ROOT first on the import path. With `--figures`, the baseline's figures go to DIR/baseline.
 """
 
 from __future__ import annotations
@@ -30,9 +35,9 @@ VALIDATION = os.path.join(os.environ.get("CPN_SHARED_DIR") or os.path.join(ROOT,
 TIMING_KEYS = ("seconds", "report_seconds", "report_part_seconds", "peak_memory_mb", "model")
 
 
-def child(path: str, figures: str | None) -> dict:
-    """One measurement, in this (fresh) process."""
-    sys.path.insert(0, ROOT)
+def child(path: str, figures: str | None, root: str = ROOT) -> dict:
+    """One measurement, in this (fresh) process, of the code under `root`."""
+    sys.path.insert(0, root)
     import cpn
     from cpn.report import build_report, to_json
     from cpn.statespace import Explorer
@@ -81,40 +86,60 @@ def main(argv=None) -> int:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--json", metavar="FILE", help="write every run's measurements as JSON")
     ap.add_argument("--figures", metavar="DIR", help="write each model's figures (JSON without timings)")
+    ap.add_argument("--baseline", metavar="ROOT", help="a second checkout, measured side by side")
     ap.add_argument("--child", metavar="MODEL", help=argparse.SUPPRESS)
+    ap.add_argument("--root", default=ROOT, help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.child:
-        print(json.dumps(child(args.child, args.figures)))
+        print(json.dumps(child(args.child, args.figures, args.root)))
         return 0
-    if args.figures:
-        os.makedirs(args.figures, exist_ok=True)
+    sides = [("new", ROOT, args.figures)]
+    if args.baseline:
+        base_figures = os.path.join(args.figures, "baseline") if args.figures else None
+        sides.insert(0, ("base", os.path.abspath(args.baseline), base_figures))
+    for _side, _root, figures in sides:
+        if figures:
+            os.makedirs(figures, exist_ok=True)
     models = [resolve(m) for m in args.models] or corpus_models()
     rows = []
-    print(f"{'model':38} {'states':>10} {'arcs':>11} {'search s':>9} {'report s':>9} {'ratio':>6}  parts (s)")
+    head = f"{'model':38} {'states':>10} {'arcs':>11} {'search s':>9} {'report s':>9} {'ratio':>6}"
+    if args.baseline:
+        head += f" {'base search':>11} {'base report':>11} {'base ratio':>10}"
+    print(head + "  parts (s)")
     for path in models:
-        runs = []
+        runs: dict[str, list] = {side: [] for side, _r, _f in sides}
         for k in range(args.repeat):
-            cmd = [sys.executable, os.path.abspath(__file__), "--child", path]
-            if args.figures and k == 0:
-                cmd += ["--figures", args.figures]
-            out = subprocess.run(cmd, capture_output=True, text=True, cwd=ROOT)
-            if out.returncode != 0:
-                print(f"{path}: failed\n{out.stderr[-2000:]}", file=sys.stderr)
-                break
-            runs.append(json.loads(out.stdout.strip().splitlines()[-1]))
-        if not runs:
+            for side, root, figures in sides:
+                cmd = [sys.executable, os.path.abspath(__file__), "--child", path, "--root", root]
+                if figures and k == 0:
+                    cmd += ["--figures", figures]
+                out = subprocess.run(cmd, capture_output=True, text=True, cwd=root)
+                if out.returncode != 0:
+                    print(f"{path} ({side}): failed\n{out.stderr[-2000:]}", file=sys.stderr)
+                    continue
+                runs[side].append(json.loads(out.stdout.strip().splitlines()[-1]))
+        if not runs["new"]:
             continue
         name = os.path.basename(os.path.dirname(path)) if path.endswith("model.pnml") else os.path.basename(path)
-        search = statistics.median(r["search_s"] for r in runs)
-        report = statistics.median(r["report_s"] for r in runs)
-        parts = {p: statistics.median(r["parts"].get(p, 0.0) for r in runs) for p in runs[0]["parts"]}
-        row = {"model": name, "states": runs[0]["states"], "arcs": runs[0]["arcs"], "search_s": search,
-               "report_s": report, "ratio": report / search if search else None, "parts": parts, "runs": runs}
+        row = {"model": name, "states": runs["new"][0]["states"], "arcs": runs["new"][0]["arcs"]}
+        for side, rs in runs.items():
+            if not rs:
+                continue
+            search = statistics.median(r["search_s"] for r in rs)
+            report = statistics.median(r["report_s"] for r in rs)
+            parts = {p: statistics.median(r["parts"].get(p, 0.0) for r in rs) for p in rs[0]["parts"]}
+            row[side] = {"search_s": search, "report_s": report, "ratio": report / search if search else None,
+                         "parts": parts, "runs": rs}
         rows.append(row)
-        shown = " ".join(f"{p} {s:.2f}" for p, s in parts.items() if s >= 0.005)
-        ratio = f"{report / search:6.2f}" if search else "     -"
-        print(f"{name[:38]:38} {row['states']:>10,} {row['arcs']:>11,} {search:9.2f} {report:9.2f} {ratio}  {shown}",
-              flush=True)
+        new = row["new"]
+        ratio = f"{new['ratio']:6.2f}" if new["ratio"] is not None else "     -"
+        line = f"{name[:38]:38} {row['states']:>10,} {row['arcs']:>11,} {new['search_s']:9.2f} {new['report_s']:9.2f} {ratio}"
+        if "base" in row:
+            base = row["base"]
+            bratio = f"{base['ratio']:10.2f}" if base["ratio"] is not None else "         -"
+            line += f" {base['search_s']:11.2f} {base['report_s']:11.2f} {bratio}"
+        shown = " ".join(f"{p} {s:.2f}" for p, s in new["parts"].items() if s >= 0.005)
+        print(f"{line}  {shown}", flush=True)
     if args.json:
         with open(args.json, "w", encoding="utf-8") as fh:
             json.dump(rows, fh, indent=1)
