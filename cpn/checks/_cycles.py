@@ -136,7 +136,8 @@ class ConfinedSearch:
                             if size > 1:
                                 return True
                             a, b = off[v], off[v + 1]
-                            if any(w == v and lab != avoid for w, lab in zip(dst[a:b], labels[a:b])):
+                            if v in dst[a:b] and any(w == v and lab != avoid
+                                                     for w, lab in zip(dst[a:b], labels[a:b])):
                                 return True
                     elif work:
                         u = work[-1]

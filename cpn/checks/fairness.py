@@ -27,7 +27,7 @@ WALKS_PER_COMPONENT: int = 4
 WALKED_COMPONENTS: int = 64
 WALK_MIN_STATES: int = 16
 # walks avoiding t from states enabling t, looking for a witness that t is not fair
-TARGETED_WALKS: int = 4
+TARGETED_WALKS: int = 64
 
 
 class Fairness(enum.Enum):
@@ -89,6 +89,7 @@ def fairness(x: Exploration, dec: SccDecomposition, arc_transitions: array,
     undecided = [t for t in range(ntrans) if t not in result]
     enabled_at = _enabled_states(dec, cyclic_components, off, labels, undecided, ntrans)
     keep = bytearray(n)
+    walk_budget = max(4096, sum(len(dec.nodes(c)) for c in cyclic_components) // 4)
     for t in range(ntrans):
         if t not in result:
             en = enabled_at[t]
@@ -97,7 +98,7 @@ def fairness(x: Exploration, dec: SccDecomposition, arc_transitions: array,
             try:
                 if search.cycle_avoiding(t, en, keep):
                     result[t] = Fairness.NONE
-                elif (not_fair[t] or _walked_through_enabled(off, dst, comp, labels, t, en, keep)
+                elif (not_fair[t] or _walked_through_enabled(off, dst, comp, labels, t, en, keep, walk_budget)
                       or search.component_through(t, en, keep)):
                     result[t] = Fairness.JUST
                 else:
@@ -172,12 +173,15 @@ def _walk_witnesses(dec, components, off, dst, labels, impartial_candidate, not_
                 not_just[t] = True
 
 
-def _walked_through_enabled(off, dst, comp, labels, t: int, en: array, enabled: bytearray) -> bool:
-    """Whether a walk avoiding t's arcs from one of a few states enabling t finds a cycle through a
-    state enabling t (a witness that t is not fair)."""
+def _walked_through_enabled(off, dst, comp, labels, t: int, en: array, enabled: bytearray, budget: int) -> bool:
+    """Whether a walk avoiding t's arcs from one of some states enabling t finds a cycle through a
+    state enabling t (a witness that t is not fair). At most TARGETED_WALKS walks and `budget` steps
+    in all, so that failing costs less than the search it tries to spare."""
     step = max(1, len(en) // TARGETED_WALKS)
-    for k, v in enumerate(en[::step][:TARGETED_WALKS]):
-        cycle = walk_cycle(off, dst, comp, v, k, labels=labels, avoid=t)
+    starts = en[::step][:TARGETED_WALKS]
+    per_walk = max(16, budget // max(1, len(starts)))
+    for k, v in enumerate(starts):
+        cycle = walk_cycle(off, dst, comp, v, k, max_steps=per_walk, labels=labels, avoid=t)
         if cycle is not None and any(enabled[dst[i]] for i in cycle):
             return True
     return False
