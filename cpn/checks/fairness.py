@@ -89,7 +89,7 @@ def fairness(x: Exploration, dec: SccDecomposition, arc_transitions: array,
     undecided = [t for t in range(ntrans) if t not in result]
     enabled_at = _enabled_states(dec, cyclic_components, off, labels, undecided, ntrans)
     keep = bytearray(n)
-    walk_budget = max(4096, sum(len(dec.nodes(c)) for c in cyclic_components) // 4)
+    walk_budget = max(64, sum(len(dec.nodes(c)) for c in cyclic_components))
     for t in range(ntrans):
         if t not in result:
             en = enabled_at[t]
