@@ -75,14 +75,14 @@ def fairness(x: Exploration, dec: SccDecomposition, arc_transitions: array,
 
     search = ConfinedSearch(n, off, dst, labels, comp)
     result: dict[int, Fairness] = {}
-    cyclic_states = None
+    cyclic = None
     for t in range(ntrans):
         if not enabled_in[t]:
             result[t] = Fairness.FAIR
         elif impartial_candidate[t]:
-            if cyclic_states is None:
-                cyclic_states = [v for c in cyclic_components for v in dec.nodes(c)]
-            if not search.cycle_avoiding(t, cyclic_states):
+            if cyclic is None:
+                cyclic = bytearray(map(nontrivial.__getitem__, comp))
+            if not search.cycle_avoiding(t, compress(range(n), cyclic), cyclic):
                 result[t] = Fairness.IMPARTIAL
         elif not_just[t]:
             result[t] = Fairness.NONE
@@ -133,6 +133,12 @@ def _components_of(dec: SccDecomposition, components: list[int], off: array, dst
         c_eq = c.__eq__
         for v in nodes:
             a, b = off[v], off[v + 1]
+            if b - a == 1:
+                t = labels[a]
+                here.add(t)
+                if comp[dst[a]] == c:
+                    within.add(t)
+                continue
             ts = labels[a:b]
             here.update(ts)
             within.update(compress(ts, map(c_eq, map(comp_of, dst[a:b]))))
@@ -198,6 +204,12 @@ def _enabled_states(dec: SccDecomposition, components: list[int], off: array, la
     appenders = [a.append for a in enabled_at]
     for c in components:
         for v in dec.nodes(c):
-            for t in wanted_set.intersection(labels[off[v]:off[v + 1]]):
-                appenders[t](v)
+            a, b = off[v], off[v + 1]
+            if b - a == 1:
+                t = labels[a]
+                if t in wanted_set:
+                    appenders[t](v)
+            else:
+                for t in wanted_set.intersection(labels[a:b]):
+                    appenders[t](v)
     return enabled_at

@@ -145,8 +145,9 @@ def test_the_shortcuts_decide_without_a_search(monkeypatch):
     calls = []
     real = _cycles.ConfinedSearch.cycle_avoiding
 
-    def counting(self, avoid, roots, keep=None):
-        calls.append((avoid, len(list(roots))))
+    def counting(self, avoid, roots, keep):
+        roots = list(roots)
+        calls.append((avoid, len(roots)))
         return real(self, avoid, roots, keep)
 
     monkeypatch.setattr(_cycles.ConfinedSearch, "cycle_avoiding", counting)
