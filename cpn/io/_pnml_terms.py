@@ -271,6 +271,12 @@ class TermTranslator:
         if not self._arity(el, terms, 2, where):
             return _Term("false")
         a, b = terms
+        if not ordered and a.sort is not None and b.sort is not None and a.sort is not b.sort:
+            # a value of a partitioned sort against a partition element: whether the value lies in it
+            if b.sort.base is a.sort:
+                a = _Term(f"{b.sort.helper('of', self.names)} {a.paren()}", sort=b.sort, atomic=False)
+            elif a.sort.base is b.sort:
+                b = _Term(f"{a.sort.helper('of', self.names)} {b.paren()}", sort=a.sort, atomic=False)
         sort = a.sort or b.sort
         if ordered and sort is not None and sort.kind in ("enum", "bool"):
             return _Term(f"{sort.ord(a.paren())} {op} {sort.ord(b.paren())}", atomic=False)

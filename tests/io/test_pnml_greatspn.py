@@ -220,3 +220,17 @@ def test_partition_net_with_an_infinite_state_space_explores_under_a_limit(tmp_p
     path.write_text(_partition_net(output).replace('target="Heard"', 'target="Air"'))
     x = Explorer(cpn.load(str(path)).engine(), ExploreOptions(max_states=500)).run()
     assert x.stop_reason is StopReason.MAX_STATES and x.n_states >= 500 and x.unexpanded > 0
+
+
+def test_a_value_compared_with_a_partition_element_is_tested_for_membership():
+    cond = "<equality>" + sub(var("vb"), const("bs2")) + "</equality>"
+    body = ('<place id="P"><type><structure><usersort declaration="bs"/></structure></type></place>'
+            f'<transition id="t"><condition><structure>{cond}</structure></condition></transition>'
+            f'<arc id="a1" source="P" target="t"><hlinscription><structure>{numberof(1, var("vb"))}'
+            "</structure></hlinscription></arc>")
+    text = translate_text(sn(PARTITIONS, body))
+    assert "trans t [(of_BsP b) = bs2];" in text
+    assert "fun of_BsP c' =" in text
+    import cpn
+
+    cpn.loads(text).engine()  # the translation type-checks
