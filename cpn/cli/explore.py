@@ -51,6 +51,9 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     add_output_option(p, "--json", "the result as JSON")
     add_output_option(p, "--dot", "the state space and SCC graph as DOT (small nets)")
     add_output_option(p, "--graphml", "the state space and SCC graph as GraphML (small nets)")
+    add_output_option(p, "--html", "the report as one self-contained HTML page (the net, the state space, "
+                      "a chart of the trace to each dead marking)")
+    add_output_option(p, "--msc", "the trace to the first dead marking as a message sequence chart (SVG)")
     add_quiet_option(p)
     p.add_argument("--trace-to-dead", action="store_true",
                    help="show the marking changes of each step of the traces to the dead markings")
@@ -70,7 +73,8 @@ def load_engine(path: str, sets: dict[str, str], time_condensation: bool):
 
 
 def _outputs(args):
-    return prepare_outputs(("--json", args.json), ("--dot", args.dot), ("--graphml", args.graphml))
+    return prepare_outputs(("--json", args.json), ("--dot", args.dot), ("--graphml", args.graphml),
+                           ("--html", getattr(args, "html", None)), ("--msc", getattr(args, "msc", None)))
 
 
 def run(args) -> int:
@@ -142,6 +146,7 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
                   "for the figures or a --max-states limit for a partial drawing", file=sys.stderr)
             continue
         write_output(outputs[option], text)
+    _write_pictures(report, outputs, quiet)
     if not x.complete:
         # a warning about the result, so printed even with --quiet
         reason = x.stop_reason.describe(x.options)
@@ -153,6 +158,22 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
             print(f"note: {note}", file=sys.stderr)
         return ExitStatus.UNKNOWN
     return ExitStatus.OK
+
+
+def _write_pictures(report, outputs: dict, quiet: bool) -> None:
+    """--html (the report as a page) and --msc (the trace to the first dead marking as a chart)."""
+    if "--html" in outputs:
+        from cpn.report.html import render_html
+
+        write_output(outputs["--html"], render_html(report))
+    if "--msc" in outputs:
+        from cpn.report.html import dead_marking_traces
+
+        traces = dead_marking_traces(report, limit=1)
+        if traces:
+            write_output(outputs["--msc"], traces[0].svg(standalone=True) + "\n")
+        elif not quiet:
+            print("note: --msc: no chart written: there is no dead marking to trace", file=sys.stderr)
 
 
 # The fields of the progress line, most important first; those that do not fit the terminal are dropped.

@@ -71,6 +71,12 @@ class Report:
     def timed(self) -> bool:
         return bool(getattr(self.engine, "is_timed", False))
 
+    def _repr_html_(self) -> str:
+        """Jupyter shows the report as the content of its HTML page (cpn.report.html)."""
+        from cpn.report.html import report_fragment
+
+        return report_fragment(self)
+
 
 # the parts of the analysis, in the order build_report computes them (keys of Report.part_seconds)
 REPORT_PARTS: tuple = ("transitions", "scc", "bounds", "dead_markings", "dead_transitions", "live_transitions",

@@ -1,0 +1,235 @@
+"""A trace drawn as a message sequence chart (SVG).
+
+Imports `cpn.checks._common`, the report's `netdraw.instance_tree` and `svg` helpers. One lifeline per
+module instance that takes part (for a net with a single instance: one per transition instance); each
+step of the trace is an event on the lifeline of its transition's instance; a token produced by a step
+of one instance and consumed by a later step of another instance is an arrow between the two events.
+Tokens are followed place by place, first in first out among equal values; a token that was in the
+initial marking has no sender and draws no arrow. For timed nets the vertical axis shows model time.
+"""
+
+from __future__ import annotations
+
+from collections import defaultdict, deque
+from dataclasses import dataclass, field
+
+from cpn.checks._common import untimed_multiset
+from cpn.report import svg as S
+from cpn.report.netdraw import instance_tree
+
+ROW = 36  # px per step
+TIME_GAP = 20  # extra px when model time advances
+COLUMN = 172
+HEAD = 58
+LEFT = 86
+
+
+@dataclass
+class Event:
+    step: int  # 1-based
+    line: int  # lifeline index
+    label: str  # the transition's name
+    text: str  # the binding element
+    time: int | None
+    changes: tuple = ()
+
+
+@dataclass
+class Message:
+    src: int  # step producing the token (1-based)
+    dst: int  # step consuming it
+    src_line: int
+    dst_line: int
+    label: str  # "Place: value"
+
+
+@dataclass
+class Chart:
+    lifelines: list = field(default_factory=list)  # (label, sublabel)
+    events: list = field(default_factory=list)
+    messages: list = field(default_factory=list)
+    timed: bool = False
+    by: str = "module instance"  # or "transition instance"
+
+
+def _lifeline_keys(net) -> tuple[dict, list, str]:
+    """Transition index -> lifeline key, the keys in drawing order with labels, and what a lifeline is."""
+    units, top = instance_tree(net)
+    with_trans = [k for k, u in units.items() if u.transitions]
+    if len(with_trans) >= 2:
+        order = []
+
+        def walk(k):
+            order.append(k)
+            for c in units[k].children:
+                walk(c)
+
+        walk(top)
+        order += [k for k in units if k not in order]
+        of = {t: key for key, u in units.items() for t in u.transitions}
+        labels = [(k, units[k].label, "" if units[k].parent is None else units[k].module) for k in order]
+        return of, labels, "module instance"
+    of = {t.index: ("t", t.index) for t in net.transitions}
+    labels = [(("t", t.index), t.transition, f"instance {t.instance}" if t.instance > 1 else "")
+              for t in net.transitions]
+    return of, labels, "transition instance"
+
+
+def build_chart(trace, exploration) -> Chart:
+    """The events and messages of `trace` (a cpn.statespace.Trace of this exploration)."""
+    engine = exploration.engine
+    g = exploration.graph
+    net = engine.net
+    of, keyed, by = _lifeline_keys(net)
+    timed = bool(getattr(engine, "is_timed", False))
+    times = _step_times(trace, exploration) if timed else None
+    events = []
+    messages = []
+    producers: dict = defaultdict(deque)  # (place, value) -> deque of (step, line key)
+    used: set = set()
+    for k, step in enumerate(trace.steps, 1):
+        be = engine.binding_element(step.be)
+        t = net.transitions[be.transition]
+        key = of[be.transition]
+        used.add(key)
+        sa, sb = g.states[step.source], g.states[step.target]
+        ma, mb = engine.marking(sa), engine.marking(sb)
+        for p in range(len(net.places)):
+            if ma[p] == mb[p]:
+                continue
+            before, after = untimed_multiset(engine, p, ma[p]), untimed_multiset(engine, p, mb[p])
+            for v, n in before.items():
+                for _ in range(n - after.get(v, 0)):
+                    q = producers[(p, v)]
+                    if q:
+                        src, skey = q.popleft()
+                        if skey != key:
+                            messages.append((src, k, skey, key, f"{net.places[p].place}: {_value(net, p, v)}"))
+                            used.add(skey)
+            for v, n in after.items():
+                for _ in range(n - before.get(v, 0)):
+                    producers[(p, v)].append((k, key))
+        events.append((k, key, t.transition, step.text or engine.format_binding_element(step.be),
+                       times[k - 1] if times else None, step.changes))
+    shown = [(key, a, b) for key, a, b in keyed if key in used]
+    index = {key: i for i, (key, _a, _b) in enumerate(shown)}
+    chart = Chart([(a, b) for _k, a, b in shown], timed=bool(times), by=by)
+    chart.events = [Event(k, index[key], lab, text, time, ch) for k, key, lab, text, time, ch in events]
+    chart.messages = [Message(s, d, index[a], index[b], lab) for s, d, a, b, lab in messages]
+    return chart
+
+
+def _step_times(trace, exploration) -> list | None:
+    """The model time at which each step occurs; None when it cannot be known.
+
+    With time condensation the stored states carry shifted clocks, so the trace is fired again on an
+    engine of the same net without condensation, matching each binding element by its transition and
+    binding.
+    """
+    engine = exploration.engine
+    g = exploration.graph
+    if not getattr(engine, "time_condensation", False):
+        return [engine.clock(g.states[s.target]) for s in trace.steps]
+    try:
+        plain = type(engine)(engine.net, time_condensation=False)
+        state = plain.initial_state()
+        times = []
+        for step in trace.steps:
+            want = engine.binding_element(step.be)
+            state = next(succ for be, succ in plain.successors(state) if plain.binding_element(be) == want)
+            times.append(plain.clock(state))
+        return times
+    except Exception:  # noqa: BLE001 - no time axis rather than no chart
+        return None
+
+
+def _value(net, p: int, v) -> str:
+    try:
+        return net.places[p].colour_set.format(v)
+    except Exception:  # noqa: BLE001 - a value the colour set cannot print: its Python form
+        return repr(v)
+
+
+def draw_msc(trace, exploration, marked_step: int | None = None, caption: str = "",
+             cycle_from: int | None = None, standalone: bool = False, prefix: str = "msc") -> str:
+    """The chart of `trace` as SVG.
+
+    marked_step: the 1-based step to mark as the violating one (default: none); cycle_from: for a lasso,
+    the 1-based step where the repeated part starts; standalone: a complete SVG file (with xmlns).
+    """
+    chart = build_chart(trace, exploration)
+    return render_chart(chart, marked_step, caption, cycle_from, standalone, prefix)
+
+
+def render_chart(chart: Chart, marked_step: int | None = None, caption: str = "",
+                 cycle_from: int | None = None, standalone: bool = False, prefix: str = "msc") -> str:
+    n_lines = max(1, len(chart.lifelines))
+    col = max([COLUMN] + [S.text_width(a, 13) + 34 for a, _ in chart.lifelines])
+    width = LEFT + col * n_lines + 40
+    xs = [LEFT + col * i + col / 2 for i in range(n_lines)]
+    top = HEAD + (22 if caption else 0)
+    ys = {}
+    y = top + 30
+    last_time = None
+    time_marks = []
+    for ev in chart.events:
+        if chart.timed and last_time is not None and ev.time != last_time:
+            y += TIME_GAP
+            time_marks.append((y - TIME_GAP / 2 - 4, ev.time))
+        elif chart.timed and last_time is None:
+            time_marks.append((y - 18, ev.time))
+        ys[ev.step] = y
+        last_time = ev.time
+        y += ROW
+    height = y + 30
+    body = [S.arrow_defs(prefix, {"msg": S.ACCENT})]
+    if standalone:
+        body.append(f'<rect width="{S.fmt(width)}" height="{S.fmt(height)}" fill="#fff"/>')
+    if caption:
+        body.append(S.text(10, 20, caption, 14, "start", weight="600"))
+    body.append(S.text(12, top - 14, "time" if chart.timed else "step", 12, "start", fill=S.MUTED))
+    for i, (label, sub) in enumerate(chart.lifelines):
+        x = xs[i]
+        bw = col - 24
+        body.append(f'<g class="lifeline"><rect x="{S.fmt(x - bw / 2)}" y="{S.fmt(top - 46)}" width="{S.fmt(bw)}" '
+                    f'height="{36 if sub else 28}" rx="5" fill="{S.PLACE_FILL}" stroke="{S.ACCENT}"/>'
+                    + S.text(x, top - 28, S.clip(label, 26), 13, weight="600")
+                    + (S.text(x, top - 14, S.clip(sub, 28), 11, fill=S.MUTED) if sub else "")
+                    + f'<line x1="{S.fmt(x)}" y1="{S.fmt(top - 10)}" x2="{S.fmt(x)}" y2="{S.fmt(height - 16)}" '
+                    f'stroke="{S.BOX_STROKE}" stroke-dasharray="4 4"/></g>')
+    for ty, t in time_marks:
+        body.append(f'<line class="time" x1="{LEFT - 6}" y1="{S.fmt(ty)}" x2="{S.fmt(width - 10)}" '
+                    f'y2="{S.fmt(ty)}" stroke="#d5dbe1"/>'
+                    + S.text(12, ty + 4, f"t = {t}", 12, "start", fill=S.MUTED, weight="600"))
+    for m in chart.messages:
+        x1, y1, x2, y2 = xs[m.src_line], ys[m.src], xs[m.dst_line], ys[m.dst]
+        sgn = 1 if x2 > x1 else -1
+        x1, x2 = x1 + sgn * 8, x2 - sgn * 10
+        body.append(f'<g class="message">{S.title(m.label + f" (produced at step {m.src}, consumed at step {m.dst})")}'
+                    f'<line x1="{S.fmt(x1)}" y1="{S.fmt(y1)}" x2="{S.fmt(x2)}" y2="{S.fmt(y2)}" stroke="{S.ACCENT}" '
+                    f'stroke-width="1.6" marker-end="url(#{prefix}-msg)"/>'
+                    + S.text(x1 + (x2 - x1) * 0.5, y1 + (y2 - y1) * 0.5 - 5, S.clip(m.label, 30), 12, mono=True,
+                             halo=True, fill=S.ACCENT)
+                    + "</g>")
+    for ev in chart.events:
+        x, y = xs[ev.line], ys[ev.step]
+        bad = ev.step == marked_step
+        w = max(60, S.text_width(ev.label, 12) + 22)
+        tip = [f"step {ev.step}: {ev.text}"] + ([f"model time {ev.time}"] if ev.time is not None else [])
+        tip += [f"{p}: {a} -> {b}" for p, a, b in ev.changes[:20]]
+        body.append(f'<g class="event{" marked" if bad else ""}">{S.title(chr(10).join(tip))}'
+                    f'<rect x="{S.fmt(x - w / 2)}" y="{S.fmt(y - 12)}" width="{S.fmt(w)}" height="24" rx="4" '
+                    f'fill="{S.BAD if bad else S.TRANS_FILL}" stroke="{S.BAD if bad else S.WARN}"/>'
+                    + S.text(x, y + 4, ev.label, 12, fill="#fff" if bad else S.INK, weight="600") + "</g>")
+        body.append(S.text(LEFT - 12, y + 4, str(ev.step), 12, "end", fill=S.BAD if bad else S.MUTED))
+    if marked_step is not None and marked_step in ys:
+        y = ys[marked_step]
+        body.append(f'<rect class="marked-band" x="{LEFT - 34}" y="{S.fmt(y - 16)}" width="{S.fmt(width - LEFT + 30)}" height="32" '
+                    f'fill="none" stroke="{S.BAD}" stroke-width="1.5" stroke-dasharray="6 3" rx="6"/>')
+    if cycle_from is not None and cycle_from in ys and chart.events:
+        y1, y2 = ys[cycle_from] - 14, ys[chart.events[-1].step] + 14
+        x = width - 22
+        body.append(f'<path class="cycle" d="M{x - 8},{S.fmt(y1)} h8 V{S.fmt(y2)} h-8" fill="none" stroke="{S.WARN}" '
+                    f'stroke-width="2"/>' + S.text(x + 4, (y1 + y2) / 2, "↻", 16, "start", fill=S.WARN))
+    label = f"message sequence chart, {len(chart.events)} steps"
+    return S.document(width, height, body, label, cls="drawing msc", standalone=standalone)

@@ -1,0 +1,348 @@
+"""The net drawn as SVG: places, transitions, arcs with their inscriptions, each module instance as a
+box nested in the box of the instance that contains it, place bounds and dead transition instances
+marked.
+
+Imports `cpn.net`, `cpn.lang.pretty` and the report's `svg` and `layout` helpers. A place bound to a
+port, or fused with places of other instances, is drawn once, in the box of the instance that owns it
+(the socket's instance, the first member of the fusion set); arcs from other instances cross the boxes.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from cpn.lang import pretty
+from cpn.report import svg as S
+from cpn.report.layout import layered_layout, pack_rows
+
+PLACE_H = 40
+TRANS_H = 34
+LABEL_LINE = 16
+PAD = 18
+HEADER = 26
+MAX_ROW_WIDTH = 1240  # child boxes wrap into rows no wider than this (a laptop screen)
+INSCRIPTION_CHARS = 34
+
+
+@dataclass
+class Unit:
+    """One module (page) instance: its own place and transition instances and its child instances."""
+
+    key: tuple  # (page name, instance number)
+    label: str  # the instance's name ("Station1"), or the net's name for the top page
+    module: str
+    parent: tuple | None = None
+    children: list = field(default_factory=list)
+    places: list = field(default_factory=list)
+    transitions: list = field(default_factory=list)
+
+
+def instance_tree(net) -> tuple[dict, tuple]:
+    """The module instances of `net` as Units keyed by (page, instance number), and the top's key.
+
+    Follows the order in which the lowering numbers instances (depth first, counting per page), so the
+    keys match `PlaceInstance.page/instance` and `TransitionInstance.page/instance`.
+    """
+    units: dict = {}
+    cm = getattr(net, "checked", None)
+    top_key = None
+    if cm is not None and getattr(cm, "top", None) is not None:
+        counter: dict = {}
+
+        def walk(page, label, parent, depth):
+            counter[page.name] = counter.get(page.name, 0) + 1
+            key = (page.name, counter[page.name])
+            units[key] = Unit(key, label, page.name, parent)
+            if parent is not None:
+                units[parent].children.append(key)
+            if depth > 64:
+                return key
+            for inst in page.instances:
+                child = cm.modules.get(inst.module)
+                if child is not None:
+                    walk(child, inst.name, key, depth + 1)
+            return key
+
+        top_key = walk(cm.top, net.name, None, 0)
+    for p in net.places:
+        _unit_for(units, (p.page, p.instance), top_key, net).places.append(p.index)
+    for t in net.transitions:
+        _unit_for(units, (t.page, t.instance), top_key, net).transitions.append(t.index)
+    if top_key is None:
+        top_key = next(iter(units))
+    return units, top_key
+
+
+def _unit_for(units: dict, key: tuple, top_key, net) -> Unit:
+    u = units.get(key)
+    if u is None:  # not found by the walk (an imported net without the checked pages): a top-level box
+        u = units[key] = Unit(key, f"{key[0]} {key[1]}", key[0], top_key)
+        if top_key is not None:
+            units[top_key].children.append(key)
+    return u
+
+
+def inscription(net, expr) -> str:
+    """An arc inscription as the modeller wrote it (from the source), else in canonical form."""
+    if expr is None:
+        return ""
+    span = getattr(expr, "span", None)
+    model = getattr(getattr(net, "checked", None), "model", None)
+    if span is not None and model is not None and span.end_line and span.file == model.file:
+        lines = model.source.split("\n")
+        if 0 < span.line <= span.end_line <= len(lines):
+            if span.line == span.end_line:
+                s = lines[span.line - 1][span.col - 1: span.end_col]
+            else:
+                s = " ".join([lines[span.line - 1][span.col - 1:]] + lines[span.line: span.end_line - 1]
+                             + [lines[span.end_line - 1][: span.end_col]])
+            s = " ".join(s.split())
+            if s.startswith("arc "):  # no inscription written: the span is the arc's
+                return ""
+            if s:
+                return s
+    try:
+        return pretty.expr(expr)
+    except Exception:  # noqa: BLE001 - a construct the printer does not know: no inscription text
+        return "…"
+
+
+@dataclass
+class _Node:
+    kind: str  # 'place' | 'trans'
+    index: int
+    w: float
+    h: float
+    shape_h: float
+    lines: list  # (text, css class, mono) shown under the shape
+    shape_w: float = 0.0
+    x: float = 0.0
+    y: float = 0.0  # centre of the shape
+
+
+def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: dict | None = None,
+             max_row_width: float = MAX_ROW_WIDTH) -> str:
+    """The SVG drawing of `net`.
+
+    bounds: place instance name -> (upper, lower, upper multiset text); dead_transitions: names of
+    transition instances that never occur; occurrences: transition instance name -> number of arcs
+    of the state space it labels (shown in tooltips).
+    """
+    bounds = bounds or {}
+    dead = set(dead_transitions)
+    occurrences = occurrences or {}
+    units, top = instance_tree(net)
+    nodes: dict = {}
+    for p in net.places:
+        lines = [(p.colset_name, "cs", False)]
+        if p.initial:
+            lines.append((S.clip(_initial_text(p), INSCRIPTION_CHARS), "init", True))
+        sw = max(76, S.text_width(p.place, 13) + 30)
+        w = max([sw] + [S.text_width(t, 12, m) + 8 for t, _, m in lines])
+        nodes[("p", p.index)] = _Node("place", p.index, w, PLACE_H + LABEL_LINE * len(lines), PLACE_H, lines, sw)
+    for t in net.transitions:
+        lines = []
+        for g in t.guards or []:
+            lines.append((S.clip("[" + inscription(net, g) + "]", INSCRIPTION_CHARS), "guard", True))
+        if t.delay is not None:
+            lines.append((S.clip("@+" + inscription(net, t.delay), INSCRIPTION_CHARS), "guard", True))
+        sw = max(80, S.text_width(t.transition, 13) + 26)
+        w = max([sw] + [S.text_width(s, 12, m) + 8 for s, _, m in lines])
+        nodes[("t", t.index)] = _Node("trans", t.index, w, TRANS_H + LABEL_LINE * len(lines), TRANS_H, lines, sw)
+
+    body: list[str] = []
+    boxes: list[str] = []
+    offset: dict = {}
+
+    def measure(key, depth) -> tuple[float, float, list]:
+        """Lay out unit `key`; returns its size and the (kind, key, x, y) items relative to its corner."""
+        u = units[key]
+        own = [("p", i) for i in u.places] + [("t", i) for i in u.transitions]
+        edges = []
+        own_set = set(own)
+        for i in u.transitions:
+            for a in net.transitions[i].arcs:
+                pk = ("p", a.place)
+                if pk not in own_set:
+                    continue
+                edges.append((("t", i), pk) if a.kind == "out" else (pk, ("t", i)))
+        roots = [("p", i) for i in u.places if net.places[i].initial]
+        lay = layered_layout(own, edges, {n: (nodes[n].w, nodes[n].h) for n in own}, roots=roots,
+                             gap_x=96, gap_y=30, margin=0, direction="LR") if own else None
+        lw, lh = (lay.width, lay.height) if lay else (0.0, 0.0)
+        kids = [measure(c, depth + 1) for c in u.children]
+        corners, kw, kh = pack_rows([(w, h) for w, h, _ in kids], max(lw, max_row_width - 2 * PAD * depth))
+        header = HEADER if key != top or u.children else 0
+        inner_w = max(lw, kw, S.text_width(_box_title(u), 13) + 10)
+        w = inner_w + 2 * PAD
+        h = header + lh + (PAD if lh and kids else 0) + kh + PAD + (0 if header else PAD)
+        items = [("box", key, 0.0, 0.0, (w, h, depth))]
+        if lay:
+            dx = PAD + (inner_w - lw) / 2
+            for n, (x, y) in lay.pos.items():
+                items.append(("node", n, dx + x, header + (PAD if not header else 0) + y, None))
+        ky = header + (PAD if not header else 0) + lh + (PAD if lh and kids else 0)
+        for (cx, cy), (_cw, _ch, citems) in zip(corners, kids):
+            for kind, k, x, y, extra in citems:
+                items.append((kind, k, PAD + cx + x, ky + cy + y, extra))
+        return w, h, items
+
+    width, height, items = measure(top, 0)
+    for kind, k, x, y, extra in items:
+        if kind == "node":
+            node = nodes[k]
+            node.x, node.y = x, y - node.h / 2 + node.shape_h / 2
+        else:
+            offset[k] = (x, y) + extra
+    for key, (x, y, w, h, depth) in sorted(offset.items(), key=lambda kv: kv[1][4]):
+        u = units[key]
+        if key == top and not u.children:
+            continue
+        fill = "#fbfcfd" if depth % 2 == 0 else "#f3f5f7"
+        boxes.append(f'<g class="module"><rect x="{S.fmt(x)}" y="{S.fmt(y)}" width="{S.fmt(w)}" '
+                     f'height="{S.fmt(h)}" rx="8" fill="{fill}" stroke="{S.BOX_STROKE}"/>'
+                     + S.text(x + 10, y + 18, _box_title(u), 13, "start", weight="600", fill=S.MUTED)
+                     + S.title(f"module instance {u.label} (module {u.module}, instance {key[1]})") + "</g>")
+
+    body.append(S.arrow_defs("na", {"line": S.LINE, "bad": S.BAD}))
+    body += boxes
+    body += _arcs(net, nodes)
+    for node in nodes.values():
+        if node.kind == "place":
+            body.append(_place(net.places[node.index], node, bounds))
+        else:
+            t = net.transitions[node.index]
+            body.append(_transition(t, node, t.name in dead, occurrences.get(t.name)))
+    return S.document(width + 2, height + 2, body, f"the net {net.name}", cls="drawing net")
+
+
+def _box_title(u: Unit) -> str:
+    return u.label if u.parent is None or u.label == u.module else f"{u.label} : {u.module}"
+
+
+def _initial_text(p) -> str:
+    parts = []
+    for key, n in p.initial.items():
+        v, delay = (key if p.timed else (key, 0))
+        try:
+            s = p.colour_set.format(v)
+        except Exception:  # noqa: BLE001
+            s = repr(v)
+        parts.append(f"{n}`{s}" + (f"@{delay}" if delay else ""))
+    return "++".join(parts)
+
+
+def _place(p, node: _Node, bounds: dict) -> str:
+    x, y, rx, ry = node.x, node.y, node.shape_w / 2, node.shape_h / 2
+    b = bounds.get(p.name)
+    tip = [f"place {p.name} : {p.colset_name}"]
+    if p.aliases:
+        tip.append("also: " + ", ".join(p.aliases))
+    if p.initial:
+        tip.append("initial marking: " + _initial_text(p))
+    if b is not None:
+        tip.append(f"integer bounds: upper {b[0]}, lower {b[1]}")
+        tip.append(f"upper multi-set bound: {b[2]}")
+    out = [f'<g class="place" data-name="{S.esc(p.name)}">', S.title("\n".join(tip)),
+           f'<ellipse cx="{S.fmt(x)}" cy="{S.fmt(y)}" rx="{S.fmt(rx)}" ry="{S.fmt(ry)}" '
+           f'fill="{S.PLACE_FILL}" stroke="{S.ACCENT}" stroke-width="1.6"/>',
+           S.text(x, y + 4.5, p.place, 13, weight="600")]
+    ly = y + ry + 13
+    for s, cls, mono in node.lines:
+        out.append(S.text(x, ly, s, 12, cls=cls, mono=mono, fill=S.INITIAL if cls == "init" else S.MUTED))
+        ly += LABEL_LINE
+    if b is not None:
+        label = str(b[0]) if b[0] == b[1] else f"{b[1]}..{b[0]}"
+        bw = S.text_width(label, 11) + 10
+        bx, by = x + rx - bw + 6, y - ry - 8
+        out.append(f'<g class="bound"><rect x="{S.fmt(bx)}" y="{S.fmt(by)}" width="{S.fmt(bw)}" height="16" '
+                   f'rx="8" fill="{S.ACCENT}"/>' + S.text(bx + bw / 2, by + 12, label, 11, fill="#fff")
+                   + "</g>")
+    out.append("</g>")
+    return "".join(out)
+
+
+def _transition(t, node: _Node, is_dead: bool, occ) -> str:
+    x, y, w, h = node.x, node.y, node.shape_w, node.shape_h
+    tip = [f"transition {t.name}"]
+    if t.guards:
+        tip.append("guard: " + " andalso ".join(f"[{pretty.expr(g)}]" for g in t.guards))
+    if is_dead:
+        tip.append("dead: it never occurs in the state space")
+    elif occ is not None:
+        tip.append(f"labels {occ:,} arcs of the state space")
+    fill, stroke, dash = (S.BAD_FILL, S.BAD, ' stroke-dasharray="5 3"') if is_dead else (S.TRANS_FILL, S.WARN, "")
+    out = [f'<g class="transition{" dead" if is_dead else ""}" data-name="{S.esc(t.name)}">',
+           S.title("\n".join(tip)),
+           f'<rect x="{S.fmt(x - w / 2)}" y="{S.fmt(y - h / 2)}" width="{S.fmt(w)}" height="{S.fmt(h)}" '
+           f'rx="3" fill="{fill}" stroke="{stroke}" stroke-width="1.6"{dash}/>',
+           S.text(x, y + 4.5, t.transition, 13, weight="600")]
+    ly = y + h / 2 + 13
+    for s, cls, mono in node.lines:
+        out.append(S.text(x, ly, s, 12, cls=cls, mono=mono, fill=S.MUTED))
+        ly += LABEL_LINE
+    if is_dead:
+        out.append(f'<g class="dead-tag"><rect x="{S.fmt(x + w / 2 - 30)}" y="{S.fmt(y - h / 2 - 9)}" '
+                   f'width="36" height="16" rx="8" fill="{S.BAD}"/>'
+                   + S.text(x + w / 2 - 12, y - h / 2 + 3, "dead", 11, fill="#fff") + "</g>")
+    out.append("</g>")
+    return "".join(out)
+
+
+def _arcs(net, nodes: dict) -> list[str]:
+    pairs: dict = {}
+    for t in net.transitions:
+        for a in t.arcs:
+            pairs.setdefault((a.place, t.index), []).append(a)
+    out = []
+    for (p, ti), arcs in pairs.items():
+        pn, tn = nodes[("p", p)], nodes[("t", ti)]
+        place, trans = net.places[p], net.transitions[ti]
+        # An arc between module instances is bent so that it does not run through the nodes lined up
+        # between them (the same transition of the next instance, typically).
+        cross = (place.page, place.instance) != (trans.page, trans.instance)
+        dist = ((pn.x - tn.x) ** 2 + (pn.y - tn.y) ** 2) ** 0.5
+        base = min(120.0, 0.12 * dist + 16) if cross else 0.0
+        for k, a in enumerate(arcs):
+            bend = base + (k - (len(arcs) - 1) / 2) * 34
+            out.append(_arc(net, a, pn, tn, bend, trans.name))
+    return out
+
+
+def _arc(net, a, pn: _Node, tn: _Node, bend: float, tname: str) -> str:
+    (px, py), (tx, ty) = (pn.x, pn.y), (tn.x, tn.y)
+    dx, dy = tx - px, ty - py
+    dist = max(1.0, (dx * dx + dy * dy) ** 0.5)
+    nx, ny = -dy / dist, dx / dist  # unit normal
+    mx, my = (px + tx) / 2 + nx * bend, (py + ty) / 2 + ny * bend  # control point
+    ax, ay = S.boundary_point(px, py, pn.shape_w / 2, pn.shape_h / 2, mx, my, "ellipse")
+    bx, by = S.boundary_point(tx, ty, tn.shape_w / 2, tn.shape_h / 2, mx, my, "rect")
+    if a.kind == "out":
+        (ax, ay), (bx, by) = (bx, by), (ax, ay)
+    label = inscription(net, a.expr)
+    dash = ""
+    m_end = 'marker-end="url(#na-line)"'
+    m_start = ""
+    if a.kind == "both":
+        m_start = 'marker-start="url(#na-line)"'
+    elif a.kind == "inhibitor":
+        m_end = ""
+        dash = ' stroke-dasharray="2 3"'
+        label = ("inhibitor " + label).strip()
+    elif a.kind == "reset":
+        dash = ' stroke-dasharray="7 3"'
+        label = ("reset " + label).strip()
+    d = (f"M{S.fmt(ax)},{S.fmt(ay)} L{S.fmt(bx)},{S.fmt(by)}" if bend == 0 else
+         f"M{S.fmt(ax)},{S.fmt(ay)} Q{S.fmt(mx)},{S.fmt(my)} {S.fmt(bx)},{S.fmt(by)}")
+    tip = f"{a.kind} arc {net.places[a.place].name} – {tname}" + (f": {label}" if label else "")
+    out = [f'<g class="arc">{S.title(tip)}<path d="{d}" fill="none" stroke="{S.LINE}" stroke-width="1.4"'
+           f'{dash} {m_start} {m_end}/>']
+    if a.kind == "inhibitor":
+        out.append(f'<circle cx="{S.fmt(bx)}" cy="{S.fmt(by)}" r="4" fill="#fff" stroke="{S.LINE}"/>')
+    if label:
+        lx = (ax + bx) / 2 + (nx * bend / 2 if bend else 0)
+        ly = (ay + by) / 2 + (ny * bend / 2 if bend else 0)
+        out.append(S.text(lx, ly - 3, S.clip(label, INSCRIPTION_CHARS), 12, mono=True, halo=True,
+                          cls="inscription"))
+    out.append("</g>")
+    return "".join(out)

@@ -1,0 +1,113 @@
+"""Small helpers to write SVG as text: escaping, text width estimates, arrowheads and a shared style.
+
+Imports the standard library only. The drawings (`netdraw`, `graphdraw`, `msc`, `plot`) write their
+elements with these helpers; nothing here knows about nets or state spaces.
+"""
+
+from __future__ import annotations
+
+import html
+import math
+
+FONT = "system-ui, -apple-system, 'Segoe UI', Roboto, 'DejaVu Sans', Arial, sans-serif"
+MONO = "ui-monospace, 'DejaVu Sans Mono', Menlo, Consolas, monospace"
+
+# Colours (also used by the page's CSS): readable on white, distinguishable for the common colour
+# vision deficiencies (blue/orange/red with different lightness).
+INK = "#1f2933"
+MUTED = "#616e7c"
+LINE = "#52606d"
+PLACE_FILL = "#e8f1fb"
+TRANS_FILL = "#fdf3e1"
+BOX_STROKE = "#9aa5b1"
+ACCENT = "#1d5fa8"
+INITIAL = "#1d7a3c"
+BAD = "#c0262d"
+BAD_FILL = "#fde8e8"
+WARN = "#b45309"
+
+
+def esc(s) -> str:
+    """Text escaped for SVG/HTML content and attribute values."""
+    return html.escape(str(s), quote=True)
+
+
+def text_width(s: str, size: float, mono: bool = False) -> float:
+    """An estimate of the rendered width of `s` in px (monospace: exact for most fonts)."""
+    if mono:
+        return 0.61 * size * len(s)
+    wide = sum(1 for c in s if c in "MWmw@%")
+    narrow = sum(1 for c in s if c in "il.,:;'|!()[]{} ")
+    return size * (0.56 * len(s) + 0.3 * wide - 0.27 * narrow)
+
+
+def clip(s: str, n: int) -> str:
+    """`s` cut to at most n characters, with an ellipsis when cut."""
+    return s if len(s) <= n else s[: max(1, n - 1)] + "…"
+
+
+def fmt(x: float) -> str:
+    """A coordinate with at most one decimal."""
+    r = round(x, 1)
+    return str(int(r)) if r == int(r) else str(r)
+
+
+def text(x: float, y: float, s: str, size: float = 12, anchor: str = "middle", cls: str = "",
+         mono: bool = False, fill: str | None = None, weight: str | None = None, halo: bool = False) -> str:
+    attrs = [f'x="{fmt(x)}"', f'y="{fmt(y)}"', f'font-size="{fmt(size)}"', f'text-anchor="{anchor}"']
+    if mono:
+        attrs.append(f'font-family="{esc(MONO)}"')
+    if cls:
+        attrs.append(f'class="{cls}"')
+    if fill:
+        attrs.append(f'fill="{fill}"')
+    if weight:
+        attrs.append(f'font-weight="{weight}"')
+    if halo:
+        attrs.append('stroke="#fff" stroke-width="3" stroke-linejoin="round" paint-order="stroke"')
+    return f"<text {' '.join(attrs)}>{esc(s)}</text>"
+
+
+def title(s: str) -> str:
+    """A native tooltip (shown on hover without any script)."""
+    return f"<title>{esc(s)}</title>"
+
+
+def arrow_defs(prefix: str, colours: dict[str, str]) -> str:
+    """<defs> with one arrowhead marker per colour, ids `{prefix}-{name}`."""
+    out = ["<defs>"]
+    for name, colour in colours.items():
+        out.append(f'<marker id="{prefix}-{name}" viewBox="0 0 10 10" refX="9" refY="5" markerWidth="7" '
+                   f'markerHeight="7" orient="auto-start-reverse"><path d="M0,0 L10,5 L0,10 z" '
+                   f'fill="{colour}"/></marker>')
+    out.append("</defs>")
+    return "".join(out)
+
+
+def document(width: float, height: float, body: list[str], label: str, cls: str = "drawing",
+             standalone: bool = False) -> str:
+    """An <svg> element of the given natural size, scalable through its viewBox."""
+    w, h = max(1, math.ceil(width)), max(1, math.ceil(height))
+    ns = ' xmlns="http://www.w3.org/2000/svg"' if standalone else ""
+    head = (f'<svg{ns} class="{cls}" viewBox="0 0 {w} {h}" width="{w}" height="{h}" role="img" '
+            f'aria-label="{esc(label)}" font-family="{esc(FONT)}" fill="{INK}">')
+    return head + "".join(body) + "</svg>"
+
+
+def boundary_point(cx: float, cy: float, hw: float, hh: float, tx: float, ty: float, shape: str) -> tuple:
+    """Where the segment from the centre (cx, cy) toward (tx, ty) leaves a node's outline.
+
+    `shape` is 'ellipse' (half axes hw, hh), 'circle' (radius hw) or 'rect' (half sizes hw, hh).
+    """
+    dx, dy = tx - cx, ty - cy
+    if dx == 0 and dy == 0:
+        return cx, cy
+    if shape == "rect":
+        sx = hw / abs(dx) if dx else math.inf
+        sy = hh / abs(dy) if dy else math.inf
+        s = min(sx, sy)
+    elif shape == "circle":
+        s = hw / math.hypot(dx, dy)
+    else:
+        s = 1.0 / math.sqrt((dx / hw) ** 2 + (dy / hh) ** 2)
+    return cx + dx * s, cy + dy * s
