@@ -70,11 +70,11 @@ class ReportTrace:
     def svg(self, standalone: bool = False) -> str:
         """The message sequence chart alone (standalone: a complete .svg file)."""
         return draw_msc(self.trace, self.report.exploration, self.marked_step, self.caption, self.cycle_from,
-                        standalone=standalone)
+                        standalone=standalone, prefix="msc-t")
 
     def _repr_html_(self) -> str:
         return _scoped(_trace_block(self.trace, self.report, self.caption, self.marked_step, self.cycle_from,
-                                    "t"))
+                                    "t", with_caption=True))
 
 
 def dead_marking_traces(report: Report, limit: int = MAX_TRACE_CHARTS) -> list[ReportTrace]:
@@ -277,11 +277,13 @@ def _dead_markings(r: Report, traces: list[ReportTrace]) -> str:
     return _section("dead", "Dead markings", inner, note)
 
 
-def _trace_block(trace, r: Report, caption: str, marked: int | None, cycle_from: int | None, ident: str) -> str:
+def _trace_block(trace, r: Report, caption: str, marked: int | None, cycle_from: int | None, ident: str,
+                 with_caption: bool = False) -> str:
     if not len(trace):
         return (f'<div class="trace" id="trace-{ident}"><h3>{S.esc(caption)}</h3>'
                 "<p>The initial marking itself: no step is needed.</p></div>")
-    svg = draw_msc(trace, r.exploration, marked, "", cycle_from, prefix=f"msc-{ident}")
+    svg = draw_msc(trace, r.exploration, marked, caption if with_caption else "", cycle_from,
+                   prefix=f"msc-{ident}")
     steps = "".join(f"<li><span class=mono>{S.esc(s.text)}</span></li>" for s in trace.steps)
     return (f'<div class="trace" id="trace-{ident}"><h3>{S.esc(caption)}</h3>{_figure(svg)}'
             f'<details><summary>Steps as binding elements</summary><ol>{steps}</ol></details></div>')

@@ -1,0 +1,343 @@
+"""Issue 12: the HTML report, its drawings (net, state space, message sequence charts) and charts."""
+
+import os
+import pathlib
+import re
+import xml.etree.ElementTree as ET
+
+import networkx as nx
+import pytest
+
+import cpn
+from cpn.cli.main import main
+from cpn.report import build_report
+from cpn.report.graphdraw import bfs_levels, draw_state_space, level_sizes
+from cpn.report.html import (
+    IndexEntry,
+    ReportTrace,
+    Verdict,
+    dead_marking_traces,
+    render_html,
+    render_index,
+    report_fragment,
+)
+from cpn.report.layout import back_edges, layered_layout, longest_path_layers
+from cpn.report.msc import build_chart, draw_msc
+from cpn.report.netdraw import draw_net, instance_tree
+from cpn.report.plot import growth_chart, nice_ticks, scaling_chart
+from cpn.statespace import ExploreOptions, Explorer, shortest_trace
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+SVG = "{http://www.w3.org/2000/svg}"
+
+
+def _explore(path, time_condensation=False, sets=None, **opts):
+    model = cpn.load(str(ROOT / path), set=sets or {})
+    x = Explorer(model.engine(time_condensation=time_condensation), ExploreOptions(**opts)).run()
+    return build_report(x, model=str(path), options={"time_condensation": time_condensation})
+
+
+@pytest.fixture(scope="module")
+def stations():
+    return _explore("models/examples/stations.cpnet")
+
+
+@pytest.fixture(scope="module")
+def stop_and_wait():
+    return _explore("models/examples/stop_and_wait.cpnet", time_condensation=True)
+
+
+def _xml(svg: str):
+    """Parse an inline SVG (no xmlns in an HTML page) as XML: it must be well formed."""
+    if "xmlns=" not in svg[:200]:
+        svg = svg.replace("<svg ", '<svg xmlns="http://www.w3.org/2000/svg" ', 1)
+    return ET.fromstring(svg)
+
+
+# ------------------------------------------------------------------------------------------ layout
+
+def test_back_edges_leave_an_acyclic_graph():
+    edges = [(0, 1), (1, 2), (2, 0), (2, 3), (3, 1)]
+    back = back_edges([0, 1, 2, 3], edges, roots=[0])
+    G = nx.DiGraph([e for e in edges if e not in back])
+    assert nx.is_directed_acyclic_graph(G) and len(back) == 2
+
+
+def test_layers_follow_the_edges_and_nodes_do_not_overlap():
+    G = nx.gnp_random_graph(60, 0.06, seed=3, directed=True)
+    nodes, edges = list(G.nodes), list(G.edges)
+    layer = longest_path_layers(nodes, edges)
+    back = back_edges(nodes, edges)
+    assert all(layer[v] > layer[u] for u, v in edges if (u, v) not in back and u != v)
+    size = {n: (30 + n % 4 * 10, 20) for n in nodes}
+    lay = layered_layout(nodes, edges, size)
+    for a in nodes:
+        for b in nodes:
+            if a < b and lay.layer[a] == lay.layer[b]:
+                assert abs(lay.pos[a][0] - lay.pos[b][0]) >= (size[a][0] + size[b][0]) / 2
+    assert all(0 <= x - size[n][0] / 2 and x + size[n][0] / 2 <= lay.width for n, (x, _) in lay.pos.items())
+
+
+# ----------------------------------------------------------------------------------------- the net
+
+def test_module_instances_nest_as_in_the_model(stations):
+    net = stations.engine.net
+    units, top = instance_tree(net)
+    assert units[top].label == "Office"
+    assert [units[k].label for k in units[top].children] == ["Station1", "Station2", "Station3"]
+    # every place and transition instance belongs to exactly one box
+    assert sorted(p for u in units.values() for p in u.places) == list(range(len(net.places)))
+    assert sorted(t for u in units.values() for t in u.transitions) == list(range(len(net.transitions)))
+    for k in units[top].children:
+        assert [net.transitions[t].transition for t in units[k].transitions] == ["Take", "Done"]
+
+
+def test_net_drawing_shows_every_node_arc_inscription_and_bound(stations):
+    net = stations.engine.net
+    bounds = {b.place: (b.upper, b.lower, b.upper_text) for b in stations.bounds.places}
+    svg = draw_net(net, bounds, ["Station'Take 2"])
+    root = _xml(svg)
+    groups = [g.get("class") for g in root.iter(f"{SVG}g")]
+    assert groups.count("place") == len(net.places)
+    assert groups.count("transition") + groups.count("transition dead") == len(net.transitions)
+    assert groups.count("transition dead") == 1 and groups.count("module") == 4
+    assert groups.count("arc") == sum(len(t.arcs) for t in net.transitions)
+    assert groups.count("bound") == len(net.places)
+    assert "1`1 ++ 1`2 ++ 1`3" in svg  # the inscription as written in the model
+    assert "[i = me]" in svg  # the guard
+    assert "Station2 : Station" in svg
+
+
+def test_a_dead_transition_instance_is_marked_in_the_page(tmp_path):
+    src = tmp_path / "dead.cpnet"
+    src.write_text("net D;\ncolset U = unit;\nplace P : U = 1`();\nplace Q : U;\n"
+                   "trans Go;\narc P -> Go;\narc Go -> Q;\ntrans Never;\narc Q -> Never : ();\narc P -> Never;\n")
+    r = _explore(src)
+    assert r.dead_transitions == ["D'Never 1"]
+    page = render_html(r)
+    assert page.count('class="transition dead"') == 1
+    assert 'data-name="D&#x27;Never 1"' in page.split('class="transition dead"')[1][:80]
+
+
+# ----------------------------------------------------------------------------------- state space
+
+def test_bfs_levels_are_shortest_distances(stop_and_wait):
+    g = stop_and_wait.exploration.graph
+    G = nx.DiGraph()
+    G.add_nodes_from(range(g.n_states))
+    for i in range(g.expanded):
+        G.add_edges_from((i, j) for _be, j in g.out_arcs(i))
+    dist = nx.single_source_shortest_path_length(G, 0)
+    assert bfs_levels(g) == [dist[i] for i in range(g.n_states)]
+    sizes = level_sizes(g)
+    assert sum(sizes) == g.n_states and sizes[0] == 1
+
+
+def test_small_state_space_drawn_whole_with_dead_and_initial_highlighted(stations):
+    kind, svg = draw_state_space(stations)
+    assert kind == "full"
+    root = _xml(svg)
+    nodes = [g for g in root.iter(f"{SVG}g") if (g.get("class") or "").startswith("node")]
+    assert len(nodes) == stations.exploration.n_states
+    dead = [g.get("id") for g in nodes if g.get("class") == "node dead"]
+    assert dead == [f"ss-s{d + 1}" for d in stations.dead.states]
+    assert nodes[0].get("class") == "node initial"
+    tip = nodes[0].find(f"{SVG}title").text
+    assert "Office'Requests 1: 1`1++1`2++1`3" in tip
+
+
+def test_large_state_space_drawn_as_scc_graph():
+    r = _explore("bench/nets/ms.cpnet", sets={"N": "3"})
+    assert r.exploration.n_states > 300
+    kind, svg = draw_state_space(r)
+    assert kind == "scc"
+    assert svg.count('class="node') == r.scc.nodes
+
+
+def test_too_large_scc_graph_is_not_drawn(monkeypatch, stations):
+    import cpn.report.graphdraw as gd
+
+    monkeypatch.setattr(gd, "MAX_FULL_NODES", 5)
+    monkeypatch.setattr(gd, "MAX_SCC_NODES", 5)
+    kind, text = gd.draw_state_space(stations)
+    assert kind == "none" and "28 states" in text
+    assert "too many" in render_html(stations)
+
+
+def test_partial_state_space_marks_unexpanded_states():
+    r = _explore("models/examples/stations.cpnet", max_states=10)
+    assert not r.exploration.complete
+    kind, svg = draw_state_space(r)
+    assert kind == "full" and 'class="node unexpanded"' in svg
+    assert "partial" in render_html(r)
+
+
+# -------------------------------------------------------------------------------------- charts
+
+def test_msc_one_lifeline_per_module_instance_and_a_message_per_token_between_them(stations):
+    x = stations.exploration
+    trace = shortest_trace(x.graph, stations.dead.states[0], x.engine)
+    chart = build_chart(trace, x)
+    assert [a for a, _ in chart.lifelines] == ["Office", "Station1", "Station2", "Station3"]
+    assert chart.by == "module instance" and len(chart.events) == len(trace) == 7
+    # each station's Done puts its reply on Replies; Archive (on the top page) takes all three
+    archive = next(e.step for e in chart.events if e.label == "Archive")
+    assert sorted(m.label for m in chart.messages) == ["Replies: 1", "Replies: 2", "Replies: 3"]
+    assert all(m.dst == archive and m.dst_line == 0 and m.src_line > 0 for m in chart.messages)
+    for m in chart.messages:  # the sender is the Done of the station the value names
+        ev = chart.events[m.src - 1]
+        assert ev.label == "Done" and chart.lifelines[ev.line][0] == f"Station{m.label[-1]}"
+
+
+def test_msc_of_a_flat_net_has_a_lifeline_per_transition():
+    r = _explore("bench/nets/ms.cpnet", sets={"N": "2"})
+    x = r.exploration
+    trace = shortest_trace(x.graph, x.n_states - 1, x.engine)
+    chart = build_chart(trace, x)
+    assert chart.by == "transition instance"
+    names = [a for a, _ in chart.lifelines]
+    assert set(names) == {e.label for e in chart.events}
+    assert any(m.label.startswith("Bus: ") for m in chart.messages) or len(trace) < 2
+
+
+def test_msc_timed_axis_is_model_time_even_with_time_condensation(stop_and_wait):
+    x = stop_and_wait.exploration
+    trace = shortest_trace(x.graph, stop_and_wait.dead.states[0], x.engine)
+    chart = build_chart(trace, x)
+    assert chart.timed
+    times = [e.time for e in chart.events]
+    assert times == sorted(times)
+    # Send at 0 puts packet 1 on A with delay 2; the channel passes it on at 2, with delay 2 again
+    assert [(e.label, e.time) for e in chart.events[:3]] == [("Send", 0), ("TransmitPacket", 2), ("Receive", 4)]
+    # the same times as the uncondensed state space's clocks along the same binding elements
+    plain = _explore("models/examples/stop_and_wait.cpnet", time_condensation=False, max_states=3000)
+    pe, pg = plain.exploration.engine, plain.exploration.graph
+    s = pe.initial_state()
+    for e, step in zip(chart.events, trace.steps):
+        want = x.engine.binding_element(step.be)
+        s = next(t for be, t in pe.successors(s) if pe.binding_element(be) == want)
+        assert pe.clock(s) == e.time
+    assert pg.n_states > 0
+
+
+def test_msc_marks_the_violating_step_and_a_cycle(stations):
+    x = stations.exploration
+    trace = shortest_trace(x.graph, stations.dead.states[0], x.engine)
+    svg = draw_msc(trace, x, marked_step=7, cycle_from=5, standalone=True)
+    root = ET.fromstring(svg)
+    events = [g for g in root.iter(f"{SVG}g") if (g.get("class") or "").startswith("event")]
+    assert [g.get("class") for g in events].count("event marked") == 1
+    assert events[6].get("class") == "event marked"
+    assert 'class="cycle"' in svg and 'class="marked-band"' in svg
+
+
+def test_growth_and_scaling_charts():
+    svg = growth_chart([1, 3, 6, 7, 6, 3, 1, 1])
+    root = _xml(svg)
+    assert len([r for r in root.iter(f"{SVG}rect") if r.get("class") == "bar"]) == 8
+    assert "28 states over 8 BFS levels" in svg
+    rows = [{"N": n, "states": s, "seconds": t} for n, s, t in ((2, 189, 0.01), (3, 837, 0.05), (4, 3700, 0.3))]
+    svg = scaling_chart(rows, standalone=True)
+    root = ET.fromstring(svg)
+    assert len(list(root.iter(f"{SVG}circle"))) == 6
+    assert "states at N = 3" not in svg and "states: 837 at N = 3" in svg
+
+
+@pytest.mark.parametrize("lo,hi", [(0, 1), (0, 837), (3, 7), (0.001, 0.02), (0, 1e6)])
+def test_nice_ticks_cover_the_range(lo, hi):
+    t = nice_ticks(lo, hi)
+    assert t[0] <= lo and t[-1] >= hi and 3 <= len(t) <= 12
+    assert t == sorted(t)
+
+
+# ---------------------------------------------------------------------------------------- pages
+
+def test_page_is_self_contained(stations):
+    page = render_html(stations)
+    assert page.startswith("<!DOCTYPE html>")
+    refs = re.findall(r'(?:src|href)="([^"]*)"', page)
+    assert refs and all(r.startswith("#") for r in refs)
+    assert "@import" not in page and "url(http" not in page
+    assert "<script src" not in page
+    for section in ("statistics", "dead", "net", "statespace", "bounds", "transitions"):
+        assert f'<section id="{section}">' in page
+
+
+def test_jupyter_shows_the_page_content(stations):
+    frag = stations._repr_html_()
+    assert frag == report_fragment(stations)
+    assert frag in render_html(stations)
+    t = dead_marking_traces(stations)[0]
+    assert isinstance(t, ReportTrace) and len(t) == 7
+    html = t._repr_html_()
+    assert html.startswith('<div class="cpnv">') and "<svg" in html and "Archive" in html
+    assert t.svg() in html  # the chart Jupyter shows is the one `--msc` writes
+
+
+def test_first_violated_property_and_its_trace_come_first(stations):
+    x = stations.exploration
+    trace = shortest_trace(x.graph, stations.dead.states[0], x.engine)
+    page = render_html(stations, [Verdict("bounded", "holds"),
+                                  Verdict("no deadlock", "violated", "a dead marking", trace),
+                                  Verdict("liveness", "unknown", "a limit stopped the search")])
+    v = page.index('<section id="verdicts">')
+    assert v < page.index('<section id="statistics">')
+    first = page.index("First violated property: no deadlock")
+    assert v < first < page.index('<table', v)
+    assert page.count('class="pill bad">violated') == 1
+
+
+def test_index_lists_worst_runs_first():
+    page = render_index([IndexEntry("a", "a.html", "holds", 10, 0.1), IndexEntry("b", "b.html", "violated"),
+                         IndexEntry("c", "c.html", "unknown", 5)])
+    assert page.index("b.html") < page.index("c.html") < page.index("a.html")
+    assert "1 violated, 1 unknown, 1 holds" in page
+
+
+# ------------------------------------------------------------------------------------------ CLI
+
+def test_explore_html_and_msc_options(tmp_path, capsys):
+    html, svg = tmp_path / "r.html", tmp_path / "t.svg"
+    cwd = os.getcwd()
+    os.chdir(ROOT)
+    try:
+        code = main(["explore", "models/examples/stations.cpnet", "--quiet", "--html", str(html),
+                     "--msc", str(svg)])
+    finally:
+        os.chdir(cwd)
+    assert code == 0
+    assert "class=\"drawing net\"" in html.read_text(encoding="utf-8")
+    root = ET.fromstring(svg.read_text(encoding="utf-8"))
+    assert root.tag == f"{SVG}svg" and "Archive" in svg.read_text(encoding="utf-8")
+    assert "Dead Markings" in capsys.readouterr().out  # the text report is unchanged on stdout
+
+
+def test_msc_without_dead_marking_is_a_note_not_a_failure(tmp_path, capsys):
+    svg = tmp_path / "t.svg"
+    code = main(["explore", str(ROOT / "bench/nets/ms.cpnet"), "--set", "N=2", "--msc", str(svg)])
+    assert code == 0 and not svg.exists()
+    assert "no dead marking" in capsys.readouterr().err
+    code = main(["explore", str(ROOT / "bench/nets/ms.cpnet"), "--set", "N=2", "--quiet", "--msc", str(svg)])
+    assert code == 0 and "no dead marking" not in capsys.readouterr().err  # a note: not with --quiet
+
+
+def test_html_of_a_partial_search_keeps_the_partial_exit_status(tmp_path):
+    html = tmp_path / "r.html"
+    code = main(["explore", str(ROOT / "models/examples/stations.cpnet"), "--quiet", "--max-states", "5",
+                 "--html", str(html)])
+    assert code == 2 and "partial" in html.read_text(encoding="utf-8")
+
+
+def test_unwritable_html_or_msc_path_stops_before_the_search(tmp_path, capsys):
+    for option in ("--html", "--msc"):
+        code = main(["explore", str(ROOT / "models/examples/stations.cpnet"), "--quiet", option,
+                     str(tmp_path / "no" / "such" / "dir" / "r.out")])
+        err = capsys.readouterr()
+        assert code == 73 and f"cannot write {option}" in err.err
+        assert err.out == ""  # checked before the search: no report
+
+
+def test_html_to_standard_output_replaces_the_text_report(capsys):
+    code = main(["explore", str(ROOT / "models/examples/stations.cpnet"), "--quiet", "--html", "-"])
+    out = capsys.readouterr().out
+    assert code == 0 and out.startswith("<!DOCTYPE html>") and "Dead Markings" not in out
