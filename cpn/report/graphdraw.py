@@ -48,8 +48,8 @@ def marking_text(engine, state, limit: int = TOOLTIP_PLACES) -> str:
             lines.append(f"{place.name}: {S.clip(m, 120)}")
     if len(lines) > limit:
         lines = lines[:limit] + [f"… {len(lines) - limit} more places"]
-    if getattr(engine, "is_timed", False):
-        lines.insert(0, f"model time {engine.clock(state)}")
+    if getattr(engine, "is_timed", False) and not getattr(engine, "time_condensation", False):
+        lines.insert(0, f"model time {engine.clock(state)}")  # a condensed state's clock is shifted
     return "\n".join(lines) if lines else "(every place is empty)"
 
 

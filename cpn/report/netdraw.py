@@ -22,6 +22,7 @@ PAD = 18
 HEADER = 26
 MAX_ROW_WIDTH = 1240  # child boxes wrap into rows no wider than this (a laptop screen)
 INSCRIPTION_CHARS = 34
+WRAP_CHARS = 20  # arc inscriptions are wrapped at about this many characters
 
 
 @dataclass
@@ -107,6 +108,24 @@ def inscription(net, expr) -> str:
         return "…"
 
 
+def wrap(label: str, width: int = WRAP_CHARS, max_lines: int = 2) -> list[str]:
+    """An inscription broken at spaces into lines of about `width` characters (the rest clipped)."""
+    if not label:
+        return []
+    lines: list[str] = []
+    cur = ""
+    for word in label.split(" "):
+        if cur and len(cur) + 1 + len(word) > width:
+            lines.append(cur)
+            cur = word
+        else:
+            cur = f"{cur} {word}" if cur else word
+    lines.append(cur)
+    if len(lines) > max_lines:
+        lines = lines[:max_lines - 1] + [S.clip(" ".join(lines[max_lines - 1:]), width)]
+    return [S.clip(line, width + 6) for line in lines]
+
+
 @dataclass
 class _Node:
     kind: str  # 'place' | 'trans'
@@ -116,6 +135,12 @@ class _Node:
     shape_h: float
     lines: list  # (text, css class, mono) shown under the shape
     shape_w: float = 0.0
+    side: bool = False  # labels at the right of the shape (top-to-bottom layouts), else below it
+
+    def side_size(self) -> tuple[float, float]:
+        label_w = max([S.text_width(t, 12, m) for t, _, m in self.lines] + [0])
+        return (self.shape_w + (label_w + 10 if self.lines else 0),
+                max(self.shape_h, LABEL_LINE * len(self.lines) + 4))
     x: float = 0.0
     y: float = 0.0  # centre of the shape
 
@@ -167,8 +192,18 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
                     continue
                 edges.append((("t", i), pk) if a.kind == "out" else (pk, ("t", i)))
         roots = [("p", i) for i in u.places if net.places[i].initial]
+        # the gap between layers leaves room for the widest (wrapped) inscription of the unit's arcs
+        widest = max([S.text_width(line, 12, True) for i in u.transitions for a in net.transitions[i].arcs
+                      for line in wrap(inscription(net, a.expr))] + [0])
+        gap = min(190.0, max(84.0, widest + 36))
         lay = layered_layout(own, edges, {n: (nodes[n].w, nodes[n].h) for n in own}, roots=roots,
-                             gap_x=96, gap_y=30, margin=0, direction="LR") if own else None
+                             gap_x=gap, gap_y=30, margin=0, direction="LR") if own else None
+        side = False
+        if lay and lay.width > max_row_width - 2 * PAD * (depth + 1):
+            # a long chain: top to bottom instead, with each node's labels at its right
+            side = True
+            lay = layered_layout(own, edges, {n: nodes[n].side_size() for n in own}, roots=roots,
+                                 gap_x=150, gap_y=58, margin=0, direction="TB")
         lw, lh = (lay.width, lay.height) if lay else (0.0, 0.0)
         kids = [measure(c, depth + 1) for c in u.children]
         corners, kw, kh = pack_rows([(w, h) for w, h, _ in kids], max(lw, max_row_width - 2 * PAD * depth))
@@ -180,7 +215,7 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
         if lay:
             dx = PAD + (inner_w - lw) / 2
             for n, (x, y) in lay.pos.items():
-                items.append(("node", n, dx + x, header + (PAD if not header else 0) + y, None))
+                items.append(("node", n, dx + x, header + (PAD if not header else 0) + y, side))
         ky = header + (PAD if not header else 0) + lh + (PAD if lh and kids else 0)
         for (cx, cy), (_cw, _ch, citems) in zip(corners, kids):
             for kind, k, x, y, extra in citems:
@@ -191,7 +226,11 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
     for kind, k, x, y, extra in items:
         if kind == "node":
             node = nodes[k]
-            node.x, node.y = x, y - node.h / 2 + node.shape_h / 2
+            node.side = extra
+            if extra:
+                node.x, node.y = x - node.side_size()[0] / 2 + node.shape_w / 2, y
+            else:
+                node.x, node.y = x, y - node.h / 2 + node.shape_h / 2
         else:
             offset[k] = (x, y) + extra
     for key, (x, y, w, h, depth) in sorted(offset.items(), key=lambda kv: kv[1][4]):
@@ -206,14 +245,20 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
 
     body.append(S.arrow_defs("na", {"line": S.LINE, "bad": S.BAD}))
     body += boxes
-    body += _arcs(net, nodes)
+    arcs, right = _arcs(net, nodes)
+    body += arcs
     for node in nodes.values():
         if node.kind == "place":
             body.append(_place(net.places[node.index], node, bounds))
         else:
             t = net.transitions[node.index]
             body.append(_transition(t, node, t.name in dead, occurrences.get(t.name)))
-    return S.document(width + 2, height + 2, body, f"the net {net.name}", cls="drawing net")
+    for node in nodes.values():  # labels may stick out of the laid-out boxes
+        if node.side:
+            right = max(right, node.x + node.side_size()[0] - node.shape_w / 2)
+        else:
+            right = max(right, node.x + node.w / 2)
+    return S.document(max(width, right + 6) + 2, height + 2, body, f"the net {net.name}", cls="drawing net")
 
 
 def _box_title(u: Unit) -> str:
@@ -232,6 +277,13 @@ def _initial_text(p) -> str:
     return "++".join(parts)
 
 
+def _label_origin(node: _Node) -> tuple[float, float, str]:
+    """Where a node's first label line goes: under the shape, or at its right in a side layout."""
+    if node.side:
+        return node.x + node.shape_w / 2 + 6, node.y - LABEL_LINE * (len(node.lines) - 1) / 2 + 4, "start"
+    return node.x, node.y + node.shape_h / 2 + 13, "middle"
+
+
 def _place(p, node: _Node, bounds: dict) -> str:
     x, y, rx, ry = node.x, node.y, node.shape_w / 2, node.shape_h / 2
     b = bounds.get(p.name)
@@ -247,9 +299,10 @@ def _place(p, node: _Node, bounds: dict) -> str:
            f'<ellipse cx="{S.fmt(x)}" cy="{S.fmt(y)}" rx="{S.fmt(rx)}" ry="{S.fmt(ry)}" '
            f'fill="{S.PLACE_FILL}" stroke="{S.ACCENT}" stroke-width="1.6"/>',
            S.text(x, y + 4.5, p.place, 13, weight="600")]
-    ly = y + ry + 13
+    lx, ly, anchor = _label_origin(node)
     for s, cls, mono in node.lines:
-        out.append(S.text(x, ly, s, 12, cls=cls, mono=mono, fill=S.INITIAL if cls == "init" else S.MUTED))
+        out.append(S.text(lx, ly, s, 12, anchor, cls=cls, mono=mono,
+                          fill=S.INITIAL if cls == "init" else S.MUTED))
         ly += LABEL_LINE
     if b is not None:
         label = str(b[0]) if b[0] == b[1] else f"{b[1]}..{b[0]}"
@@ -277,9 +330,9 @@ def _transition(t, node: _Node, is_dead: bool, occ) -> str:
            f'<rect x="{S.fmt(x - w / 2)}" y="{S.fmt(y - h / 2)}" width="{S.fmt(w)}" height="{S.fmt(h)}" '
            f'rx="3" fill="{fill}" stroke="{stroke}" stroke-width="1.6"{dash}/>',
            S.text(x, y + 4.5, t.transition, 13, weight="600")]
-    ly = y + h / 2 + 13
+    lx, ly, anchor = _label_origin(node)
     for s, cls, mono in node.lines:
-        out.append(S.text(x, ly, s, 12, cls=cls, mono=mono, fill=S.MUTED))
+        out.append(S.text(lx, ly, s, 12, anchor, cls=cls, mono=mono, fill=S.MUTED))
         ly += LABEL_LINE
     if is_dead:
         out.append(f'<g class="dead-tag"><rect x="{S.fmt(x + w / 2 - 30)}" y="{S.fmt(y - h / 2 - 9)}" '
@@ -289,12 +342,14 @@ def _transition(t, node: _Node, is_dead: bool, occ) -> str:
     return "".join(out)
 
 
-def _arcs(net, nodes: dict) -> list[str]:
+def _arcs(net, nodes: dict) -> tuple[list[str], float]:
+    """The arcs as SVG, and the rightmost x any inscription reaches."""
     pairs: dict = {}
     for t in net.transitions:
         for a in t.arcs:
             pairs.setdefault((a.place, t.index), []).append(a)
     out = []
+    right = 0.0
     for (p, ti), arcs in pairs.items():
         pn, tn = nodes[("p", p)], nodes[("t", ti)]
         place, trans = net.places[p], net.transitions[ti]
@@ -305,11 +360,13 @@ def _arcs(net, nodes: dict) -> list[str]:
         base = min(120.0, 0.12 * dist + 16) if cross else 0.0
         for k, a in enumerate(arcs):
             bend = base + (k - (len(arcs) - 1) / 2) * 34
-            out.append(_arc(net, a, pn, tn, bend, trans.name))
-    return out
+            svg, r = _arc(net, a, pn, tn, bend, trans.name)
+            out.append(svg)
+            right = max(right, r)
+    return out, right
 
 
-def _arc(net, a, pn: _Node, tn: _Node, bend: float, tname: str) -> str:
+def _arc(net, a, pn: _Node, tn: _Node, bend: float, tname: str) -> tuple[str, float]:
     (px, py), (tx, ty) = (pn.x, pn.y), (tn.x, tn.y)
     dx, dy = tx - px, ty - py
     dist = max(1.0, (dx * dx + dy * dy) ** 0.5)
@@ -339,10 +396,20 @@ def _arc(net, a, pn: _Node, tn: _Node, bend: float, tname: str) -> str:
            f'{dash} {m_start} {m_end}/>']
     if a.kind == "inhibitor":
         out.append(f'<circle cx="{S.fmt(bx)}" cy="{S.fmt(by)}" r="4" fill="#fff" stroke="{S.LINE}"/>')
+    right = max(ax, bx)
     if label:
         lx = (ax + bx) / 2 + (nx * bend / 2 if bend else 0)
         ly = (ay + by) / 2 + (ny * bend / 2 if bend else 0)
-        out.append(S.text(lx, ly - 3, S.clip(label, INSCRIPTION_CHARS), 12, mono=True, halo=True,
-                          cls="inscription"))
+        lines = wrap(label)
+        if abs(by - ay) > 1.5 * abs(bx - ax):  # a steep arc: the inscription goes beside it
+            for k, line in enumerate(lines):
+                out.append(S.text(lx + 7, ly + 4 + 14 * (k - (len(lines) - 1) / 2), line, 12, "start",
+                                  mono=True, halo=True, cls="inscription"))
+                right = max(right, lx + 7 + S.text_width(line, 12, True))
+        else:
+            for k, line in enumerate(lines):
+                out.append(S.text(lx, ly - 4 - 14 * (len(lines) - 1 - k), line, 12, mono=True, halo=True,
+                                  cls="inscription"))
+                right = max(right, lx + S.text_width(line, 12, True) / 2)
     out.append("</g>")
-    return "".join(out)
+    return "".join(out), right
