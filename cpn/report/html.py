@@ -43,6 +43,40 @@ class Verdict:
     cycle_from: int | None = None
     marked_step: int | None = None
 
+    def resolved(self, engine) -> Verdict:
+        """This verdict with `trace` as a Trace: evidence given as a path of states (`path`, `arcs`,
+        and for a lasso `cycle`, `cycle_arcs`) is turned into steps, the cycle's start noted."""
+        status = str(getattr(self.status, "value", self.status))  # a Status enum or its text
+        if self.trace is None or hasattr(self.trace, "steps"):
+            return Verdict(self.name, status, self.detail, self.trace, self.cycle_from, self.marked_step)
+        trace, cycle_from = evidence_trace(self.trace, engine)
+        return Verdict(self.name, status, self.detail, trace,
+                       self.cycle_from if self.cycle_from is not None else cycle_from, self.marked_step)
+
+
+def evidence_trace(evidence, engine=None) -> tuple:
+    """(Trace, cycle_from) for a path of states from the initial state and an optional cycle.
+
+    `evidence.path` are state ids starting at 0, `evidence.arcs[i]` the binding element of the step
+    path[i] -> path[i+1]; a lasso's `cycle` lists the states its steps reach (`cycle_arcs` their binding
+    elements) from path[-1] back to it. cycle_from is the 1-based step where the cycle starts, or None.
+    """
+    from cpn.statespace import Step, Trace
+
+    path, arcs = list(evidence.path), list(evidence.arcs)
+    pairs = list(zip(arcs, path, path[1:]))
+    cycle = list(getattr(evidence, "cycle", ()) or ())
+    cycle_from = None
+    if cycle:
+        cycle_from = len(pairs) + 1
+        prev = path[-1]
+        for be, s in zip(getattr(evidence, "cycle_arcs", ()), cycle):
+            pairs.append((be, prev, s))
+            prev = s
+    fmt = engine.format_binding_element if engine is not None else str
+    steps = tuple(Step(be, a, b, fmt(be)) for be, a, b in pairs)
+    return Trace(pairs[-1][2] if pairs else (path[-1] if path else 0), steps), cycle_from
+
 
 @dataclass
 class IndexEntry:
@@ -165,6 +199,7 @@ def _table(head: list[str], rows: list[list[str]], num_cols=()) -> str:
 def _content(r: Report, verdicts: list) -> str:
     x = r.exploration
     engine = x.engine
+    verdicts = [v.resolved(engine) for v in verdicts]
     status = "full" if x.complete else "partial"
     parts = [_header(r, status)]
     nav = []

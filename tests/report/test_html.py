@@ -287,6 +287,39 @@ def test_first_violated_property_and_its_trace_come_first(stations):
     assert page.count('class="pill bad">violated') == 1
 
 
+def test_evidence_as_a_path_and_a_cycle_becomes_a_lasso_chart():
+    r = _explore("bench/nets/ms.cpnet", sets={"N": "2"})
+    x = r.exploration
+    g = x.graph
+    # a lasso by hand: the BFS path to some state, then back to the initial state and on to it again
+    target = g.n_states - 1
+    path_trace = shortest_trace(g, target, x.engine)
+    back = nx.shortest_path(_digraph(g), target, 0)
+    loop = back[1:] + [s.target for s in path_trace.steps]
+    arc = {(i, j): be for i in range(g.expanded) for be, j in g.out_arcs(i)}
+
+    class Evidence:
+        path = (0,) + tuple(s.target for s in path_trace.steps)
+        arcs = tuple(s.be for s in path_trace.steps)
+        cycle = tuple(loop)
+        cycle_arcs = tuple(arc[(a, b)] for a, b in zip([target] + loop, loop))
+
+    v = Verdict("no livelock", "violated", "a cycle", Evidence()).resolved(x.engine)
+    assert v.cycle_from == len(path_trace) + 1
+    assert len(v.trace) == len(path_trace) + len(loop)
+    assert [s.source for s in v.trace.steps[1:]] == [s.target for s in v.trace.steps[:-1]]
+    assert v.trace.steps[-1].target == target
+    page = render_html(r, [Verdict("no livelock", "violated", "a cycle", Evidence())])
+    assert 'class="cycle"' in page and "First violated property: no livelock" in page
+
+
+def _digraph(g):
+    G = nx.DiGraph()
+    for i in range(g.expanded):
+        G.add_edges_from((i, j) for _be, j in g.out_arcs(i))
+    return G
+
+
 def test_index_lists_worst_runs_first():
     page = render_index([IndexEntry("a", "a.html", "holds", 10, 0.1), IndexEntry("b", "b.html", "violated"),
                          IndexEntry("c", "c.html", "unknown", 5)])
