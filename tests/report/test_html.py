@@ -189,6 +189,25 @@ def test_msc_one_lifeline_per_module_instance_and_a_message_per_token_between_th
         assert ev.label == "Done" and chart.lifelines[ev.line][0] == f"Station{m.label[-1]}"
 
 
+def test_msc_of_a_master_a_bus_and_two_slaves():
+    r = _explore("tests/report/nets/minibus.cpnet")
+    x = r.exploration
+    charts = [build_chart(shortest_trace(x.graph, d, x.engine), x) for d in r.dead.states]
+    both = next(c for c in charts if len(c.lifelines) == 4)  # the run that asks each slave once
+    assert [a for a, _ in both.lifelines] == ["Master1", "Bus1", "Slave1", "Slave2"]
+    assert [b for _, b in both.lifelines] == ["Master", "Bus", "Slave", "Slave"]
+    names = [a for a, _ in both.lifelines]
+    hops = [(names[m.src_line], names[m.dst_line], m.label) for m in both.messages]
+    first = hops[0][2][-1]
+    other = "2" if first == "1" else "1"
+    assert hops == [("Master1", "Bus1", f"M2B: {first}"), ("Bus1", f"Slave{first}", f"B2S: {first}"),
+                    (f"Slave{first}", "Bus1", f"S2B: {first}"), ("Bus1", "Master1", f"B2M: {first}"),
+                    ("Master1", "Bus1", f"M2B: {other}"), ("Bus1", f"Slave{other}", f"B2S: {other}"),
+                    (f"Slave{other}", "Bus1", f"S2B: {other}"), ("Bus1", "Master1", f"B2M: {other}")]
+    for m in both.messages:  # an arrow goes down: consumed after it was produced
+        assert m.dst > m.src
+
+
 def test_msc_of_a_flat_net_has_a_lifeline_per_transition():
     r = _explore("bench/nets/ms.cpnet", sets={"N": "2"})
     x = r.exploration

@@ -27,6 +27,7 @@ PAGES = {
     "stations": ["models/examples/stations.cpnet"],
     "stop_and_wait": ["--time-condensation", "models/examples/stop_and_wait.cpnet"],
     "ms2": ["bench/nets/ms.cpnet", "--set", "N=2"],
+    "minibus": ["tests/report/nets/minibus.cpnet"],  # a master, a bus and two slaves as module instances
 }
 
 CHECK = r"""
