@@ -75,6 +75,7 @@ def draw_state_space(report, prefix: str = "ss") -> tuple[str, str]:
 
 def _edges_svg(edges: dict, pos: dict, radius: dict, layer: dict, prefix: str, label: dict) -> list[str]:
     out = []
+    fade = ' stroke-opacity="0.6"' if len(edges) > 200 else ""  # dense graphs: let the nodes stand out
     for (u, v), n in edges.items():
         (x1, y1), (x2, y2) = pos[u], pos[v]
         tip = S.title(label.get((u, v), "")) if label.get((u, v)) else ""
@@ -94,7 +95,7 @@ def _edges_svg(edges: dict, pos: dict, radius: dict, layer: dict, prefix: str, l
             d = (f"M{S.fmt(ax)},{S.fmt(ay)} L{S.fmt(bx)},{S.fmt(by)}" if straight else
                  f"M{S.fmt(ax)},{S.fmt(ay)} Q{S.fmt(mx)},{S.fmt(my)} {S.fmt(bx)},{S.fmt(by)}")
         width = 1.0 + min(2.0, math.log2(n)) if n > 1 else 1.0
-        out.append(f'<path {cls} d="{d}" fill="none" stroke="#8a96a3" stroke-width="{S.fmt(width)}" '
+        out.append(f'<path {cls} d="{d}" fill="none" stroke="#8a96a3" stroke-width="{S.fmt(width)}"{fade} '
                    f'marker-end="url(#{prefix}-arrow)">{tip}</path>')
     return out
 
@@ -105,7 +106,7 @@ def _node_svg(prefix: str, ident: str, x: float, y: float, r: float, label: str,
     colour = "#fff" if kind == "dead" else S.INK
     dash = ' stroke-dasharray="3 2"' if kind == "unexpanded" else ""
     size = 11 if len(label) <= 3 else 9
-    return (f'<g class="node {kind}" id="{prefix}-{ident}" data-node="{ident}" tabindex="0">{S.title(tip)}'
+    return (f'<g class="node {kind}" id="{prefix}-{ident}" data-node="{ident}">{S.title(tip)}'
             f'<circle cx="{S.fmt(x)}" cy="{S.fmt(y)}" r="{S.fmt(r)}" fill="{fill}" stroke="{stroke}" '
             f'stroke-width="{sw}"{dash}/>' + S.text(x, y + size * 0.36, label, size, fill=colour) + "</g>")
 

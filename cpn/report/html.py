@@ -320,7 +320,8 @@ def _trace_block(trace, r: Report, caption: str, marked: int | None, cycle_from:
     svg = draw_msc(trace, r.exploration, marked, caption if with_caption else "", cycle_from,
                    prefix=f"msc-{ident}")
     steps = "".join(f"<li><span class=mono>{S.esc(s.text)}</span></li>" for s in trace.steps)
-    return (f'<div class="trace" id="trace-{ident}"><h3>{S.esc(caption)}</h3>{_figure(svg)}'
+    head = "" if with_caption else f"<h3>{S.esc(caption)}</h3>"
+    return (f'<div class="trace" id="trace-{ident}">{head}{_figure(svg)}'
             f'<details><summary>Steps as binding elements</summary><ol>{steps}</ol></details></div>')
 
 
@@ -431,8 +432,8 @@ body.cpnv-page{margin:0;background:#fff}
 .cpnv .trace{margin-top:10px}
 .cpnv details{margin:0 0 8px;font-size:14px}
 .cpnv svg .node{cursor:default}
-.cpnv svg .node:hover circle,.cpnv svg .node:focus circle{stroke-width:3.5}
-.cpnv svg .edge.hl{stroke:#1d5fa8;stroke-width:2.5}
+.cpnv svg .node:hover circle{stroke-width:3.5}
+.cpnv svg .edge.hl{stroke:#1d5fa8;stroke-width:2.5;stroke-opacity:1}
 .cpnv svg .place:hover ellipse,.cpnv svg .transition:hover rect{stroke-width:2.6}
 @media (max-width:600px){.cpnv{padding:10px 10px 30px;font-size:14px}.cpnv h1{font-size:20px}
  .cpnv th,.cpnv td{padding:3px 6px}}
