@@ -192,19 +192,40 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
                     continue
                 edges.append((("t", i), pk) if a.kind == "out" else (pk, ("t", i)))
         roots = [("p", i) for i in u.places if net.places[i].initial]
+        # Nodes without an arc inside this instance (sockets and fused places used by the instances
+        # below) go in a row above the rest, close to the boxes that use them.
+        linked = {n for e in edges for n in e}
+        row = [n for n in own if n not in linked] if u.children else []
+        flow = [n for n in own if n not in row]
         # the gap between layers leaves room for the widest (wrapped) inscription of the unit's arcs
         widest = max([S.text_width(line, 12, True) for i in u.transitions for a in net.transitions[i].arcs
                       for line in wrap(inscription(net, a.expr))] + [0])
         gap = min(190.0, max(84.0, widest + 36))
-        lay = layered_layout(own, edges, {n: (nodes[n].w, nodes[n].h) for n in own}, roots=roots,
-                             gap_x=gap, gap_y=30, margin=0, direction="LR") if own else None
+        lay = layered_layout(flow, edges, {n: (nodes[n].w, nodes[n].h) for n in flow}, roots=roots,
+                             gap_x=gap, gap_y=30, margin=0, direction="LR") if flow else None
         side = False
         if lay and lay.width > max_row_width - 2 * PAD * (depth + 1):
             # a long chain: top to bottom instead, with each node's labels at its right
             side = True
-            lay = layered_layout(own, edges, {n: nodes[n].side_size() for n in own}, roots=roots,
+            lay = layered_layout(flow, edges, {n: nodes[n].side_size() for n in flow}, roots=roots,
                                  gap_x=150, gap_y=58, margin=0, direction="TB")
-        lw, lh = (lay.width, lay.height) if lay else (0.0, 0.0)
+        pos: dict = {}
+        lw = lh = 0.0
+        if row:
+            corners, lw, lh = pack_rows([(nodes[n].w, nodes[n].h) for n in row], max_row_width - 2 * PAD * depth,
+                                        gap=48)
+            for n, (cx, cy) in zip(row, corners):
+                pos[n] = (cx + nodes[n].w / 2, cy + nodes[n].h / 2, False)
+        if lay:
+            top_y = lh + (PAD if row else 0)
+            for n, (x, y) in lay.pos.items():
+                pos[n] = (x, top_y + y, side)
+            lw, lh = max(lw, lay.width), top_y + lay.height
+        if row and lay:  # centre the row over the flow
+            shift = (lw - max(pos[n][0] + nodes[n].w / 2 for n in row)) / 2
+            for n in row:
+                x, y, sd = pos[n]
+                pos[n] = (x + shift, y, sd)
         kids = [measure(c, depth + 1) for c in u.children]
         corners, kw, kh = pack_rows([(w, h) for w, h, _ in kids], max(lw, max_row_width - 2 * PAD * depth))
         header = HEADER if key != top or u.children else 0
@@ -212,10 +233,9 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
         w = inner_w + 2 * PAD
         h = header + lh + (PAD if lh and kids else 0) + kh + PAD + (0 if header else PAD)
         items = [("box", key, 0.0, 0.0, (w, h, depth))]
-        if lay:
-            dx = PAD + (inner_w - lw) / 2
-            for n, (x, y) in lay.pos.items():
-                items.append(("node", n, dx + x, header + (PAD if not header else 0) + y, side))
+        dx = PAD + (inner_w - lw) / 2
+        for n, (x, y, sd) in pos.items():
+            items.append(("node", n, dx + x, header + (PAD if not header else 0) + y, sd))
         ky = header + (PAD if not header else 0) + lh + (PAD if lh and kids else 0)
         for (cx, cy), (_cw, _ch, citems) in zip(corners, kids):
             for kind, k, x, y, extra in citems:
