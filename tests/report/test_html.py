@@ -119,6 +119,21 @@ def test_a_dead_transition_instance_is_marked_in_the_page(tmp_path):
     assert 'data-name="D&#x27;Never 1"' in page.split('class="transition dead"')[1][:80]
 
 
+def test_arc_kinds_are_drawn_apart(tmp_path):
+    src = tmp_path / "kinds.cpnet"
+    src.write_text("net K;\ncolset U = unit;\nplace P : U = 1`();\nplace Q : U;\nplace R : U;\n"
+                   "trans T;\narc P <-> T;\ninhibitor Q -> T;\nreset R -> T;\narc T -> Q;\n")
+    r = _explore(src)
+    svg = draw_net(r.engine.net)
+    arcs = re.findall(r'<g class="arc"><title>([^<]*)</title><path ([^>]*)/>', svg)
+    kinds = {t.split(" ")[0]: attrs for t, attrs in arcs}
+    assert set(kinds) == {"both", "inhibitor", "reset", "out"}
+    assert "marker-start" in kinds["both"] and "marker-end" in kinds["both"]
+    assert "marker-end" not in kinds["inhibitor"] and 'stroke-dasharray="2 3"' in kinds["inhibitor"]
+    assert 'stroke-dasharray="7 3"' in kinds["reset"]
+    assert "marker-start" not in kinds["out"]
+
+
 # ----------------------------------------------------------------------------------- state space
 
 def test_bfs_levels_are_shortest_distances(stop_and_wait):
