@@ -154,6 +154,37 @@ def render_index(entries: list[IndexEntry], title: str = "cpn-verify check") -> 
     return _page(title, _scoped(body))
 
 
+def write_pages(folder: str, runs: list[tuple[str, Report, list]], index_title: str = "cpn-verify check") -> str:
+    """One page per run plus `index.html` linking them, in `folder`; returns the index's path.
+
+    runs: (title, report, verdicts) per run (a scenario, or one row of its parameter table); the page of a
+    run is named after its title. A run's result on the index is its worst verdict.
+    """
+    os.makedirs(folder, exist_ok=True)
+    entries = []
+    used: set = set()
+    for title, report, verdicts in runs:
+        stem = "".join(c if c.isalnum() or c in "-_." else "-" for c in title).strip("-") or "run"
+        name, k = f"{stem}.html", 1
+        while name in used or name == "index.html":
+            k += 1
+            name = f"{stem}-{k}.html"
+        used.add(name)
+        with open(os.path.join(folder, name), "w", encoding="utf-8") as fh:
+            fh.write(render_html(report, verdicts, title=f"{title} — cpn-verify"))
+        statuses = {str(getattr(v.status, "value", v.status)) for v in verdicts or ()}
+        worst = next((s for s in ("violated", "unknown") if s in statuses), "holds")
+        if not report.exploration.complete and worst == "holds":
+            worst = "unknown"
+        failed = [v.name for v in verdicts or () if str(getattr(v.status, "value", v.status)) == "violated"]
+        entries.append(IndexEntry(title, name, worst, report.exploration.n_states, report.seconds,
+                                  ("violated: " + ", ".join(failed)) if failed else ""))
+    path = os.path.join(folder, "index.html")
+    with open(path, "w", encoding="utf-8") as fh:
+        fh.write(render_index(entries, index_title))
+    return path
+
+
 def write_html(report: Report, path: str, verdicts: list | None = None) -> None:
     page = render_html(report, verdicts)
     with open(path, "w", encoding="utf-8") as fh:

@@ -20,6 +20,7 @@ from cpn.report.html import (
     render_html,
     render_index,
     report_fragment,
+    write_pages,
 )
 from cpn.report.layout import back_edges, layered_layout, longest_path_layers
 from cpn.report.msc import build_chart, draw_msc
@@ -359,6 +360,21 @@ def test_index_lists_worst_runs_first():
                          IndexEntry("c", "c.html", "unknown", 5)])
     assert page.index("b.html") < page.index("c.html") < page.index("a.html")
     assert "1 violated, 1 unknown, 1 holds" in page
+
+
+def test_pages_of_a_check_run_and_their_index(tmp_path, stations):
+    x = stations.exploration
+    trace = shortest_trace(x.graph, stations.dead.states[0], x.engine)
+    ms = _explore("bench/nets/ms.cpnet", sets={"N": "2"})
+    index = write_pages(str(tmp_path), [("stations N=3", stations, [Verdict("no deadlock", "violated", "", trace)]),
+                                        ("ms N=2", ms, [Verdict("no deadlock", "holds")]),
+                                        ("ms N=2", ms, [])])
+    names = sorted(p.name for p in tmp_path.iterdir())
+    assert names == ["index.html", "ms-N-2-2.html", "ms-N-2.html", "stations-N-3.html"]
+    page = pathlib.Path(index).read_text(encoding="utf-8")
+    assert page.index("stations-N-3.html") < page.index("ms-N-2.html")
+    assert "violated: no deadlock" in page and "189" in page
+    assert "First violated property: no deadlock" in (tmp_path / "stations-N-3.html").read_text(encoding="utf-8")
 
 
 # ------------------------------------------------------------------------------------------ CLI
