@@ -455,6 +455,7 @@ body.cpnv-page{margin:0;background:#fff}
 .cpnv figure{margin:8px 0 14px;border:1px solid var(--line);border-radius:8px;position:relative}
 .cpnv .scroll{overflow:auto;max-height:85vh;padding:4px}
 .cpnv .scroll>svg{display:block;max-width:none}
+.cpnv .scroll>svg.statespace,.cpnv .scroll>svg.sccgraph{margin:0 auto}
 .cpnv figure.fitted .scroll>svg{width:100%;height:auto}
 .cpnv figcaption{font-size:13px;color:var(--muted);padding:4px 8px}
 .cpnv .tools{position:absolute;right:6px;top:6px;z-index:1}
