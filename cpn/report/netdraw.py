@@ -9,6 +9,7 @@ port, or fused with places of other instances, is drawn once, in the box of the 
 
 from __future__ import annotations
 
+import re
 from dataclasses import dataclass, field
 
 from cpn.lang import pretty
@@ -23,6 +24,30 @@ HEADER = 26
 MAX_ROW_WIDTH = 1240  # child boxes wrap into rows no wider than this (a laptop screen)
 INSCRIPTION_CHARS = 34
 WRAP_CHARS = 20  # arc inscriptions are wrapped at about this many characters
+
+
+_COMMENT = re.compile(r"\(\*.*?\*\)")
+
+
+def _to_end_of_declaration(s: str) -> str:
+    """`s` up to its first ';' or comment outside brackets and strings (the end of a multi-line
+    expression's span may lie beyond the expression)."""
+    depth = 0
+    quoted = False
+    for i, c in enumerate(s):
+        if quoted:
+            quoted = c != '"' or s[i - 1] == "\\"
+        elif c == '"':
+            quoted = True
+        elif c == "(" and s.startswith("(*", i):
+            return s[:i]
+        elif c in "([{":
+            depth += 1
+        elif c in ")]}":
+            depth -= 1
+        elif c == ";" and depth <= 0:
+            return s[:i]
+    return s
 
 
 @dataclass
@@ -97,7 +122,7 @@ def inscription(net, expr) -> str:
             else:
                 s = " ".join([lines[span.line - 1][span.col - 1:]] + lines[span.line: span.end_line - 1]
                              + [lines[span.end_line - 1][: span.end_col]])
-            s = " ".join(s.split())
+            s = " ".join(_COMMENT.sub(" ", _to_end_of_declaration(s)).split())
             if s.startswith("arc "):  # no inscription written: the span is the arc's
                 return ""
             if s:

@@ -120,6 +120,16 @@ def test_a_dead_transition_instance_is_marked_in_the_page(tmp_path):
     assert 'data-name="D&#x27;Never 1"' in page.split('class="transition dead"')[1][:80]
 
 
+def test_a_multi_line_inscription_is_shown_without_what_follows_it(tmp_path):
+    src = tmp_path / "ml.cpnet"
+    src.write_text("net X;\ncolset U = int with 0..3;\nvar k : U;\nplace P : U = 1`0;\ntrans T;\n"
+                   "arc P -> T : k;\narc T -> P : if k < 3\n    then k + 1\n    else 0;  (* wrap; k *)\n")
+    net = _explore(src).engine.net
+    from cpn.report.netdraw import inscription
+
+    assert [inscription(net, a.expr) for a in net.transitions[0].arcs] == ["k", "if k < 3 then k + 1 else 0"]
+
+
 def test_arc_kinds_are_drawn_apart(tmp_path):
     src = tmp_path / "kinds.cpnet"
     src.write_text("net K;\ncolset U = unit;\nplace P : U = 1`();\nplace Q : U;\nplace R : U;\n"
