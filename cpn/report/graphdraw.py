@@ -29,10 +29,10 @@ def bfs_levels(graph) -> list[int]:
     return level
 
 
-def level_sizes(graph) -> list[int]:
+def level_sizes(graph, levels: list[int] | None = None) -> list[int]:
     """How many states were first reached at each BFS level (the growth of the state space)."""
     sizes: list[int] = []
-    for lv in bfs_levels(graph):
+    for lv in bfs_levels(graph) if levels is None else levels:
         if lv == len(sizes):
             sizes.append(0)
         sizes[lv] += 1

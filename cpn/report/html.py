@@ -238,18 +238,20 @@ def _content(r: Report, verdicts: list) -> str:
     if verdicts:
         parts.append(_verdicts(r, verdicts, failed))
         nav.append(("verdicts", "Verdicts"))
-    parts.append(_statistics(r))
+    levels = bfs_levels(x.graph)
+    occ = _occurrences(r)
+    parts.append(_statistics(r, levels))
     nav.append(("statistics", "Statistics"))
     dead_traces = dead_marking_traces(r)
-    parts.append(_dead_markings(r, dead_traces))
+    parts.append(_dead_markings(r, dead_traces, levels))
     nav.append(("dead", "Dead markings"))
-    parts.append(_net(r))
+    parts.append(_net(r, occ))
     nav.append(("net", "Net"))
-    parts.append(_state_space(r))
+    parts.append(_state_space(r, levels))
     nav.append(("statespace", "State space"))
     parts.append(_bounds(r))
     nav.append(("bounds", "Bounds"))
-    parts.append(_transitions(r, engine))
+    parts.append(_transitions(r, engine, occ))
     nav.append(("transitions", "Transitions"))
     links = "".join(f'<a href="#{i}">{S.esc(t)}</a>' for i, t in nav)
     parts.insert(1, f'<nav aria-label="sections">{links}</nav>')
@@ -287,11 +289,11 @@ def _verdicts(r: Report, verdicts: list, failed: list) -> str:
     return _section("verdicts", "Verdicts", inner)
 
 
-def _statistics(r: Report) -> str:
+def _statistics(r: Report, levels: list[int]) -> str:
     x = r.exploration
     status = "Full" if x.complete else f"Partial: stopped because {x.stop_reason.describe(x.options)}"
     ss = [["Nodes", f"{x.n_states:,}"], ["Arcs", f"{x.n_arcs:,}"], ["Seconds", f"{x.seconds:.3f}"],
-          ["Status", S.esc(status)], ["BFS levels", f"{max(bfs_levels(x.graph), default=0) + 1:,}"],
+          ["Status", S.esc(status)], ["BFS levels", f"{max(levels, default=0) + 1:,}"],
           ["Peak memory", f"{x.peak_memory_mb:,.0f} MiB"]]
     if not x.complete:
         ss.append(["Unexpanded nodes", f"{x.unexpanded:,}"])
@@ -317,13 +319,12 @@ def _kv(rows) -> str:
     return "<table class=kv>" + "".join(f"<tr><th>{k}</th><td>{v}</td></tr>" for k, v in rows) + "</table>"
 
 
-def _dead_markings(r: Report, traces: list[ReportTrace]) -> str:
+def _dead_markings(r: Report, traces: list[ReportTrace], level: list[int]) -> str:
     x = r.exploration
     g, engine = x.graph, x.engine
     if not r.dead.states:
         text = "None." if x.complete else "None in the explored part (the state space is partial)."
         return _section("dead", "Dead markings", f"<p>{text}</p>")
-    level = bfs_levels(g)
     rows = []
     charted = {t.trace.target for t in traces}
     for d in r.dead.states[:MAX_TABLE_ROWS]:
@@ -356,10 +357,9 @@ def _trace_block(trace, r: Report, caption: str, marked: int | None, cycle_from:
             f'<details><summary>Steps as binding elements</summary><ol>{steps}</ol></details></div>')
 
 
-def _net(r: Report) -> str:
+def _net(r: Report, occ: dict) -> str:
     engine = r.engine
     bounds = {b.place: (b.upper, b.lower, b.upper_text) for b in r.bounds.places}
-    occ = _occurrences(r)
     svg = draw_net(engine.net, bounds, r.dead_transitions, occ)
     note = ("Each module instance is a box inside the instance that contains it. The blue badge on a place "
             "is its integer bound (lower..upper) over the state space; transition instances that never occur "
@@ -368,6 +368,7 @@ def _net(r: Report) -> str:
 
 
 def _occurrences(r: Report) -> dict:
+    """Transition instance name -> number of arcs of the state space it labels."""
     engine = r.engine
     names = [t.name for t in engine.transitions]
     counts: Counter = Counter()
@@ -376,7 +377,7 @@ def _occurrences(r: Report) -> dict:
     return counts
 
 
-def _state_space(r: Report) -> str:
+def _state_space(r: Report, levels: list[int]) -> str:
     x = r.exploration
     kind, drawing = draw_state_space(r)
     if kind == "full":
@@ -390,7 +391,7 @@ def _state_space(r: Report) -> str:
         inner = _figure(drawing)
     else:
         note, inner = drawing, ""
-    inner += _figure(growth_chart(level_sizes(x.graph)))
+    inner += _figure(growth_chart(level_sizes(x.graph, levels)))
     return _section("statespace", "The state space", inner, note)
 
 
@@ -402,8 +403,7 @@ def _bounds(r: Report) -> str:
                                                 "Lower multi-set"], rows, num_cols=(1, 2)), note)
 
 
-def _transitions(r: Report, engine) -> str:
-    occ = _occurrences(r)
+def _transitions(r: Report, engine, occ: dict) -> str:
     dead = set(r.dead_transitions)
     live = set(r.live_transitions or ())
     rows = []
