@@ -84,7 +84,7 @@ class IndexEntry:
 
     title: str
     href: str
-    status: str  # 'holds' | 'violated' | 'unknown' (the worst verdict of the run)
+    status: str  # 'holds' | 'violated' | 'unknown' | 'error' (the worst verdict of the run)
     states: int | None = None
     seconds: float | None = None
     detail: str = ""
@@ -139,7 +139,7 @@ def report_fragment(report: Report, verdicts: list | None = None) -> str:
 
 def render_index(entries: list[IndexEntry], title: str = "cpn-verify check") -> str:
     """A page linking to one page per run, worst results first."""
-    order = {"violated": 0, "unknown": 1, "holds": 2}
+    order = {"error": 0, "violated": 1, "unknown": 2, "holds": 3}
     rows = []
     for e in sorted(entries, key=lambda e: (order.get(e.status, 3), e.title)):
         rows.append(f'<tr><td><a href="{S.esc(e.href)}">{S.esc(e.title)}</a></td><td>{_pill(e.status)}</td>'
@@ -147,7 +147,7 @@ def render_index(entries: list[IndexEntry], title: str = "cpn-verify check") -> 
                     f'<td class="num">{"" if e.seconds is None else f"{e.seconds:.2f}"}</td>'
                     f'<td>{S.esc(e.detail)}</td></tr>')
     counts = Counter(e.status for e in entries)
-    summary = ", ".join(f"{counts[k]} {k}" for k in ("violated", "unknown", "holds") if counts[k])
+    summary = ", ".join(f"{counts[k]} {k}" for k in ("error", "violated", "unknown", "holds") if counts[k])
     body = (f'<header><h1>{S.esc(title)}</h1><p class="sub">{len(entries)} runs: {S.esc(summary)}</p></header>'
             '<section><div class="tablewrap"><table><thead><tr><th>Run</th><th>Result</th><th>States</th>'
             f'<th>Seconds</th><th>Detail</th></tr></thead><tbody>{"".join(rows)}</tbody></table></div></section>')
@@ -173,7 +173,7 @@ def write_pages(folder: str, runs: list[tuple[str, Report, list]], index_title: 
         with open(os.path.join(folder, name), "w", encoding="utf-8") as fh:
             fh.write(render_html(report, verdicts, title=f"{title} — cpn-verify"))
         statuses = {str(getattr(v.status, "value", v.status)) for v in verdicts or ()}
-        worst = next((s for s in ("violated", "unknown") if s in statuses), "holds")
+        worst = next((s for s in ("error", "violated", "unknown") if s in statuses), "holds")
         if not report.exploration.complete and worst == "holds":
             worst = "unknown"
         failed = [v.name for v in verdicts or () if str(getattr(v.status, "value", v.status)) == "violated"]
@@ -202,7 +202,8 @@ def _scoped(inner: str) -> str:
 
 
 def _pill(status: str) -> str:
-    cls = {"holds": "ok", "violated": "bad", "unknown": "warn", "full": "ok", "partial": "warn"}.get(status, "")
+    cls = {"holds": "ok", "violated": "bad", "error": "bad", "unknown": "warn", "full": "ok",
+           "partial": "warn"}.get(status, "")
     return f'<span class="pill {cls}">{S.esc(status)}</span>'
 
 
