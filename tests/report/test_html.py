@@ -365,6 +365,13 @@ def _digraph(g):
     return G
 
 
+def test_text_from_the_model_and_the_properties_is_escaped(stations):
+    page = render_html(stations, [Verdict("<script>alert(1)</script>", "violated", 'a "quoted" & <b>')])
+    assert "<script>alert(1)</script>" not in page and "&lt;script&gt;alert(1)&lt;/script&gt;" in page
+    assert "&quot;quoted&quot; &amp; &lt;b&gt;" in page
+    assert page.count("<script>") == 1  # the page's own script only
+
+
 def test_index_lists_worst_runs_first():
     page = render_index([IndexEntry("a", "a.html", "holds", 10, 0.1), IndexEntry("b", "b.html", "violated"),
                          IndexEntry("c", "c.html", "unknown", 5)])
