@@ -277,13 +277,14 @@ def _verdicts(r: Report, verdicts: list, failed: list) -> str:
     inner = _table(["Property", "Verdict", "Detail", "Trace steps"], rows, num_cols=(3,))
     if failed and failed[0].trace is not None:
         v = failed[0]
-        marked = v.marked_step if v.marked_step is not None else (len(v.trace) or None)
+        marked = v.marked_step if v.marked_step is not None else (
+            None if v.cycle_from is not None else len(v.trace) or None)  # a lasso: the cycle is marked
         inner = (_trace_block(v.trace, r, f"First violated property: {v.name} (counterexample, {len(v.trace)} "
                               "steps)", marked, v.cycle_from, "v0") + inner)
     for k, v in enumerate(verdicts):
         if v.trace is not None and v is not (failed[0] if failed else None):
             marked = v.marked_step if v.marked_step is not None else (
-                len(v.trace) if v.status == "violated" else None)
+                len(v.trace) if v.status == "violated" and v.cycle_from is None else None)
             what = "counterexample" if v.status == "violated" else "trace"
             inner += _trace_block(v.trace, r, f"{v.name}: {what} ({len(v.trace)} steps)", marked, v.cycle_from,
                                   f"v{k + 1}")
@@ -352,7 +353,9 @@ def _trace_block(trace, r: Report, caption: str, marked: int | None, cycle_from:
                 "<p>The initial marking itself: no step is needed.</p></div>")
     svg = draw_msc(trace, r.exploration, marked, caption if with_caption else "", cycle_from,
                    prefix=f"msc-{ident}")
-    steps = "".join(f"<li><span class=mono>{S.esc(s.text)}</span></li>" for s in trace.steps)
+    steps = "".join(f"<li><span class=mono>{S.esc(s.text)}</span>"
+                    + (" <em>(the cycle starts here)</em>" if k == cycle_from else "") + "</li>"
+                    for k, s in enumerate(trace.steps, 1))
     head = "" if with_caption else f"<h3>{S.esc(caption)}</h3>"
     return (f'<div class="trace" id="trace-{ident}">{head}{_figure(svg)}'
             f'<details><summary>Steps as binding elements</summary><ol>{steps}</ol></details></div>')

@@ -356,6 +356,8 @@ def test_evidence_as_a_path_and_a_cycle_becomes_a_lasso_chart():
     assert v.trace.steps[-1].target == target
     page = render_html(r, [Verdict("no livelock", "violated", "a cycle", Evidence())])
     assert 'class="cycle"' in page and "First violated property: no livelock" in page
+    assert 'class="marked-band"' not in page  # a lasso marks its cycle, not one step
+    assert "(the cycle starts here)" in page
 
 
 def _digraph(g):
