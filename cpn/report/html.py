@@ -33,7 +33,7 @@ class Verdict:
     status: 'holds', 'violated' or 'unknown'; detail: the reason or evidence in words; trace: a
     cpn.statespace.Trace of the report's exploration (a counterexample or a witness); cycle_from: for a
     lasso, the 1-based step where the repeated part starts; marked_step: the violating step (default:
-    the last step of a violated property's trace).
+    the last step of a violated property's trace; none for a lasso, whose cycle is marked).
     """
 
     name: str
