@@ -73,7 +73,8 @@ def draw_state_space(report, prefix: str = "ss") -> tuple[str, str]:
                     f"up to {MAX_SCC_NODES} components).")
 
 
-def _edges_svg(edges: dict, pos: dict, radius: dict, layer: dict, prefix: str, label: dict) -> list[str]:
+def _edges_svg(edges: dict, pos: dict, radius: dict, layer: dict, prefix: str, label: dict,
+               routes: dict) -> list[str]:
     out = []
     fade = ' stroke-opacity="0.6"' if len(edges) > 200 else ""  # dense graphs: let the nodes stand out
     for (u, v), n in edges.items():
@@ -84,6 +85,11 @@ def _edges_svg(edges: dict, pos: dict, radius: dict, layer: dict, prefix: str, l
             r = radius[u]
             d = (f"M{S.fmt(x1 + r * 0.7)},{S.fmt(y1 - r * 0.7)} C{S.fmt(x1 + r * 2.6)},{S.fmt(y1 - r * 2.6)} "
                  f"{S.fmt(x1 + r * 2.6)},{S.fmt(y1 + r * 2.6)} {S.fmt(x1 + r * 0.9)},{S.fmt(y1 + r * 0.5)}")
+        elif routes.get((u, v)):  # through its bend points, between the nodes of the layers it crosses
+            pts = routes[(u, v)]
+            a = S.boundary_point(x1, y1, radius[u], 0, pts[0][0], pts[0][1], "circle")
+            b = S.boundary_point(x2, y2, radius[v] + 1, 0, pts[-1][0], pts[-1][1], "circle")
+            d = S.smooth_path([a, *pts, b])
         else:
             straight = layer[v] == layer[u] + 1
             dx, dy = x2 - x1, y2 - y1
@@ -98,6 +104,12 @@ def _edges_svg(edges: dict, pos: dict, radius: dict, layer: dict, prefix: str, l
         out.append(f'<path {cls} d="{d}" fill="none" stroke="#8a96a3" stroke-width="{S.fmt(width)}"{fade} '
                    f'marker-end="url(#{prefix}-arrow)">{tip}</path>')
     return out
+
+
+def _bend_budget(n_nodes: int, n_edges: int) -> int:
+    """Bend points for edges that span BFS levels: they keep a sparse graph's long arcs clear of the
+    nodes, but would make a dense graph (more than two arcs per state) far too wide: none there."""
+    return n_nodes if n_edges <= 2 * n_nodes else 0
 
 
 def _node_svg(prefix: str, ident: str, x: float, y: float, r: float, label: str, tip: str, kind: str) -> str:
@@ -128,10 +140,11 @@ def _full(report, prefix: str) -> str:
     nodes = list(range(n))
     r = 13.0
     lay = layered_layout(nodes, list(edges), {i: (2 * r, 2 * r) for i in nodes},
-                         layer={i: level[i] for i in nodes}, gap_x=16, gap_y=46, margin=30)
+                         layer={i: level[i] for i in nodes}, gap_x=16, gap_y=46, margin=30,
+                         max_bends=_bend_budget(len(nodes), len(edges)))
     dead = set(report.dead.states)
     body = [S.arrow_defs(prefix, {"arrow": "#8a96a3"})]
-    body += _edges_svg(edges, lay.pos, {i: r for i in nodes}, lay.layer, prefix, label)
+    body += _edges_svg(edges, lay.pos, {i: r for i in nodes}, lay.layer, prefix, label, lay.routes)
     for i in nodes:
         kind = ("dead" if i in dead else "initial" if i == 0 else "unexpanded" if not g.is_expanded(i)
                 else "state")
@@ -160,11 +173,12 @@ def _scc(report, prefix: str) -> str:
     biggest = max(size.values()) if size else 1
     radius = {c: 12 + 16 * math.sqrt(size[c] / biggest) for c in nodes}
     lay = layered_layout(nodes, list(edges), {c: (2 * radius[c], 2 * radius[c]) for c in nodes},
-                         roots=[comp[0]], gap_x=18, gap_y=46, margin=30)
+                         roots=[comp[0]], gap_x=18, gap_y=46, margin=30,
+                         max_bends=_bend_budget(len(nodes), len(edges)))
     dead = set(report.dead.states)
     body = [S.arrow_defs(prefix, {"arrow": "#8a96a3"})]
     label = {k: f"{n} arcs" for k, n in edges.items()}
-    body += _edges_svg(edges, lay.pos, radius, lay.layer, prefix, label)
+    body += _edges_svg(edges, lay.pos, radius, lay.layer, prefix, label, lay.routes)
     for c in nodes:
         members = dec.nodes(c)
         has_dead = any(s in dead for s in members)

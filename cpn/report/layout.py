@@ -20,6 +20,7 @@ class Layout:
     layer: dict = field(default_factory=dict)
     width: float = 0.0
     height: float = 0.0
+    routes: dict = field(default_factory=dict)  # (u, v) -> bend points of an edge spanning layers
 
 
 def back_edges(nodes: list, edges: list[tuple], roots: list | tuple = ()) -> set:
@@ -77,29 +78,62 @@ def longest_path_layers(nodes: list, edges: list[tuple], roots: list | tuple = (
 
 def layered_layout(nodes: list, edges: list[tuple], size: dict, layer: dict | None = None,
                    roots: list | tuple = (), gap_x: float = 28, gap_y: float = 56, sweeps: int = 4,
-                   margin: float = 10, direction: str = "TB") -> Layout:
-    """Layered layout, top to bottom ("TB") or left to right ("LR"); `size[n]` is (width, height) in px."""
+                   margin: float = 10, direction: str = "TB", max_bends: int | None = None) -> Layout:
+    """Layered layout, top to bottom ("TB") or left to right ("LR"); `size[n]` is (width, height) in px.
+
+    An edge that spans several layers gets a bend point in each layer it crosses, placed and ordered
+    like a small node, so that it runs between the nodes rather than through them: `Layout.routes[(u, v)]`
+    lists those points from u to v. `max_bends` bounds their number (default: twice the number of nodes);
+    the longest edges past the bound get none.
+    """
     if direction == "LR":
         t = layered_layout(nodes, edges, {n: (h, w) for n, (w, h) in size.items()}, layer, roots, gap_y,
-                           gap_x, sweeps, margin)
-        return Layout({n: (y, x) for n, (x, y) in t.pos.items()}, t.layer, t.height, t.width)
+                           gap_x, sweeps, margin, max_bends=max_bends)
+        return Layout({n: (y, x) for n, (x, y) in t.pos.items()}, t.layer, t.height, t.width,
+                      {e: [(y, x) for x, y in pts] for e, pts in t.routes.items()})
     if layer is None:
         layer = longest_path_layers(nodes, edges, roots)
+    level = dict(layer)
+    size = dict(size)
     rows: dict[int, list] = defaultdict(list)
     for n in nodes:
-        rows[layer[n]].append(n)
+        rows[level[n]].append(n)
     depth = sorted(rows)
+    index_of = {r: k for k, r in enumerate(depth)}
     nbrs = defaultdict(set)
-    for u, v in edges:
-        if u != v:
+    chains: dict = {}
+    budget = 2 * len(nodes) if max_bends is None else max_bends
+    by_span = sorted((e for e in dict.fromkeys(edges) if e[0] != e[1]),
+                     key=lambda e: abs(index_of[level[e[0]]] - index_of[level[e[1]]]))
+    for u, v in by_span:
+        a, b = index_of[level[u]], index_of[level[v]]
+        span = abs(a - b)
+        if span <= 1 or span - 1 > budget:
             nbrs[u].add(v)
             nbrs[v].add(u)
+            continue
+        budget -= span - 1
+        step = 1 if b > a else -1
+        chain = []
+        prev = u
+        for k in range(a + step, b, step):
+            d = ("__bend", len(chains), k)
+            level[d] = depth[k]
+            size[d] = (6.0, 6.0)
+            rows[depth[k]].append(d)
+            nbrs[prev].add(d)
+            nbrs[d].add(prev)
+            chain.append(d)
+            prev = d
+        nbrs[prev].add(v)
+        nbrs[v].add(prev)
+        chains[(u, v)] = chain
     rank = {n: i for r in depth for i, n in enumerate(rows[r])}
 
     def reorder(r: int, other: set) -> None:
         keyed = []
         for i, n in enumerate(rows[r]):
-            ks = [rank[m] for m in nbrs[n] if layer[m] in other]
+            ks = [rank[m] for m in nbrs[n] if level[m] in other]
             keyed.append((sum(ks) / len(ks) if ks else i, i, n))
         keyed.sort(key=lambda t: (t[0], t[1]))
         rows[r] = [n for _, _, n in keyed]
@@ -115,6 +149,7 @@ def layered_layout(nodes: list, edges: list[tuple], size: dict, layer: dict | No
     out = Layout(layer=dict(layer))
     y = margin
     placed: dict = {}
+    where: dict = {}
     for r in depth:
         row = rows[r]
         h = max(size[n][1] for n in row)
@@ -124,21 +159,28 @@ def layered_layout(nodes: list, edges: list[tuple], size: dict, layer: dict | No
             want.append(sum(xs) / len(xs) if xs else None)
         xs: list[float] = []
         for i, n in enumerate(row):
-            lo = -1e18 if i == 0 else xs[-1] + (size[row[i - 1]][0] + size[n][0]) / 2 + gap_x
+            pad = gap_x / 3 if i and _is_bend(n) and _is_bend(row[i - 1]) else gap_x  # bends pack closer
+            lo = -1e18 if i == 0 else xs[-1] + (size[row[i - 1]][0] + size[n][0]) / 2 + pad
             xs.append(max(lo, want[i] if want[i] is not None else lo if i else 0.0))
         diffs = [w - x for w, x in zip(want, xs) if w is not None]
         shift = sum(diffs) / len(diffs) if diffs else 0.0
         for n, x in zip(row, xs):
             placed[n] = x + shift
-            out.pos[n] = (x + shift, y + h / 2)
+            where[n] = (x + shift, y + h / 2)
         y += h + gap_y
-    if out.pos:
-        left = min(out.pos[n][0] - size[n][0] / 2 for n in out.pos)
-        for n, (x, yy) in out.pos.items():
-            out.pos[n] = (x - left + margin, yy)
-        out.width = max(out.pos[n][0] + size[n][0] / 2 for n in out.pos) + margin
+    if where:
+        left = min(where[n][0] - size[n][0] / 2 for n in where)
+        for n, (x, yy) in where.items():
+            where[n] = (x - left + margin, yy)
+        out.pos = {n: where[n] for n in nodes}
+        out.routes = {e: [where[d] for d in chain] for e, chain in chains.items()}
+        out.width = max(where[n][0] + size[n][0] / 2 for n in where) + margin
         out.height = y - gap_y + margin
     return out
+
+
+def _is_bend(n) -> bool:
+    return type(n) is tuple and n[:1] == ("__bend",)
 
 
 def pack_rows(sizes: list[tuple[float, float]], max_width: float, gap: float = 16) -> tuple[list, float, float]:

@@ -241,10 +241,14 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
                                         gap=48)
             for n, (cx, cy) in zip(row, corners):
                 pos[n] = (cx + nodes[n].w / 2, cy + nodes[n].h / 2, False)
+        bends: dict = {}
         if lay:
             top_y = lh + (PAD if row else 0)
             for n, (x, y) in lay.pos.items():
                 pos[n] = (x, top_y + y, side)
+            for e, pts in lay.routes.items():
+                for i, (x, y) in enumerate(pts):
+                    bends[(e, i)] = (x, top_y + y)
             lw, lh = max(lw, lay.width), top_y + lay.height
         if row and lay:  # centre the row over the flow
             shift = (lw - max(pos[n][0] + nodes[n].w / 2 for n in row)) / 2
@@ -261,6 +265,8 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
         dx = PAD + (inner_w - lw) / 2
         for n, (x, y, sd) in pos.items():
             items.append(("node", n, dx + x, header + (PAD if not header else 0) + y, sd))
+        for b, (x, y) in bends.items():
+            items.append(("bend", b, dx + x, header + (PAD if not header else 0) + y, None))
         ky = header + (PAD if not header else 0) + lh + (PAD if lh and kids else 0)
         for (cx, cy), (_cw, _ch, citems) in zip(corners, kids):
             for kind, k, x, y, extra in citems:
@@ -268,8 +274,11 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
         return w, h, items
 
     width, height, items = measure(top, 0)
+    routes: dict = {}
     for kind, k, x, y, extra in items:
-        if kind == "node":
+        if kind == "bend":
+            routes.setdefault(k[0], []).append((k[1], x, y))
+        elif kind == "node":
             node = nodes[k]
             node.side = extra
             if extra:
@@ -290,7 +299,7 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
 
     body.append(S.arrow_defs("na", {"line": S.LINE, "bad": S.BAD}))
     body += boxes
-    arcs, right = _arcs(net, nodes)
+    arcs, right = _arcs(net, nodes, {e: [(x, y) for _, x, y in sorted(pts)] for e, pts in routes.items()})
     body += arcs
     for node in nodes.values():
         if node.kind == "place":
@@ -387,8 +396,10 @@ def _transition(t, node: _Node, is_dead: bool, occ) -> str:
     return "".join(out)
 
 
-def _arcs(net, nodes: dict) -> tuple[list[str], float]:
-    """The arcs as SVG, and the rightmost x any inscription reaches."""
+def _arcs(net, nodes: dict, routes: dict) -> tuple[list[str], float]:
+    """The arcs as SVG, and the rightmost x any inscription reaches.
+
+    routes: (from node, to node) -> bend points of a laid-out edge that spans several layers."""
     pairs: dict = {}
     for t in net.transitions:
         for a in t.arcs:
@@ -403,15 +414,18 @@ def _arcs(net, nodes: dict) -> tuple[list[str], float]:
         cross = (place.page, place.instance) != (trans.page, trans.instance)
         dist = ((pn.x - tn.x) ** 2 + (pn.y - tn.y) ** 2) ** 0.5
         base = min(120.0, 0.12 * dist + 16) if cross else 0.0
+        keys = [(("t", ti), ("p", p)) if a.kind == "out" else (("p", p), ("t", ti)) for a in arcs]
         for k, a in enumerate(arcs):
             bend = base + (k - (len(arcs) - 1) / 2) * 34
-            svg, r = _arc(net, a, pn, tn, bend, trans.name)
+            # an arc alone in its direction between the two nodes follows the layout's bend points
+            route = routes.get(keys[k]) if keys.count(keys[k]) == 1 and not cross else None
+            svg, r = _arc(net, a, pn, tn, bend, trans.name, route)
             out.append(svg)
             right = max(right, r)
     return out, right
 
 
-def _arc(net, a, pn: _Node, tn: _Node, bend: float, tname: str) -> tuple[str, float]:
+def _arc(net, a, pn: _Node, tn: _Node, bend: float, tname: str, route: list | None = None) -> tuple[str, float]:
     (px, py), (tx, ty) = (pn.x, pn.y), (tn.x, tn.y)
     dx, dy = tx - px, ty - py
     dist = max(1.0, (dx * dx + dy * dy) ** 0.5)
@@ -436,6 +450,15 @@ def _arc(net, a, pn: _Node, tn: _Node, bend: float, tname: str) -> tuple[str, fl
         label = ("reset " + label).strip()
     d = (f"M{S.fmt(ax)},{S.fmt(ay)} L{S.fmt(bx)},{S.fmt(by)}" if bend == 0 else
          f"M{S.fmt(ax)},{S.fmt(ay)} Q{S.fmt(mx)},{S.fmt(my)} {S.fmt(bx)},{S.fmt(by)}")
+    label_at = None
+    if route:  # through the bend points the layout left between the nodes of the layers it crosses
+        (sn, ss), (en, es) = ((tn, "rect"), (pn, "ellipse")) if a.kind == "out" else ((pn, "ellipse"), (tn, "rect"))
+        ax, ay = S.boundary_point(sn.x, sn.y, sn.shape_w / 2, sn.shape_h / 2, route[0][0], route[0][1], ss)
+        bx, by = S.boundary_point(en.x, en.y, en.shape_w / 2, en.shape_h / 2, route[-1][0], route[-1][1], es)
+        pts = [(ax, ay), *route, (bx, by)]
+        d = S.smooth_path(pts)
+        m = len(pts) // 2
+        label_at = (pts[m], pts[m - 1], pts[m + 1] if m + 1 < len(pts) else pts[m])
     tip = f"{a.kind} arc {net.places[a.place].name} – {tname}" + (f": {label}" if label else "")
     out = [f'<g class="arc">{S.title(tip)}<path d="{d}" fill="none" stroke="{S.LINE}" stroke-width="1.4"'
            f'{dash} {m_start} {m_end}/>']
@@ -445,8 +468,12 @@ def _arc(net, a, pn: _Node, tn: _Node, bend: float, tname: str) -> tuple[str, fl
     if label:
         lx = (ax + bx) / 2 + (nx * bend / 2 if bend else 0)
         ly = (ay + by) / 2 + (ny * bend / 2 if bend else 0)
+        steep = abs(by - ay) > 1.5 * abs(bx - ax)
+        if label_at is not None:
+            (lx, ly), (x0, y0), (x1, y1) = label_at
+            steep = abs(y1 - y0) > 1.5 * abs(x1 - x0)
         lines = wrap(label)
-        if abs(by - ay) > 1.5 * abs(bx - ax):  # a steep arc: the inscription goes beside it
+        if steep:  # a steep arc: the inscription goes beside it
             for k, line in enumerate(lines):
                 out.append(S.text(lx + 7, ly + 4 + 14 * (k - (len(lines) - 1) / 2), line, 12, "start",
                                   mono=True, halo=True, cls="inscription"))

@@ -111,3 +111,17 @@ def boundary_point(cx: float, cy: float, hw: float, hh: float, tx: float, ty: fl
     else:
         s = 1.0 / math.sqrt((dx / hw) ** 2 + (dy / hh) ** 2)
     return cx + dx * s, cy + dy * s
+
+
+def smooth_path(points: list[tuple[float, float]]) -> str:
+    """Path data for a smooth curve through the points (Catmull-Rom as cubic Béziers)."""
+    pts = list(points)
+    d = [f"M{fmt(pts[0][0])},{fmt(pts[0][1])}"]
+    for i in range(len(pts) - 1):
+        p0 = pts[i - 1] if i else pts[i]
+        p1, p2 = pts[i], pts[i + 1]
+        p3 = pts[i + 2] if i + 2 < len(pts) else p2
+        c1 = (p1[0] + (p2[0] - p0[0]) / 6, p1[1] + (p2[1] - p0[1]) / 6)
+        c2 = (p2[0] - (p3[0] - p1[0]) / 6, p2[1] - (p3[1] - p1[1]) / 6)
+        d.append(f"C{fmt(c1[0])},{fmt(c1[1])} {fmt(c2[0])},{fmt(c2[1])} {fmt(p2[0])},{fmt(p2[1])}")
+    return " ".join(d)

@@ -79,6 +79,20 @@ def test_layers_follow_the_edges_and_nodes_do_not_overlap():
     assert all(0 <= x - size[n][0] / 2 and x + size[n][0] / 2 <= lay.width for n, (x, _) in lay.pos.items())
 
 
+def test_an_edge_spanning_layers_runs_between_the_nodes_of_those_layers():
+    # a chain 0 -> 1 -> 2 -> 3 -> 4 with wide nodes beside it, and a back edge 4 -> 0 across all layers
+    nodes = list(range(5)) + ["a", "b", "c"]
+    edges = [(0, 1), (1, 2), (2, 3), (3, 4), (4, 0), (0, "a"), ("a", 2), (1, "b"), ("b", 3), (2, "c")]
+    size = {n: (60, 20) for n in nodes}
+    lay = layered_layout(nodes, edges, size, roots=[0])
+    route = lay.routes[(4, 0)]
+    assert len(route) == lay.layer[4] - lay.layer[0] - 1
+    for x, y in route:  # each bend point lies in a layer and clear of that layer's nodes
+        same = [n for n in nodes if abs(lay.pos[n][1] - y) < 1e-6]
+        assert same and all(abs(lay.pos[n][0] - x) >= size[n][0] / 2 for n in same)
+    assert not layered_layout(nodes, edges, size, roots=[0], max_bends=0).routes
+
+
 # ----------------------------------------------------------------------------------------- the net
 
 def test_module_instances_nest_as_in_the_model(stations):
