@@ -121,12 +121,18 @@ class Browser:
                                      stdout=subprocess.DEVNULL, stderr=subprocess.PIPE)
         port = self._port(timeout)
         deadline = time.monotonic() + timeout
-        while True:
-            with urllib.request.urlopen(f"http://127.0.0.1:{port}/json/list", timeout=10) as r:
-                pages = [t for t in json.load(r) if t.get("type") == "page"]
-            if pages or time.monotonic() > deadline:
-                break
-            time.sleep(0.2)
+        pages: list = []
+        while not pages:
+            try:
+                with urllib.request.urlopen(f"http://127.0.0.1:{port}/json/list", timeout=10) as r:
+                    pages = [t for t in json.load(r) if t.get("type") == "page"]
+            except OSError:
+                pass
+            if not pages:
+                if time.monotonic() > deadline:
+                    self.close()
+                    raise RuntimeError("Chromium started but offers no page to drive")
+                time.sleep(0.2)
         self.ws = WebSocket(pages[0]["webSocketDebuggerUrl"], timeout)
         self.next_id = 0
         self.events: list[dict] = []
