@@ -1,4 +1,4 @@
-"""Reports: the standard report as data (`model`) and its renderers (text, JSON, graph exports).
+"""Reports: the standard report as data (`model`) and its renderers (text, JSON, graph exports, HTML).
 
 May import cpn.checks and cpn.statespace; never cli.
 """
