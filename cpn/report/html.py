@@ -275,12 +275,16 @@ def _verdicts(r: Report, verdicts: list, failed: list) -> str:
     rows = [[S.esc(v.name), _pill(v.status), S.esc(v.detail),
              str(len(v.trace)) if v.trace is not None else ""] for v in verdicts]
     inner = _table(["Property", "Verdict", "Detail", "Trace steps"], rows, num_cols=(3,))
-    if failed and failed[0].trace is not None:
+    if failed:
         v = failed[0]
-        marked = v.marked_step if v.marked_step is not None else (
-            None if v.cycle_from is not None else len(v.trace) or None)  # a lasso: the cycle is marked
-        inner = (_trace_block(v.trace, r, f"First violated property: {v.name} (counterexample, {len(v.trace)} "
-                              "steps)", marked, v.cycle_from, "v0") + inner)
+        top = (f'<p class="headline">First violated property: <strong>{S.esc(v.name)}</strong>'
+               + (f" — {S.esc(v.detail)}" if v.detail else "") + "</p>")
+        if v.trace is not None:
+            marked = v.marked_step if v.marked_step is not None else (
+                None if v.cycle_from is not None else len(v.trace) or None)  # a lasso: the cycle is marked
+            top += _trace_block(v.trace, r, f"Counterexample of {v.name} ({len(v.trace)} steps)", marked,
+                                v.cycle_from, "v0")
+        inner = top + inner
     for k, v in enumerate(verdicts):
         if v.trace is not None and v is not (failed[0] if failed else None):
             marked = v.marked_step if v.marked_step is not None else (
@@ -466,6 +470,7 @@ body.cpnv-page{margin:0;background:#fff}
 .cpnv .tools button{font:12px system-ui,sans-serif;border:1px solid var(--line);background:#fff;border-radius:5px;
  padding:2px 8px;cursor:pointer;color:var(--ink)}
 .cpnv .trace{margin-top:10px}
+.cpnv .headline{font-size:16px;margin:6px 0;padding:8px 12px;border-left:4px solid var(--bad);background:#fdf3f3}
 .cpnv details{margin:0 0 8px;font-size:14px}
 .cpnv svg .node{cursor:default}
 .cpnv svg .node:hover circle{stroke-width:3.5}

@@ -341,9 +341,19 @@ def test_first_violated_property_and_its_trace_come_first(stations):
                                   Verdict("liveness", "unknown", "a limit stopped the search")])
     v = page.index('<section id="verdicts">')
     assert v < page.index('<section id="statistics">')
-    first = page.index("First violated property: no deadlock")
+    first = page.index("First violated property: <strong>no deadlock</strong> — a dead marking")
+    assert first < page.index("Counterexample of no deadlock (7 steps)")
     assert v < first < page.index('<table', v)
     assert page.count('class="pill bad">violated') == 1
+
+
+def test_a_first_violation_without_trace_is_still_the_headline(stations):
+    x = stations.exploration
+    trace = shortest_trace(x.graph, stations.dead.states[0], x.engine)
+    page = render_html(stations, [Verdict("no dead transition", "violated", "Station'Take 2 never occurs"),
+                                  Verdict("no deadlock", "violated", "", trace)])
+    head = page.index("First violated property: <strong>no dead transition</strong>")
+    assert head < page.index("<table", head) < page.index("no deadlock: counterexample (7 steps)")
 
 
 def test_evidence_as_a_path_and_a_cycle_becomes_a_lasso_chart():
@@ -369,7 +379,7 @@ def test_evidence_as_a_path_and_a_cycle_becomes_a_lasso_chart():
     assert [s.source for s in v.trace.steps[1:]] == [s.target for s in v.trace.steps[:-1]]
     assert v.trace.steps[-1].target == target
     page = render_html(r, [Verdict("no livelock", "violated", "a cycle", Evidence())])
-    assert 'class="cycle"' in page and "First violated property: no livelock" in page
+    assert 'class="cycle"' in page and "First violated property: <strong>no livelock</strong>" in page
     assert 'class="marked-band"' not in page  # a lasso marks its cycle, not one step
     assert "(the cycle starts here)" in page
 
@@ -407,7 +417,8 @@ def test_pages_of_a_check_run_and_their_index(tmp_path, stations):
     page = pathlib.Path(index).read_text(encoding="utf-8")
     assert page.index("stations-N-3.html") < page.index("ms-N-2.html")
     assert "violated: no deadlock" in page and "189" in page
-    assert "First violated property: no deadlock" in (tmp_path / "stations-N-3.html").read_text(encoding="utf-8")
+    assert "First violated property: <strong>no deadlock</strong>" in (tmp_path / "stations-N-3.html").read_text(
+        encoding="utf-8")
 
 
 # ------------------------------------------------------------------------------------------ CLI
