@@ -22,6 +22,7 @@ TIME_GAP = 20  # extra px when model time advances
 COLUMN = 172
 HEAD = 58
 LEFT = 86
+MESSAGE_CHARS = 34  # longer token values are cut (the tooltip has them whole)
 
 
 @dataclass
@@ -201,20 +202,32 @@ def render_chart(chart: Chart, marked_step: int | None = None, caption: str = ""
         body.append(f'<line class="time" x1="{LEFT - 6}" y1="{S.fmt(ty)}" x2="{S.fmt(width - 10)}" '
                     f'y2="{S.fmt(ty)}" stroke="#d5dbe1"/>'
                     + S.text(12, ty + 4, f"t = {t}", 12, "start", fill=S.MUTED, weight="600"))
+    widths = {ev.step: max(60, S.text_width(ev.label, 13) + 22) for ev in chart.events}  # bold 12 px
+    taken: set = set()  # (step, side) where a message label already sits
     for m in chart.messages:
         x1, y1, x2, y2 = xs[m.src_line], ys[m.src], xs[m.dst_line], ys[m.dst]
         sgn = 1 if x2 > x1 else -1
         x1, x2 = x1 + sgn * 8, x2 - sgn * 10
+        text = S.clip(m.label, MESSAGE_CHARS)
+        # A row holds one event, so a label fits in the row of its sender (beside the sending event, toward
+        # the receiver) or else in the row of its receiver (beside the receiving event, toward the sender).
+        if (m.src, sgn) not in taken:
+            taken.add((m.src, sgn))
+            label = S.text(xs[m.src_line] + sgn * (widths[m.src] / 2 + 6), y1 - 4, text, 12,
+                           "start" if sgn > 0 else "end", mono=True, halo=True, fill=S.ACCENT)
+        elif (m.dst, -sgn) not in taken:
+            taken.add((m.dst, -sgn))
+            label = S.text(xs[m.dst_line] - sgn * (widths[m.dst] / 2 + 6), y2 - 6, text, 12,
+                           "end" if sgn > 0 else "start", mono=True, halo=True, fill=S.ACCENT)
+        else:
+            label = S.text((x1 + x2) / 2, (y1 + y2) / 2 - 5, text, 12, mono=True, halo=True, fill=S.ACCENT)
         body.append(f'<g class="message">{S.title(m.label + f" (produced at step {m.src}, consumed at step {m.dst})")}'
                     f'<line x1="{S.fmt(x1)}" y1="{S.fmt(y1)}" x2="{S.fmt(x2)}" y2="{S.fmt(y2)}" stroke="{S.ACCENT}" '
-                    f'stroke-width="1.6" marker-end="url(#{prefix}-msg)"/>'
-                    + S.text(x1 + (x2 - x1) * 0.5, y1 + (y2 - y1) * 0.5 - 5, S.clip(m.label, 30), 12, mono=True,
-                             halo=True, fill=S.ACCENT)
-                    + "</g>")
+                    f'stroke-width="1.6" marker-end="url(#{prefix}-msg)"/>' + label + "</g>")
     for ev in chart.events:
         x, y = xs[ev.line], ys[ev.step]
         bad = ev.step == marked_step
-        w = max(60, S.text_width(ev.label, 12) + 22)
+        w = widths[ev.step]
         tip = [f"step {ev.step}: {ev.text}"] + ([f"model time {ev.time}"] if ev.time is not None else [])
         tip += [f"{p}: {a} -> {b}" for p, a, b in ev.changes[:20]]
         body.append(f'<g class="event{" marked" if bad else ""}">{S.title(chr(10).join(tip))}'
