@@ -78,13 +78,15 @@ def longest_path_layers(nodes: list, edges: list[tuple], roots: list | tuple = (
 
 def layered_layout(nodes: list, edges: list[tuple], size: dict, layer: dict | None = None,
                    roots: list | tuple = (), gap_x: float = 28, gap_y: float = 56, sweeps: int = 4,
-                   margin: float = 10, direction: str = "TB", max_bends: int | None = None) -> Layout:
+                   margin: float = 10, direction: str = "TB", max_bends: int | None = None,
+                   max_width: float | None = None) -> Layout:
     """Layered layout, top to bottom ("TB") or left to right ("LR"); `size[n]` is (width, height) in px.
 
     An edge that spans several layers gets a bend point in each layer it crosses, placed and ordered
     like a small node, so that it runs between the nodes rather than through them: `Layout.routes[(u, v)]`
     lists those points from u to v. `max_bends` bounds their number (default: twice the number of nodes);
-    the longest edges past the bound get none.
+    the longest edges past the bound get none. With `max_width` (top to bottom only), a layer wider than
+    that is wrapped onto several rows, so the drawing stays that wide.
     """
     if direction == "LR":
         t = layered_layout(nodes, edges, {n: (h, w) for n, (w, h) in size.items()}, layer, roots, gap_y,
@@ -151,23 +153,30 @@ def layered_layout(nodes: list, edges: list[tuple], size: dict, layer: dict | No
     placed: dict = {}
     where: dict = {}
     for r in depth:
-        row = rows[r]
-        h = max(size[n][1] for n in row)
-        want = []
-        for n in row:
-            xs = [placed[m] for m in nbrs[n] if m in placed]
-            want.append(sum(xs) / len(xs) if xs else None)
-        xs: list[float] = []
-        for i, n in enumerate(row):
-            pad = gap_x / 3 if i and _is_bend(n) and _is_bend(row[i - 1]) else gap_x  # bends pack closer
-            lo = -1e18 if i == 0 else xs[-1] + (size[row[i - 1]][0] + size[n][0]) / 2 + pad
-            xs.append(max(lo, want[i] if want[i] is not None else lo if i else 0.0))
-        diffs = [w - x for w, x in zip(want, xs) if w is not None]
-        shift = sum(diffs) / len(diffs) if diffs else 0.0
-        for n, x in zip(row, xs):
-            placed[n] = x + shift
-            where[n] = (x + shift, y + h / 2)
-        y += h + gap_y
+        for row in _chunks(rows[r], size, gap_x, max_width):
+            h = max(size[n][1] for n in row)
+            want = []
+            for n in row:
+                xs = [placed[m] for m in nbrs[n] if m in placed]
+                want.append(sum(xs) / len(xs) if xs else None)
+            xs: list[float] = []
+            for i, n in enumerate(row):
+                pad = gap_x / 3 if i and _is_bend(n) and _is_bend(row[i - 1]) else gap_x  # bends pack closer
+                lo = -1e18 if i == 0 else xs[-1] + (size[row[i - 1]][0] + size[n][0]) / 2 + pad
+                xs.append(max(lo, want[i] if want[i] is not None else lo if i else 0.0))
+            diffs = [w - x for w, x in zip(want, xs) if w is not None]
+            shift = sum(diffs) / len(diffs) if diffs else 0.0
+            if max_width is not None:  # keep the row inside [0, max_width]
+                lo_x = xs[0] + shift - size[row[0]][0] / 2
+                hi_x = xs[-1] + shift + size[row[-1]][0] / 2
+                over = max(0.0, hi_x - max_width)
+                shift -= over
+                if lo_x - over < 0:
+                    shift -= lo_x - over
+            for n, x in zip(row, xs):
+                placed[n] = x + shift
+                where[n] = (x + shift, y + h / 2)
+            y += h + gap_y
     if where:
         left = min(where[n][0] - size[n][0] / 2 for n in where)
         for n, (x, yy) in where.items():
@@ -176,6 +185,22 @@ def layered_layout(nodes: list, edges: list[tuple], size: dict, layer: dict | No
         out.routes = {e: [where[d] for d in chain] for e, chain in chains.items()}
         out.width = max(where[n][0] + size[n][0] / 2 for n in where) + margin
         out.height = y - gap_y + margin
+    return out
+
+
+def _chunks(row: list, size: dict, gap: float, max_width: float | None) -> list[list]:
+    """The row cut, in order, into pieces no wider than max_width (one piece without a limit)."""
+    if max_width is None:
+        return [row]
+    out: list[list] = [[]]
+    width = 0.0
+    for n in row:
+        w = size[n][0] + gap
+        if out[-1] and width + w - gap > max_width:
+            out.append([])
+            width = 0.0
+        out[-1].append(n)
+        width += w
     return out
 
 

@@ -61,6 +61,7 @@ class Unit:
     children: list = field(default_factory=list)
     places: list = field(default_factory=list)
     transitions: list = field(default_factory=list)
+    binds: list = field(default_factory=list)  # "port = socket" of the instance
 
 
 def instance_tree(net) -> tuple[dict, tuple]:
@@ -75,10 +76,10 @@ def instance_tree(net) -> tuple[dict, tuple]:
     if cm is not None and getattr(cm, "top", None) is not None:
         counter: dict = {}
 
-        def walk(page, label, parent, depth):
+        def walk(page, label, parent, depth, binds=()):
             counter[page.name] = counter.get(page.name, 0) + 1
             key = (page.name, counter[page.name])
-            units[key] = Unit(key, label, page.name, parent)
+            units[key] = Unit(key, label, page.name, parent, binds=list(binds))
             if parent is not None:
                 units[parent].children.append(key)
             if depth > 64:
@@ -86,7 +87,7 @@ def instance_tree(net) -> tuple[dict, tuple]:
             for inst in page.instances:
                 child = cm.modules.get(inst.module)
                 if child is not None:
-                    walk(child, inst.name, key, depth + 1)
+                    walk(child, inst.name, key, depth + 1, [f"{b[0]} = {b[2]}" for b in inst.binds])
             return key
 
         top_key = walk(cm.top, net.name, None, 0)
@@ -203,10 +204,16 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
     body: list[str] = []
     boxes: list[str] = []
     offset: dict = {}
+    collapsed = _collapsed(units, top, net, dead)
 
     def measure(key, depth) -> tuple[float, float, list]:
         """Lay out unit `key`; returns its size and the (kind, key, x, y) items relative to its corner."""
         u = units[key]
+        if key in collapsed:
+            lines = _summary(units, key, collapsed[key], net, dead)
+            w = max([220.0, S.text_width(_box_title(u), 13) + 20] + [S.text_width(t, 12) + 20 for t, _ in lines])
+            h = HEADER + LABEL_LINE * len(lines) + 10
+            return w, h, [("box", key, 0.0, 0.0, (w, h, depth, lines))]
         own = [("p", i) for i in u.places] + [("t", i) for i in u.transitions]
         edges = []
         own_set = set(own)
@@ -233,7 +240,8 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
             # a long chain: top to bottom instead, with each node's labels at its right
             side = True
             lay = layered_layout(flow, edges, {n: nodes[n].side_size() for n in flow}, roots=roots,
-                                 gap_x=150, gap_y=58, margin=0, direction="TB")
+                                 gap_x=150, gap_y=58, margin=0, direction="TB",
+                                 max_width=max_row_width - 2 * PAD * (depth + 1))
         pos: dict = {}
         lw = lh = 0.0
         if row:
@@ -261,7 +269,7 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
         inner_w = max(lw, kw, S.text_width(_box_title(u), 13) + 10)
         w = inner_w + 2 * PAD
         h = header + lh + (PAD if lh and kids else 0) + kh + PAD + (0 if header else PAD)
-        items = [("box", key, 0.0, 0.0, (w, h, depth))]
+        items = [("box", key, 0.0, 0.0, (w, h, depth, None))]
         dx = PAD + (inner_w - lw) / 2
         for n, (x, y, sd) in pos.items():
             items.append(("node", n, dx + x, header + (PAD if not header else 0) + y, sd))
@@ -287,18 +295,29 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
                 node.x, node.y = x, y - node.h / 2 + node.shape_h / 2
         else:
             offset[k] = (x, y) + extra
-    for key, (x, y, w, h, depth) in sorted(offset.items(), key=lambda kv: kv[1][4]):
+    for key, (x, y, w, h, depth, lines) in sorted(offset.items(), key=lambda kv: kv[1][4]):
         u = units[key]
         if key == top and not u.children:
             continue
         fill = "#fbfcfd" if depth % 2 == 0 else "#f3f5f7"
-        boxes.append(f'<g class="module"><rect x="{S.fmt(x)}" y="{S.fmt(y)}" width="{S.fmt(w)}" '
-                     f'height="{S.fmt(h)}" rx="8" fill="{fill}" stroke="{S.BOX_STROKE}"/>'
+        tip = f"module instance {u.label} (module {u.module}, instance {key[1]})"
+        extra = ""
+        if lines is not None:  # a collapsed instance: its summary instead of its nodes
+            tip += "\n" + "\n".join(_collapsed_tip(units, key, net, dead, bounds))
+            extra = "".join(S.text(x + 10, y + HEADER + 12 + LABEL_LINE * k, t, 12, "start",
+                                   fill=S.BAD if bad else S.MUTED) for k, (t, bad) in enumerate(lines))
+        boxes.append(f'<g class="module{" collapsed" if lines is not None else ""}">'
+                     f'<rect x="{S.fmt(x)}" y="{S.fmt(y)}" width="{S.fmt(w)}" '
+                     f'height="{S.fmt(h)}" rx="8" fill="{fill}" stroke="{S.BOX_STROKE}"'
+                     + (' stroke-dasharray="5 3"' if lines is not None else "") + "/>"
                      + S.text(x + 10, y + 18, _box_title(u), 13, "start", weight="600", fill=S.MUTED)
-                     + S.title(f"module instance {u.label} (module {u.module}, instance {key[1]})") + "</g>")
+                     + extra + S.title(tip) + "</g>")
 
     body.append(S.arrow_defs("na", {"line": S.LINE, "bad": S.BAD}))
     body += boxes
+    hidden = {("p", i) for k in collapsed for i in _all(units, k, "places")} | \
+             {("t", i) for k in collapsed for i in _all(units, k, "transitions")}
+    nodes = {n: node for n, node in nodes.items() if n not in hidden}
     arcs, right = _arcs(net, nodes, {e: [(x, y) for _, x, y in sorted(pts)] for e, pts in routes.items()})
     body += arcs
     for node in nodes.values():
@@ -313,6 +332,91 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
         else:
             right = max(right, node.x + node.w / 2)
     return S.document(max(width, right + 6) + 2, height + 2, body, f"the net {net.name}", cls="drawing net")
+
+
+FULL_INSTANCES = 3  # of a module with more instances, at most this many are drawn in full
+
+
+def _all(units: dict, key, what: str) -> list:
+    """The place or transition indices of unit `key` and of every instance below it."""
+    u = units[key]
+    out = list(getattr(u, what))
+    for c in u.children:
+        out += _all(units, c, what)
+    return out
+
+
+def _collapsed(units: dict, top, net, dead: set) -> dict:
+    """Instances drawn as a summary box: key -> the key of the instance of the same module drawn in full.
+
+    Of a module with more than FULL_INSTANCES instances, the first is drawn in full, then the next ones
+    in which some transition occurs, up to FULL_INSTANCES; the others are summarised (a protocol with 16
+    slaves would otherwise be 16 copies of one drawing).
+    """
+    by_module: dict = {}
+    order: list = []
+
+    def walk(k):
+        order.append(k)
+        for c in units[k].children:
+            walk(c)
+
+    walk(top)
+    for k in order:
+        if k != top:
+            by_module.setdefault(units[k].module, []).append(k)
+    out: dict = {}
+    for keys in by_module.values():
+        if len(keys) <= FULL_INSTANCES:
+            continue
+        full = [keys[0]]
+        for k in keys[1:]:
+            if len(full) < FULL_INSTANCES and any(net.transitions[t].name not in dead
+                                                  for t in _all(units, k, "transitions")):
+                full.append(k)
+        for k in keys:
+            if k not in full and not any(a in out for a in _ancestors(units, k)):
+                out[k] = keys[0]
+    return out
+
+
+def _ancestors(units: dict, key) -> list:
+    out = []
+    k = units[key].parent
+    while k is not None:
+        out.append(k)
+        k = units[k].parent
+    return out
+
+
+def _summary(units: dict, key, like, net, dead: set) -> list[tuple[str, bool]]:
+    """The lines of a collapsed instance's box: (text, is a warning)."""
+    ts = _all(units, key, "transitions")
+    n_dead = sum(1 for t in ts if net.transitions[t].name in dead)
+    n_p = len(_all(units, key, "places"))
+    lines = [(f"drawn like {units[like].label}: {_count(n_p, 'place')}, {_count(len(ts), 'transition')}", False)]
+    if units[key].binds:
+        lines.append((S.clip("ports: " + ", ".join(units[key].binds), 60), False))
+    lines.append((f"{n_dead} of {_count(len(ts), 'transition')} dead" if n_dead else "no dead transition",
+                  bool(n_dead)))
+    return lines
+
+
+def _count(n: int, noun: str) -> str:
+    return f"{n} {noun}" + ("" if n == 1 else "s")
+
+
+def _collapsed_tip(units: dict, key, net, dead: set, bounds: dict) -> list[str]:
+    out = []
+    for t in _all(units, key, "transitions"):
+        name = net.transitions[t].name
+        if name in dead:
+            out.append(f"dead: {name}")
+    for p in _all(units, key, "places"):
+        b = bounds.get(net.places[p].name)
+        if b is not None:
+            out.append(f"{net.places[p].name}: bounds {b[1]}..{b[0]}")
+    return out
 
 
 def _box_title(u: Unit) -> str:
@@ -407,6 +511,8 @@ def _arcs(net, nodes: dict, routes: dict) -> tuple[list[str], float]:
     out = []
     right = 0.0
     for (p, ti), arcs in pairs.items():
+        if ("p", p) not in nodes or ("t", ti) not in nodes:  # an end inside a collapsed instance
+            continue
         pn, tn = nodes[("p", p)], nodes[("t", ti)]
         place, trans = net.places[p], net.transitions[ti]
         # An arc between module instances is bent so that it does not run through the nodes lined up

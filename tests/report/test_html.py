@@ -79,6 +79,20 @@ def test_layers_follow_the_edges_and_nodes_do_not_overlap():
     assert all(0 <= x - size[n][0] / 2 and x + size[n][0] / 2 <= lay.width for n, (x, _) in lay.pos.items())
 
 
+def test_a_wide_layer_wraps_onto_rows_within_the_width():
+    nodes = ["root"] + list(range(30))
+    edges = [("root", i) for i in range(30)]
+    size = {n: (80, 30) for n in nodes}
+    lay = layered_layout(nodes, edges, size, max_width=500, margin=0)
+    assert lay.width <= 500
+    rows = {lay.pos[i][1] for i in range(30)}
+    assert len(rows) >= 5  # 30 nodes of 80 px (+28 px gap) need at least 5 rows of 500 px
+    for a in range(30):
+        for b in range(a + 1, 30):
+            if lay.pos[a][1] == lay.pos[b][1]:
+                assert abs(lay.pos[a][0] - lay.pos[b][0]) >= 80
+
+
 def test_an_edge_spanning_layers_runs_between_the_nodes_of_those_layers():
     # a chain 0 -> 1 -> 2 -> 3 -> 4 with wide nodes beside it, and a back edge 4 -> 0 across all layers
     nodes = list(range(5)) + ["a", "b", "c"]
@@ -142,6 +156,34 @@ def test_a_multi_line_inscription_is_shown_without_what_follows_it(tmp_path):
     from cpn.report.netdraw import inscription
 
     assert [inscription(net, a.expr) for a in net.transitions[0].arcs] == ["k", "if k < 3 then k + 1 else 0"]
+
+
+WORKERS = """net Pool;
+colset ID = int with 1..6;
+var i : ID;
+module Worker(me : ID) {
+  port in Jobs : ID;
+  place Done : ID;
+  trans Work [i = me];
+  arc Jobs -> Work : i;
+  arc Work -> Done : i;
+}
+place Jobs : ID = 1`1 ++ 1`2;
+""" + "".join(f"instance W{k} = Worker(me = {k}) {{ Jobs = Jobs }};\n" for k in range(1, 7))
+
+
+def test_many_instances_of_a_module_are_summarised_beyond_the_first_ones(tmp_path):
+    src = tmp_path / "pool.cpnet"
+    src.write_text(WORKERS)
+    r = _explore(src)
+    assert sorted(r.dead_transitions) == [f"Worker'Work {k}" for k in range(3, 7)]
+    svg = draw_net(r.engine.net, {}, r.dead_transitions)
+    # W1 (the first) and W2 (its Work occurs) in full; W3..W6 (only dead transitions) summarised
+    assert svg.count('class="module collapsed"') == 4
+    assert svg.count('class="transition"') == 2 and 'class="transition dead"' not in svg
+    assert svg.count("drawn like W1: 1 place, 1 transition") == 4
+    assert svg.count("1 of 1 transition dead") == 4 and "ports: Jobs = Jobs" in svg
+    assert "dead: Worker&#x27;Work 5" in svg  # the summary's tooltip names them
 
 
 def test_arc_kinds_are_drawn_apart(tmp_path):

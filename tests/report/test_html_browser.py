@@ -28,6 +28,9 @@ PAGES = {
     "stop_and_wait": ["--time-condensation", "models/examples/stop_and_wait.cpnet"],
     "ms2": ["bench/nets/ms.cpnet", "--set", "N=2"],
     "minibus": ["tests/report/nets/minibus.cpnet"],  # a master, a bus and two slaves as module instances
+    # MODBUS scenario A.2 (reports/README.md): a master, a bus and 16 slave instances, a 131-step trace
+    "modbus_A2": ["models/modbus/modbus.cpnet", "--time-condensation", "--set", 'CONFIG="A"', "--set",
+                  "ADRS=[0,3,5,6]", "--set", "FCS=[1,7,20]", "--set", "PO=2"],
 }
 
 CHECK = r"""
