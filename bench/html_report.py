@@ -26,6 +26,7 @@ MODELS = [
     ("bench/nets/ms.cpnet", {"N": "3"}, False),
     ("bench/nets/ms.cpnet", {"N": "5"}, False),
     ("bench/nets/dp.cpnet", {"N": "8"}, False),
+    ("models/modbus/modbus.cpnet", {"CONFIG": '"A"', "ADRS": "[0,3,5,6]", "FCS": "[1,7,20]", "PO": "2"}, True),
 ]
 
 
@@ -53,7 +54,8 @@ def main(argv=None) -> int:
             page = render_html(r)
             html_s.append(time.perf_counter() - t0)
         e, h = statistics.median(explore_s), statistics.median(html_s)
-        name = path + "".join(f" {k}={v}" for k, v in sets.items()) + (" (tc)" if tc else "")
+        name = path + ("".join(f" {k}={v}" for k, v in sets.items()) if len(sets) < 3 else " A.2") \
+            + (" (tc)" if tc else "")
         kind = choose(x) if r.scc.nodes <= 300 or choose(x) == "full" else "none"
         print(f"{name:<44} {x.n_states:>8,} {x.n_arcs:>9,} {kind:>6} {len(page.encode()) // 1024:>8,} "
               f"{e:>10.3f} {h:>8.3f} {h / e if e else float('inf'):>12.1f}")
