@@ -336,7 +336,7 @@ def _dead_markings(r: Report, traces: list[ReportTrace], level: list[int]) -> st
     for d in r.dead.states[:MAX_TABLE_ROWS]:
         link = f'<a href="#trace-d{d + 1}">chart</a>' if d in charted else ""
         rows.append([f"{d + 1}", f"{level[d]}",
-                     f'<span class="mono">{S.esc(marking_text(engine, g.states[d]))}</span>', link])
+                     _marking_cell(marking_text(engine, g.states[d])), link])
     more = (f'<p class="note">{r.dead.count - MAX_TABLE_ROWS:,} more dead markings are not listed.</p>'
             if r.dead.count > MAX_TABLE_ROWS else "")
     inner = _table(["State", "Steps from initial", "Marking", "Trace"], rows, num_cols=(0, 1)) + more
@@ -348,6 +348,16 @@ def _dead_markings(r: Report, traces: list[ReportTrace], level: list[int]) -> st
     note = ("Each chart is the shortest occurrence sequence from the initial marking; the last step, which "
             "reaches the dead marking, is marked.")
     return _section("dead", "Dead markings", inner, note)
+
+
+def _marking_cell(text: str, shown: int = 6) -> str:
+    """A marking in a table cell: the first places, the rest folded away when there are many."""
+    lines = text.split("\n")
+    head = f'<span class="mono">{S.esc(chr(10).join(lines[:shown]))}</span>'
+    if len(lines) <= shown + 2:
+        return f'<span class="mono">{S.esc(text)}</span>'
+    rest = f'<span class="mono">{S.esc(chr(10).join(lines[shown:]))}</span>'
+    return f"{head}<details><summary>{len(lines) - shown} more places</summary>{rest}</details>"
 
 
 def _trace_block(trace, r: Report, caption: str, marked: int | None, cycle_from: int | None, ident: str,

@@ -440,6 +440,20 @@ def test_text_from_the_model_and_the_properties_is_escaped(stations):
     assert page.count("<script>") == 1  # the page's own script only
 
 
+def test_a_long_dead_marking_is_folded_in_the_table(tmp_path):
+    src = tmp_path / "pool.cpnet"
+    src.write_text(WORKERS.replace("place Jobs : ID = 1`1 ++ 1`2;", "place Jobs : ID = ID.all();"))
+    page = render_html(_explore(src))
+    table = page[page.index('<section id="dead">'):page.index("</table>", page.index('<section id="dead">'))]
+    assert "<summary>1 more places</summary>" not in table  # 7 lines: shown whole
+    assert table.count("Worker&#x27;Done") == 6
+    from cpn.report.html import _marking_cell
+
+    cell = _marking_cell("\n".join(f"P{k}: 1`{k}" for k in range(20)))
+    assert cell.count("<details>") == 1 and "<summary>14 more places</summary>" in cell
+    assert cell.index("P5: 1`5") < cell.index("<details>") < cell.index("P6: 1`6")
+
+
 def test_index_lists_worst_runs_first():
     page = render_index([IndexEntry("a", "a.html", "holds", 10, 0.1), IndexEntry("b", "b.html", "violated"),
                          IndexEntry("c", "c.html", "unknown", 5)])
