@@ -115,12 +115,12 @@ def line_chart(xs: list[float], series: list[tuple[str, list[float]]], x_label: 
     lo, hi = (min(ys), max(ys)) if ys else (0, 1)
     yt = log_ticks(max(lo, 1e-9), hi) if log_y else nice_ticks(min(0, lo), hi)
     xt = nice_ticks(min(xs), max(xs)) if xs else [0, 1]
-    if xs and all(float(x).is_integer() for x in xs) and len(xs) <= 16:
-        xt_shown = list(xs)
-    else:
-        xt_shown = xt
     legend_h = 18 * len(series) if len(series) > 1 else 0
     ax = _Axes(64, top + legend_h, width - 84, height - top - legend_h - 48, xt, yt, log_y)
+    # the data's own x values as ticks when they are whole numbers far enough apart to be read
+    gaps = [ax.x(b) - ax.x(a) for a, b in zip(sorted(xs), sorted(xs)[1:])]
+    readable = all(float(x).is_integer() for x in xs) and len(xs) <= 16 and min(gaps, default=99) >= 22
+    xt_shown = list(xs) if xs and readable else xt
     body = ([S.text(10, 18, caption, 13, "start", weight="600")] if caption else [])
     body += ax.frame(x_label, y_label + (" (log scale)" if log_y else ""), x_ticks=xt_shown)
     for k, (name, vs) in enumerate(series):
@@ -147,18 +147,59 @@ def growth_chart(level_sizes: list[int]) -> str:
                      tooltip=lambda i, v: f"level {i}: {v:,} new states")
 
 
-def scaling_chart(rows: list[dict], param: str = "N", standalone: bool = False) -> str:
+def scaling_chart(rows: list[dict], param: str = "N", standalone: bool = False,
+                  states: tuple = ("states",), seconds: tuple = ("seconds",)) -> str:
     """States and seconds against a parameter: rows like {"N": 3, "states": 837, "seconds": 0.1}.
 
-    Two panels side by side (states on a log scale); rows missing a figure leave a gap. With
+    Two panels side by side (states on a log scale), one line per column named in `states` and in
+    `seconds` (e.g. a run with and one without broadcasts); rows missing a figure leave a gap. With
     standalone=True the result is a complete SVG file, e.g. for an image next to a benchmark table.
     """
     rows = sorted(rows, key=lambda r: r[param])
     xs = [r[param] for r in rows]
-    left = line_chart(xs, [("states", [r.get("states") for r in rows])], param, "states",
+    left = line_chart(xs, [(c, [r.get(c) for r in rows]) for c in states], param, "states",
                       caption="States", log_y=True)
-    right = line_chart(xs, [("seconds", [r.get("seconds") for r in rows])], param, "seconds",
+    right = line_chart(xs, [(c, [r.get(c) for r in rows]) for c in seconds], param, "seconds",
                        caption="Seconds")
     body = [f'<g>{left}</g>', f'<g transform="translate(430,0)">{right}</g>']
     return S.document(850, 260, body, f"states and seconds against {param}", cls="drawing chart",
                       standalone=standalone)
+
+
+def markdown_table(text: str, after: str = "") -> list[dict]:
+    """The first Markdown table of `text` after the line containing `after`, as rows of numbers.
+
+    Cells are read as numbers where they are ("1 177", "0.71"); a column heading that repeats an earlier
+    one gets the earlier one's prefix ("with a broadcast: states" then "arcs" gives "with a broadcast:
+    arcs"). Cells that are not numbers are kept as text.
+    """
+    lines = text.split("\n")
+    start = next((k for k, line in enumerate(lines) if after in line), 0) if after else 0
+    k = next((j for j in range(start, len(lines)) if lines[j].lstrip().startswith("|")), None)
+    if k is None:
+        return []
+    head = [c.strip() for c in lines[k].strip().strip("|").split("|")]
+    prefix = ""
+    names = []
+    for h in head:
+        if ": " in h:
+            prefix = h.split(": ")[0] + ": "
+        names.append(h if ": " in h or h not in names else prefix + h)
+    rows = []
+    for line in lines[k + 2:]:
+        if not line.lstrip().startswith("|"):
+            break
+        cells = [c.strip() for c in line.strip().strip("|").split("|")]
+        rows.append({n: _number(c) for n, c in zip(names, cells)})
+    return rows
+
+
+def _number(cell: str):
+    t = cell.replace(" ", "").replace("\u202f", "").replace(",", "")
+    try:
+        return int(t)
+    except ValueError:
+        try:
+            return float(t)
+        except ValueError:
+            return cell

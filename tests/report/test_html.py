@@ -344,6 +344,34 @@ def test_growth_and_scaling_charts():
     assert "states at N = 3" not in svg and "states: 837 at N = 3" in svg
 
 
+def test_a_scaling_table_of_a_markdown_file_as_a_chart(tmp_path):
+    from cpn.report.plot import markdown_table
+
+    text = ("intro\n\n## Scaling\n\n| NS | states | arcs | s | with a broadcast: states | arcs | s |\n"
+            "|---|---|---|---|---|---|---|\n| 4 | 53 | 54 | 0.02 | 73 | 91 | 0.02 |\n"
+            "| 10 | 149 | 156 | 0.06 | 1 177 | 5 281 | 0.71 |\n\nafter\n")
+    rows = markdown_table(text, "## Scaling")
+    assert rows == [{"NS": 4, "states": 53, "arcs": 54, "s": 0.02, "with a broadcast: states": 73,
+                     "with a broadcast: arcs": 91, "with a broadcast: s": 0.02},
+                    {"NS": 10, "states": 149, "arcs": 156, "s": 0.06, "with a broadcast: states": 1177,
+                     "with a broadcast: arcs": 5281, "with a broadcast: s": 0.71}]
+    svg = scaling_chart(rows, "NS", standalone=True, states=("states", "with a broadcast: states"),
+                        seconds=("s", "with a broadcast: s"))
+    assert len(list(ET.fromstring(svg).iter(f"{SVG}circle"))) == 8
+    assert "with a broadcast: states: 1,177 at NS = 10" in svg
+    md = tmp_path / "t.md"
+    md.write_text(text)
+    out = tmp_path / "t.svg"
+    import subprocess
+    import sys
+
+    cmd = [sys.executable, str(ROOT / "bench/scaling_plot.py"), str(md), "--after", "## Scaling", "--param", "NS",
+           "--seconds", "s", "-o", str(out)]
+    assert subprocess.run(cmd, capture_output=True).returncode == 0 and out.read_text().startswith("<svg")
+    bad = subprocess.run(cmd[:-2] + ["--states", "nodes", "-o", str(out)], capture_output=True, text=True)
+    assert bad.returncode == 64 and "no column 'nodes'" in bad.stderr
+
+
 @pytest.mark.parametrize("lo,hi", [(0, 1), (0, 837), (3, 7), (0.001, 0.02), (0, 1e6)])
 def test_nice_ticks_cover_the_range(lo, hi):
     t = nice_ticks(lo, hi)
