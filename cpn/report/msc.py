@@ -244,5 +244,7 @@ def render_chart(chart: Chart, marked_step: int | None = None, caption: str = ""
         x = width - 22
         body.append(f'<path class="cycle" d="M{x - 8},{S.fmt(y1)} h8 V{S.fmt(y2)} h-8" fill="none" stroke="{S.WARN}" '
                     f'stroke-width="2"/>' + S.text(x + 4, (y1 + y2) / 2, "↻", 16, "start", fill=S.WARN))
+    if not chart.events:
+        body.append(S.text(LEFT, top, "no step: the trace ends at the initial marking", 13, "start", fill=S.MUTED))
     label = f"message sequence chart, {len(chart.events)} steps"
     return S.document(width, height, body, label, cls="drawing msc", standalone=standalone)

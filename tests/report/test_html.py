@@ -332,6 +332,15 @@ def test_msc_marks_the_violating_step_and_a_cycle(stations):
     assert 'class="cycle"' in svg and 'class="marked-band"' in svg
 
 
+def test_a_trace_without_steps_says_so(tmp_path):
+    src = tmp_path / "d0.cpnet"
+    src.write_text("net D;\ncolset U = unit;\nplace P : U;\ntrans T;\narc P -> T;\n")
+    r = _explore(src)
+    t = dead_marking_traces(r)[0]
+    assert len(t) == 0 and "no step: the trace ends at the initial marking" in t.svg(standalone=True)
+    assert "The initial marking itself: no step is needed." in render_html(r)
+
+
 def test_growth_and_scaling_charts():
     svg = growth_chart([1, 3, 6, 7, 6, 3, 1, 1])
     root = _xml(svg)
