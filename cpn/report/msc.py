@@ -10,6 +10,7 @@ initial marking has no sender and draws no arrow. For timed nets the vertical ax
 
 from __future__ import annotations
 
+import weakref
 from collections import defaultdict, deque
 from dataclasses import dataclass, field
 
@@ -120,6 +121,9 @@ def build_chart(trace, exploration) -> Chart:
     return chart
 
 
+_PLAIN: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # engine -> the same net without condensation
+
+
 def _step_times(trace, exploration) -> list | None:
     """The model time at which each step occurs; None when it cannot be known.
 
@@ -132,7 +136,9 @@ def _step_times(trace, exploration) -> list | None:
     if not getattr(engine, "time_condensation", False):
         return [engine.clock(g.states[s.target]) for s in trace.steps]
     try:
-        plain = type(engine)(engine.net, time_condensation=False)
+        plain = _PLAIN.get(engine)
+        if plain is None:  # compiled once per engine: the charts of one page share it
+            plain = _PLAIN[engine] = type(engine)(engine.net, time_condensation=False)
         state = plain.initial_state()
         times = []
         for step in trace.steps:
