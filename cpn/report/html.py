@@ -480,6 +480,7 @@ body.cpnv-page{margin:0;background:#fff}
 .cpnv .tools button{font:12px system-ui,sans-serif;border:1px solid var(--line);background:#fff;border-radius:5px;
  padding:2px 8px;cursor:pointer;color:var(--ink)}
 .cpnv .trace{margin-top:10px}
+.cpnv section,.cpnv .trace{scroll-margin-top:44px}
 .cpnv .headline{font-size:16px;margin:6px 0;padding:8px 12px;border-left:4px solid var(--bad);background:#fdf3f3}
 .cpnv details{margin:0 0 8px;font-size:14px}
 .cpnv svg .node{cursor:default}
