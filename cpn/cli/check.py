@@ -45,6 +45,9 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p.add_argument("--no-reports", action="store_true", help="write no per-run report files")
     add_output_option(p, "--junit", "JUnit XML (one test case per property)")
     add_output_option(p, "--sarif", "SARIF 2.1.0 (violations located in the spec files)")
+    p.add_argument("--html", metavar="DIR",
+                   help="write one HTML page per scenario run (the net, the state space, every counterexample "
+                   "as a chart) and an index page, DIR/index.html")
     p.add_argument("--baseline", metavar="DIR",
                    help="compare with the JSON reports of an earlier run in DIR and print what changed")
     p.add_argument("--trace-format", choices=("text", "json"), default="text",
@@ -79,6 +82,9 @@ def run(args) -> int:
                  # the default memory limit applies only where a scenario sets none
                  "default_max_memory_mb" if args.max_memory_is_default else "max_memory_mb": args.max_memory,
                  "stop_at_first_violation": True if args.stop_at_first_violation else None}
+    if args.html:
+        _prepare_html_folder(args.html)  # before any run: a long check must never be lost to a bad path
+    pages: list = []
     stdout_taken = any(o.to_stdout for o in outputs.values())
     docs: list[dict] = []
     bad_files = 0
@@ -113,6 +119,8 @@ def run(args) -> int:
                 _print_run(doc, args.trace_format)
             if not args.no_reports:
                 _write_reports(args.reports, report_name(r.name), doc)
+            if args.html:
+                pages.append(_write_html_page(args.html, result, report_name(r.name)))
     if not stdout_taken:
         _print_summary(docs, timings)
     if "--junit" in outputs:
@@ -124,6 +132,10 @@ def run(args) -> int:
 
         write_output(outputs["--sarif"], json.dumps(render_sarif(docs, __version__), indent=2, ensure_ascii=False)
                      + "\n")
+    if args.html:
+        from cpn.report.html import write_index
+
+        write_index(args.html, pages)
     if args.baseline and not stdout_taken:
         _print_baseline(args.baseline, docs)
     statuses = {d["verdict"] for d in docs}
@@ -198,6 +210,32 @@ def _print_baseline(folder: str, docs: list[dict]) -> None:
         print("  none")
     for c in changes:
         print(f"  {'REGRESSION ' if c.is_regression else ''}{c.text}")
+
+
+def _prepare_html_folder(folder: str) -> None:
+    from cpn.cli._common import CannotCreate
+
+    try:
+        os.makedirs(folder, exist_ok=True)
+    except OSError as exc:
+        raise CannotCreate(f"cannot write --html {folder}: {exc.strerror or exc}") from None
+
+
+def _write_html_page(folder: str, result, stem: str):
+    """The page of one run (its report, its verdicts and their traces); returns its index entry."""
+    from cpn.report import build_report
+    from cpn.report.html import Verdict, write_run_page
+
+    x = result.exploration
+    report = build_report(x, model=result.scenario.model,
+                          options={"set": dict(result.run.values),
+                                   "time_condensation": bool(result.options.get("time_condensation"))})
+    verdicts = []
+    for r in result.results:
+        v = r.verdict
+        expect = "" if r.spec.expect == "holds" else f" (expected: {r.spec.expect})"
+        verdicts.append(Verdict(r.spec.name, v.status, v.message + expect, v.evidence))
+    return write_run_page(folder, stem, result.run.name, report, verdicts, status=result.status.value)
 
 
 def _write_reports(folder: str, stem: str, doc: dict) -> None:

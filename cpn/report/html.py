@@ -126,15 +126,19 @@ def dead_marking_traces(report: Report, limit: int = MAX_TRACE_CHARTS) -> list[R
 
 # ----------------------------------------------------------------------------------------------- page
 
-def render_html(report: Report, verdicts: list | None = None, title: str | None = None) -> str:
-    """The whole page for one run (explore, or one scenario of a property check)."""
+def render_html(report: Report, verdicts: list | None = None, title: str | None = None,
+                heading: str | None = None) -> str:
+    """The whole page for one run (explore, or one scenario of a property check).
+
+    title: the browser's title; heading: the page's headline (default: the model's file name).
+    """
     title = title or f"{os.path.basename(report.model)} — cpn-verify report"
-    return _page(title, report_fragment(report, verdicts))
+    return _page(title, report_fragment(report, verdicts, heading))
 
 
-def report_fragment(report: Report, verdicts: list | None = None) -> str:
+def report_fragment(report: Report, verdicts: list | None = None, heading: str | None = None) -> str:
     """The page's content with its scoped style and script (what Jupyter shows)."""
-    return _scoped(_content(report, list(verdicts or [])))
+    return _scoped(_content(report, list(verdicts or []), heading))
 
 
 def render_index(entries: list[IndexEntry], title: str = "cpn-verify check") -> str:
@@ -160,28 +164,46 @@ def write_pages(folder: str, runs: list[tuple[str, Report, list]], index_title: 
     runs: (title, report, verdicts) per run (a scenario, or one row of its parameter table); the page of a
     run is named after its title. A run's result on the index is its worst verdict.
     """
-    os.makedirs(folder, exist_ok=True)
     entries = []
     used: set = set()
     for title, report, verdicts in runs:
         stem = "".join(c if c.isalnum() or c in "-_." else "-" for c in title).strip("-") or "run"
-        name, k = f"{stem}.html", 1
-        while name in used or name == "index.html":
+        name, k = stem, 1
+        while name in used or name == "index":
             k += 1
-            name = f"{stem}-{k}.html"
+            name = f"{stem}-{k}"
         used.add(name)
-        with open(os.path.join(folder, name), "w", encoding="utf-8") as fh:
-            fh.write(render_html(report, verdicts, title=f"{title} — cpn-verify"))
-        statuses = {str(getattr(v.status, "value", v.status)) for v in verdicts or ()}
-        worst = next((s for s in ("error", "violated", "unknown") if s in statuses), "holds")
-        if not report.exploration.complete and worst == "holds":
-            worst = "unknown"
-        failed = [v.name for v in verdicts or () if str(getattr(v.status, "value", v.status)) == "violated"]
-        entries.append(IndexEntry(title, name, worst, report.exploration.n_states, report.seconds,
-                                  ("violated: " + ", ".join(failed)) if failed else ""))
+        entries.append(write_run_page(folder, name, title, report, verdicts))
+    return write_index(folder, entries, index_title)
+
+
+def write_run_page(folder: str, stem: str, title: str, report: Report, verdicts: list,
+                   status: str | None = None) -> IndexEntry:
+    """The page of one run, `folder/stem.html`; returns its entry for the index.
+
+    status: the run's result on the index (default: its worst verdict; unknown for a partial search whose
+    properties all hold).
+    """
+    os.makedirs(folder, exist_ok=True)
+    name = f"{stem}.html"
+    with open(os.path.join(folder, name), "w", encoding="utf-8") as fh:
+        fh.write(render_html(report, verdicts, title=f"{title} — cpn-verify", heading=title))
+    texts = [str(getattr(v.status, "value", v.status)) for v in verdicts or ()]
+    if status is None:
+        status = next((s for s in ("error", "violated", "unknown") if s in texts), "holds")
+        if not report.exploration.complete and status == "holds":
+            status = "unknown"
+    failed = [v.name for v, t in zip(verdicts or (), texts) if t == "violated"]
+    return IndexEntry(title, name, status, report.exploration.n_states, report.seconds,
+                      ("violated: " + ", ".join(failed)) if failed else "")
+
+
+def write_index(folder: str, entries: list[IndexEntry], title: str = "cpn-verify check") -> str:
+    """`folder/index.html` listing the runs' pages; returns its path."""
+    os.makedirs(folder, exist_ok=True)
     path = os.path.join(folder, "index.html")
     with open(path, "w", encoding="utf-8") as fh:
-        fh.write(render_index(entries, index_title))
+        fh.write(render_index(entries, title))
     return path
 
 
@@ -228,12 +250,12 @@ def _table(head: list[str], rows: list[list[str]], num_cols=()) -> str:
     return f'<div class="tablewrap"><table><thead><tr>{th}</tr></thead><tbody>{"".join(body)}</tbody></table></div>'
 
 
-def _content(r: Report, verdicts: list) -> str:
+def _content(r: Report, verdicts: list, heading: str | None = None) -> str:
     x = r.exploration
     engine = x.engine
     verdicts = [v.resolved(engine) for v in verdicts]
     status = "full" if x.complete else "partial"
-    parts = [_header(r, status)]
+    parts = [_header(r, status, heading)]
     nav = []
     failed = [v for v in verdicts if v.status == "violated"]
     if verdicts:
@@ -259,14 +281,16 @@ def _content(r: Report, verdicts: list) -> str:
     return "".join(parts)
 
 
-def _header(r: Report, status: str) -> str:
+def _header(r: Report, status: str, heading: str | None = None) -> str:
     x = r.exploration
     dead = r.dead.count
     facts = [f"{x.n_states:,} states", f"{x.n_arcs:,} arcs", f"{r.scc.nodes:,} SCCs",
              f"{dead:,} dead marking{'s' if dead != 1 else ''}", f"{r.seconds:.2f} s"]
+    if heading:
+        facts.insert(0, os.path.basename(r.model))
     opts = ", ".join(f"{k}={v}" for k, v in sorted((r.options.get("set") or {}).items()))
     tc = " · time condensation" if r.options.get("time_condensation") else ""
-    return (f'<header><h1>{S.esc(os.path.basename(r.model))} {_pill(status)}</h1>'
+    return (f'<header><h1>{S.esc(heading or os.path.basename(r.model))} {_pill(status)}</h1>'
             f'<p class="sub">{S.esc(" · ".join(facts))}{S.esc(tc)}{" · " + S.esc(opts) if opts else ""}</p>'
             f'<p class="path">{S.esc(r.model)} · generated {S.esc(r.generated)} by cpn-verify</p></header>')
 

@@ -557,6 +557,44 @@ def test_unwritable_html_or_msc_path_stops_before_the_search(tmp_path, capsys):
         assert err.out == ""  # checked before the search: no report
 
 
+def test_check_html_writes_a_page_per_run_and_an_index(tmp_path, capsys):
+    out = tmp_path / "pages"
+    code = main(["check", str(ROOT / "docs/ci/broken/stop_and_wait.toml"), str(ROOT / "specs/examples/ms.toml"),
+                 "--no-reports", "--quiet", "--html", str(out)])
+    assert code == 1  # the broken variant violates its properties
+    names = sorted(p.name for p in out.iterdir())
+    assert names == ["index.html", "ms-N=1.html", "ms-N=2.html", "ms-N=3.html", "stop-and-wait-broken.html"]
+    index = (out / "index.html").read_text(encoding="utf-8")
+    assert index.index("stop-and-wait-broken.html") < index.index("ms-N=1.html")  # the failing run first
+    assert "violated: it only stops when every packet is acknowledged" in index
+    page = (out / "stop-and-wait-broken.html").read_text(encoding="utf-8")
+    assert "<h1>stop-and-wait-broken " in page
+    head = page.index('class="headline"')
+    assert head < page.index('class="drawing msc"') < page.index('<section id="statistics">')
+    assert page.count('class="drawing msc"') >= 4  # every counterexample with a trace is a chart
+    assert "(expected" not in page
+    ok = (out / "ms-N=2.html").read_text(encoding="utf-8")
+    assert 'class="pill ok">holds' in ok and 'class="headline"' not in ok
+
+
+def test_check_html_of_a_mutant_whose_violation_is_expected(tmp_path, capsys):
+    out = tmp_path / "pages"
+    spec = ROOT / "specs/modbus/mutants/slave_answers_broadcast.toml"
+    assert main(["check", str(spec), "--no-reports", "--quiet", "--html", str(out)]) == 0
+    (page,) = [p for p in out.iterdir() if p.name != "index.html"]
+    text = page.read_text(encoding="utf-8")
+    assert "(expected: violated)" in text and 'class="headline"' in text and 'class="drawing msc"' in text
+    assert 'class="pill ok">holds' in (out / "index.html").read_text(encoding="utf-8")  # the gate's result
+
+
+def test_check_html_folder_that_cannot_be_made_stops_before_the_runs(tmp_path, capsys):
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    code = main(["check", str(ROOT / "specs/examples/stations.toml"), "--no-reports", "--html", str(blocker / "x")])
+    err = capsys.readouterr()
+    assert code == 73 and "cannot write --html" in err.err and "stations" not in err.out
+
+
 def test_html_to_standard_output_replaces_the_text_report(capsys):
     code = main(["explore", str(ROOT / "models/examples/stations.cpnet"), "--quiet", "--html", "-"])
     out = capsys.readouterr().out

@@ -117,6 +117,11 @@ def pages(tmp_path_factory):
                 Verdict("Requests bounded by 3", "holds"),
                 Verdict("every request answered", "unknown", "not evaluated")]
     (out / "verdicts.html").write_text(render_html(r, verdicts), encoding="utf-8")
+    # a property check's pages: the broken stop-and-wait variant (4 violated properties) and its index
+    assert main(["check", str(ROOT / "docs/ci/broken/stop_and_wait.toml"), "--no-reports", "--quiet",
+                 "--html", str(out / "check")]) == 1
+    (out / "check_broken.html").write_bytes((out / "check" / "stop-and-wait-broken.html").read_bytes())
+    (out / "check_index.html").write_bytes((out / "check" / "index.html").read_bytes())
     (out / "index.html").write_text(render_index([IndexEntry("stations", "verdicts.html", "violated", 28, 0.1),
                                                   IndexEntry("ms2", "ms2.html", "holds", 189, 0.2)]),
                                     encoding="utf-8")
@@ -160,7 +165,7 @@ def _screenshot(b: Browser, path: pathlib.Path, width: int, height: int) -> None
 
 
 @pytest.mark.parametrize("width", list(WIDTHS))
-@pytest.mark.parametrize("page", [*PAGES, "verdicts", "index"])
+@pytest.mark.parametrize("page", [*PAGES, "verdicts", "index", "check_broken", "check_index"])
 def test_page_renders_in_chromium(browser, pages, page, width):
     w = WIDTHS[width]
     path = pages / f"{page}.html"
@@ -172,7 +177,7 @@ def test_page_renders_in_chromium(browser, pages, page, width):
     assert res["scrollWidth"] <= res["innerWidth"], "the page is wider than the window"
     assert res["overflow"] == []
     assert res["minFont"] >= 12
-    if page == "index":
+    if page in ("index", "check_index"):
         assert res["drawings"] == []
         return
     kinds = {d["cls"] for d in res["drawings"]}
