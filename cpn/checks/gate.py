@@ -138,7 +138,7 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
         raise _values_at_scenario(exc, scenario) from None
     engine = model.engine(time_condensation=bool(opts.get("time_condensation", False)))
     index = TransitionIndex(engine)
-    lang = PropertyLanguage(model.net.checked, engine, index)
+    lang = PropertyLanguage(model.net, engine, index)
     checks = build_checks(scenario.properties, lang, scenario.source)
     fly = [c for c in checks if c.on_the_fly and not isinstance(c, DeadlockFree)]
     needs_deadlock = any(isinstance(c, DeadlockFree) for c in checks)

@@ -18,6 +18,7 @@ from collections.abc import Callable
 from cpn._util import did_you_mean
 from cpn.diagnostics import Diagnostic, Span
 from cpn.engine.codegen import ExprCompiler, Namespace, Unsupported
+from cpn.engine.evaluate import Evaluator
 from cpn.engine.runtime import RUNTIME
 from cpn.errors import ModelError
 from cpn.lang import ast as A
@@ -27,6 +28,8 @@ from cpn.lang.checked import Env
 from cpn.lang.parser import parse
 from cpn.lang.symbols import Symbol
 from cpn.lang.typecheck import Checker
+from cpn.net import expr as E
+from cpn.net.translate import Translator
 from cpn.values.multiset import Multiset, MultisetError
 
 PREFIX = "val it = "
@@ -148,13 +151,17 @@ class Compiled:
 class PropertyLanguage:
     """The scope and compiler of property texts for one net and one engine."""
 
-    def __init__(self, checked, engine, transition_of: Callable[[int], int]):
+    def __init__(self, net, engine, transition_of: Callable[[int], int]):
+        checked = net.checked
+        self.net = net
         self.checked = checked
         self.engine = engine
         self.transition_index = transition_of
         self._clock_readers: dict | None = None
         self.ctx = MarkingContext(engine, transition_of)
-        self.ev = checked.evaluator
+        # texts are type-checked by the language and compiled and evaluated in the net's expression form
+        self.ev = Evaluator(net.colsets, net.globals)
+        self._tr = Translator()
         self._checker = _checker_for(checked)
         self.accessors: dict[str, _Accessor] = {}
         names: dict[str, Symbol] = {}
@@ -175,7 +182,7 @@ class PropertyLanguage:
                 sym = Symbol(spelling, "val", T.TFun(T.INT, T.ms(self.place_cstype[base])))
                 names[spelling] = sym
                 self.symbols[sym.uid] = acc
-                self.ev.globals[sym.uid] = acc
+                self.ev.globals[sym.uid] = checked.evaluator.globals[sym.uid] = acc
         self.transition_names = _transition_names(engine)
         self._be_texts: dict[str, int] | None = None
         self._enabled_cache: dict[str, Callable[[], bool]] = {}
@@ -189,7 +196,7 @@ class PropertyLanguage:
             sym = Symbol(name, "val", parse_type(ty))  # a Scheme: polymorphic where the type says 'a
             names[name] = sym
             self.special[name] = sym
-            self.ev.globals[sym.uid] = value
+            self.ev.globals[sym.uid] = checked.evaluator.globals[sym.uid] = value
         self.env = self._checker.genv.child(names)
         self.ctl_symbols: dict[str, Symbol] = {}
         for name in CTL_UNARY:
@@ -331,7 +338,7 @@ class PropertyLanguage:
                            for n in walk(expr))
         ns = Namespace()
         comp = _PredicateCompiler(ns, self.ev, self.symbols, getattr(self.engine, "functions", {}) or {})
-        body = comp.expr(expr)
+        body = comp.expr(self._tr.expr(expr))
         glob = dict(RUNTIME)
         glob.update(ns.objects)
         glob["EVAL"] = self.ev.eval
@@ -381,8 +388,8 @@ class PropertyLanguage:
         from cpn.engine import clock
 
         if self._clock_readers is None:
-            self._clock_readers = clock._global_readers(self.checked.model.decls)
-        return clock._first_read(expr, self._clock_readers) is not None
+            self._clock_readers = clock._global_readers(self.net.globals.decls)
+        return clock._first_read(self._tr.expr(expr), self._clock_readers) is not None
 
     def constant(self, text: str, origin, fallback: Span, want: T.Type, what: str):
         """The value of a text that reads no marking (an expected bound: `N`, `ADDR.all()`)."""
@@ -392,7 +399,7 @@ class PropertyLanguage:
             raise _remap(ModelError([Diagnostic("E0702", f"{what} must not read the marking", expr.span)]), text,
                          origin, fallback)
         try:
-            return self.ev.eval(expr, {})
+            return self.ev.eval(self._tr.expr(expr), {})
         except (MLError, MultisetError) as exc:
             raise _remap(ModelError([Diagnostic("E0401", f"evaluating {what} failed: {exc}", expr.span)]), text,
                          origin, fallback) from None
@@ -419,7 +426,7 @@ class _PredicateCompiler(ExprCompiler):
 
     def fallback(self, e):
         node = self.ns.ref(e, "X")
-        used = {n.ref.uid for n in walk(e) if isinstance(n, A.Name) and n.ref is not None and n.ref.kind == "local"}
+        used = {n.ref.uid for n in walk(e) if isinstance(n, E.Name) and n.ref.kind == "local"}
         items = ", ".join(f"{uid}: {py}" for uid, py in self.locals.items() if uid in used)
         return f"EVAL({node}, {{{items}}})"
 
@@ -441,12 +448,12 @@ class _PredicateCompiler(ExprCompiler):
             code = self.expr(body)
         finally:
             self.locals = saved
-        if isinstance(pat, A.PTuple):
+        if isinstance(pat, E.PTuple):
             return f"(lambda _t: (lambda {', '.join(params)}: {code})(*_t))"
         return f"(lambda {params[0]}: {code})"
 
     def _c_App(self, e):
-        if isinstance(e.fn, A.Name) and e.fn.ref is not None and isinstance(e.arg, A.Const):
+        if isinstance(e.fn, E.Name) and isinstance(e.arg, E.Const):
             acc = self.places.get(e.fn.ref.uid)
             if acc is not None and e.arg.value in acc.instances:
                 return f"MK(S, {acc.instances[e.arg.value]})"
@@ -462,15 +469,15 @@ def _fix_rule(x, fix):
 
 def _pattern_names(pat) -> list | None:
     """Symbol uids bound by a pattern of plain variables (None for '_'), or None for other patterns."""
-    if isinstance(pat, A.PWild):
+    if isinstance(pat, E.PWild):
         return [None]
-    if isinstance(pat, A.PVar) and pat.ref is not None and pat.ref.kind == "local":
+    if isinstance(pat, E.PVar) and pat.ref.kind == "local":
         return [pat.ref.uid]
-    if isinstance(pat, A.PTuple):
+    if isinstance(pat, E.PTuple):
         out = []
         for p in pat.items:
             got = _pattern_names(p)
-            if got is None or len(got) != 1 or isinstance(p, A.PTuple):
+            if got is None or len(got) != 1 or isinstance(p, E.PTuple):
                 return None
             out.extend(got)
         return out
@@ -515,7 +522,7 @@ def walk(e):
     while stack:
         n = stack.pop()
         if dataclasses.is_dataclass(n) and not isinstance(n, type):
-            if isinstance(n, A.Expr):
+            if isinstance(n, (A.Expr, E.Expr)):  # the checked text, or its form in the net's expressions
                 yield n
             for f in dataclasses.fields(n):
                 if f.name in ("span", "ty", "ref"):

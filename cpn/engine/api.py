@@ -6,6 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from cpn.engine.clock import clock_reads, refuse_condensation
+from cpn.engine.evaluate import Evaluator
 
 
 @dataclass(frozen=True, slots=True)
@@ -32,7 +33,7 @@ class EngineAPI:
         # which it is examined, besides the state's clock)
         self.timed_inputs = [sorted({a.place for a in t.arcs if a.kind in ("in", "both") and a.expr is not None
                                      and self.places[a.place].timed}) for t in self.transitions]
-        self.ev = net.checked.evaluator
+        self.ev = Evaluator(net.colsets, net.globals)
         self._be_index: dict = {}
         self._be: list[tuple[int, tuple]] = []  # binding element id -> (transition, values of its variables)
 

@@ -12,9 +12,9 @@ from dataclasses import dataclass
 
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import ConfigurationError
-from cpn.lang import ast as A
-from cpn.lang.binding import children
-from cpn.lang.builtins import TIME_BUILTINS
+from cpn.net import expr as A
+from cpn.net.binding import children
+from cpn.values.builtins import TIME_BUILTINS
 
 
 @dataclass(frozen=True)
@@ -30,7 +30,7 @@ class ClockRead:
 
 def clock_reads(net) -> dict[int, ClockRead]:
     """Transition index -> its first read of the clock, for every transition instance that reads it."""
-    globals_ = _global_readers(net.checked.model.decls)
+    globals_ = _global_readers(net.globals.decls)
     out: dict[int, ClockRead] = {}
     for t in net.transitions:
         parts = [("the guard", g) for g in t.guards]
@@ -50,14 +50,10 @@ def _global_readers(decls) -> dict[int, Span]:
     """Symbol uid -> span of a clock read, for every global `fun` or `val` that reads the clock (a value
     counts too: it may hold a function), following calls between them to a fixpoint."""
     bodies: dict[int, list] = {}
-    stack = list(decls)
-    while stack:
-        d = stack.pop()
-        if isinstance(d, A.ModuleDecl):
-            stack.extend(d.body)
-        elif isinstance(d, A.FunDecl) and d.ref is not None:
+    for d in decls:
+        if isinstance(d, A.FunDecl):
             bodies[d.ref.uid] = [c.body for c in d.clauses]
-        elif isinstance(d, A.ValDecl) and getattr(d.pat, "ref", None) is not None:
+        else:
             bodies[d.pat.ref.uid] = [d.expr]
     readers: dict[int, Span] = {}
     changed = True
@@ -84,7 +80,7 @@ def _first_read(e, readers: dict[int, Span]) -> Span | None:
         x = stack.pop()
         if isinstance(x, A.App) and _first_read(x.fn, readers) is not None:
             return x.span  # the whole call: `intTime()`, `late(x)`
-        if isinstance(x, A.Name) and x.ref is not None:
+        if isinstance(x, A.Name):
             if x.ref.kind == "builtin" and x.ref.name in TIME_BUILTINS:
                 return x.span
             if x.ref.kind in ("fun", "val") and x.ref.uid in readers:
@@ -100,7 +96,7 @@ def _called_reader(e, readers: dict[int, Span]):
     stack = [e]
     while stack:
         x = stack.pop()
-        if isinstance(x, A.Name) and x.ref is not None:
+        if isinstance(x, A.Name):
             if x.ref.kind == "builtin" and x.ref.name in TIME_BUILTINS:
                 return None
             if x.ref.kind in ("fun", "val") and x.ref.uid in readers:
@@ -136,4 +132,4 @@ def refuse_condensation(net, reads: dict[int, ClockRead]) -> None:
     """Raise TimeCondensationRefused for the first transition (in net order) that reads the clock."""
     if reads:
         first = reads[min(reads)]
-        raise TimeCondensationRefused(first, net.checked.model.source)
+        raise TimeCondensationRefused(first, net.source)

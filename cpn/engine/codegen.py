@@ -5,7 +5,7 @@ it reads: nested loops over the distinct tokens that input-arc patterns match, e
 as soon as its variables are bound, then the consumed and produced tokens. Every generated line that
 evaluates a model expression is recorded in a blame table (line -> model element and span), so that an
 error raised inside generated code names the model element. Model text is never executed as Python: the
-source is built from the typed AST, identifiers are mangled, constants are `repr`s of checked values.
+source is built from the net's expressions (`cpn.net.expr`), identifiers are mangled, constants are `repr`s of checked values.
 """
 
 from __future__ import annotations
@@ -13,9 +13,9 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
-from cpn.lang import ast as A
-from cpn.lang import binding as B
-from cpn.lang.builtins import BUILTINS, TIME_BUILTINS
+from cpn.net import binding as B
+from cpn.net import expr as A
+from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS
 
 _PY_BINOPS = {"+": "+", "-": "-", "*": "*", "^": "+", "^^": "+", "@": "+", "=": "==", "<>": "!=",
               "<": "<", "<=": "<=", ">": ">", ">=": ">="}
@@ -94,7 +94,7 @@ class ExprCompiler:
         if k == "builtin":
             if sym.name in TIME_BUILTINS:
                 return "TIMEFN"  # the evaluator's clock (cpn.engine.clock finds who reads it)
-            return self.ns.ref(BUILTINS[sym.name][1], "B")
+            return self.ns.ref(FUNCTIONS[sym.name], "B")
         if k == "csop":
             return self.ns.ref(self.ev.eval(e, {}), "S")
         raise Unsupported()
@@ -128,9 +128,6 @@ class ExprCompiler:
 
     def _c_If(self, e):
         return f"({self.expr(e.then)} if {self.expr(e.cond)} else {self.expr(e.else_)})"
-
-    def _c_Annot(self, e):
-        return self.expr(e.expr)
 
     def _c_ToMs(self, e):
         return f"MS1({self.expr(e.expr)})"
@@ -258,8 +255,6 @@ class TransitionCodegen:
             return ok
         if isinstance(e, A.App) and B.is_constructor_fn(e.fn):
             return self.matchable(e.arg, bound)
-        if isinstance(e, A.Annot):
-            return self.matchable(e.expr, bound)
         if isinstance(e, A.BinOp) and e.op == "::":
             return self.matchable(e.left, bound) and self.matchable(e.right, bound | B.pattern_vars(e.left))
         return B.all_vars(e) <= bound
@@ -293,9 +288,6 @@ class TransitionCodegen:
             else:
                 self.emit(f"if type({src}) is not tuple or {src}[0] != {info.tag}: continue")
                 self.gen_match(e.arg, f"{src}[1]", bound, blame)
-            return
-        if isinstance(e, A.Annot):
-            self.gen_match(e.expr, src, bound, blame)
             return
         if isinstance(e, A.BinOp) and e.op == "::":
             self.emit(f"if not {src}: continue")
@@ -609,8 +601,6 @@ class FunctionCodegen:
             py = f"l{p.ref.uid}"
             locals_[p.ref.uid] = py
             out.append(f"{py} = {src}")
-            return self._match(p.pat, src, out, locals_)
-        if isinstance(p, A.PAnnot):
             return self._match(p.pat, src, out, locals_)
         return False
 

@@ -14,7 +14,8 @@ from cpn.engine import codegen
 from cpn.engine.api import EngineAPI
 from cpn.engine.runtime import RUNTIME
 from cpn.errors import EvaluationError
-from cpn.lang.builtins import MLError
+from cpn.net import expr as E
+from cpn.values.builtins import MLError
 from cpn.values.colours import format_multiset
 from cpn.values.multiset import MultisetError
 
@@ -98,14 +99,12 @@ class CompiledEngine(EngineAPI):
     # ------------------------------------------------------------------ compilation
     def _compile_functions(self) -> dict:
         """Compile the model's global functions of one argument; the rest stay with the evaluator."""
-        from cpn.lang import ast as A
-
         ns = codegen.Namespace()
         functions: dict[int, object] = {}
         var_uids = {name: sym.uid for name, sym in self.net.variables.items()}
         fc = codegen.FunctionCodegen(ns, self.ev, functions, var_uids)
         sources = []
-        decls = [d for d in self.net.checked.model.decls if isinstance(d, A.FunDecl) and d.ref is not None]
+        decls = [d for d in self.net.globals.decls if isinstance(d, E.FunDecl)]
         for d in decls:
             src = fc.compile(d)
             if src is not None:
@@ -304,7 +303,7 @@ class CompiledEngine(EngineAPI):
         msg = f"{what} failed for binding <{bind_text}>: {_reason(exc)}" if bind_text else f"{what} failed: {_reason(exc)}"
         span = getattr(obj, "span", None) or t.span
         hint = "Guards and inscriptions are evaluated for every candidate binding; guard the failing operation."
-        return EvaluationError(msg, span, t.name, binding, hint, self.net.checked.model.source)
+        return EvaluationError(msg, span, t.name, binding, hint, self.net.source)
 
     def _miss(self, info, key):
         """Enabled bindings of an untimed transition on the place markings `key`, with their effects."""
@@ -485,7 +484,7 @@ class CompiledEngine(EngineAPI):
                     f"outside its colour set {cs.name} = {cs.describe()}",
                     arc.span if arc else info.t.span, info.t.name, None,
                     f"Make the inscription of arc {arc.label if arc else ''} produce values of {cs.name}.",
-                    self.net.checked.model.source)
+                    self.net.source)
 
     def _writes(self, info, keys, consumed, produced, f, td):
         """New place ids after firing: (sets, adds). f is the firing time for timed places."""

@@ -1,6 +1,6 @@
 """The reference interpreter: a slow, plainly correct successor function, the oracle of the tests.
 
-It shares nothing with the compiled engine but the typed AST and the tree-walking evaluator: bindings are
+It shares nothing with the compiled engine but the net's expressions and the tree-walking evaluator: bindings are
 found by trying every combination of candidate values (from the tokens, the guard and the colour sets)
 and keeping those that satisfy the definition of enabling; firing evaluates every inscription afresh.
 """
@@ -11,9 +11,9 @@ import itertools
 
 from cpn.engine.api import EngineAPI
 from cpn.errors import EvaluationError
-from cpn.lang import ast as A
-from cpn.lang import binding as B
-from cpn.lang.builtins import MLError
+from cpn.net import binding as B
+from cpn.net import expr as A
+from cpn.values.builtins import MLError
 from cpn.values.colours import format_multiset
 from cpn.values.multiset import Multiset, MultisetError, TimedMultiset
 
@@ -104,8 +104,6 @@ class ReferenceEngine(EngineAPI):
             if isinstance(value, tuple) and value:
                 self._collect(e.left, value[0], out)
                 self._collect(e.right, value[1:], out)
-        elif isinstance(e, A.Annot):
-            self._collect(e.expr, value, out)
 
     def _summands(self, e):
         if isinstance(e, A.BinOp) and e.op in ("++", "+++"):

@@ -2,8 +2,7 @@
 
 from __future__ import annotations
 
-from cpn.lang.builtins import MLError
-from cpn.lang.evaluate import binop
+from cpn.values.builtins import MLError, binop
 from cpn.values.multiset import Multiset, TimedMultiset
 
 ONCE = (0,)

@@ -218,7 +218,8 @@ class _Writer:
             return 1
         if isinstance(e, A.Const) and e.kind == "unit":
             return 1
-        if isinstance(e, (A.ToMs, A.Annot)):  # the type checker's 1`v, and (e : T)
+        # the type checker's 1`v, and (e : T) (a flattened net's expressions have no annotations)
+        if isinstance(e, A.ToMs) or isinstance(e, getattr(A, "Annot", A.ToMs)):
             return self.unit_count(e.expr, what)
         if isinstance(e, A.Name) and e.name == "empty":
             return 0
@@ -566,9 +567,9 @@ class _FlatPTWriter:
     def run(self) -> str:
         net = self.net
         helper = _Writer.__new__(_Writer)  # only for unit_count and the document layout
-        from cpn.lang import ast as A
+        from cpn.net import expr as E
 
-        helper.A, helper.net_id, helper.ids = A, self.net_id, set()
+        helper.A, helper.net_id, helper.ids = E, self.net_id, set()
         pids, tids, page = {}, {}, []
         for p in net.places:
             if p.colour_set.kind != "unit" or p.timed:

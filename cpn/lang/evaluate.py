@@ -10,9 +10,9 @@ from __future__ import annotations
 from typing import Any
 
 from cpn.lang import ast as A
-from cpn.lang import types as T
 from cpn.lang.builtins import BUILTINS, MLError
-from cpn.values.multiset import Multiset, MultisetError, TimedMultiset
+from cpn.values.builtins import binop
+from cpn.values.multiset import Multiset, TimedMultiset
 
 _NOMATCH = object()
 
@@ -198,7 +198,7 @@ class Evaluator:
         return v if isinstance(v, (Multiset, TimedMultiset)) else Multiset.of(v)
 
     def _e_OpFun(self, e, env):
-        return lambda pair: binop(e.op, pair[0], pair[1], e.op_ty)
+        return lambda pair: binop(e.op, pair[0], pair[1])
 
     def _e_BinOp(self, e, env):
         op = e.op
@@ -206,7 +206,7 @@ class Evaluator:
             return bool(self.eval(e.left, env)) and bool(self.eval(e.right, env))
         if op == "orelse":
             return bool(self.eval(e.left, env)) or bool(self.eval(e.right, env))
-        return binop(op, self.eval(e.left, env), self.eval(e.right, env), e.op_ty)
+        return binop(op, self.eval(e.left, env), self.eval(e.right, env))
 
     # ------------------------------------------------------------------ declarations in let
     def declare(self, d: A.Decl, env: dict) -> None:
@@ -257,70 +257,3 @@ class Evaluator:
         if isinstance(p, A.PAnnot):
             return self.match(p.pat, v, env)
         raise MLError(f"unsupported pattern {type(p).__name__}")
-
-
-def _is_real(op_ty) -> bool:
-    t = T.prune(op_ty) if op_ty is not None else None
-    return isinstance(t, T.TCon) and t.name == "real"
-
-
-def binop(op: str, a: Any, b: Any, op_ty=None) -> Any:
-    """The meaning of an infix operator on evaluated operands (shared with compiled code)."""
-    if op == "+":
-        return a + b
-    if op == "-":
-        return a - b
-    if op == "*":
-        return a * b
-    if op == "div":
-        if b == 0:
-            raise MLError("division by zero (SML exception Div)")
-        return a // b
-    if op == "mod":
-        if b == 0:
-            raise MLError("division by zero (SML exception Div)")
-        return a % b
-    if op == "/":
-        if b == 0:
-            raise MLError("division by zero (SML exception Div)")
-        return a / b
-    if op == "^":
-        return a + b
-    if op == "::":
-        return (a,) + b
-    if op in ("^^", "@"):
-        return a + b
-    if op == "=":
-        return a == b
-    if op == "<>":
-        return a != b
-    if op == "<":
-        return a < b
-    if op == "<=":
-        return a <= b
-    if op == ">":
-        return a > b
-    if op == ">=":
-        return a >= b
-    if op == "`":
-        if a < 0:
-            raise MLError(f"negative coefficient {a} in {a}`...")
-        return Multiset.of(b, a)
-    if op in ("++", "+++"):
-        if isinstance(a, TimedMultiset) or isinstance(b, TimedMultiset):
-            return TimedMultiset.lift(a) + TimedMultiset.lift(b)
-        return a + b
-    if op == "--":
-        if isinstance(a, TimedMultiset):
-            a = a.untimed()
-        if isinstance(b, TimedMultiset):
-            b = b.untimed()
-        try:
-            return a - b
-        except MultisetError as exc:
-            raise MLError(str(exc)) from None
-    if op == "@+":
-        if not isinstance(a, (Multiset, TimedMultiset)):
-            a = Multiset.of(a)
-        return TimedMultiset.lift(a, b)
-    raise MLError(f"unknown operator {op}")

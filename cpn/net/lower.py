@@ -1,5 +1,6 @@
 """Lowering a checked model to a `Net`: instantiate modules, bind ports to sockets, merge fusion sets,
-evaluate initial markings. The only place where `cpn.net` touches `cpn.lang`.
+evaluate initial markings, translate inscriptions to `cpn.net.expr`. With `cpn.net.translate`, the only
+place where `cpn.net` touches `cpn.lang`.
 """
 
 from __future__ import annotations
@@ -12,6 +13,7 @@ from cpn.lang import ast as A
 from cpn.lang.builtins import MLError
 from cpn.lang.typecheck import CheckedModel, PageInfo
 from cpn.net.model import ArcInstance, Net, PlaceInstance, TransitionInstance
+from cpn.net.translate import Translator
 from cpn.values.multiset import TimedMultiset
 
 MAX_INSTANCE_DEPTH: int = 64
@@ -25,6 +27,7 @@ class _Lowerer:
         self.counter: dict[str, int] = defaultdict(int)
         self.fusion: dict[str, int] = {}
         self.diags: list[Diagnostic] = []
+        self.tr = Translator()
 
     def error(self, code, msg, span, hint=None):
         self.diags.append(Diagnostic(code, msg, span, hint=hint))
@@ -33,7 +36,11 @@ class _Lowerer:
         self.instantiate(self.cm.top, {}, {}, [self.cm.top.name])
         if self.diags:
             raise ModelError(self.diags, {self.cm.model.file: self.cm.model.source})
-        return Net(self.cm.net_name, self.places, self.transitions, self.cm, self.cm.model.file)
+        cm = self.cm
+        variables = {name: self.tr.ref(sym) for name, sym in cm.variables.items()}
+        globals_ = self.tr.globals(cm.model, cm.evaluator.globals)
+        return Net(cm.net_name, self.places, self.transitions, cm.colsets, variables, globals_, cm.model.source,
+                   cm.model.file, cm)
 
     def initial(self, d: A.PlaceDecl, cs, env) -> dict:
         if d.init is None:
@@ -95,12 +102,14 @@ class _Lowerer:
         for tname in page.order:
             info = page.transitions[tname]
             d = info.decl
-            arcs = [ArcInstance(local[a.place], a.kind, a.expr, a.decl.span, _arc_label(a)) for a in info.arcs]
+            tr = self.tr
+            arcs = [ArcInstance(local[a.place], a.kind, tr.expr(a.expr), a.decl.span, _arc_label(a))
+                    for a in info.arcs]
             variables = sorted(set(info.variables) | {v for v, _ in info.ran})
             free = sorted(set(info.free) | {v for v, _ in info.ran})
             self.transitions.append(TransitionInstance(
-                len(self.transitions), f"{page.name}'{tname} {k}", page.name, tname, k, d.guards, d.delay,
-                d.priority, arcs, variables, free, dict(params), d.span))
+                len(self.transitions), f"{page.name}'{tname} {k}", page.name, tname, k, tr.exprs(d.guards),
+                tr.expr(d.delay), tr.expr(d.priority), arcs, variables, free, dict(params), d.span))
         for inst in page.instances:
             child = self.cm.modules[inst.module]
             if len(path) >= MAX_INSTANCE_DEPTH or inst.module in path:

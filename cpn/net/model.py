@@ -1,6 +1,7 @@
 """`Net`: a checked model lowered to place and transition instances with dense integer indices.
 
-Expressions stay typed `cpn.lang.ast` nodes: the closed expression IR that the engine compiles.
+A `Net` is everything an engine needs: its colour sets, variables, global constants and functions, and
+its guards and inscriptions in the closed expression form of `cpn.net.expr`.
 """
 
 from __future__ import annotations
@@ -9,6 +10,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from cpn.diagnostics import Span
+from cpn.net import expr as E
 from cpn.values.colours import ColourSet
 
 
@@ -34,7 +36,7 @@ class PlaceInstance:
 class ArcInstance:
     place: int
     kind: str  # 'in' 'out' 'both' 'inhibitor' 'reset'
-    expr: Any  # typed cpn.lang.ast.Expr or None
+    expr: E.Expr | None
     span: Span | None = None
     label: str = ""  # "'Send' -> 'Bus'" for messages
 
@@ -46,9 +48,9 @@ class TransitionInstance:
     page: str
     transition: str
     instance: int
-    guards: list
-    delay: Any
-    priority: Any
+    guards: list[E.Expr]
+    delay: E.Expr | None
+    priority: E.Expr | None
     arcs: list[ArcInstance]
     variables: list[str]  # every variable, sorted by name
     free: list[str]  # variables bound by trying every value of their colour set
@@ -58,23 +60,21 @@ class TransitionInstance:
 
 @dataclass(eq=False)
 class Net:
+    """A flattened net: place and transition instances, and the declarations their inscriptions use."""
+
     name: str
     places: list[PlaceInstance]
     transitions: list[TransitionInstance]
-    checked: Any  # cpn.lang.typecheck.CheckedModel
+    colsets: dict[str, ColourSet]  # colour set name -> colour set
+    variables: dict[str, E.Ref]  # variable name -> Ref (kind 'var', data: its colour set's name)
+    globals: E.Globals  # global constants (evaluated) and functions
+    source: str = ""  # the model's text, quoted by error messages
     source_file: str = ""
+    checked: Any = None  # the front end's checked model, for writers that print the model back (PNML)
 
     @property
     def is_timed(self) -> bool:
         return any(p.timed for p in self.places)
-
-    @property
-    def colsets(self) -> dict:
-        return self.checked.colsets
-
-    @property
-    def variables(self) -> dict:
-        return self.checked.variables
 
     def place(self, name: str) -> PlaceInstance:
         for p in self.places:

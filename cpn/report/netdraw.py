@@ -2,7 +2,7 @@
 box nested in the box of the instance that contains it, place bounds and dead transition instances
 marked.
 
-Imports `cpn.net`, `cpn.lang.pretty` and the report's `svg` and `layout` helpers. A place bound to a
+Imports `cpn.net` (with `cpn.net.pretty`) and the report's `svg` and `layout` helpers. A place bound to a
 port, or fused with places of other instances, is drawn once, in the box of the instance that owns it
 (the socket's instance, the first member of the fusion set); arcs from other instances cross the boxes.
 """
@@ -12,7 +12,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
-from cpn.lang import pretty
+from cpn.net import pretty
 from cpn.report import svg as S
 from cpn.report.layout import layered_layout, pack_rows
 

@@ -1,0 +1,259 @@
+"""A tree-walking evaluator of the net's expressions (`cpn.net.expr`).
+
+Used by the reference interpreter and, for the expressions the compiler leaves to it (`let`, `case`,
+`fn`), by the compiled engine. Slow and plain on purpose: it is the oracle the compiled engine is tested
+against.
+
+Examples
+--------
+>>> from cpn.net import expr as E
+>>> ev = Evaluator({})
+>>> ev.eval(E.BinOp(None, "+", E.Const(None, 1, "int"), E.Const(None, 2, "int")), {})
+3
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from cpn.net import expr as A
+from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS, MLError, binop
+from cpn.values.multiset import Multiset, TimedMultiset
+
+
+class Closure:
+    """A CPN ML function value: clauses evaluated in the environment where the function was defined."""
+
+    __slots__ = ("clauses", "env", "ev", "arity", "name", "args")
+
+    def __init__(self, clauses, env, ev, name="fn", arity=1, args=()):
+        self.clauses = clauses  # list of (params: list[Pat], body)
+        self.env = env
+        self.ev = ev
+        self.arity = arity
+        self.name = name
+        self.args = args
+
+    def __call__(self, arg):
+        args = self.args + (arg,)
+        if len(args) < self.arity:
+            return Closure(self.clauses, self.env, self.ev, self.name, self.arity, args)
+        for params, body in self.clauses:
+            env = dict(self.env)
+            if all(self.ev.match(p, a, env) for p, a in zip(params, args)):
+                return self.ev.eval(body, env)
+        raise MLError(f"no clause of '{self.name}' matches its argument (SML exception Match)")
+
+
+class Evaluator:
+    """Evaluates expressions; `globals` maps symbol uids of vals and functions to values."""
+
+    def __init__(self, colsets: dict, globals_: A.Globals | None = None):
+        self.colsets = colsets  # name -> ColourSet
+        self.globals: dict[int, Any] = {}  # uid -> value of a global constant or function
+        self.time = 0
+        if globals_ is not None:
+            self.globals.update(globals_.constants)
+            for d in globals_.decls:
+                self.declare(d, self.globals)
+
+    # ------------------------------------------------------------------ expressions
+    def eval(self, e: A.Expr, env: dict) -> Any:
+        m = getattr(self, "_e_" + type(e).__name__)
+        return m(e, env)
+
+    def _e_Const(self, e, env):
+        return e.value
+
+    def _e_Name(self, e, env):
+        sym = e.ref
+        kind = sym.kind
+        if kind in ("local", "var", "param"):
+            try:
+                return env[sym.uid]
+            except KeyError:
+                raise MLError(f"variable '{sym.name}' is not bound") from None
+        if kind in ("val", "fun"):
+            return self.globals[sym.uid]
+        if kind == "con":
+            info = sym.data
+            if info.kind == "enum":
+                return info.tag
+            if info.kind == "index":
+                cs = self.colsets[info.colset]
+
+                def mk(i, cs=cs):
+                    if not cs.contains(i):
+                        raise MLError(f"{cs.constructor}({i}) is outside colour set {cs.name}")
+                    return i
+                return mk
+            if info.has_arg:
+                return lambda v, tag=info.tag: (tag, v)
+            return info.tag
+        if kind == "builtin":
+            if sym.name in TIME_BUILTINS:
+                return lambda _u: self.time
+            return FUNCTIONS[sym.name]
+        if kind == "csop":
+            return self._csop(*sym.data)
+        raise MLError(f"cannot evaluate '{sym.name}'")
+
+    def _csop(self, csname, op):
+        cs = self.colsets[csname]
+        if op == "all":
+            def all_(_u):
+                vals = cs.values()
+                if vals is None:
+                    raise MLError(f"{csname}.all(): colour set {csname} is infinite or too large")
+                return Multiset(vals)
+            return all_
+        if op == "size":
+            return lambda _u: cs.size()
+        if op == "ord":
+            return cs.ord
+        if op == "col" and cs.kind in ("enum", "index", "int") and cs.values() is not None:
+            low = getattr(cs, "low", 0) or 0
+            size = cs.size()
+
+            def col_range(i):
+                if not 0 <= i < size:
+                    raise MLError(f"{csname}.col({i}) is outside the colour set")
+                return low + i
+            return col_range
+        if op == "col":
+            def col(i):
+                vals = cs.values()
+                if vals is None or not 0 <= i < len(vals):
+                    raise MLError(f"{csname}.col({i}) is outside the colour set")
+                return vals[i]
+            return col
+        if op == "legal":
+            return cs.contains
+        if op == "mkstr":
+            return cs.format
+        if op == "mult":
+            def mult(ms_tuple):
+                items = [((), 1)]
+                for m in ms_tuple:
+                    if isinstance(m, TimedMultiset):
+                        m = m.untimed()
+                    items = [(acc + (v,), n * k) for acc, n in items for v, k in m.items()]
+                return Multiset({v: n for v, n in items})
+            return mult
+        if op == "ran":
+            def ran(_u):
+                raise MLError(f"{csname}.ran() draws a random value; it is allowed only in arc inscriptions "
+                              "and guards, where exploration tries every value")
+            return ran
+        raise MLError(f"unknown colour set function {csname}.{op}")
+
+    def _e_Select(self, e, env):
+        idx = e.index
+        return lambda v: v[idx]
+
+    def _e_TupleE(self, e, env):
+        return tuple(self.eval(x, env) for x in e.items)
+
+    def _e_RecordE(self, e, env):
+        vals = {label: self.eval(x, env) for label, x in e.fields}
+        return tuple(vals[label] for label in sorted(vals))
+
+    def _e_ListE(self, e, env):
+        return tuple(self.eval(x, env) for x in e.items)
+
+    def _e_App(self, e, env):
+        f = self.eval(e.fn, env)
+        a = self.eval(e.arg, env)
+        return f(a)
+
+    def _e_Neg(self, e, env):
+        return -self.eval(e.operand, env)
+
+    def _e_If(self, e, env):
+        return self.eval(e.then if self.eval(e.cond, env) else e.else_, env)
+
+    def _e_Case(self, e, env):
+        v = self.eval(e.subject, env)
+        for pat, body in e.rules:
+            env2 = dict(env)
+            if self.match(pat, v, env2):
+                return self.eval(body, env2)
+        raise MLError("no rule of the case-expression matches (SML exception Match)")
+
+    def _e_Fn(self, e, env):
+        return Closure([([p], b) for p, b in e.rules], env, self, "fn")
+
+    def _e_Let(self, e, env):
+        env = dict(env)
+        for d in e.decls:
+            self.declare(d, env)
+        return self.eval(e.body, env)
+
+    def _e_Seq(self, e, env):
+        v = None
+        for x in e.items:
+            v = self.eval(x, env)
+        return v
+
+    def _e_ToMs(self, e, env):
+        v = self.eval(e.expr, env)
+        return v if isinstance(v, (Multiset, TimedMultiset)) else Multiset.of(v)
+
+    def _e_OpFun(self, e, env):
+        return lambda pair: binop(e.op, pair[0], pair[1])
+
+    def _e_BinOp(self, e, env):
+        op = e.op
+        if op == "andalso":
+            return bool(self.eval(e.left, env)) and bool(self.eval(e.right, env))
+        if op == "orelse":
+            return bool(self.eval(e.left, env)) or bool(self.eval(e.right, env))
+        return binop(op, self.eval(e.left, env), self.eval(e.right, env))
+
+    # ------------------------------------------------------------------ declarations
+    def declare(self, d: A.ValDecl | A.FunDecl, env: dict) -> None:
+        if isinstance(d, A.ValDecl):
+            v = self.eval(d.expr, env)
+            if not self.match(d.pat, v, env):
+                raise MLError("the value does not match the pattern of 'val' (SML exception Bind)")
+        elif isinstance(d, A.FunDecl):
+            clo = self.make_function(d, env)
+            env[d.ref.uid] = clo
+        else:
+            raise MLError("unsupported declaration inside let")
+
+    def make_function(self, d: A.FunDecl, env: dict) -> Closure:
+        clo = Closure([(c.params, c.body) for c in d.clauses], env, self, d.name, arity=len(d.clauses[0].params))
+        env[d.ref.uid] = clo  # recursion: the closure sees itself
+        return clo
+
+    # ------------------------------------------------------------------ patterns
+    def match(self, p: A.Pat, v: Any, env: dict) -> bool:
+        if isinstance(p, A.PWild):
+            return True
+        if isinstance(p, A.PVar):
+            sym = p.ref
+            if sym is not None and sym.kind == "con":
+                return v == self._e_Name(A.Name(p.span, p.name, ref=sym), env)
+            env[sym.uid] = v
+            return True
+        if isinstance(p, A.PConst):
+            return v == p.value and type(v) is type(p.value) or (p.kind == "unit" and v == ())
+        if isinstance(p, A.PTuple):
+            return len(v) == len(p.items) and all(self.match(q, x, env) for q, x in zip(p.items, v))
+        if isinstance(p, A.PList):
+            return len(v) == len(p.items) and all(self.match(q, x, env) for q, x in zip(p.items, v))
+        if isinstance(p, A.PCons):
+            return len(v) >= 1 and self.match(p.head, v[0], env) and self.match(p.tail, v[1:], env)
+        if isinstance(p, A.PCon):
+            info = p.ref.data
+            if info.kind == "index":
+                return self.match(p.arg, v, env)
+            return isinstance(v, tuple) and v[0] == info.tag and self.match(p.arg, v[1], env)
+        if isinstance(p, A.PRecord):
+            labels = p.ty_labels
+            return all(self.match(q, v[labels.index(label)], env) for label, q in p.fields)
+        if isinstance(p, A.PAs):
+            env[p.ref.uid] = v
+            return self.match(p.pat, v, env)
+        raise MLError(f"unsupported pattern {type(p).__name__}")

@@ -1,0 +1,292 @@
+"""The run-time meaning of the CPN ML library subset and of the infix operators, on the value
+representation of `cpn.values` (docs/internals.md): what the engines call while firing.
+
+The language (`cpn.lang.builtins`) gives the same names their types. Every function value takes one
+argument (SML): tuples for several arguments, curried otherwise.
+
+>>> FUNCTIONS["List.nth"](((1, 2, 3), 1))
+2
+>>> binop("div", 7, 2)
+3
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from cpn.values.multiset import Multiset, MultisetError, TimedMultiset
+
+
+class MLError(Exception):
+    """A run-time error of CPN ML code (an SML exception such as Empty, Subscript, Div, Match)."""
+
+
+def _empty(name):
+    raise MLError(f"{name} of an empty list (SML exception Empty)")
+
+
+def _hd(lst):
+    if not lst:
+        _empty("hd")
+    return lst[0]
+
+
+def _tl(lst):
+    if not lst:
+        _empty("tl")
+    return lst[1:]
+
+
+def _nth(arg):
+    lst, i = arg
+    if not 0 <= i < len(lst):
+        raise MLError(f"List.nth: index {i} outside a list of length {len(lst)} (SML exception Subscript)")
+    return lst[i]
+
+
+def _take(arg):
+    lst, i = arg
+    if not 0 <= i <= len(lst):
+        raise MLError(f"List.take: {i} outside a list of length {len(lst)} (SML exception Subscript)")
+    return lst[:i]
+
+
+def _drop(arg):
+    lst, i = arg
+    if not 0 <= i <= len(lst):
+        raise MLError(f"List.drop: {i} outside a list of length {len(lst)} (SML exception Subscript)")
+    return lst[i:]
+
+
+def _last(lst):
+    if not lst:
+        _empty("List.last")
+    return lst[-1]
+
+
+def _rm(x):
+    def inner(lst):
+        if x in lst:
+            i = lst.index(x)
+            return lst[:i] + lst[i + 1:]
+        return lst
+    return inner
+
+
+def _remdupl(lst):
+    out = []
+    for x in lst:
+        if x not in out:
+            out.append(x)
+    return tuple(out)
+
+
+def _ms_to_col(m):
+    if isinstance(m, TimedMultiset):
+        m = m.untimed()
+    if len(m) != 1:
+        raise MLError(f"ms_to_col of a multiset with {len(m)} elements (it needs exactly one)")
+    return next(iter(m))
+
+
+def _size(m):
+    return len(m)
+
+
+def _cf(arg):
+    x, m = arg
+    if isinstance(m, TimedMultiset):
+        m = m.untimed()
+    return m.count(x)
+
+
+def _substring(arg):
+    s, i, n = arg
+    if i < 0 or n < 0 or i + n > len(s):
+        raise MLError("String.substring outside the string (SML exception Subscript)")
+    return s[i:i + n]
+
+
+def _int_to_string(n):
+    return f"~{-n}" if n < 0 else str(n)
+
+
+def _floor(x):
+    import math
+
+    return math.floor(x)
+
+
+def _round(x):
+    import math
+
+    f = math.floor(x)
+    d = x - f
+    if d > 0.5 or (d == 0.5 and f % 2 == 1):
+        return f + 1
+    return f
+
+
+def _ceil(x):
+    import math
+
+    return math.ceil(x)
+
+
+def _list_to_ms(lst):
+    return Multiset(lst)
+
+
+def _foldl(f):
+    return lambda init: lambda lst: _fold(f, init, lst)
+
+
+def _foldr(f):
+    return lambda init: lambda lst: _fold(f, init, reversed(lst))
+
+
+def _fold(f, acc, lst):
+    for x in lst:
+        acc = f((x, acc))
+    return acc
+
+
+def _tabulate(arg):
+    n, f = arg
+    if n < 0:
+        raise MLError("List.tabulate with a negative size (SML exception Size)")
+    return tuple(f(i) for i in range(n))
+
+
+
+#: name -> implementation; `intTime` and `time` read the clock, which the engine supplies (TIME_BUILTINS)
+FUNCTIONS: dict[str, Any] = {
+    "not": lambda b: not b,
+    "Bool.not": lambda b: not b,
+    "length": len,
+    "List.length": len,
+    "rev": lambda lst: lst[::-1],
+    "List.rev": lambda lst: lst[::-1],
+    "hd": _hd,
+    "List.hd": _hd,
+    "tl": _tl,
+    "List.tl": _tl,
+    "null": lambda lst: not lst,
+    "List.null": lambda lst: not lst,
+    "List.nth": _nth,
+    "List.take": _take,
+    "List.drop": _drop,
+    "List.last": _last,
+    "List.concat": lambda ls: tuple(x for lst in ls for x in lst),
+    "List.map": lambda f: lambda lst: tuple(f(x) for x in lst),
+    "map": lambda f: lambda lst: tuple(f(x) for x in lst),
+    "List.filter": lambda f: lambda lst: tuple(x for x in lst if f(x)),
+    "List.exists": lambda f: lambda lst: any(f(x) for x in lst),
+    "List.all": lambda f: lambda lst: all(f(x) for x in lst),
+    "List.foldl": _foldl,
+    "List.foldr": _foldr,
+    "foldl": _foldl,
+    "foldr": _foldr,
+    "List.tabulate": _tabulate,
+    "mem": lambda lst: lambda x: x in lst,
+    "rm": _rm,
+    "remdupl": _remdupl,
+    "contains": lambda a: lambda b: all(x in a for x in b),
+    "ins": lambda lst: lambda x: lst + (x,),
+    "ins_new": lambda lst: lambda x: lst if x in lst else lst + (x,),
+    "union": lambda a: lambda b: a + tuple(x for x in b if x not in a),
+    "intersect": lambda a: lambda b: tuple(x for x in a if x in b),
+    "list_to_ms": _list_to_ms,
+    "Int.toString": _int_to_string,
+    "Int.max": lambda a: max(a),
+    "Int.min": lambda a: min(a),
+    "Int.abs": abs,
+    "abs": abs,
+    "Bool.toString": lambda b: "true" if b else "false",
+    "String.size": len,
+    "String.concat": lambda lst: "".join(lst),
+    "String.substring": _substring,
+    "real": float,
+    "Real.fromInt": float,
+    "floor": _floor,
+    "ceil": _ceil,
+    "round": _round,
+    "trunc": int,
+    "Real.toString": lambda x: repr(x).replace("-", "~"),
+    "size": _size,
+    "empty": Multiset(),
+    "ms_to_col": _ms_to_col,
+    "cf": _cf,
+    "ignore": lambda x: (),
+    "IntInf.toInt": lambda x: x,
+    "IntInf.fromInt": lambda x: x,
+    "intTime": None,
+    "time": None,
+}
+
+TIME_BUILTINS = frozenset({"intTime", "time"})
+
+
+def binop(op: str, a: Any, b: Any) -> Any:
+    """The meaning of an infix operator on evaluated operands (shared with compiled code)."""
+    if op == "+":
+        return a + b
+    if op == "-":
+        return a - b
+    if op == "*":
+        return a * b
+    if op == "div":
+        if b == 0:
+            raise MLError("division by zero (SML exception Div)")
+        return a // b
+    if op == "mod":
+        if b == 0:
+            raise MLError("division by zero (SML exception Div)")
+        return a % b
+    if op == "/":
+        if b == 0:
+            raise MLError("division by zero (SML exception Div)")
+        return a / b
+    if op == "^":
+        return a + b
+    if op == "::":
+        return (a,) + b
+    if op in ("^^", "@"):
+        return a + b
+    if op == "=":
+        return a == b
+    if op == "<>":
+        return a != b
+    if op == "<":
+        return a < b
+    if op == "<=":
+        return a <= b
+    if op == ">":
+        return a > b
+    if op == ">=":
+        return a >= b
+    if op == "`":
+        if a < 0:
+            raise MLError(f"negative coefficient {a} in {a}`...")
+        return Multiset.of(b, a)
+    if op in ("++", "+++"):
+        if isinstance(a, TimedMultiset) or isinstance(b, TimedMultiset):
+            return TimedMultiset.lift(a) + TimedMultiset.lift(b)
+        return a + b
+    if op == "--":
+        if isinstance(a, TimedMultiset):
+            a = a.untimed()
+        if isinstance(b, TimedMultiset):
+            b = b.untimed()
+        try:
+            return a - b
+        except MultisetError as exc:
+            raise MLError(str(exc)) from None
+    if op == "@+":
+        if not isinstance(a, (Multiset, TimedMultiset)):
+            a = Multiset.of(a)
+        return TimedMultiset.lift(a, b)
+    raise MLError(f"unknown operator {op}")
+
+
+__all__ = ["FUNCTIONS", "MLError", "TIME_BUILTINS", "binop"]

@@ -1,0 +1,96 @@
+"""Issue 9: the net is the engine's only input; one arc-kind vocabulary; the engine protocol."""
+
+import ast
+import pathlib
+
+import pytest
+
+import cpn
+from cpn.engine.evaluate import Evaluator
+from cpn.net import expr as E
+from cpn.values.builtins import FUNCTIONS, MLError, binop
+from tests.engine._explore import graph
+
+ROOT = pathlib.Path(__file__).resolve().parents[2]
+
+# functions (one argument, curried, recursive), let, case, fn, a function-valued constant, records,
+# unions and an index: what the compiled engine compiles and what it leaves to the evaluator
+MODEL = """
+colset N = int with 0..3;
+colset PH = index ph with 1..2;
+colset R = record a : N * b : N;
+colset U = union Tok : N + Stop;
+var n : N; var p : PH; var r : R;
+val limit = 2;
+val twice = fn x => 2 * x;
+fun inc x = if x < limit then x + 1 else 0;
+fun add a b = (a + b) mod 4;
+fun kind (Tok k) = k | kind Stop = 0;
+fun sum [] = 0 | sum (x :: xs) = x + sum xs;
+place A : N = 1`0;
+place B : R = 1`{a = 0, b = 1};
+place C : U = 1`(Tok 1);
+place D : PH = 1`ph(1);
+trans t [n < 3];
+arc A -> t : n;
+arc t -> A : let val m = inc n in case m of 0 => 1 | k => k end;
+trans s;
+arc B -> s : r;
+arc s -> B : {a = add (#a r) 1, b = (fn y => y) (#b r)};
+trans u;
+arc C -> u : Tok n;
+arc u -> C : Tok (twice (kind (Tok n)) mod 4);
+trans v [sum [n, 1] <= 3];
+arc D -> v : p;
+arc A <-> v : n;
+arc v -> D : ph(if p = ph(1) then 2 else 1);
+"""
+
+
+def test_the_engine_reads_nothing_of_the_front_end():
+    model = cpn.loads(MODEL)
+    expected = graph(model.engine(), 500)
+    net = model.net
+    net.checked = None  # the checked model stays with the front end; an engine needs only the Net
+    assert graph(cpn.engine.compile_net(net), 500) == expected
+    assert graph(cpn.engine.compile_net(net, reference=True), 500) == expected
+    assert len(expected) > 10
+
+
+def test_net_fields_are_the_closed_expression_form():
+    net = cpn.loads(MODEL).net
+    exprs = [a.expr for t in net.transitions for a in t.arcs] + [g for t in net.transitions for g in t.guards]
+    assert all(isinstance(x, E.Expr) for x in exprs)
+    assert net.variables["n"].kind == "var" and net.variables["n"].data == "N"
+    assert [d.name for d in net.globals.decls if isinstance(d, E.FunDecl)] == ["inc", "add", "kind", "sum"]
+    assert 2 in net.globals.constants.values()  # limit; twice is a function: kept as its declaration
+    assert any(isinstance(d, E.ValDecl) for d in net.globals.decls)
+
+
+def test_evaluator_of_the_net_runs_global_declarations():
+    net = cpn.loads(MODEL).net
+    ev = Evaluator(net.colsets, net.globals)
+    inc = next(d for d in net.globals.decls if isinstance(d, E.FunDecl) and d.name == "inc")
+    assert ev.globals[inc.ref.uid](1) == 2 and ev.globals[inc.ref.uid](2) == 0
+
+
+def test_builtins_live_below_the_engine():
+    assert FUNCTIONS["List.nth"](((1, 2, 3), 1)) == 2
+    assert binop("div", 7, 2) == 3
+    with pytest.raises(MLError):
+        binop("mod", 1, 0)
+
+
+def _imports(pkg: str) -> set[str]:
+    out = set()
+    for path in (ROOT / "cpn" / pkg).rglob("*.py"):
+        for node in ast.walk(ast.parse(path.read_text(encoding="utf-8"))):
+            if isinstance(node, ast.ImportFrom) and node.module:
+                out.add(node.module)
+            elif isinstance(node, ast.Import):
+                out.update(a.name for a in node.names)
+    return out
+
+
+def test_engine_imports_neither_the_language_nor_the_front_end():
+    assert not {m for m in _imports("engine") if m.startswith("cpn.lang")}
