@@ -1,23 +1,35 @@
-"""Layers import only downward (STYLE.md 2.2): checked by walking the imports of every module."""
+"""Layers import only what their allow-list names (STYLE.md 2.2, docs/internals.md): checked by walking
+the imports of every module."""
 
 import ast
 import pathlib
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent / "cpn"
 
-# layer of each top-level part of the package
-LAYER = {
-    "diagnostics": 0, "errors": 0, "_util": 0,
-    "values": 1,
-    "lang": 2,
-    "net": 3, "io": 3,
-    "engine": 4,
-    "model": 4,
-    "statespace": 5,
-    "checks": 6,
-    "report": 7,
-    "cli": 8,
-    "__init__": 7, "__main__": 9,
+# the order of the layers, as docs/internals.md draws it: text -> lang -> net -> engine -> statespace ->
+# checks -> report -> cli; an allow-list may only name earlier layers
+ORDER = ["diagnostics", "_util", "errors", "values", "lang", "net", "io", "engine", "model", "statespace",
+         "checks", "report", "__init__", "cli", "__main__"]
+
+FOUNDATION = {"diagnostics", "_util", "errors"}
+
+# what each top-level part of the package may import (besides itself)
+ALLOWED: dict[str, set[str]] = {
+    "diagnostics": set(),
+    "_util": set(),
+    "errors": {"diagnostics"},
+    "values": FOUNDATION,
+    "lang": FOUNDATION | {"values"},
+    "net": FOUNDATION | {"values", "lang"},  # lowering and translation read the checked model
+    "io": FOUNDATION | {"values", "lang", "net"},  # foreign formats to and from .cpnet text
+    "engine": FOUNDATION | {"values", "net"},  # the Net is the engine's only input: never the language
+    "model": FOUNDATION | {"values", "lang", "net", "io", "engine"},  # the loader: file to net and engines
+    "statespace": FOUNDATION | {"values", "engine"},  # through the engine protocol only
+    "checks": FOUNDATION | {"values", "engine", "statespace"},
+    "report": FOUNDATION | {"values", "engine", "statespace", "checks"},
+    "__init__": FOUNDATION | {"values", "lang", "net", "engine", "model", "statespace", "checks", "report"},
+    "cli": FOUNDATION | {"values", "io", "engine", "model", "statespace", "checks", "report", "__init__"},
+    "__main__": {"cli"},
 }
 
 
@@ -30,30 +42,45 @@ def _part(modname: str) -> str | None:
     return parts[1].removesuffix(".py")
 
 
-def test_no_module_imports_a_later_layer():
+def _imports(source: str) -> list[str]:
+    names = []
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.Import):
+            names += [a.name for a in node.names]
+        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            names.append(node.module)
+    return names
+
+
+def _problems(mod: str, own: str, source: str, allowed: dict[str, set[str]]) -> list[str]:
+    """What module `mod` of part `own` imports beyond its allow-list."""
+    if own not in allowed:
+        return [f"{mod}: not assigned to a layer (add it to ALLOWED)"]
+    out = []
+    for name in _imports(source):
+        other = _part(name)
+        if other is not None and other != own and other not in allowed[own]:
+            out.append(f"{mod} imports {name}: {own} may import only "
+                       f"{', '.join(sorted(allowed[own])) or 'nothing of cpn'}")
+    return out
+
+
+def test_every_module_imports_only_what_its_layer_allows():
     problems = []
-    for path in ROOT.rglob("*.py"):
+    for path in sorted(ROOT.rglob("*.py")):
         rel = path.relative_to(ROOT.parent).with_suffix("")
-        mod = ".".join(rel.parts)
-        own = _part(mod) if rel.name != "__init__" or len(rel.parts) > 2 else "__init__"
-        if rel.parts[-1] == "__init__" and len(rel.parts) > 2:
-            own = rel.parts[1]
-        if own not in LAYER:
-            problems.append(f"{mod}: not assigned to a layer")
-            continue
-        tree = ast.parse(path.read_text(encoding="utf-8"))
-        for node in ast.walk(tree):
-            names = []
-            if isinstance(node, ast.Import):
-                names = [a.name for a in node.names]
-            elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
-                names = [node.module]
-            for name in names:
-                other = _part(name)
-                if other is None or other == own:
-                    continue
-                if other not in LAYER:
-                    problems.append(f"{mod} imports unknown part {name}")
-                elif LAYER[other] > LAYER[own]:
-                    problems.append(f"{mod} (layer {LAYER[own]}) imports {name} (layer {LAYER[other]})")
+        problems += _problems(".".join(rel.parts), rel.parts[1], path.read_text(encoding="utf-8"), ALLOWED)
     assert not problems, "\n".join(problems)
+
+
+def test_allow_lists_point_only_downward():
+    for part, allowed in ALLOWED.items():
+        later = {a for a in allowed if ORDER.index(a) >= ORDER.index(part)}
+        assert not later, f"{part} may import the later layers {sorted(later)}"
+
+
+def test_an_engine_importing_the_language_fails():
+    assert _problems("cpn.engine.x", "engine", "from cpn.lang import ast as A\n", ALLOWED)
+    assert _problems("cpn.engine.x", "engine", "import cpn.lang.evaluate\n", ALLOWED)
+    assert not _problems("cpn.engine.x", "engine", "from cpn.net import expr\n", ALLOWED)
+    assert _problems("cpn.statespace.x", "statespace", "from cpn.net import Net\n", ALLOWED)
