@@ -8,15 +8,16 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent / "cpn"
 
 # the order of the layers, as docs/internals.md draws it: text -> lang -> net -> engine -> statespace ->
 # checks -> report -> cli; an allow-list may only name earlier layers
-ORDER = ["diagnostics", "_util", "errors", "values", "lang", "net", "io", "engine", "model", "statespace",
+ORDER = ["diagnostics", "_util", "arcs", "errors", "values", "lang", "net", "io", "engine", "model", "statespace",
          "checks", "report", "__init__", "cli", "__main__"]
 
-FOUNDATION = {"diagnostics", "_util", "errors"}
+FOUNDATION = {"diagnostics", "_util", "errors", "arcs"}
 
 # what each top-level part of the package may import (besides itself)
 ALLOWED: dict[str, set[str]] = {
     "diagnostics": set(),
     "_util": set(),
+    "arcs": set(),
     "errors": {"diagnostics"},
     "values": FOUNDATION,
     "lang": FOUNDATION | {"values"},

@@ -309,7 +309,7 @@ class TransitionCodegen:
         pos = {p: i for i, p in enumerate(self.read)}
         in_terms: list[tuple[int, Term, Any]] = []
         for a in t.arcs:
-            if a.kind in ("in", "both") and a.expr is not None:
+            if a.kind.consumes and a.expr is not None:
                 for term in terms(a.expr):
                     in_terms.append((pos[a.place], term, ("arc", a)))
         guards = [(g, ("guard", g)) for g in B.guard_conjuncts(t.guards)]
@@ -447,7 +447,7 @@ class TransitionCodegen:
             self.emit(f"if not ENOUGH(M{pi}, {c}): continue")
             consumed.append(c)
         for a in t.arcs:
-            if a.kind == "inhibitor":
+            if a.kind.blocks:
                 pi = pos[a.place]
                 if a.expr is None:
                     self.emit(f"if M{pi}: continue")
@@ -457,7 +457,7 @@ class TransitionCodegen:
         produced = []
         for a in t.arcs:
             # a double arc puts back its own inscription (not everything taken from its place)
-            if a.kind in ("out", "both") and a.expr is not None:
+            if a.kind.produces and a.expr is not None:
                 parts = out_terms(a.expr, self.ec)
                 if parts:
                     var = f"_o{a.place}_{len(produced)}"

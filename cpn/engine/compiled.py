@@ -128,11 +128,11 @@ class CompiledEngine(EngineAPI):
         for t in self.transitions:
             read = []
             for a in t.arcs:
-                if a.kind in ("in", "both", "inhibitor", "reset") and a.place not in read:
+                if a.kind.reads and a.place not in read:
                     read.append(a.place)
             writes = []
             for a in t.arcs:
-                if a.kind in ("out",) and a.place not in read and a.place not in writes:
+                if a.kind.produces and a.place not in read and a.place not in writes:
                     writes.append(a.place)
             ns = codegen.Namespace()
             gen = codegen.TransitionCodegen(t, self.net, ns, self.ev, read)
@@ -157,7 +157,7 @@ class CompiledEngine(EngineAPI):
                 getter = operator.itemgetter(read[0])
             else:
                 getter = operator.itemgetter(*read)
-            resets = {a.place for a in t.arcs if a.kind == "reset"}
+            resets = {a.place for a in t.arcs if a.kind.empties}
             info = _TInfo(t, fn, read, writes, getter, {}, timed_t, uses_time, resets, gen.blame, filename)
             info.inputs = [read.index(p) for p in self.timed_inputs[t.index]]
             self._plan.append(info)
@@ -478,7 +478,7 @@ class CompiledEngine(EngineAPI):
             if cs.contains(v):
                 known.add(v)
             else:
-                arc = next((a for a in info.t.arcs if a.place == p and a.kind in ("out", "both")), None)
+                arc = next((a for a in info.t.arcs if a.place == p and a.kind.produces), None)
                 raise EvaluationError(
                     f"transition '{info.t.name}' puts {_fmt(cs, v)} on place '{self.places[p].name}', "
                     f"outside its colour set {cs.name} = {cs.describe()}",

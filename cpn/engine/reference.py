@@ -118,7 +118,7 @@ class ReferenceEngine(EngineAPI):
         views = [_view(p, marking[p.index]) for p in self.places]
         cands: dict[str, list] = {}
         for a in t.arcs:
-            if a.kind in ("in", "both") and a.expr is not None:
+            if a.kind.consumes and a.expr is not None:
                 for term in self._summands(a.expr):
                     found: dict[str, list] = {}
                     for tok in views[a.place]:
@@ -163,7 +163,7 @@ class ReferenceEngine(EngineAPI):
         env = self._env(t, assignment)
         need: dict[int, dict] = {}
         for a in t.arcs:
-            if a.kind in ("in", "both") and a.expr is not None:
+            if a.kind.consumes and a.expr is not None:
                 for v, n, _ in self._ms(a.expr, env, t):
                     if n < 0:
                         return None
@@ -177,7 +177,7 @@ class ReferenceEngine(EngineAPI):
             if not self._eval(g, env, t, "the guard"):
                 return None
         for a in t.arcs:
-            if a.kind == "inhibitor":
+            if a.kind.blocks:
                 view = _view_counts(self.places[a.place], marking[a.place])
                 if a.expr is None:
                     if view:
@@ -262,11 +262,11 @@ class ReferenceEngine(EngineAPI):
                     if not m[p][v]:
                         del m[p][v]
         for a in t.arcs:
-            if a.kind == "reset":
+            if a.kind.empties:
                 m[a.place] = {}
         td = self._eval(t.delay, env, t, "the delay") if t.delay is not None else 0
         for a in t.arcs:
-            if a.kind in ("out", "both") and a.expr is not None:
+            if a.kind.produces and a.expr is not None:
                 pl = self.places[a.place]
                 items = self._ms(a.expr, env, t)  # a double arc puts back its own inscription
                 for v, n, d in items:

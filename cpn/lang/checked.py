@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
+from cpn.arcs import ArcKind
 from cpn.diagnostics import Diagnostic
 from cpn.lang import ast as A
 from cpn.lang import types as T
@@ -18,7 +19,7 @@ from cpn.values import colours as C
 @dataclass(eq=False)
 class ArcInfo:
     decl: A.ArcDecl
-    kind: str  # 'in' 'out' 'both' 'inhibitor' 'reset'
+    kind: ArcKind
     place: str
     trans: str
     expr: A.Expr | None

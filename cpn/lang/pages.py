@@ -8,6 +8,7 @@ Imports `cpn.lang.*`, `cpn.values` and layer 0.
 from __future__ import annotations
 
 from cpn._util import did_you_mean
+from cpn.arcs import ArcKind
 from cpn.diagnostics import Span
 from cpn.lang import ast as A
 from cpn.lang import types as T
@@ -105,16 +106,16 @@ class PageChecks:
                            f"'{d.src}' -> '{d.dst}'", d.span, hint="Write the place first.")
                 return
             place, trans = d.src, d.dst
-            ak = {"inhibitor": "inhibitor", "reset": "reset", "<->": "both"}[kind]
+            ak = {"inhibitor": ArcKind.INHIBITOR, "reset": ArcKind.RESET, "<->": ArcKind.BOTH}[kind]
         elif src_p and dst_t and src_t and dst_p:
             self.error("E0203", f"the arc '{d.src}' -> '{d.dst}' is ambiguous: both names are a place and a "
                        f"transition on page '{page.name}'", d.span,
                        hint="Rename the place or the transition so that the direction of the arc is clear.")
             return
         elif src_p and dst_t:
-            place, trans, ak = d.src, d.dst, "in"
+            place, trans, ak = d.src, d.dst, ArcKind.IN
         elif src_t and dst_p:
-            place, trans, ak = d.dst, d.src, "out"
+            place, trans, ak = d.dst, d.src, ArcKind.OUT
         else:
             what = "two places" if src_p else "two transitions"
             self.error("E0203", f"an arc must connect a place and a transition, but '{d.src}' and '{d.dst}' are "
@@ -124,9 +125,7 @@ class PageChecks:
         expr = d.expr
         info = page.transitions[trans]
         if expr is None:
-            if ak in ("reset",):
-                pass
-            elif ak == "inhibitor":
+            if ak.empties or ak.blocks:
                 pass
             elif pd.colset in self.colsets and self.colsets[pd.colset].kind == "unit":
                 expr = A.Const(d.span, (), "unit")
@@ -134,7 +133,7 @@ class PageChecks:
                 self.error("E0301", f"the arc between '{place}' and '{trans}' has no inscription", d.span,
                            hint="Only arcs of unit places may omit the inscription (it means 1`()).")
                 return
-        elif ak == "reset":
+        elif ak.empties:
             self.error("E0301", "reset arcs take no inscription", d.span)
             return
         if expr is not None and pd.colset in self.cstypes:
@@ -156,7 +155,7 @@ class PageChecks:
                 info.ran.extend((v, cs) for v, cs, _ in sink)
                 for v, _cs, sym in sink:
                     self.variables[v] = sym
-            if ak in ("in", "both", "inhibitor") and _has_delay(expr):
+            if ak.reads and _has_delay(expr):
                 self.error("E0206", "delays on input arcs ('preemption') are not supported", expr.span)
                 return
             delay = _delay_node(expr) if ak == "out" else None
@@ -217,7 +216,7 @@ class PageChecks:
         all_vars(d.priority, used)
         bound: set[str] = set()
         for a in info.arcs:
-            if a.kind in ("in", "both") and a.expr is not None:
+            if a.kind.consumes and a.expr is not None:
                 bound |= pattern_vars(a.expr)
         conj = guard_conjuncts(d.guards)
         changed = True
@@ -236,7 +235,7 @@ class PageChecks:
                 free.append(v)
                 continue
             span = self._first_use(info, v)
-            binder = next((a for a in info.arcs if a.kind in ("in", "both") and a.expr is not None), None)
+            binder = next((a for a in info.arcs if a.kind.consumes and a.expr is not None), None)
             hint = (f"A variable must occur on an input arc of '{d.name}' (or be bound by its guard as "
                     f"'{v} = ...') before it can be used; only variables of small colour sets may be unbound. ")
             if binder is not None:

@@ -7,6 +7,7 @@ from __future__ import annotations
 
 from collections import defaultdict
 
+from cpn.arcs import ArcKind
 from cpn.diagnostics import Diagnostic
 from cpn.errors import ModelError
 from cpn.lang import ast as A
@@ -143,7 +144,7 @@ def _fmt(cs, v) -> str:
 
 
 def _arc_label(a) -> str:
-    if a.kind == "out":
+    if a.kind is ArcKind.OUT:
         return f"'{a.trans}' -> '{a.place}'"
     return f"'{a.place}' -> '{a.trans}'"
 

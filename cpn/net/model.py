@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from cpn.arcs import ArcKind
 from cpn.diagnostics import Span
 from cpn.net import expr as E
 from cpn.values.colours import ColourSet
@@ -35,7 +36,7 @@ class PlaceInstance:
 @dataclass(eq=False)
 class ArcInstance:
     place: int
-    kind: str  # 'in' 'out' 'both' 'inhibitor' 'reset'
+    kind: ArcKind
     expr: E.Expr | None
     span: Span | None = None
     label: str = ""  # "'Send' -> 'Bus'" for messages

@@ -94,3 +94,17 @@ def _imports(pkg: str) -> set[str]:
 
 def test_engine_imports_neither_the_language_nor_the_front_end():
     assert not {m for m in _imports("engine") if m.startswith("cpn.lang")}
+
+
+def test_one_arc_kind_from_the_checker_to_the_engine():
+    from cpn.arcs import ArcKind
+
+    m = cpn.loads("colset U = unit; place A : U = 1`(); place B : U; place C : U; place D : U;\n"
+                  "trans t; arc A -> t; arc t -> B; arc C <-> t; inhibitor D -> t; reset B -> t;")
+    kinds = [a.kind for a in m.net.transitions[0].arcs]
+    assert all(type(k) is ArcKind for k in kinds)
+    assert sorted(kinds) == sorted(ArcKind)
+    assert [k for k in ArcKind if k.consumes] == [ArcKind.IN, ArcKind.BOTH]
+    assert [k for k in ArcKind if k.produces] == [ArcKind.OUT, ArcKind.BOTH]
+    assert [k for k in ArcKind if not k.reads] == [ArcKind.OUT]
+    assert ArcKind.INHIBITOR.blocks and ArcKind.RESET.empties and ArcKind.IN == "in"
