@@ -1,6 +1,7 @@
 """Helpers shared by the standard-report checks: place columns, transition of a binding element.
 
-Imports `cpn.statespace` and the standard library only.
+Uses the engine through its protocol (`cpn.engine.Engine`), and the compiled engine's intern tables
+where it has them (`_intern_tables`, a fast path).
 """
 
 from __future__ import annotations
@@ -8,13 +9,11 @@ from __future__ import annotations
 from array import array
 from operator import itemgetter
 
+from cpn.engine import Engine
 
-def is_timed_place(engine, p: int) -> bool:
-    place = engine.places[p]
-    timed = getattr(place, "timed", None)
-    if timed is None:
-        timed = getattr(getattr(place, "colour_set", None), "timed", False)
-    return bool(timed) and bool(getattr(engine, "is_timed", False))
+
+def is_timed_place(engine: Engine, p: int) -> bool:
+    return engine.is_timed and engine.places[p].timed
 
 
 def has_place_columns(engine, states: list) -> bool:

@@ -45,7 +45,6 @@ def boundedness(x: Exploration) -> Boundedness:
     engine = x.engine
     states = x.graph.states
     markings = place_markings(engine, states)
-    fmt = getattr(engine, "format_multiset", None)
     out = []
     for p, place in enumerate(engine.places):
         upper_ms: dict = {}
@@ -71,8 +70,8 @@ def boundedness(x: Exploration) -> Boundedness:
             lower=min(counts, default=0),
             upper_multiset=upper_ms,
             lower_multiset=lower_ms,
-            upper_text=fmt(p, upper_ms) if fmt else _fmt(upper_ms),
-            lower_text=fmt(p, lower_ms) if fmt else _fmt(lower_ms),
+            upper_text=engine.format_multiset(p, upper_ms),
+            lower_text=engine.format_multiset(p, lower_ms),
             max_of_one_colour=hi_colour,
         ))
     return Boundedness(
@@ -113,9 +112,3 @@ def _max_tokens_per_marking(engine, states, markings) -> int:
                 best = m
         return constant + best
     return max(sum(engine.token_counts(s)) for s in states)
-
-
-def _fmt(ms: dict) -> str:
-    if not ms:
-        return "empty"
-    return "++".join(f"{n}`{v!r}" for v, n in sorted(ms.items(), key=lambda kv: repr(kv[0])))

@@ -51,7 +51,7 @@ def dead_markings(x: Exploration) -> DeadMarkings:
     g = x.graph
     dead = g.dead_states()
     untimed = None
-    if getattr(x.engine, "is_timed", False):
+    if x.engine.is_timed:
         untimed = len({x.engine.untimed(g.states[i]) for i in dead})
     return DeadMarkings(len(dead), dead, untimed, x.unexpanded)
 
@@ -114,7 +114,7 @@ def home_markings(x: Exploration, scc: SccSummary) -> HomeMarkings:
         homes = range(x.graph.n_states) if len(nodes) == x.graph.n_states else array("i", sorted(nodes))
     engine = x.engine
     states = x.graph.states
-    if getattr(engine, "is_timed", False):
+    if engine.is_timed:
         u0 = engine.untimed(states[0])
         initial = all(any(engine.untimed(states[v]) == u0 for v in dec.nodes(c)) for c in terms)
     else:

@@ -7,6 +7,7 @@ from dataclasses import dataclass
 
 from cpn.engine.clock import clock_reads, refuse_condensation
 from cpn.engine.evaluate import Evaluator
+from cpn.values.colours import format_multiset
 
 
 @dataclass(frozen=True, slots=True)
@@ -56,6 +57,10 @@ class EngineAPI:
         tr = self.transitions[t]
         parts = [f"{n}={self.net.colsets[self.net.variables[n].data].format(v)}" for n, v in zip(tr.variables, vals)]
         return f"{tr.name}: {{{', '.join(parts)}}}"
+
+    def format_multiset(self, p: int, ms: dict) -> str:
+        """CPN ML text of an untimed multiset (value -> count) of place p's colour set."""
+        return format_multiset(self.places[p].colour_set, ms.items())
 
     def clock(self, state) -> int:
         return state[-1] if self.is_timed else 0

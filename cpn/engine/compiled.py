@@ -200,9 +200,6 @@ class CompiledEngine(EngineAPI):
         pl = self.places[p]
         return format_multiset(pl.colour_set, self.store.dicts[p][s[p]].items(), timed=pl.timed)
 
-    def format_multiset(self, p: int, ms: dict) -> str:
-        return format_multiset(self.places[p].colour_set, ms.items())
-
     # ------------------------------------------------------------------ successors
     def successors(self, s: tuple) -> list[tuple[int, tuple]]:
         self._nstates += 1

@@ -69,7 +69,7 @@ class Report:
 
     @property
     def timed(self) -> bool:
-        return bool(getattr(self.engine, "is_timed", False))
+        return self.engine.is_timed
 
     def _repr_html_(self) -> str:
         """Jupyter shows the report as the content of its HTML page (cpn.report.html)."""

@@ -1,6 +1,7 @@
 """The state space: breadth-first generation of the occurrence graph, SCCs and shortest traces.
 
-May import cpn.engine, cpn.net, cpn.values, cpn.diagnostics and cpn.errors; never checks, report or cli.
+Uses the engine through its protocol (`cpn.engine.Engine`) only: never the net, the language, the checks, the
+reports or the command line (tests/test_layering.py).
 """
 
 from cpn.statespace.explore import Exploration, Explorer, Progress

@@ -1,7 +1,6 @@
 """Breadth-first generation of the occurrence graph: `Explorer(engine, options).run() -> Exploration`.
 
-Imports `cpn.statespace.*` and the standard library only; the engine is used through its protocol
-(docs/internals.md). The driver, the store (`graph.StateGraph`) and the trace builder (`trace`) are
+Uses the engine through its protocol only (`cpn.engine.Engine`, docs/internals.md). The driver, the store (`graph.StateGraph`) and the trace builder (`trace`) are
 separate; the frontier is the tail `states[expanded:]` of the store, which BFS fills in order.
 """
 
@@ -13,6 +12,7 @@ from array import array
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from cpn.engine import Engine
 from cpn.errors import EvaluationError
 from cpn.statespace._memory import current_rss_mb, peak_rss_mb
 from cpn.statespace.graph import StateGraph
@@ -45,7 +45,7 @@ class Progress:
 class Exploration:
     """The result of one exploration: the graph, why it stopped and what it cost."""
 
-    engine: object
+    engine: Engine
     graph: StateGraph
     options: ExploreOptions
     stop_reason: StopReason
@@ -79,7 +79,8 @@ class Explorer:
 
     Parameters
     ----------
-    engine : an object with the engine protocol (`initial_state`, `successors`, ...).
+    engine : Engine
+        The successor function (`cpn.engine.Engine`: `initial_state`, `successors`, ...).
     options : ExploreOptions, the limits.
     progress : optional callable receiving a `Progress` about every `options.progress_interval` s.
 
@@ -90,7 +91,7 @@ class Explorer:
     2
     """
 
-    def __init__(self, engine, options: ExploreOptions | None = None,
+    def __init__(self, engine: Engine, options: ExploreOptions | None = None,
                  progress: Callable[[Progress], None] | None = None):
         self.engine = engine
         self.options = options or ExploreOptions()
@@ -120,9 +121,9 @@ class Explorer:
 
         # A model that reads the clock (intTime() in a guard, an inscription, a delay) can change its
         # behaviour at any later time: the markings modulo time say nothing about its future.
-        reads_clock = bool(getattr(engine, "reads_clock", False))
-        timed_check = bool(getattr(engine, "is_timed", False)) and opts.detect_time_growth and not reads_clock
-        watcher = _TimeGrowthWatcher(engine) if getattr(engine, "is_timed", False) else None
+        reads_clock = engine.is_timed and engine.reads_clock
+        timed_check = engine.is_timed and opts.detect_time_growth and not reads_clock
+        watcher = _TimeGrowthWatcher(engine) if engine.is_timed else None
         if watcher is not None:
             watcher.level(states, 0, 1)
 
@@ -237,7 +238,7 @@ class _TimeGrowthWatcher:
     the protocol's timing was explored without anything but time changing).
     """
 
-    def __init__(self, engine):
+    def __init__(self, engine: Engine):
         self.untimed_of = engine.untimed
         self.clock_of = engine.clock
         self.untimed: set = set()

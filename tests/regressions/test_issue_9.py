@@ -108,3 +108,34 @@ def test_one_arc_kind_from_the_checker_to_the_engine():
     assert [k for k in ArcKind if k.produces] == [ArcKind.OUT, ArcKind.BOTH]
     assert [k for k in ArcKind if not k.reads] == [ArcKind.OUT]
     assert ArcKind.INHIBITOR.blocks and ArcKind.RESET.empties and ArcKind.IN == "in"
+
+
+def _protocol_members():
+    from cpn.engine import Engine
+
+    return {n for n in vars(Engine) if not n.startswith("_")} | set(Engine.__annotations__)
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_both_engines_have_the_whole_protocol(reference):
+    engine = cpn.loads(MODEL).engine(reference=reference)
+    missing = {n for n in _protocol_members() if not hasattr(engine, n)}
+    assert not missing
+
+
+def test_the_toy_engine_of_the_tests_has_the_whole_protocol():
+    from tests.statespace._toy import dining_philosophers
+
+    assert not {n for n in _protocol_members() if not hasattr(dining_philosophers(2), n)}
+
+
+def test_bounds_print_cpn_ml_with_either_engine():
+    from cpn.checks import boundedness
+    from cpn.statespace import Explorer
+
+    texts = []
+    for reference in (False, True):
+        x = Explorer(cpn.loads(MODEL).engine(reference=reference)).run()
+        texts.append([(b.upper_text, b.lower_text) for b in boundedness(x).places])
+    assert texts[0] == texts[1]
+    assert ("1`ph(1)++1`ph(2)", "empty") in texts[1]

@@ -44,6 +44,8 @@ class ToyEngine:
     modes: list
     init: list  # per place: {value: count} (timed places: {(value, ts): count})
     is_timed: bool = False
+    reads_clock: bool = False  # no toy net reads the clock
+    clock_reads: dict = field(default_factory=dict)
     _tables: list = field(default_factory=list)
     _ids: list = field(default_factory=list)
 
