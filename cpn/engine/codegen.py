@@ -5,7 +5,8 @@ it reads: nested loops over the distinct tokens that input-arc patterns match, e
 as soon as its variables are bound, then the consumed and produced tokens. Every generated line that
 evaluates a model expression is recorded in a blame table (line -> model element and span), so that an
 error raised inside generated code names the model element. Model text is never executed as Python: the
-source is built from the net's expressions (`cpn.net.expr`), identifiers are mangled, constants are `repr`s of checked values.
+source is built from the net's expressions (`cpn.net.expr`), identifiers are mangled, constants are
+`repr`s of checked values. The order of the loops and tests is the binding plan of `cpn.engine.plan`.
 """
 
 from __future__ import annotations
@@ -13,6 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from cpn.engine import plan
 from cpn.net import binding as B
 from cpn.net import expr as A
 from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS
@@ -160,36 +162,6 @@ class ExprCompiler:
         raise Unsupported()
 
 
-# ----------------------------------------------------------------------------- multiset terms
-
-
-@dataclass
-class Term:
-    """One summand of an inscription: `coef`value` (pattern or expression), or an opaque multiset."""
-
-    coef: A.Expr | None  # None means 1
-    value: A.Expr | None  # None for opaque terms
-    opaque: A.Expr | None = None  # an expression evaluating to a multiset
-    cond: list = field(default_factory=list)  # (expr, polarity) conditions from if-then-else
-
-
-def terms(e: A.Expr, cond=None) -> list[Term]:
-    """Flatten an untimed inscription into terms; `if` with multiset branches becomes conditional terms."""
-    cond = cond or []
-    if isinstance(e, A.BinOp) and e.op in ("++", "+++"):
-        return terms(e.left, cond) + terms(e.right, cond)
-    if isinstance(e, A.ToMs):
-        return [Term(None, e.expr, cond=cond)]
-    if isinstance(e, A.BinOp) and e.op == "`":
-        return [Term(e.left, e.right, cond=cond)]
-    if isinstance(e, A.Name) and e.ref is not None and e.ref.kind == "builtin" and e.name == "empty":
-        return []
-    if isinstance(e, A.If):
-        return terms(e.then, cond + [(e.cond, True)]) + terms(e.else_, cond + [(e.cond, False)])
-    return [Term(None, None, opaque=e, cond=cond)]
-
-
-
 def out_terms(e: A.Expr, ec: ExprCompiler, delay: str = "0") -> list[str]:
     """Python expressions, each a list of (value, count, delay) triples, whose sum is the output of e."""
     if isinstance(e, A.BinOp) and e.op in ("++", "+++"):
@@ -236,29 +208,6 @@ class TransitionCodegen:
         return f"tok{self._tok}"
 
     # -- pattern matching
-    def matchable(self, e, bound: set) -> bool:
-        if B.is_var(e):
-            return True
-        if isinstance(e, (A.TupleE, A.ListE)):
-            b = set(bound)
-            ok = True
-            for x in e.items:
-                ok = ok and self.matchable(x, b)
-                b |= B.pattern_vars(x)
-            return ok
-        if isinstance(e, A.RecordE):
-            b = set(bound)
-            ok = True
-            for _, x in sorted(e.fields, key=lambda f: f[0]):
-                ok = ok and self.matchable(x, b)
-                b |= B.pattern_vars(x)
-            return ok
-        if isinstance(e, A.App) and B.is_constructor_fn(e.fn):
-            return self.matchable(e.arg, bound)
-        if isinstance(e, A.BinOp) and e.op == "::":
-            return self.matchable(e.left, bound) and self.matchable(e.right, bound | B.pattern_vars(e.left))
-        return B.all_vars(e) <= bound
-
     def gen_match(self, e, src: str, bound: set, blame) -> None:
         if B.is_var(e):
             py = self.varnames[e.name]
@@ -303,96 +252,71 @@ class TransitionCodegen:
 
     # -- the whole function
     def generate(self) -> tuple[str, str]:
+        """The name and the source of the function: binding, consumption, inhibition, production."""
         t = self.t
         fname = f"bind_{t.index}"
-        params = ", ".join(f"M{i}" for i in range(len(self.read)))
-        pos = {p: i for i, p in enumerate(self.read)}
-        in_terms: list[tuple[int, Term, Any]] = []
-        for a in t.arcs:
-            if a.kind.consumes and a.expr is not None:
-                for term in terms(a.expr):
-                    in_terms.append((pos[a.place], term, ("arc", a)))
-        guards = [(g, ("guard", g)) for g in B.guard_conjuncts(t.guards)]
-        bound: set[str] = set()
-        loop_token: dict[int, tuple[int, str]] = {}  # term number -> (place position, python name of the token)
-        self.lines.append(f"def {fname}({params}):")
+        self.in_terms = plan.input_terms(t, self.read)
+        self.lines.append(f"def {fname}({', '.join(f'M{i}' for i in range(len(self.read)))}):")
         self.indent = 1
         self.emit("out = []")
         self.emit("for _once in ONCE:")
         self.indent += 1
-        used_terms: set[int] = set()
-        done_guards: set[int] = set()
+        try:
+            steps = plan.binding_plan(self.in_terms, t.guards, t.variables, t.free)
+        except plan.Unbindable as exc:
+            raise RuntimeError(f"{exc} of {t.name}") from None
+        self.emit_binding(steps)
+        consumed = self.emit_consumption()
+        self.emit_inhibitors()
+        self.emit_production(consumed)
+        self.indent = 1
+        self.emit("return out")
+        return fname, "\n".join(self.lines)
 
-        def emit_ready_guards():
-            for i, (g, bl) in enumerate(guards):
-                if i not in done_guards and B.all_vars(g) <= bound:
-                    done_guards.add(i)
-                    self.emit(f"if not {self.ec.expr(g)}: continue", bl)
-
-        all_vars = set(t.variables)
-        emit_ready_guards()
-        while bound != all_vars:
-            progress = False
-            for k, (pi, term, bl) in enumerate(in_terms):
-                if k in used_terms or term.value is None or term.cond:
-                    continue
-                newv = B.pattern_vars(term.value) - bound
-                if not newv or (term.coef is not None and not B.all_vars(term.coef) <= bound):
-                    continue
-                if not self.matchable(term.value, bound):
-                    continue
-                used_terms.add(k)
+    def emit_binding(self, steps: list) -> None:
+        """The loops and tests of the binding plan; `loop_token` maps each looped term to its token."""
+        conj = B.guard_conjuncts(self.t.guards)
+        bound: set[str] = set()
+        self.loop_token: dict[int, tuple[int, str]] = {}  # term number -> (place position, token name)
+        for step in steps:
+            if isinstance(step, plan.Test):
+                g = conj[step.guard]
+                self.emit(f"if not {self.ec.expr(g)}: continue", ("guard", g))
+            elif isinstance(step, plan.Loop):
+                it = self.in_terms[step.term]
+                pi, term, bl = it.place, it.term, ("arc", it.arc)
                 if B.is_var(term.value):
                     py = self.varnames[term.value.name]
                     self.emit(f"for {py} in M{pi}:")
                     self.indent += 1
                     bound.add(term.value.name)
-                    loop_token[k] = (pi, py)
+                    self.loop_token[step.term] = (pi, py)
                 else:
                     tok = self.newtok()
                     self.emit(f"for {tok} in M{pi}:")
                     self.indent += 1
                     self.gen_match(term.value, tok, bound, bl)
-                    loop_token[k] = (pi, tok)
-                emit_ready_guards()
-                progress = True
-                break
-            if progress:
-                continue
-            for i, (g, bl) in enumerate(guards):
-                if i in done_guards:
-                    continue
-                gb = B.guard_binder(g, bound)
-                if gb is None:
-                    continue
-                pat, expr = gb
-                newv = B.pattern_vars(pat) - bound
+                    self.loop_token[step.term] = (pi, tok)
+            elif isinstance(step, plan.Bind):
+                bl = ("guard", conj[step.guard])
                 tok = self.newtok()
-                self.emit(f"{tok} = {self.ec.expr(expr)}", bl)
-                self.gen_match(pat, tok, bound, bl)
-                for v in sorted(newv):
+                self.emit(f"{tok} = {self.ec.expr(step.expr)}", bl)
+                self.gen_match(step.pattern, tok, bound, bl)
+                for v in sorted(step.new):
                     self.check_member(v)
-                done_guards.add(i)
-                emit_ready_guards()
-                progress = True
-                break
-            if progress:
-                continue
-            rest = sorted(v for v in t.free if v not in bound)
-            if rest:
-                v = rest[0]
+            else:
+                v = step.var
                 cs = self.net.colsets[self.net.variables[v].data]
                 self.emit(f"for {self.varnames[v]} in {self.ns.ref(tuple(cs.values()), 'V')}:")
                 self.indent += 1
                 bound.add(v)
-                emit_ready_guards()
-                continue
-            raise RuntimeError(f"cannot bind variables {sorted(all_vars - bound)} of {t.name}")
-        emit_ready_guards()
-        # consumption per read place
+
+    def emit_consumption(self) -> list[str]:
+        """Per read place, the name of the dict of consumed tokens (or "None"), checking they are there."""
+        loop_token = self.loop_token
         per_place: dict[int, list] = {}
-        for k, (pi, term, bl) in enumerate(in_terms):
-            per_place.setdefault(pi, []).append((k, term, bl))
+        for k, it in enumerate(self.in_terms):
+            per_place.setdefault(it.place, []).append((k, it.term, ("arc", it.arc)))
         consumed = []
         for pi in range(len(self.read)):
             entries = per_place.get(pi)
@@ -446,14 +370,21 @@ class TransitionCodegen:
                 self.indent -= cond_prefix
             self.emit(f"if not ENOUGH(M{pi}, {c}): continue")
             consumed.append(c)
-        for a in t.arcs:
+        return consumed
+
+    def emit_inhibitors(self) -> None:
+        """An inhibitor arc skips the binding while its place holds the inscription (any token, if none)."""
+        for a in self.t.arcs:
             if a.kind.blocks:
-                pi = pos[a.place]
+                pi = self.read.index(a.place)
                 if a.expr is None:
                     self.emit(f"if M{pi}: continue")
                 else:
                     self.emit(f"if INHIBITED(M{pi}, {self.ec.expr(a.expr)}): continue", ("arc", a))
-        # production
+
+    def emit_production(self, consumed: list[str]) -> None:
+        """The produced tokens, the delay and the priority; then the binding with its effect is kept."""
+        t = self.t
         produced = []
         for a in t.arcs:
             # a double arc puts back its own inscription (not everything taken from its place)
@@ -474,9 +405,6 @@ class TransitionCodegen:
         binding = "(" + "".join(self.varnames[v] + ", " for v in t.variables) + ")"
         self.emit(f"out.append(({binding}, ({''.join(c + ', ' for c in consumed)}), "
                   f"({''.join(p + ', ' for p in produced)}), {delay}, {prio}))")
-        self.indent = 1
-        self.emit("return out")
-        return fname, "\n".join(self.lines)
 
     def _value_code(self, e, tok: str | None) -> str:
         if tok is not None and B.is_pattern(e):
