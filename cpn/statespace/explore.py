@@ -98,47 +98,57 @@ class Explorer:
         self.progress = progress
 
     def run(self) -> Exploration:
-        engine = self.engine
+        """Generate the occurrence graph breadth-first until it is complete or a limit stops it."""
         opts = self.options
         g = StateGraph()
+        self._t0 = t0 = time.perf_counter()
+        self._next_progress = t0 + opts.progress_interval
+        self._deadline = t0 + opts.max_seconds if opts.max_seconds is not None else None
+        self._watcher = _TimeGrowthWatcher(self.engine) if self.engine.is_timed else None
+        # A model that reads the clock (intTime() in a guard, an inscription, a delay) can change its
+        # behaviour at any later time: the markings modulo time say nothing about its future.
+        self._reads_clock = self.engine.is_timed and self.engine.reads_clock
+        stop, predicate_state = self._start(g)
+        levels = 0
+        if stop is StopReason.COMPLETE:
+            stop, predicate_state, levels = self._search(g)
+        return self._finish(g, stop, predicate_state, levels)
+
+    def _start(self, g: StateGraph) -> tuple[StopReason, int | None]:
+        """Store the initial state; the search stops at once if it satisfies the stop predicate."""
+        s0 = self.engine.initial_state()
+        g.index[s0] = 0
+        g.states.append(s0)
+        g.parent.append(-1)
+        g.parent_be.append(-1)
+        if self._watcher is not None:
+            self._watcher.level(g.states, 0, 1)
+        pred = self.options.stop_predicate
+        if pred is not None and pred(s0):
+            return StopReason.PREDICATE, 0
+        return StopReason.COMPLETE, None
+
+    def _search(self, g: StateGraph) -> tuple[StopReason, int | None, int]:
+        """Expand the states in BFS order: (why it stopped, the state satisfying the predicate, levels)."""
+        engine = self.engine
+        opts = self.options
         states, index = g.states, g.index
-        offsets, dst, bes, parent, parent_be = g.offsets, g.dst, g.bes, g.parent, g.parent_be
-        t0 = time.perf_counter()
-
-        s0 = engine.initial_state()
-        index[s0] = 0
-        states.append(s0)
-        parent.append(-1)
-        parent_be.append(-1)
-
+        offsets, dst, parent, parent_be = g.offsets, g.dst, g.parent, g.parent_be
         pred = opts.stop_predicate
         max_states = opts.max_states if opts.max_states is not None else 1 << 62
         max_arcs = opts.max_arcs if opts.max_arcs is not None else 1 << 62
-        deadline = t0 + opts.max_seconds if opts.max_seconds is not None else None
-        max_mem = opts.max_memory_mb
-        progress = self.progress
-        next_progress = t0 + opts.progress_interval
-
-        # A model that reads the clock (intTime() in a guard, an inscription, a delay) can change its
-        # behaviour at any later time: the markings modulo time say nothing about its future.
-        reads_clock = engine.is_timed and engine.reads_clock
-        timed_check = engine.is_timed and opts.detect_time_growth and not reads_clock
-        watcher = _TimeGrowthWatcher(engine) if engine.is_timed else None
-        if watcher is not None:
-            watcher.level(states, 0, 1)
+        watcher = self._watcher
+        timed_check = watcher is not None and opts.detect_time_growth and not self._reads_clock
 
         stop = StopReason.COMPLETE
         predicate_state = None
-        if pred is not None and pred(s0):
-            stop, predicate_state = StopReason.PREDICATE, 0
-
         successors = engine.successors
         index_get = index.get
         states_append = states.append
         parent_append = parent.append
         pbe_append = parent_be.append
         dst_append = dst.append
-        bes_append = bes.append
+        bes_append = g.bes.append
         off_append = offsets.append
         head = 0
         level_end = 1
@@ -159,16 +169,9 @@ class Explorer:
                             break
                     level_end = len(states)
                 if not head & (CHECK_EVERY - 1) and head:
-                    now = time.perf_counter()
-                    if deadline is not None and now >= deadline:
-                        stop = StopReason.MAX_SECONDS
+                    stop = self._check_limits(len(states), n_arcs, len(states) - head)
+                    if stop is not StopReason.COMPLETE:
                         break
-                    if max_mem is not None and current_rss_mb() >= max_mem:
-                        stop = StopReason.MAX_MEMORY
-                        break
-                    if progress is not None and now >= next_progress:
-                        next_progress = now + opts.progress_interval
-                        progress(Progress(len(states), n_arcs, len(states) - head, now - t0, current_rss_mb()))
                 if len(states) >= max_states:
                     stop = StopReason.MAX_STATES
                     break
@@ -190,8 +193,7 @@ class Explorer:
                         bes_append(be)
                     except OverflowError:
                         g.bes = array("i", g.bes)  # binding-element ids outgrew 16 bits: widen once
-                        bes = g.bes
-                        bes_append = bes.append
+                        bes_append = g.bes.append
                         bes_append(be)
                 n_arcs = len(dst)
                 off_append(n_arcs)
@@ -209,19 +211,39 @@ class Explorer:
         finally:
             if gc_was_enabled:
                 gc.enable()
-        seconds = time.perf_counter() - t0
+        return stop, predicate_state, levels
+
+    def _check_limits(self, n_states: int, n_arcs: int, queue: int) -> StopReason:
+        """The time and memory limits, and the progress hook (looked at every CHECK_EVERY expansions)."""
+        now = time.perf_counter()
+        if self._deadline is not None and now >= self._deadline:
+            return StopReason.MAX_SECONDS
+        max_mem = self.options.max_memory_mb
+        if max_mem is not None and current_rss_mb() >= max_mem:
+            return StopReason.MAX_MEMORY
+        if self.progress is not None and now >= self._next_progress:
+            self._next_progress = now + self.options.progress_interval
+            self.progress(Progress(n_states, n_arcs, queue, now - self._t0, current_rss_mb()))
+        return StopReason.COMPLETE
+
+    def _finish(self, g: StateGraph, stop: StopReason, predicate_state: int | None, levels: int) -> Exploration:
+        """The last progress report and the result."""
+        seconds = time.perf_counter() - self._t0
+        watcher = self._watcher
         if watcher is not None:
-            watcher.level(states, watcher.seen_upto, len(states))
-        if progress is not None:
-            progress(Progress(len(states), len(dst), len(states) - g.expanded, seconds, current_rss_mb()))
+            watcher.level(g.states, watcher.seen_upto, len(g.states))
+        if self.progress is not None:
+            self.progress(Progress(len(g.states), len(g.dst), len(g.states) - g.expanded, seconds,
+                                   current_rss_mb()))
         notes = []
-        if reads_clock and opts.detect_time_growth and stop is not StopReason.COMPLETE:
+        if self._reads_clock and self.options.detect_time_growth and stop is not StopReason.COMPLETE:
+            engine = self.engine
             read = engine.clock_reads[min(engine.clock_reads)]
             notes.append(f"the time-growth watch does not apply to this model: {read.element} of transition "
                          f"'{read.transition}' reads the clock ({read.span}), so its behaviour may change at any "
                          "later time; bound the search with --max-states, --max-seconds or --max-memory")
         return Exploration(
-            engine=engine, graph=g, options=opts, stop_reason=stop, seconds=seconds,
+            engine=self.engine, graph=g, options=self.options, stop_reason=stop, seconds=seconds,
             peak_memory_mb=peak_rss_mb(), predicate_state=predicate_state,
             untimed_states=len(watcher.untimed) if watcher is not None else None,
             time_growth=watcher.evidence() if stop is StopReason.TIME_GROWS else None,

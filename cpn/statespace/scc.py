@@ -82,10 +82,12 @@ def strongly_connected_components(n: int, offsets: array, dst: array, arc_labels
     nontrivial = bytearray()
     exits = bytearray(n)  # state has an arc to an already completed (hence different) SCC
     stack = array("i")
-    stack_append, stack_pop = stack.append, stack.pop
+    stack_append = stack.append
     counter = 0
     ncomp = 0
     filtered = arc_labels is not None
+    # The depth-first search: descend along the first unvisited arc of the top frame, or, when the
+    # frame has no arc left, pop it and, if it is the root of a component, close the component.
     # A DFS frame is a state and the position of its next arc (two ints in two lists). Frames that
     # held an iterator over a slice of dst ran no faster and cost about 200 bytes each, and the DFS
     # of a single large SCC is as deep as the SCC: on MS(8) that was 100 MB of peak memory.
@@ -133,25 +135,10 @@ def strongly_connected_components(n: int, offsets: array, dst: array, arc_labels
             work.pop()
             ptr.pop()
             if lv == index[v]:
+                # v is the root of a component: everything above it on the stack belongs to it
                 first = len(members)
-                term = 1
-                while True:
-                    w = stack_pop()
-                    comp[w] = ncomp
-                    members.append(w)
-                    if exits[w]:
-                        term = 0
-                    if w == v:
-                        break
-                size = len(members) - first
-                if size > 1:
-                    nt = 1
-                else:
-                    a, b = offsets[v], offsets[v + 1]
-                    nt = 1 if v in dst[a:b] else 0
-                    if nt and filtered:
-                        nt = 1 if any(w == v and lab != avoid
-                                      for w, lab in zip(dst[a:b], arc_labels[a:b])) else 0
+                term = _close_component(v, stack, comp, members, exits, ncomp)
+                nt = 1 if len(members) - first > 1 or _self_loop(v, offsets, dst, arc_labels, avoid) else 0
                 if stop_at is not None and nt:
                     nodes = members[first:].tolist()
                     if stop_at(nodes):
@@ -169,6 +156,30 @@ def strongly_connected_components(n: int, offsets: array, dst: array, arc_labels
     if stop_at is not None:
         return None
     return SccDecomposition(comp, members, start, terminal, nontrivial)
+
+
+def _close_component(v: int, stack: array, comp: array, members: array, exits: bytearray, c: int) -> int:
+    """Pop component c (the states above and including its root v) off Tarjan's stack into `members`;
+    return 1 if it is terminal (no state of it has an arc to another component), else 0."""
+    term = 1
+    while True:
+        w = stack.pop()
+        comp[w] = c
+        members.append(w)
+        if exits[w]:
+            term = 0
+        if w == v:
+            return term
+
+
+def _self_loop(v: int, offsets: array, dst: array, arc_labels, avoid: int) -> bool:
+    """Whether state v has an arc to itself (not labelled `avoid`)."""
+    a, b = offsets[v], offsets[v + 1]
+    if v not in dst[a:b]:
+        return False
+    if arc_labels is None:
+        return True
+    return any(w == v and lab != avoid for w, lab in zip(dst[a:b], arc_labels[a:b]))
 
 
 def has_cycle(n: int, offsets: array, dst: array, arc_labels=None, avoid: int = -1, keep_node=None) -> bool:
