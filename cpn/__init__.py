@@ -13,11 +13,8 @@ from cpn.errors import (
     ConfigurationError,
     CpnError,
     EvaluationError,
-    InternalError,
     ModelError,
-    ModelNameError,
     ModelSyntaxError,
-    ModelTypeError,
 )
 from cpn.lang.parser import parse
 from cpn.model import Model, load, loads
@@ -26,7 +23,7 @@ from cpn.net import Net
 __version__ = "0.1.0"
 
 __all__ = [
-    "ConfigurationError", "CpnError", "Diagnostic", "EvaluationError", "InternalError", "Model", "ModelError",
-    "ModelNameError", "ModelSyntaxError", "ModelTypeError", "Net", "Span", "check", "load", "loads", "parse",
+    "ConfigurationError", "CpnError", "Diagnostic", "EvaluationError", "Model", "ModelError", "ModelSyntaxError",
+    "Net", "Span", "check", "load", "loads", "parse",
     "__version__",
 ]

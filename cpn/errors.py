@@ -55,25 +55,23 @@ class ModelError(CpnError):
 
 
 class ModelSyntaxError(ModelError):
-    pass
-
-
-class ModelNameError(ModelError):
-    pass
-
-
-class ModelTypeError(ModelError):
-    pass
+    """The model text does not follow the grammar (raised before any name is resolved)."""
 
 
 class EvaluationError(CpnError):
-    """An inscription, guard or initial marking raised an error while the net was evaluated."""
+    """An inscription, guard or initial marking raised an error while the net was evaluated.
+
+    `code` is E0401 (an evaluation failed) or E0402 (a transition puts a token outside its place's
+    colour set).
+    """
 
     exit_status = 65
 
     def __init__(self, message: str, span: Span | None = None, element: str | None = None,
-                 binding: dict | None = None, hint: str | None = None, source: str | None = None):
+                 binding: dict | None = None, hint: str | None = None, source: str | None = None,
+                 code: str = "E0401"):
         self.message = message
+        self.code = code
         self.span = span
         self.element = element
         self.binding = binding
@@ -83,7 +81,7 @@ class EvaluationError(CpnError):
         super().__init__(f"{span}: {message}" if span else message)
 
     def diagnostic(self) -> Diagnostic:
-        return Diagnostic("E0401", self.message, self.span, hint=self.hint)
+        return Diagnostic(self.code, self.message, self.span, hint=self.hint)
 
     def render(self) -> str:
         text = self.diagnostic().render(self.source)
@@ -91,16 +89,3 @@ class EvaluationError(CpnError):
             text += f"\nnote: reached after {len(self.trace)} steps from the initial marking:\n"
             text += "\n".join(f"  {i}. {step}" for i, step in enumerate(self.trace, 1))
         return text
-
-
-class ExplorationLimitReached(CpnError):
-    exit_status = 2
-
-
-class InternalError(CpnError):
-    """A bug in cpn-verify."""
-
-    exit_status = 70
-
-    def render(self) -> str:
-        return f"error: internal error: {self} (this is a bug in cpn-verify, please report it)"

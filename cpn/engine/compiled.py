@@ -481,7 +481,7 @@ class CompiledEngine(EngineAPI):
                     f"outside its colour set {cs.name} = {cs.describe()}",
                     arc.span if arc else info.t.span, info.t.name, None,
                     f"Make the inscription of arc {arc.label if arc else ''} produce values of {cs.name}.",
-                    self.net.source)
+                    self.net.source, code="E0402")
 
     def _writes(self, info, keys, consumed, produced, f, td):
         """New place ids after firing: (sets, adds). f is the firing time for timed places."""

@@ -272,7 +272,8 @@ class ReferenceEngine(EngineAPI):
                 for v, n, d in items:
                     if not pl.colour_set.contains(v):
                         raise EvaluationError(f"transition '{t.name}' puts a value outside colour set "
-                                              f"{pl.colour_set.name} on place '{pl.name}'", a.span, t.name)
+                                              f"{pl.colour_set.name} on place '{pl.name}'", a.span, t.name,
+                                              code="E0402")
                     key = (v, f + td + d) if pl.timed else v
                     if n:
                         m[a.place][key] = m[a.place].get(key, 0) + n

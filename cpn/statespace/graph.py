@@ -59,17 +59,3 @@ class StateGraph:
         """Expanded states with no outgoing arc, in increasing order (unexpanded states excluded)."""
         off = self.offsets
         return [i for i in range(len(off) - 1) if off[i] == off[i + 1]]
-
-    def arc_sources(self) -> array:
-        """The source state of every arc, as an array parallel to `dst`."""
-        src = array("i")
-        off = self.offsets
-        for i in range(len(off) - 1):
-            n = off[i + 1] - off[i]
-            if n:
-                src.extend(array("i", [i]) * n)
-        return src
-
-    def nbytes(self) -> int:
-        """Bytes held by the arc and parent arrays (the states themselves are engine tuples)."""
-        return sum(a.itemsize * len(a) for a in (self.offsets, self.dst, self.bes, self.parent, self.parent_be))

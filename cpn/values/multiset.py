@@ -112,9 +112,6 @@ class Multiset:
     def distinct(self):
         return self._d.keys()
 
-    def as_dict(self) -> dict:
-        return dict(self._d)
-
     def __bool__(self) -> bool:
         return bool(self._d)
 

@@ -139,3 +139,27 @@ def test_bounds_print_cpn_ml_with_either_engine():
         texts.append([(b.upper_text, b.lower_text) for b in boundedness(x).places])
     assert texts[0] == texts[1]
     assert ("1`ph(1)++1`ph(2)", "empty") in texts[1]
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_a_token_outside_its_colour_set_is_e0402(reference):
+    from cpn.errors import EvaluationError
+    from cpn.statespace import Explorer
+
+    m = cpn.loads("colset N = int with 0..2; var x : N; place P : N = 1`2; trans t;\n"
+                  "arc P -> t : x; arc t -> P : x + 1;")
+    with pytest.raises(EvaluationError) as info:
+        Explorer(m.engine(reference=reference)).run()
+    assert info.value.diagnostic().code == "E0402"
+    assert "error[E0402]" in info.value.render()
+
+
+def test_an_evaluation_failure_stays_e0401():
+    from cpn.errors import EvaluationError
+    from cpn.statespace import Explorer
+
+    m = cpn.loads("colset N = int with 0..2; var x : N; place P : N = 1`0; trans t;\n"
+                  "arc P -> t : x; arc t -> P : 1 div x;")
+    with pytest.raises(EvaluationError) as info:
+        Explorer(m.engine()).run()
+    assert info.value.diagnostic().code == "E0401"
