@@ -53,5 +53,17 @@ class ArcKind(StrEnum):
         """The arc's keyword or arrow in `.cpnet` (docs/language.md)."""
         return {ArcKind.IN: "->", ArcKind.OUT: "->", ArcKind.BOTH: "<->"}.get(self, self.value)
 
+    @classmethod
+    def written_from_the_place(cls, syntax: str) -> ArcKind | None:
+        """The kind of an arc written `syntax` that must go from a place to a transition (every kind but
+        the plain arc `->`, whose direction gives IN or OUT); None for `->`.
+
+        >>> ArcKind.written_from_the_place("<->"), ArcKind.written_from_the_place("->")
+        (<ArcKind.BOTH: 'both'>, None)
+        """
+        if syntax == "->":
+            return None
+        return next(k for k in cls if k.syntax == syntax)
+
 
 __all__ = ["ArcKind"]

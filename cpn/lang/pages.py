@@ -100,13 +100,14 @@ class PageChecks:
                 self.error("E0201", f"unknown place or transition '{nm}' on page '{page.name}'", sp,
                            hint=suggestion(nm, cands) or "Declare it with 'place' or 'trans'.", name=nm)
                 return
-        if kind in ("inhibitor", "reset", "<->"):
+        fixed = ArcKind.written_from_the_place(kind)
+        if fixed is not None:
             if not (src_p and dst_t):
                 self.error("E0203", f"{'double' if kind == '<->' else kind} arcs go from a place to a transition: "
                            f"'{d.src}' -> '{d.dst}'", d.span, hint="Write the place first.")
                 return
             place, trans = d.src, d.dst
-            ak = {"inhibitor": ArcKind.INHIBITOR, "reset": ArcKind.RESET, "<->": ArcKind.BOTH}[kind]
+            ak = fixed
         elif src_p and dst_t and src_t and dst_p:
             self.error("E0203", f"the arc '{d.src}' -> '{d.dst}' is ambiguous: both names are a place and a "
                        f"transition on page '{page.name}'", d.span,

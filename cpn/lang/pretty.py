@@ -177,7 +177,7 @@ def decl(d: A.Decl, indent: str = "") -> str:
         return f"{indent}trans {name(d.name)}{guard}{delay}{prio};"
     if isinstance(d, A.ArcDecl):
         ins = f" : {expr(d.expr)}" if d.expr is not None else ""
-        if d.kind in ("inhibitor", "reset"):
+        if d.kind not in ("->", "<->"):  # a keyword arc: inhibitor, reset
             return f"{indent}{d.kind} {name(d.src)} -> {name(d.dst)}{ins};"
         return f"{indent}arc {name(d.src)} {d.kind} {name(d.dst)}{ins};"
     if isinstance(d, A.ModuleDecl):
