@@ -16,7 +16,26 @@ from cpn.net.lower import lower as _lower
 
 
 class Model:
-    """A loaded model: its source, the checked declarations and the flattened net."""
+    """A loaded model: its source, its flattened net and the checker's warnings.
+
+    Attributes
+    ----------
+    path : str
+        The file it was loaded from (or the name given to `loads`).
+    source : str
+        Its `.cpnet` text (for `.pnml` and `.cpn` files: the translation).
+    net : cpn.net.Net
+        The flattened net, the engines' only input.
+    warnings : list of Diagnostic
+        What the checker found questionable but not wrong.
+
+    Examples
+    --------
+    >>> import cpn
+    >>> m = cpn.loads("colset U = unit; place A : U = 1`(); trans t; arc A -> t;", "a.cpnet")
+    >>> m.name, [p.name for p in m.net.places]
+    ('Top', ["Top'A 1"])
+    """
 
     def __init__(self, path: str, source: str, net, warnings: list[Diagnostic]):
         self.path = path
@@ -26,6 +45,13 @@ class Model:
         self.translation = None  # for .pnml and .cpn files: the translation to .cpnet and its origins
 
     def engine(self, time_condensation: bool = False, reference: bool = False):
+        """The net's successor function (`cpn.engine.compile_net`): compiled, or the reference interpreter.
+
+        >>> import cpn
+        >>> e = cpn.loads("colset U = unit; place A : U = 1`(); trans t; arc A -> t;").engine()
+        >>> len(e.successors(e.initial_state()))
+        1
+        """
         from cpn.engine import compile_net
 
         return compile_net(self.net, time_condensation=time_condensation, reference=reference)
@@ -71,7 +97,35 @@ def source_of(path: str) -> str:
 
 
 def loads(text: str, filename: str = "<string>", set: dict | None = None) -> Model:  # noqa: A002
-    """Load a model from `.cpnet` source text."""
+    """Load a model from `.cpnet` source text: parse, check and flatten it.
+
+    Parameters
+    ----------
+    text : str
+        The model in the `.cpnet` language (docs/language.md).
+    filename : str
+        The name error messages give the text.
+    set : dict, optional
+        Values for `val` constants, as CPN ML text or Python int/bool/str (``{"N": 8}``).
+
+    Returns
+    -------
+    Model
+
+    Raises
+    ------
+    ModelError
+        With every diagnostic found (``file:line:col: error[CODE]: ...``).
+    ConfigurationError
+        A `set` value that is not a value of the constant's type (E0305).
+
+    Examples
+    --------
+    >>> import cpn
+    >>> m = cpn.loads("val N = 2; colset U = unit; place A : U = N`(); trans t; arc A -> t;", set={"N": 3})
+    >>> m.net.places[0].initial
+    {(): 3}
+    """
     overrides = parse_overrides(_normalise_overrides(set))  # once, before checking: a bad value is a usage error
     try:
         model = _parse(text, filename)
@@ -107,6 +161,15 @@ def load(path: str | os.PathLike, set: dict | None = None) -> Model:  # noqa: A0
     ------
     ModelError : with every diagnostic of the file.
     ConfigurationError : the file does not exist.
+
+    Examples
+    --------
+    >>> import os, tempfile, cpn
+    >>> path = os.path.join(tempfile.mkdtemp(), "one.cpnet")
+    >>> with open(path, "w") as fh:
+    ...     _ = fh.write("val N = 2; colset U = unit; place A : U = N`(); trans t; arc A -> t;")
+    >>> cpn.load(path, set={"N": 5}).net.places[0].initial
+    {(): 5}
     """
     path = os.fspath(path)
     if not os.path.exists(path):

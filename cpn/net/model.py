@@ -17,6 +17,11 @@ from cpn.values.colours import ColourSet
 
 @dataclass(eq=False)
 class PlaceInstance:
+    """One place of the flattened net: a place of a page instance, with its fused places and ports.
+
+    `initial` is the initial marking as value -> count ((value, timestamp) -> count for a timed place).
+    """
+
     index: int
     name: str  # "Page'Place 1"
     page: str
@@ -35,6 +40,8 @@ class PlaceInstance:
 
 @dataclass(eq=False)
 class ArcInstance:
+    """An arc between a transition instance and the place instance `place` (an index into `Net.places`)."""
+
     place: int
     kind: ArcKind
     expr: E.Expr | None
@@ -44,6 +51,13 @@ class ArcInstance:
 
 @dataclass(eq=False)
 class TransitionInstance:
+    """One transition of the flattened net, with its guard conjuncts, delay, priority and arcs.
+
+    `variables` are all its variables by name; `free` those bound by trying every value of their colour
+    set (CPN Tools' rule for variables no input arc or guard binds); `params` the values of the module
+    parameters of its page instance, by symbol uid.
+    """
+
     index: int
     name: str  # "Page'Trans 1"
     page: str
@@ -61,7 +75,18 @@ class TransitionInstance:
 
 @dataclass(eq=False)
 class Net:
-    """A flattened net: place and transition instances, and the declarations their inscriptions use."""
+    """A flattened net: place and transition instances, and the declarations their inscriptions use.
+
+    Examples
+    --------
+    >>> import cpn
+    >>> net = cpn.loads("colset N = int with 0..3; var x : N; place P : N = 1`0;"
+    ...                 " trans inc [x < 3]; arc P -> inc : x; arc inc -> P : x + 1;").net
+    >>> [t.name for t in net.transitions], net.place("Top'P 1").colour_set.name
+    (["Top'inc 1"], 'N')
+    >>> [(a.kind.value, a.place) for a in net.transition("Top'inc 1").arcs]
+    [('in', 0), ('out', 0)]
+    """
 
     name: str
     places: list[PlaceInstance]
@@ -78,12 +103,14 @@ class Net:
         return any(p.timed for p in self.places)
 
     def place(self, name: str) -> PlaceInstance:
+        """The place instance called `name` (or fused with, or bound to, a place of that name)."""
         for p in self.places:
             if p.name == name or name in p.aliases:
                 return p
         raise KeyError(name)
 
     def transition(self, name: str) -> TransitionInstance:
+        """The transition instance called `name` ("Page'Trans 1")."""
         for t in self.transitions:
             if t.name == name:
                 return t

@@ -12,6 +12,16 @@ EXAMPLES: int = 10
 
 
 def to_json(r: Report) -> dict:
+    """The report as a JSON-ready dict (the schema of docs/statespace.md).
+
+    >>> import cpn
+    >>> from cpn.report import build_report
+    >>> from cpn.statespace import Explorer
+    >>> m = cpn.loads("colset U = unit; place A : U = 1`(); trans t; arc A -> t;")
+    >>> d = to_json(build_report(Explorer(m.engine()).run()))
+    >>> d["statespace"]["states"], d["dead_markings"]["count"], d["dead_transitions"]
+    (2, 1, [])
+    """
     x = r.exploration
     g = x.graph
     dec = r.scc.decomposition

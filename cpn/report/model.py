@@ -93,6 +93,16 @@ def build_report(x: Exploration, model: str = "<unsaved net>", options: dict | N
     `progress(part, done, total)`, when given, is called as each part (a name of REPORT_PARTS) starts
     (done 0), as fairness advances (done transition instances out of total) and when a part ends
     (done == total); it must not raise. The checks compute; only the caller displays.
+
+    Examples
+    --------
+    >>> import cpn
+    >>> from cpn.statespace import Explorer
+    >>> m = cpn.loads("colset N = int with 0..3; var x : N; place P : N = 1`0;"
+    ...               " trans inc [x < 3]; arc P -> inc : x; arc inc -> P : x + 1;")
+    >>> r = build_report(Explorer(m.engine()).run(), "counter")
+    >>> r.dead.count, r.dead_transitions, r.bounds.places[0].upper_text
+    (1, [], '1`0++1`1++1`2++1`3')
     """
     t0 = time.perf_counter()
     parts: dict[str, float] = {}

@@ -124,7 +124,15 @@ def _dead_markings(r: Report, marking_changes: bool, steps_cap: int | None, term
 
 def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | None | str = "default") -> str:
     """The report as text. `marking_changes`: show each trace step's marking changes. `max_listed`:
-    one cap for every long listing (None: no cap); by default MULTISET_TERMS, TRACE_STEPS and NAMES."""
+    one cap for every long listing (None: no cap); by default MULTISET_TERMS, TRACE_STEPS and NAMES.
+
+    >>> import cpn
+    >>> from cpn.report import build_report
+    >>> from cpn.statespace import Explorer
+    >>> m = cpn.loads("colset U = unit; place A : U = 1`(); trans t; arc A -> t;")
+    >>> render_text(build_report(Explorer(m.engine()).run())).splitlines()[0]
+    'CPN Tools state space report for:'
+    """
     if max_listed == "default":
         terms_cap, steps_cap, names_cap = MULTISET_TERMS, TRACE_STEPS, NAMES
     else:

@@ -43,7 +43,11 @@ class Progress:
 
 @dataclass
 class Exploration:
-    """The result of one exploration: the graph, why it stopped and what it cost."""
+    """The result of one exploration: the graph, why it stopped and what it cost.
+
+    `complete` says every reachable state was expanded; otherwise `stop_reason` says which limit
+    stopped the search and `unexpanded` how many states wait in the queue.
+    """
 
     engine: Engine
     graph: StateGraph
@@ -86,9 +90,12 @@ class Explorer:
 
     Examples
     --------
-    >>> from tests.statespace._toy import pt_net          # doctest: +SKIP
-    >>> Explorer(pt_net([[1, 0]], [[0, 1]], [1, 0])).run().n_states  # doctest: +SKIP
-    2
+    >>> import cpn
+    >>> engine = cpn.loads("colset N = int with 0..3; var x : N; place P : N = 1`0;"
+    ...                    " trans inc [x < 3]; arc P -> inc : x; arc inc -> P : x + 1;").engine()
+    >>> x = Explorer(engine, ExploreOptions(max_states=100)).run()
+    >>> x.n_states, x.n_arcs, x.stop_reason.value, x.graph.dead_states()
+    (4, 3, 'complete', [3])
     """
 
     def __init__(self, engine: Engine, options: ExploreOptions | None = None,

@@ -70,7 +70,7 @@ def strongly_connected_components(n: int, offsets: array, dst: array, arc_labels
     >>> from array import array
     >>> d = strongly_connected_components(3, array("q", [0, 1, 2, 2]), array("i", [1, 0]))
     >>> d.count, list(d.comp), list(d.terminal)
-    (2, [1, 1, 0], [1, 0])
+    (2, [0, 0, 1], [1, 1])
     """
     offsets = _padded(offsets, n)
     index = array("i", [-1]) * n
