@@ -12,6 +12,8 @@ from cpn.values.colours import format_multiset
 
 @dataclass(frozen=True, slots=True)
 class BindingElement:
+    """A transition instance (its index) and a binding of its variables (name -> value)."""
+
     transition: int  # index into engine.transitions
     binding: dict
 

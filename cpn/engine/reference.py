@@ -21,6 +21,8 @@ NEG_INF = float("-inf")
 
 
 class ReferenceEngine(EngineAPI):
+    """The `Engine` protocol by the definitions: states are tuples of frozensets of (token, count)."""
+
     reference = True
 
     def __init__(self, net, time_condensation: bool = False):

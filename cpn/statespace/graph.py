@@ -31,10 +31,12 @@ class StateGraph:
 
     @property
     def n_states(self) -> int:
+        """The number of states found (expanded or not)."""
         return len(self.states)
 
     @property
     def n_arcs(self) -> int:
+        """The number of arcs (occurrences of binding elements) recorded."""
         return len(self.dst)
 
     @property
@@ -43,6 +45,7 @@ class StateGraph:
         return len(self.offsets) - 1
 
     def is_expanded(self, i: int) -> bool:
+        """Whether the successors of state i were computed."""
         return i < len(self.offsets) - 1
 
     def out_arcs(self, i: int) -> list[tuple[int, int]]:
@@ -53,6 +56,7 @@ class StateGraph:
         return list(zip(self.bes[a:b], self.dst[a:b]))
 
     def state_id(self, state: tuple) -> int | None:
+        """The number of an engine state in the graph, or None if it was not found."""
         return self.index.get(state)
 
     def dead_states(self) -> list[int]:

@@ -15,15 +15,24 @@ MAX_ENUMERABLE: int = 100_000
 
 
 def format_int(v: int) -> str:
+    """CPN ML text of an integer (``~3`` for -3)."""
     return f"~{-v}" if v < 0 else str(v)
 
 
 def format_string(v: str) -> str:
+    """CPN ML text of a string, quoted and escaped."""
     return '"' + v.replace("\\", "\\\\").replace('"', '\\"').replace("\n", "\\n") + '"'
 
 
 class ColourSet:
-    """A colour set: a named set of values with an order."""
+    """A colour set: a named set of values with an order.
+
+    Examples
+    --------
+    >>> ph = IndexCS("PH", "ph", 1, 3)
+    >>> ph.values(), ph.contains(4), ph.format(2), ph.describe()
+    ([1, 2, 3], False, 'ph(2)', 'PH')
+    """
 
     kind = "?"
     finite = True
@@ -33,6 +42,7 @@ class ColourSet:
         self.timed = timed
 
     def contains(self, v: Any) -> bool:
+        """Whether v is a value of the colour set."""
         raise NotImplementedError
 
     def values(self) -> list | None:
@@ -40,22 +50,27 @@ class ColourSet:
         return None
 
     def size(self) -> int | None:
+        """The number of values (`CS.size()`), or None if the colour set is not enumerable."""
         vals = self.values()
         return None if vals is None else len(vals)
 
     def format(self, v: Any) -> str:
+        """CPN ML text of a value of the colour set."""
         return repr(v)
 
     def sort_key(self, v: Any) -> Any:
+        """A key ordering values as CPN Tools prints them in multisets."""
         return v
 
     def ord(self, v: Any) -> int:
+        """The position of v among the values (`CS.ord`)."""
         vals = self.values()
         if vals is None:
             raise ValueError(f"colour set {self.name} is not enumerable")
         return vals.index(v)
 
     def describe(self) -> str:
+        """The colour set's declaration, as error messages quote it."""
         return self.name
 
     def __repr__(self) -> str:

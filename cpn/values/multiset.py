@@ -15,7 +15,14 @@ class MultisetError(ValueError):
 
 
 class Multiset:
-    """A finite multiset over hashable values."""
+    """A finite multiset over hashable values.
+
+    Examples
+    --------
+    >>> m = Multiset.of(1, 2) + Multiset([3])
+    >>> m.count(1), sorted(m.items()), (m - Multiset.of(1)).count(1)
+    (2, [(1, 2), (3, 1)], 1)
+    """
 
     __slots__ = ("_d", "_hash")
 
@@ -44,6 +51,7 @@ class Multiset:
 
     @classmethod
     def of(cls, value: Any, count: int = 1) -> Multiset:
+        """``count`value``: one value with a multiplicity."""
         if count < 0:
             raise MultisetError(f"negative coefficient {count} in {count}`...")
         return cls._from_dict({value: count} if count else {})
@@ -104,12 +112,15 @@ class Multiset:
         return value in self._d
 
     def count(self, value: Any) -> int:
+        """The multiplicity of value (`cf`)."""
         return self._d.get(value, 0)
 
     def items(self):
+        """(value, multiplicity) pairs."""
         return self._d.items()
 
     def distinct(self):
+        """The values, each once."""
         return self._d.keys()
 
     def __bool__(self) -> bool:
