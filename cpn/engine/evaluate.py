@@ -55,7 +55,8 @@ class Evaluator:
         if globals_ is not None:
             self.globals.update(globals_.constants)
             for d in globals_.decls:
-                self.declare(d, self.globals)
+                if not (isinstance(d, A.ValDecl) and d.pat.ref.uid in globals_.constants):
+                    self.declare(d, self.globals)
 
     # ------------------------------------------------------------------ expressions
     def eval(self, e: A.Expr, env: dict) -> Any:

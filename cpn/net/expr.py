@@ -256,7 +256,11 @@ class FunDecl:
 
 @dataclass(eq=False)
 class Globals:
-    """The global declarations of a net, in declaration order: constants with their values, functions."""
+    """The global declarations of a net, in declaration order, and the values of its constants.
 
-    constants: dict[int, Any] = field(default_factory=dict)  # uid -> value
-    decls: list[ValDecl | FunDecl] = field(default_factory=list)  # functions and function-valued constants
+    `constants` holds the value of every global `val` whose value is not a function (as the front end
+    evaluated it, `--set` included); a function-valued `val` is evaluated from its declaration.
+    """
+
+    decls: list[ValDecl | FunDecl] = field(default_factory=list)
+    constants: dict[int, Any] = field(default_factory=dict)  # uid of a val -> its value

@@ -136,16 +136,15 @@ class Translator:
 
     def globals(self, model: A.Model, values: dict[int, Any]) -> E.Globals:
         """The global constants and functions of a checked model; `values` maps the uid of each checked
-        constant to its value. A function-valued constant (`val f = fn ...`) is kept as its declaration."""
+        constant to its value (a function-valued one is evaluated again from its declaration)."""
         out = E.Globals()
         for d in model.decls:
             if isinstance(d, A.FunDecl) and isinstance(d.ref, Symbol):
                 out.decls.append(self.fun(d))
             elif isinstance(d, A.ValDecl) and isinstance(d.pat, A.PVar) and d.pat.ref is not None \
                     and d.pat.ref.uid in values:
+                out.decls.append(E.ValDecl(d.span, self.pat(d.pat), self.expr(d.expr)))
                 v = values[d.pat.ref.uid]
-                if callable(v):
-                    out.decls.append(E.ValDecl(d.span, self.pat(d.pat), self.expr(d.expr)))
-                else:
+                if not callable(v):
                     out.constants[d.pat.ref.uid] = v
         return out

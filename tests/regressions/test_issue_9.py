@@ -63,8 +63,10 @@ def test_net_fields_are_the_closed_expression_form():
     assert all(isinstance(x, E.Expr) for x in exprs)
     assert net.variables["n"].kind == "var" and net.variables["n"].data == "N"
     assert [d.name for d in net.globals.decls if isinstance(d, E.FunDecl)] == ["inc", "add", "kind", "sum"]
-    assert 2 in net.globals.constants.values()  # limit; twice is a function: kept as its declaration
-    assert any(isinstance(d, E.ValDecl) for d in net.globals.decls)
+    vals = {d.pat.name: d for d in net.globals.decls if isinstance(d, E.ValDecl)}
+    assert sorted(vals) == ["limit", "twice"]
+    # limit's value is kept; twice is a function, evaluated again from its declaration
+    assert net.globals.constants == {vals["limit"].pat.ref.uid: 2}
 
 
 def test_evaluator_of_the_net_runs_global_declarations():
