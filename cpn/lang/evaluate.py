@@ -1,8 +1,8 @@
-"""A tree-walking evaluator of typed CPN ML expressions.
+"""A tree-walking evaluator of typed CPN ML expressions, for the front end.
 
-Used to evaluate declarations (`val`, colour-set bounds) while checking, initial markings, and by the
-reference interpreter of the engine. Slow and plain on purpose: it is the oracle the compiled engine is
-tested against.
+Evaluates declarations (`val`, colour-set bounds and predicates) while checking, and initial markings and
+module parameters while lowering. At run time the engines evaluate the net's own expression form
+(`cpn.engine.evaluate`); both give the operators and the library the meaning of `cpn.values.builtins`.
 """
 
 from __future__ import annotations
@@ -13,8 +13,6 @@ from cpn.lang import ast as A
 from cpn.lang.builtins import BUILTINS, MLError
 from cpn.values.builtins import binop
 from cpn.values.multiset import Multiset, TimedMultiset
-
-_NOMATCH = object()
 
 
 class Closure:
@@ -48,7 +46,6 @@ class Evaluator:
         self.colsets = colsets  # name -> ColourSet
         self.globals = {} if globals_ is None else globals_
         self.time = 0
-        self.ran_choice = None  # callable(ColourSet) -> value, for CS.ran() in simulation
 
     # ------------------------------------------------------------------ expressions
     def eval(self, e: A.Expr, env: dict) -> Any:
@@ -135,10 +132,8 @@ class Evaluator:
             return mult
         if op == "ran":
             def ran(_u):
-                if self.ran_choice is None:
-                    raise MLError(f"{csname}.ran() draws a random value; it is allowed only in arc inscriptions "
-                                  "and guards, where exploration tries every value")
-                return self.ran_choice(cs)
+                raise MLError(f"{csname}.ran() draws a random value; it is allowed only in arc inscriptions "
+                              "and guards, where exploration tries every value")
             return ran
         raise MLError(f"unknown colour set function {csname}.{op}")
 
