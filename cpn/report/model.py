@@ -186,8 +186,8 @@ def dead_marking(x: Exploration, state: int) -> DeadMarking:
         text = engine.format_marking(s, p)
         if text != "empty":
             marking[place.name] = text
-    timed = bool(getattr(engine, "is_timed", False))
-    return DeadMarking(state, marking, engine.clock(s) if timed else None, shortest_trace(x.graph, state, engine))
+    return DeadMarking(state, marking, engine.clock(s) if engine.is_timed else None,
+                       shortest_trace(x.graph, state, engine))
 
 
 __all__ = ["DEAD_LISTED", "REPORT_PARTS", "DeadMarking", "Fairness", "Report", "build_report", "dead_marking"]
