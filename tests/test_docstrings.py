@@ -8,7 +8,7 @@ import pytest
 PUBLIC = [
     "cpn", "cpn.model", "cpn.arcs", "cpn.values.colours", "cpn.values.multiset", "cpn.net.model", "cpn.net.expr", "cpn.net.binding", "cpn.values.builtins",
     "cpn.engine", "cpn.engine.protocol", "cpn.engine.plan", "cpn.engine.evaluate", "cpn.statespace.explore",
-    "cpn.statespace.scc", "cpn.report.model", "cpn.report.json", "cpn.report.text",
+    "cpn.statespace.scc", "cpn.checks.mcc", "cpn.report.model", "cpn.report.json", "cpn.report.text",
 ]
 
 

@@ -18,6 +18,7 @@ import sys
 import time
 from dataclasses import dataclass, field
 
+from cpn.checks.mcc import PROPERTIES
 from cpn.cli._common import (
     ExitStatus,
     UsageError,
@@ -29,7 +30,6 @@ from cpn.cli._common import (
 
 FIGURES = ("states", "arcs", "arcs_distinct_marking_pairs", "max_tokens_per_marking", "max_tokens_in_place",
            "dead_markings", "deadlock_reachable")
-PROPERTIES = ("OneSafe", "QuasiLiveness", "Liveness", "StableMarking")
 MAX_STATES_DEFAULT = 3_000_000
 
 
@@ -74,17 +74,11 @@ class Figures:
 
 
 def explore_figures(engine, max_states: int = MAX_STATES_DEFAULT) -> Figures:
-    """Explore with the state-space explorer and compute the figures expected.json publishes.
-
-    The global properties follow the Model Checking Contest on the net as given (for a coloured net,
-    its coloured places and transitions): OneSafe, no place ever holds two tokens; QuasiLiveness, every
-    transition occurs; Liveness, every transition occurs in every terminal strongly connected component
-    (so that from every state it can occur again); StableMarking, some place holds the same number of
-    tokens in every reachable state (for a coloured place the colours may change: TokenRing-COL).
-    """
-    from cpn.checks import TransitionIndex
+    """Explore with the state-space explorer and compute the figures expected.json publishes (the global
+    properties are the Model Checking Contest's, `cpn.checks.mcc`)."""
     from cpn.checks.bounds import boundedness
-    from cpn.checks.liveness import dead_markings, dead_transitions, live_transitions, scc_summary
+    from cpn.checks.liveness import dead_markings, scc_summary
+    from cpn.checks.mcc import distinct_marking_pairs, global_properties
     from cpn.statespace import ExploreOptions, Explorer
     from cpn.statespace.options import default_max_memory_mb
 
@@ -97,17 +91,10 @@ def explore_figures(engine, max_states: int = MAX_STATES_DEFAULT) -> Figures:
                   stop_message=x.stop_reason.describe(x.options))
     if not x.complete:
         return fig
-    g = x.graph
-    off, dst = g.offsets, g.dst
-    fig.arcs_distinct_marking_pairs = sum(len(set(dst[off[i]:off[i + 1]])) for i in range(g.expanded))
-    tindex = TransitionIndex(engine)
+    fig.arcs_distinct_marking_pairs = distinct_marking_pairs(x)
     scc = scc_summary(x)
     fig.scc_nodes, fig.scc_arcs = scc.nodes, scc.arcs
-    live = live_transitions(x, scc, tindex.arc_transitions(g.bes))
-    fig.properties["OneSafe"] = b.max_tokens_in_place <= 1
-    fig.properties["QuasiLiveness"] = not dead_transitions(x, tindex)
-    fig.properties["Liveness"] = live is not None and len(live) == len(engine.transitions)
-    fig.properties["StableMarking"] = any(p.upper == p.lower for p in b.places)
+    fig.properties = global_properties(x, b, scc)
     return fig
 
 
