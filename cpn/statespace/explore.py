@@ -1,7 +1,7 @@
 """Breadth-first generation of the occurrence graph: `Explorer(engine, options).run() -> Exploration`.
 
-Uses the engine through its protocol only (`cpn.engine.Engine`, docs/internals.md). The driver, the store (`graph.StateGraph`) and the trace builder (`trace`) are
-separate; the frontier is the tail `states[expanded:]` of the store, which BFS fills in order.
+Uses the engine through its protocol only (`cpn.engine.Engine`, docs/internals.md). The driver, the
+store (`graph.StateGraph`) and the trace builder (`trace`) are separate; the frontier is the tail `states[expanded:]` of the store, which BFS fills in order.
 """
 
 from __future__ import annotations
