@@ -1,0 +1,408 @@
+"""Type inference of CPN ML expressions and patterns (Hindley-Milner with CPN ML's overloaded operators)
+and types of annotations.
+
+A mixin of `cpn.lang.typecheck.Checker`, which provides the scopes, name resolution and diagnostics.
+Imports `cpn.lang.*` and layer 0.
+"""
+
+from __future__ import annotations
+
+from cpn._util import did_you_mean
+from cpn.lang import ast as A
+from cpn.lang import types as T
+from cpn.lang.checked import Abort, Env
+from cpn.lang.symbols import Symbol
+
+
+class TypeInference:
+    """Inference of expressions, patterns and annotations (mixed into the Checker)."""
+
+    def type_of_annotation(self, te: A.TypeExpr) -> T.Type | None:
+        if isinstance(te, A.TName):
+            if te.name in self.cstypes:
+                return self.cstypes[te.name]
+            simple = {"int": T.INT, "bool": T.BOOL, "string": T.STRING, "unit": T.UNIT, "real": T.REAL,
+                      "INT": T.INT, "BOOL": T.BOOL, "STRING": T.STRING, "UNIT": T.UNIT}
+            if te.name in simple:
+                return simple[te.name]
+            self.lookup_colset(te.name, te.span)
+            return None
+        if isinstance(te, A.TPost):
+            inner = self.type_of_annotation(te.arg)
+            if inner is None:
+                return None
+            if te.name in ("list", "ms"):
+                return T.TCon(te.name, (inner,))
+            self.error("E0201", f"unknown type constructor '{te.name}'", te.span)
+            return None
+        if isinstance(te, A.TTuple):
+            items = [self.type_of_annotation(x) for x in te.items]
+            return None if None in items else T.TTuple(items)
+        return None
+
+    def unify(self, a, b, span, what: str) -> bool:
+        try:
+            T.unify(a, b)
+            return True
+        except T.UnifyError as exc:
+            names: dict = {}
+            detail = f" ({exc})" if str(exc) else ""
+            self.error("E0301", f"type mismatch in {what}: found {T.show(a, names)}, expected {T.show(b, names)}"
+                       + detail, span, found=T.show(a), expected=T.show(b))
+            return False
+
+    def must(self, a, b, span, what):
+        if not self.unify(a, b, span, what):
+            raise Abort()
+
+    def infer_top(self, e: A.Expr, env: Env | None = None) -> T.Type | None:
+        try:
+            t = self.infer(e, env or self.genv)
+            self.resolve_pending()
+            return t
+        except Abort:
+            self.pending.clear()
+            return None
+
+    def resolve_pending(self) -> None:
+        progress = True
+        while self.pending and progress:
+            progress = False
+            for item in list(self.pending):
+                if self._try_select(*item):
+                    self.pending.remove(item)
+                    progress = True
+        for node, _argt, _rest, kind in self.pending:
+            self.error("E0301", f"cannot tell which record or tuple '#{node.label}' selects from" if kind == "sel"
+                       else "cannot tell the type of this flexible record pattern", node.span,
+                       hint="Add a type annotation, e.g. (x : MyRecord).")
+        if self.pending:
+            self.pending.clear()
+            raise Abort()
+
+    def _try_select(self, node, argt, rest, kind) -> bool:
+        t = T.prune(argt)
+        if isinstance(t, T.TVar):
+            return False
+        if kind == "pat":
+            if not isinstance(t, T.TRecord):
+                self.error("E0301", "a record pattern matches a value that is not a record", node.span)
+                return True
+            node.ty_labels = t.labels()
+            for label, ft in rest:
+                fields = dict(t.fields)
+                if label not in fields:
+                    self.error("E0301", f"the record has no field '{label}'", node.span)
+                    return True
+                self.unify(ft, fields[label], node.span, f"field '{label}'")
+            return True
+        if isinstance(t, T.TRecord):
+            labels = t.labels()
+            if node.label not in labels:
+                self.error("E0301", f"the record {T.show(t)} has no field '{node.label}'", node.span,
+                           hint=f"Its fields are {', '.join(labels)}.")
+                return True
+            node.index = labels.index(node.label)
+            self.unify(rest, t.fields[node.index][1], node.span, f"'#{node.label}'")
+            return True
+        if isinstance(t, T.TTuple) and node.label.isdigit():
+            i = int(node.label)
+            if not 1 <= i <= len(t.items):
+                self.error("E0301", f"'#{i}' selects from a tuple of {len(t.items)} components", node.span)
+                return True
+            node.index = i - 1
+            self.unify(rest, t.items[i - 1], node.span, f"'#{i}'")
+            return True
+        self.error("E0301", f"'#{node.label}' is applied to a value of type {T.show(t)}", node.span)
+        return True
+
+    # ------------------------------------------------------------------ expressions
+    def infer(self, e: A.Expr, env: Env) -> T.Type:
+        t = getattr(self, "_i_" + type(e).__name__)(e, env)
+        e.ty = t
+        return t
+
+    def _i_Const(self, e, env):
+        return {"int": T.INT, "string": T.STRING, "bool": T.BOOL, "unit": T.UNIT, "real": T.REAL}[e.kind]
+
+    def _i_Name(self, e, env):
+        sym = self.resolve_name(e.name, env, e.span)
+        if sym is None:
+            self.unknown_name(e.name, env, e.span)
+            raise Abort()
+        e.ref = sym
+        if sym.kind == "csop":
+            cs, op = sym.data
+            cst = self.cstypes[cs]
+            if op == "mult":
+                comps = T.prune(cst)
+                if not isinstance(comps, T.TTuple):
+                    self.error("E0301", f"'{e.name}': mult is defined on product colour sets only", e.span)
+                    raise Abort()
+                return T.TFun(T.TTuple([T.ms(c) for c in comps.items]), T.ms(cst))
+            return {"all": T.TFun(T.UNIT, T.ms(cst)), "size": T.TFun(T.UNIT, T.INT), "ran": T.TFun(T.UNIT, cst),
+                    "ord": T.TFun(cst, T.INT), "col": T.TFun(T.INT, cst), "legal": T.TFun(cst, T.BOOL),
+                    "mkstr": T.TFun(cst, T.STRING)}[op]
+        t = sym.type
+        return t.instantiate() if isinstance(t, T.Scheme) else t
+
+    def _i_Select(self, e, env):
+        a, r = T.TVar(), T.TVar()
+        self.pending.append((e, a, r, "sel"))
+        return T.TFun(a, r)
+
+    def _i_TupleE(self, e, env):
+        return T.TTuple([self.infer(x, env) for x in e.items])
+
+    def _i_RecordE(self, e, env):
+        labels = [label for label, _ in e.fields]
+        if len(set(labels)) != len(labels):
+            self.error("E0301", "a record expression names a field twice", e.span)
+            raise Abort()
+        return T.TRecord([(label, self.infer(x, env)) for label, x in e.fields])
+
+    def _i_ListE(self, e, env):
+        elem = T.TVar()
+        for x in e.items:
+            self.must(self.infer(x, env), elem, x.span, "the elements of a list")
+        return T.lst(elem)
+
+    def _i_App(self, e, env):
+        if isinstance(e.fn, A.Select):
+            at = self.infer(e.arg, env)
+            ft = self.infer(e.fn, env)
+            self.must(ft, T.TFun(at, T.TVar()), e.span, "a field selection")
+            if self.pending and self.pending[-1][0] is e.fn and self._try_select(*self.pending[-1]):
+                self.pending.pop()
+            return T.prune(ft).res
+        if isinstance(e.fn, A.Name) and e.fn.name.endswith(".ran") and self.ran_sink is not None:
+            sym = self.resolve_name(e.fn.name, env, e.fn.span)
+            if sym is not None and sym.kind == "csop":
+                # CS.ran() in a transition: a fresh free variable over CS (every value is one binding)
+                cs = sym.data[0]
+                self.ran_counter += 1
+                vname = f"{cs}.ran#{self.ran_counter}"
+                vsym = Symbol(vname, "var", self.cstypes[cs], e.span, cs)
+                self.ran_sink.append((vname, cs, vsym))
+                self.infer(e.arg, env)
+                e.fn = A.Name(e.fn.span, "ignore")
+                e.fn.ref = self.builtin_syms["ignore"]
+                # rewrite in place: App(ignore, ()) is replaced by the variable through the parent
+                e.ran_var = vsym
+                return self.cstypes[cs]
+        ft = self.infer(e.fn, env)
+        at = self.infer(e.arg, env)
+        r = T.TVar()
+        pf = T.prune(ft)
+        if isinstance(pf, T.TFun):
+            self.must(at, pf.arg, e.arg.span, f"the argument of {self._fn_name(e.fn)}")
+            self.must(pf.res, r, e.span, "an application")
+        else:
+            self.must(ft, T.TFun(at, r), e.fn.span, "an application (the left side is not a function)")
+        return r
+
+    @staticmethod
+    def _fn_name(f):
+        return f"'{f.name}'" if isinstance(f, A.Name) else "the function"
+
+    def _i_Neg(self, e, env):
+        t = self.infer(e.operand, env)
+        self.must(t, T.TVar(overload=("int", "real")), e.span, "'~'")
+        return t
+
+    def _i_If(self, e, env):
+        self.must(self.infer(e.cond, env), T.BOOL, e.cond.span, "the condition of 'if'")
+        tt = self.infer(e.then, env)
+        et = self.infer(e.else_, env)
+        return self._join_branches(e, "then", "else_", tt, et)
+
+    def _join_branches(self, e, a, b, ta, tb):
+        pa, pb = T.prune(ta), T.prune(tb)
+        is_ms = lambda t: isinstance(t, T.TCon) and t.name == "ms"  # noqa: E731
+        if is_ms(pa) and not is_ms(pb) and not isinstance(pb, T.TVar):
+            setattr(e, b, A.ToMs(getattr(e, b).span, getattr(e, b), ty=T.ms(tb)))
+            tb = T.ms(tb)
+        elif is_ms(pb) and not is_ms(pa) and not isinstance(pa, T.TVar):
+            setattr(e, a, A.ToMs(getattr(e, a).span, getattr(e, a), ty=T.ms(ta)))
+            ta = T.ms(ta)
+        self.must(tb, ta, getattr(e, b).span, "the branches (both must have the same type)")
+        return ta
+
+    def _i_Case(self, e, env):
+        st = self.infer(e.subject, env)
+        rt = None
+        for _i, (pat, body) in enumerate(e.rules):
+            binds: dict[str, Symbol] = {}
+            self.must(self.infer_pat(pat, binds), st, pat.span, "a case pattern")
+            bt = self.infer(body, env.child(binds))
+            if rt is None:
+                rt = bt
+            else:
+                self.must(bt, rt, body.span, "the rules of 'case' (all must have the same type)")
+        return rt
+
+    def _i_Fn(self, e, env):
+        at, rt = T.TVar(), T.TVar()
+        for pat, body in e.rules:
+            binds: dict[str, Symbol] = {}
+            self.must(self.infer_pat(pat, binds), at, pat.span, "the argument pattern of 'fn'")
+            self.must(self.infer(body, env.child(binds)), rt, body.span, "the rules of 'fn'")
+        return T.TFun(at, rt)
+
+    def _i_Let(self, e, env):
+        inner = env.child()
+        for d in e.decls:
+            if isinstance(d, A.ValDecl):
+                t = self.infer(d.expr, inner)
+                binds: dict[str, Symbol] = {}
+                self.must(self.infer_pat(d.pat, binds), t, d.pat.span, "the pattern of 'val'")
+                inner = inner.child(binds)
+            elif isinstance(d, A.FunDecl):
+                sym = self.fun_decl(d, inner)
+                if sym is None:
+                    raise Abort()
+                inner = inner.child({d.name: sym})
+        return self.infer(e.body, inner)
+
+    def _i_Seq(self, e, env):
+        t = None
+        for x in e.items:
+            t = self.infer(x, env)
+        return t
+
+    def _i_Annot(self, e, env):
+        t = self.infer(e.expr, env)
+        at = self.type_of_annotation(e.type_expr)
+        if at is None:
+            raise Abort()
+        self.must(t, at, e.span, "a type annotation")
+        return t
+
+    def _i_ToMs(self, e, env):
+        return T.ms(self.infer(e.expr, env))
+
+    def _i_OpFun(self, e, env):
+        a, b, r = self._op_types(e.op, e)
+        return T.TFun(T.TTuple([a, b]), r)
+
+    def _op_types(self, op, node):
+        if op in ("+", "-", "*"):
+            v = T.TVar(overload=("int", "real"))
+            node.op_ty = v
+            return v, v, v
+        if op == "/":
+            return T.REAL, T.REAL, T.REAL
+        if op in ("div", "mod"):
+            return T.INT, T.INT, T.INT
+        if op == "^":
+            return T.STRING, T.STRING, T.STRING
+        if op in ("<", "<=", ">", ">="):
+            v = T.TVar(overload=("int", "real", "string"))
+            node.op_ty = v
+            return v, v, T.BOOL
+        if op in ("=", "<>"):
+            v = T.TVar(eq=True)
+            return v, v, T.BOOL
+        if op == "::":
+            v = T.TVar()
+            return v, T.lst(v), T.lst(v)
+        if op in ("^^", "@"):
+            v = T.lst(T.TVar())
+            return v, v, v
+        if op in ("andalso", "orelse"):
+            return T.BOOL, T.BOOL, T.BOOL
+        if op == "`":
+            v = T.TVar()
+            return T.INT, v, T.ms(v)
+        raise Abort()
+
+    def _i_BinOp(self, e, env):
+        op = e.op
+        if op in ("++", "--", "+++"):
+            elem = T.TVar()
+            e.left = self.infer_ms(e.left, elem, env, f"the left operand of '{op}'")
+            e.right = self.infer_ms(e.right, elem, env, f"the right operand of '{op}'")
+            return T.ms(elem)
+        if op == "@+":
+            elem = T.TVar()
+            e.left = self.infer_ms(e.left, elem, env, "the tokens of '@+'")
+            self.infer_delay(e, env)
+            return T.ms(elem)
+        if op == "@@":
+            self.error("E0206", "absolute timestamps '@@' are not supported; use '@+' delays", e.span)
+            raise Abort()
+        a, b, r = self._op_types(op, e)
+        self.must(self.infer(e.left, env), a, e.left.span, f"the left operand of '{op}'")
+        self.must(self.infer(e.right, env), b, e.right.span, f"the right operand of '{op}'")
+        return r
+
+    # ------------------------------------------------------------------ patterns
+    def infer_pat(self, p: A.Pat, binds: dict[str, Symbol]) -> T.Type:
+        t = self._infer_pat(p, binds)
+        p.ty = t
+        return t
+
+    def _bind_local(self, name, span, binds, t):
+        if name in binds:
+            self.error("E0202", f"variable '{name}' occurs twice in one pattern", span)
+            raise Abort()
+        sym = Symbol(name, "local", t, span)
+        binds[name] = sym
+        return sym
+
+    def _infer_pat(self, p, binds):
+        if isinstance(p, A.PWild):
+            return T.TVar()
+        if isinstance(p, A.PVar):
+            g = self.globals.get(p.name)
+            if g is not None and g.kind == "con" and not g.data.has_arg:
+                p.ref = g
+                return g.type
+            t = T.TVar()
+            p.ref = self._bind_local(p.name, p.span, binds, t)
+            return t
+        if isinstance(p, A.PConst):
+            return {"int": T.INT, "string": T.STRING, "bool": T.BOOL, "unit": T.UNIT}[p.kind]
+        if isinstance(p, A.PTuple):
+            return T.TTuple([self.infer_pat(x, binds) for x in p.items])
+        if isinstance(p, A.PList):
+            v = T.TVar()
+            for x in p.items:
+                self.must(self.infer_pat(x, binds), v, x.span, "the elements of a list pattern")
+            return T.lst(v)
+        if isinstance(p, A.PCons):
+            h = self.infer_pat(p.head, binds)
+            tl = self.infer_pat(p.tail, binds)
+            self.must(tl, T.lst(h), p.span, "a '::' pattern")
+            return tl
+        if isinstance(p, A.PCon):
+            g = self.globals.get(p.name)
+            if g is None or g.kind != "con" or not g.data.has_arg:
+                cand = did_you_mean(p.name, [n for n, s in self.globals.items() if s.kind == "con"])
+                self.error("E0201", f"'{p.name}' is not a constructor with an argument", p.span,
+                           hint=f"Did you mean '{cand}'?" if cand else None, name=p.name)
+                raise Abort()
+            p.ref = g
+            ft = g.type
+            self.must(self.infer_pat(p.arg, binds), ft.arg, p.arg.span, f"the argument of '{p.name}'")
+            return ft.res
+        if isinstance(p, A.PRecord):
+            fields = [(label, self.infer_pat(q, binds)) for label, q in p.fields]
+            if p.flexible:
+                v = T.TVar()
+                self.pending.append((p, v, fields, "pat"))
+                return v
+            p.ty_labels = sorted(label for label, _ in fields)
+            return T.TRecord(fields)
+        if isinstance(p, A.PAs):
+            t = self.infer_pat(p.pat, binds)
+            p.ref = self._bind_local(p.name, p.span, binds, t)
+            return t
+        if isinstance(p, A.PAnnot):
+            t = self.infer_pat(p.pat, binds)
+            at = self.type_of_annotation(p.type_expr)
+            if at is None:
+                raise Abort()
+            self.must(t, at, p.span, "a type annotation")
+            return t
+        raise Abort()
