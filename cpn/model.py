@@ -9,6 +9,7 @@ import os
 
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import ConfigurationError, ModelError
+from cpn.io import importer_for
 from cpn.lang.overrides import parse_overrides, usage_error
 from cpn.lang.parser import parse as _parse
 from cpn.lang.typecheck import check as _check
@@ -80,15 +81,9 @@ def _ml_literal(v) -> str:
 
 def source_of(path: str) -> str:
     """The `.cpnet` source text of a model file (translated for PNML and CPN Tools files)."""
-    lower = path.lower()
-    if lower.endswith(".pnml"):
-        from cpn.io import pnml
-
-        return pnml.translate(path)
-    if lower.endswith(".cpn"):
-        from cpn.io import cpntools
-
-        return cpntools.translate(path)
+    importer = importer_for(path)
+    if importer is not None:
+        return importer.translate(path).text
     try:
         with open(path, encoding="utf-8-sig") as fh:
             return fh.read()
@@ -141,11 +136,7 @@ def loads(text: str, filename: str = "<string>", set: dict | None = None) -> Mod
 
 def _original_position(span: Span, translation) -> str:
     """Where a position of the translation of a .cpn or .pnml file comes from, in that file."""
-    if span.file.lower().endswith(".pnml (as .cpnet)"):
-        found = translation.locate(span.line)
-    else:
-        located = translation.locate(span.line, span.col)
-        found = located[0] if located is not None else None
+    found = translation.origin(span.line, span.col)
     return str(found if found is not None else span)
 
 
@@ -176,22 +167,15 @@ def load(path: str | os.PathLike, set: dict | None = None) -> Model:  # noqa: A0
         raise ConfigurationError(f"no such model file: {path}")
     if os.path.isdir(path):
         raise ConfigurationError(f"{path} is a directory, not a model file")
-    lower = path.lower()
-    if lower.endswith((".pnml", ".cpn")):
+    importer = importer_for(path)
+    if importer is not None:
         # foreign formats are translated to .cpnet text; errors in the translation point back at the file
-        if lower.endswith(".pnml"):
-            from cpn.io import pnml as fmt
-
-            translation = fmt.translate_with_origins(path)
-        else:
-            from cpn.io import cpntools as fmt
-
-            translation = fmt.translate_file(path)
+        translation = importer.translate(path)
         generated = f"{path} (as .cpnet)"
         try:
             model = loads(translation.text, generated, set)
         except ModelError as exc:
-            raise fmt.remap_error(exc, translation, generated) from None
+            raise importer.remap_error(exc, translation, generated) from None
         except ConfigurationError as exc:
             problems = getattr(exc, "problems", None)
             if not problems:

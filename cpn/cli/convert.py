@@ -30,8 +30,10 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
 
 
 def _default_output(model: str) -> str:
-    root, ext = os.path.splitext(model)
-    return (root if ext.lower() in (".cpn", ".pnml") else model) + ".cpnet"
+    from cpn.io import importer_for
+
+    root, _ext = os.path.splitext(model)
+    return (root if importer_for(model) is not None else model) + ".cpnet"
 
 
 def _check(text: str, name: str):
@@ -51,33 +53,25 @@ def run(args) -> int:
     if not os.path.isfile(args.model):
         raise UsageError(f"no such file: '{args.model}'" if not os.path.exists(args.model)
                          else f"'{args.model}' is not a file")
-    is_pnml = args.model.lower().endswith(".pnml")
-    if is_pnml:
-        from cpn.io.pnml import translate_with_origins
+    from cpn.io import IMPORTERS, importer_for
 
-        translation = translate_with_origins(args.model)
-    else:
-        from cpn.io.cpntools import translate_file
-
-        translation = translate_file(args.model)
+    importer = importer_for(args.model)
+    if importer is None:
+        known = ", ".join(f"{imp.name} ({' '.join(imp.suffixes)})" for imp in IMPORTERS)
+        raise UsageError(f"'{args.model}' is not a file convert reads: it reads {known}")
+    translation = importer.translate(args.model)
     out = output.path
     write_output(output, translation.text)
     name = out if out != "-" else _default_output(args.model)  # the name a redirection would give it
     if not args.quiet:
-        for note in getattr(translation, "notes", ()):
+        for note in translation.notes:
             print(f"note: {note}", file=sys.stderr)
     if args.no_check:
         return ExitStatus.OK
     err = _check(translation.text, name)
     if err is not None:
-        if is_pnml:
-            from cpn.io.pnml import remap_error
-
-            mapped = remap_error(err, translation, name)
-        else:
-            from cpn.io.cpntools import remap_error
-
-            mapped = remap_error(err, translation, name, keep_generated_span=True)
+        # the translation is on disk: diagnostics keep their place in it and name the element they come from
+        mapped = importer.remap_error(err, translation, name, keep_generated_span=True)
         mapped.sources.setdefault(name, translation.text)
         print(mapped.render(), file=sys.stderr)
         print(f"note: the translation was written to {out if out != '-' else 'standard output'}, "

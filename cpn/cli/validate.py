@@ -143,10 +143,12 @@ def compare(expected: dict, found: dict) -> list[str]:
     return diffs
 
 
-def _importer_available(fmt: str) -> bool:
-    if fmt == "cpntools":
-        return importlib.util.find_spec("cpn.io.cpntools") is not None
-    return True
+def _importer_available(path: str) -> bool:
+    """A `.cpnet` file, or a format that `cpn.io` registers."""
+    from cpn.io import importer_for
+
+    importer = importer_for(path)
+    return importer is None or importlib.util.find_spec(importer.module) is not None
 
 
 def validate_instance(directory: str, inst: dict, max_states: int) -> Result:
@@ -185,7 +187,7 @@ def select(instances: list[dict], only: list[str] | None, skip_larger_than: int 
         reason = ""
         if skip_larger_than is not None and inst.get("states", 0) > skip_larger_than:
             reason = f"{inst['states']:,} states > --skip-larger-than {skip_larger_than:,}"
-        elif not _importer_available(inst.get("format", "")):
+        elif not _importer_available(inst.get("file", "")):
             reason = f"no importer for format '{inst.get('format')}' yet"
         out.append((inst, reason))
     return out

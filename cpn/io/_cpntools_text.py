@@ -47,6 +47,11 @@ class Translation:
     pieces: list[_Piece] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
 
+    def origin(self, line: int, col: int = 1) -> Span | None:
+        """The span in the `.cpn` file that position (line, col) of the text translates (`cpn.io.Translation`)."""
+        found = self.locate(line, col)
+        return found[0] if found is not None else None
+
     def locate(self, line: int, col: int = 1) -> tuple[Span, Origin] | None:
         """Map a (line, col) of the generated text to a span in the `.cpn` file and the element's origin."""
         best = None

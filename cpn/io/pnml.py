@@ -19,8 +19,8 @@ from cpn.io._pnml_sorts import Sort
 from cpn.io._pnml_terms import TermTranslator
 from cpn.io._pnml_xml import Element, parse_xml
 
-__all__ = ["translate", "translate_text", "translate_with_origins", "remap_error", "PnmlTranslation", "write",
-           "write_text", "PT_NET", "SYMMETRIC_NET"]
+__all__ = ["translate", "translate_file", "translate_text", "translate_with_origins", "remap_error",
+           "PnmlTranslation", "write", "write_text", "PT_NET", "SYMMETRIC_NET"]
 
 PT_NET = "http://www.pnml.org/version-2009/grammar/ptnet"
 SYMMETRIC_NET = "http://www.pnml.org/version-2009/grammar/symmetricnet"
@@ -54,8 +54,13 @@ class PnmlTranslation:
     path: str
     text: str
     origins: dict[int, Span]  # 1-based line of the generated text -> start tag of the PNML element
+    notes: list[str] = field(default_factory=list)
 
     def locate(self, line: int) -> Span | None:
+        return self.origins.get(line)
+
+    def origin(self, line: int, col: int = 1) -> Span | None:
+        """The start tag of the PNML element that line `line` of the text translates (`cpn.io.Translation`)."""
         return self.origins.get(line)
 
 
@@ -71,11 +76,18 @@ def translate_with_origins(path: str | os.PathLike) -> PnmlTranslation:
     return _translation(data, path)
 
 
-def remap_error(error: ModelError, translation: PnmlTranslation, generated_name: str | None = None) -> ModelError:
+def translate_file(path: str | os.PathLike) -> PnmlTranslation:
+    """The registry's entry (`cpn.io.importer_for`): `translate_with_origins`."""
+    return translate_with_origins(path)
+
+
+def remap_error(error: ModelError, translation: PnmlTranslation, generated_name: str | None = None,
+                keep_generated_span: bool = False) -> ModelError:
     """Point the diagnostics of a failed load of translated text at the PNML elements they come from.
 
     A diagnostic in the generated text (file `generated_name` or the PNML path) moves to the element's
-    start tag and keeps the generated line in a note.
+    start tag and keeps the generated line in a note; with `keep_generated_span` (the text is on disk,
+    `cpn-verify convert`) it stays in the text and the note names the element's position.
     """
     lines = translation.text.splitlines()
     out = []
@@ -86,11 +98,17 @@ def remap_error(error: ModelError, translation: PnmlTranslation, generated_name:
         if span is None:
             out.append(d)
             continue
-        text = lines[s.line - 1].strip() if 0 < s.line <= len(lines) else ""
-        note = f"in the translation of this PNML element, line {s.line}: {text[:100]}"
+        if keep_generated_span:
+            note = f"from the PNML element at {span}"
+            span = s
+        else:
+            text = lines[s.line - 1].strip() if 0 < s.line <= len(lines) else ""
+            note = f"in the translation of this PNML element, line {s.line}: {text[:100]}"
         out.append(Diagnostic(d.code, d.message, span, d.hint, list(d.notes) + [note], dict(d.params),
                               d.severity))
     sources = dict(error.sources)
+    if keep_generated_span:
+        return type(error)(out, sources)
     try:
         with open(translation.path, encoding="utf-8", errors="replace") as fh:
             sources[translation.path] = fh.read()
