@@ -79,6 +79,7 @@ def explore_figures(engine, max_states: int = MAX_STATES_DEFAULT) -> Figures:
     from cpn.checks.bounds import boundedness
     from cpn.checks.liveness import dead_markings, scc_summary
     from cpn.checks.mcc import distinct_marking_pairs, global_properties
+    from cpn.checks.verdict import Status
     from cpn.statespace import ExploreOptions, Explorer
     from cpn.statespace.options import default_max_memory_mb
 
@@ -94,7 +95,7 @@ def explore_figures(engine, max_states: int = MAX_STATES_DEFAULT) -> Figures:
     fig.arcs_distinct_marking_pairs = distinct_marking_pairs(x)
     scc = scc_summary(x)
     fig.scc_nodes, fig.scc_arcs = scc.nodes, scc.arcs
-    fig.properties = global_properties(x, b, scc)
+    fig.properties = {name: v.status is Status.HOLDS for name, v in global_properties(x, b, scc).items()}
     return fig
 
 
