@@ -3,9 +3,10 @@
 Each importer translates its format into `.cpnet` source text, which then goes through the one front end
 (parser, type checker, lowering, engine); its `Translation` also says where every generated line comes
 from, so that errors point back into the foreign file. `importer_for(path)` chooses by file suffix: the
-one place that does (`cpn.load`, `cpn-verify convert` and `validate` ask it). A new format is a module
-with `translate_file(path) -> Translation` and `remap_error(error, translation, generated_name,
-keep_generated_span)`, and one line in `IMPORTERS`.
+one place that does (`cpn.load`, `cpn-verify convert` and `validate` ask it). A new format is a
+subpackage `cpn/io/<format>/` with `translate_file(path) -> Translation` and `remap_error(error,
+translation, generated_name, keep_generated_span)`, and one line in `IMPORTERS`; its private modules
+live inside it (`cpn/io/pnml/_terms.py`).
 
 The PNML writer (`cpn.io.pnml.write`) prints a `.cpnet` model or a flattened net as PNML. Imports
 `cpn.lang` (the writer reads the syntax tree), `cpn.net`, `cpn.values` and layer 0 (tests/test_layering.py).

@@ -216,3 +216,14 @@ def test_convert_refuses_a_suffix_no_importer_reads(tmp_path):
     path = tmp_path / "net.xml"
     path.write_text(PT)
     assert main(["convert", str(path)]) == 64
+
+
+def test_each_importer_is_a_subpackage_and_keeps_its_import_path():
+    import cpn.io.cpntools
+    import cpn.io.pnml
+
+    for module in (cpn.io.pnml, cpn.io.cpntools):
+        assert module.__file__.endswith("__init__.py")
+        assert callable(module.translate_file) and callable(module.remap_error) and callable(module.translate)
+    from cpn.io.pnml import write_text  # noqa: F401 - the writer is still there
+    assert not list((ROOT / "cpn" / "io").glob("_pnml_*.py")) and not list((ROOT / "cpn" / "io").glob("_cpntools_*.py"))

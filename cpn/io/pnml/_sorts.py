@@ -1,6 +1,6 @@
 """Sorts of PNML symmetric nets and the CPN ML colour sets and helper functions they become.
 
-Imports the stdlib and `cpn.io._pnml_names` only.
+Imports the stdlib and `cpn.io.pnml._names` only.
 """
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ from __future__ import annotations
 import itertools
 from dataclasses import dataclass, field
 
-from cpn.io._pnml_names import Namespace
+from cpn.io.pnml._names import Namespace
 
 
 def int_text(n: int) -> str:

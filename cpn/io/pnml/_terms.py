@@ -2,7 +2,7 @@
 
 A mixin of `cpn.io.pnml`'s translator: one method `t_<operator>` per PNML operator, each returning a
 `_Term`. Unknown operators are reported (E0502) and replaced by a placeholder so that one run finds
-them all. Imports the stdlib and `cpn.io._pnml_*` only.
+them all. Imports the stdlib and `cpn.io.pnml._*` only.
 """
 
 from __future__ import annotations
@@ -10,8 +10,8 @@ from __future__ import annotations
 from collections.abc import Callable
 from dataclasses import dataclass
 
-from cpn.io._pnml_sorts import Sort, int_text
-from cpn.io._pnml_xml import Element
+from cpn.io.pnml._sorts import Sort, int_text
+from cpn.io.pnml._xml import Element
 
 
 @dataclass

@@ -4,7 +4,7 @@
 parses, checks and lowers; `write(net, path)` writes a net whose colour sets fit PNML back out.
 Unsupported constructs are all collected and raised as one `ModelError` (E0501 unreadable, E0502
 unsupported), each with the line and column of its XML element. Nothing is ever `eval`ed.
-Imports the stdlib, `cpn.diagnostics`, `cpn.errors` and `cpn.io._pnml_*` only.
+Imports the stdlib, `cpn.diagnostics`, `cpn.errors` and `cpn.io.pnml._*` only.
 """
 
 from __future__ import annotations
@@ -14,10 +14,10 @@ from dataclasses import dataclass, field
 
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import ModelError
-from cpn.io._pnml_names import Namespace, NodeNames, quote_name
-from cpn.io._pnml_sorts import Sort
-from cpn.io._pnml_terms import TermTranslator
-from cpn.io._pnml_xml import Element, parse_xml
+from cpn.io.pnml._names import Namespace, NodeNames, quote_name
+from cpn.io.pnml._sorts import Sort
+from cpn.io.pnml._terms import TermTranslator
+from cpn.io.pnml._xml import Element, parse_xml
 
 __all__ = ["translate", "translate_file", "translate_text", "translate_with_origins", "remap_error",
            "PnmlTranslation", "write", "write_text", "PT_NET", "SYMMETRIC_NET"]
@@ -627,4 +627,4 @@ class _Translator(TermTranslator):
 
 
 # ---------------------------------------------------------------------- writing
-from cpn.io._pnml_write import write, write_text  # noqa: E402  (the writer shares nothing above)
+from cpn.io.pnml._write import write, write_text  # noqa: E402  (the writer shares nothing above)

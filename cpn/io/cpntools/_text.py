@@ -10,8 +10,8 @@ import re
 from dataclasses import dataclass, field
 
 from cpn.diagnostics import Span
-from cpn.io import _cpntools_ml as ml
-from cpn.io._cpntools_xml import Element
+from cpn.io.cpntools import _ml as ml
+from cpn.io.cpntools._xml import Element
 
 
 @dataclass(frozen=True, slots=True)

@@ -4,7 +4,7 @@ operators that `cpn.io.pnml` reads, including the helper functions it generates)
 
 The writer works on the checked-free `.cpnet` syntax tree of a flat net (no modules), so that what
 `translate` produced can be written back and read again with the same state space.
-Imports the stdlib, `cpn.diagnostics`, `cpn.errors`, `cpn.lang` (parsing only) and `cpn.io._pnml_names`.
+Imports the stdlib, `cpn.diagnostics`, `cpn.errors`, `cpn.lang` (parsing only) and `cpn.io.pnml._names`.
 """
 
 from __future__ import annotations

@@ -9,9 +9,9 @@ from __future__ import annotations
 import os
 import re
 
-from cpn.io import _cpntools_ml as ml
-from cpn.io._cpntools_text import Origin, _clean, _short, _text_origin_from
-from cpn.io._cpntools_xml import Element
+from cpn.io.cpntools import _ml as ml
+from cpn.io.cpntools._text import Origin, _clean, _short, _text_origin_from
+from cpn.io.cpntools._xml import Element
 
 
 class _Declarations:

@@ -17,9 +17,9 @@ from dataclasses import dataclass, field
 
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import ModelError
-from cpn.io import _cpntools_ml as ml
-from cpn.io._cpntools_decls import _Declarations
-from cpn.io._cpntools_text import (
+from cpn.io.cpntools import _ml as ml
+from cpn.io.cpntools._decls import _Declarations
+from cpn.io.cpntools._text import (
     Origin,
     Translation,
     _balanced_outer,
@@ -29,7 +29,7 @@ from cpn.io._cpntools_text import (
     _text_origin,
     _timed_literals,
 )
-from cpn.io._cpntools_xml import Element, parse_xml
+from cpn.io.cpntools._xml import Element, parse_xml
 
 __all__ = ["Origin", "Translation", "translate", "translate_file", "translate_text", "remap_error"]
 
