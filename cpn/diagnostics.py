@@ -28,7 +28,7 @@ class Severity(enum.Enum):
     WARNING = "warning"
 
 
-# code -> (short title, hint template or "")
+# every code a diagnostic is emitted with -> its short title (a test keeps the two the same)
 CODES: dict[str, str] = {
     # syntax
     "E0101": "syntax error",
@@ -61,7 +61,7 @@ CODES: dict[str, str] = {
     "E0704": "bad parameter table",
     # warnings
     "W0101": "unbound port",
-    "W0102": "unused declaration",
+    "W0103": "empty model",
 }
 
 

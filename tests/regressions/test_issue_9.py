@@ -227,3 +227,15 @@ def test_each_importer_is_a_subpackage_and_keeps_its_import_path():
         assert callable(module.translate_file) and callable(module.remap_error) and callable(module.translate)
     from cpn.io.pnml import write_text  # noqa: F401 - the writer is still there
     assert not list((ROOT / "cpn" / "io").glob("_pnml_*.py")) and not list((ROOT / "cpn" / "io").glob("_cpntools_*.py"))
+
+
+def test_the_code_registry_lists_exactly_the_codes_emitted():
+    import re
+
+    from cpn.diagnostics import CODES
+
+    used = set()
+    for path in (ROOT / "cpn").rglob("*.py"):
+        if path.name != "diagnostics.py":
+            used |= set(re.findall(r'"([EW]\d{4})"', path.read_text(encoding="utf-8")))
+    assert used == set(CODES), (sorted(used - set(CODES)), sorted(set(CODES) - used))
