@@ -29,8 +29,8 @@ ALLOWED: dict[str, set[str]] = {
     # property texts are CPN ML, typed by the language's checker against the model's declarations; the
     # gate loads the models its scenarios name
     "checks": FOUNDATION | {"values", "lang", "net", "model", "engine", "statespace"},
-    # drawings of the net print its inscriptions
-    "report": FOUNDATION | {"values", "lang", "net", "engine", "statespace", "checks"},
+    # drawings of the net print its inscriptions (cpn.net.pretty)
+    "report": FOUNDATION | {"values", "net", "engine", "statespace", "checks"},
     "__init__": FOUNDATION | {"values", "lang", "net", "engine", "model", "statespace", "checks", "report"},
     "cli": FOUNDATION | {"values", "io", "engine", "model", "statespace", "checks", "report", "__init__"},
     "__main__": {"cli"},
