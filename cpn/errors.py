@@ -86,6 +86,7 @@ class EvaluationError(CpnError):
     def render(self) -> str:
         text = self.diagnostic().render(self.source)
         if self.trace:
-            text += f"\nnote: reached after {len(self.trace)} steps from the initial marking:\n"
+            n = len(self.trace)
+            text += f"\nnote: reached after {n} step{'' if n == 1 else 's'} from the initial marking:\n"
             text += "\n".join(f"  {i}. {step}" for i, step in enumerate(self.trace, 1))
         return text

@@ -22,8 +22,11 @@ from cpn.statespace.trace import shortest_trace
 # How many BFS levels without a new untimed marking, and how far past the clock at which the untimed
 # markings stopped changing, before a timed search is declared to grow only because time grows.
 TIME_GROWTH_LEVELS: int = 8
-# The limits (time, memory) and the progress hook are looked at every this many expansions.
+# The limits (time, memory) and the progress hook are looked at every this many expansions, and also
+# whenever this many arcs were added since the last look: a net whose states have thousands of
+# successors stores a million states in 512 expansions, far past a memory limit.
 CHECK_EVERY: int = 512
+CHECK_EVERY_ARCS: int = 1 << 16
 
 
 @dataclass(frozen=True)
@@ -161,6 +164,7 @@ class Explorer:
         level_end = 1
         levels = 0
         n_arcs = 0
+        next_check_arcs = CHECK_EVERY_ARCS
         # The states are acyclic tuples of ints, yet each allocation burst makes the cyclic collector
         # walk every stored state again: switching it off cut MS(7) generation CPU time by about 25%.
         gc_was_enabled = gc.isenabled()
@@ -175,7 +179,8 @@ class Explorer:
                             stop = StopReason.TIME_GROWS
                             break
                     level_end = len(states)
-                if not head & (CHECK_EVERY - 1) and head:
+                if (not head & (CHECK_EVERY - 1) and head) or n_arcs >= next_check_arcs:
+                    next_check_arcs = n_arcs + CHECK_EVERY_ARCS
                     stop = self._check_limits(len(states), n_arcs, len(states) - head)
                     if stop is not StopReason.COMPLETE:
                         break

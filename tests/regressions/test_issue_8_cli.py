@@ -465,3 +465,49 @@ def test_max_listed_also_sets_how_many_dead_markings_are_listed(toy, capsys):
     assert len(d["listed"]) == 12 and d["listed_cap"] is None
     assert main(["explore", model, "--max-listed", "3"]) == 0
     assert "(3 of 12 dead markings listed with a trace" in capsys.readouterr().out
+
+
+WIDE = """colset C = int with 0..1999;
+colset U = unit;
+var x : C;
+var n : INT;
+place P : C = C.all();
+place Q : INT = 1`0;
+trans T;
+arc P <-> T : x;
+arc Q -> T : n;
+arc T -> Q : n * 2000 + x;
+"""
+
+
+def test_limits_are_looked_at_between_expansions_of_states_with_many_successors(monkeypatch):
+    """Memory used to be read every 512 expansions only: with 2,000 successors per state that is a
+    million stored states between two readings, far past the limit."""
+    from cpn.statespace import ExploreOptions, Explorer, StopReason
+
+    looked_at = []
+
+    def check_limits(self, n_states, n_arcs, queue):
+        looked_at.append(n_states)
+        return StopReason.MAX_MEMORY  # as if the limit were reached at the first reading
+
+    monkeypatch.setattr(Explorer, "_check_limits", check_limits)
+    engine = cpn.loads(WIDE, "wide.cpnet").engine()
+    x = Explorer(engine, ExploreOptions()).run()
+    assert x.stop_reason is StopReason.MAX_MEMORY
+    # the first reading comes after about 65,536 arcs (33 expansions), not after 512 expansions
+    assert looked_at and looked_at[0] < 100_000 and x.n_states < 100_000
+
+
+def test_a_run_time_error_after_one_step_says_one_step():
+    from cpn.errors import EvaluationError
+
+    model = cpn.loads("colset C = int with 0..2;\nvar x : C;\nplace P : C = 1`1;\nplace Q : C;\n"
+                      "trans A;\narc P -> A : x;\narc A -> Q : x - 1;\ntrans B;\narc Q -> B : x;\n"
+                      "arc B -> P : 1 div x;\n", "one.cpnet")
+    from cpn.statespace import ExploreOptions, Explorer
+
+    with pytest.raises(EvaluationError) as info:
+        Explorer(model.engine(), ExploreOptions()).run()
+    text = info.value.render()
+    assert "reached after 1 step from the initial marking" in text, text
