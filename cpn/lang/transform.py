@@ -23,6 +23,13 @@ def _unescape(text: str) -> str:
     return "".join(out)
 
 
+
+def _end_col(node) -> int:
+    """The column of the last character (lark's end column is one past it); on the start line a span
+    never ends before it starts, on a later line its end column is its own."""
+    end = node.end_column - 1
+    return max(end, node.column) if node.end_line == node.line else max(end, 1)
+
 class ToAst(Transformer):
     def __init__(self, filename: str):
         super().__init__(visit_tokens=False)
@@ -32,10 +39,10 @@ class ToAst(Transformer):
     def span(self, meta) -> Span:
         if getattr(meta, "empty", False) or not hasattr(meta, "line"):
             return Span(self.file, 0, 0)
-        return Span(self.file, meta.line, meta.column, meta.end_line, max(meta.end_column - 1, meta.column))
+        return Span(self.file, meta.line, meta.column, meta.end_line, _end_col(meta))
 
     def tspan(self, tok: Token) -> Span:
-        return Span(self.file, tok.line, tok.column, tok.end_line, max(tok.end_column - 1, tok.column))
+        return Span(self.file, tok.line, tok.column, tok.end_line, _end_col(tok))
 
     # -- statements
     def start(self, items):
