@@ -1,0 +1,28 @@
+"""Issue 11 item 7: reports/modbus/ holds what `cpn-verify check specs/modbus --no-timings --reports
+reports/modbus` writes (a scenario and a mutant are re-checked here; the rest by the same command)."""
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+
+
+@pytest.mark.parametrize("spec,stem", [("specs/modbus/A_1.toml", "A.1"),
+                                       ("specs/modbus/mutants/ma_E3_ack_lost_same.toml", "Modbus-A-E3-same")])
+def test_committed_reports_are_what_check_writes(tmp_path, spec, stem):
+    r = subprocess.run([sys.executable, "-m", "cpn", "check", spec, "--no-timings", "-q", "--reports", str(tmp_path)],
+                       cwd=ROOT, capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    for ext in ("txt", "json", "md"):
+        with open(os.path.join(ROOT, "reports", "modbus", f"{stem}.{ext}"), encoding="utf-8") as fh:
+            committed = fh.read()
+        assert (tmp_path / f"{stem}.{ext}").read_text(encoding="utf-8") == committed, ext
+
+
+def test_every_scenario_has_its_committed_reports():
+    names = os.listdir(os.path.join(ROOT, "reports", "modbus"))
+    assert len([n for n in names if n.endswith(".json")]) == 50
+    assert {n.rsplit(".", 1)[1] for n in names} == {"txt", "json", "md"}
