@@ -436,7 +436,7 @@ def test_exit_1_is_promised_only_for_check():
     assert "explore` verifies no property, so it never exits 1" in _doc("statespace.md")
     blocks = re.findall(r"```sh\n(.*?)```", readme, re.S)
     assert blocks[:2] == [
-        "python3 -m pip install . && cpn-verify explore models/examples/stations.cpnet && cpn-verify explore "
+        "python3 -m pip install . && cpn-verify check specs/modbus specs/examples && cpn-verify explore "
         "--time-condensation models/examples/stop_and_wait.cpnet\n",
         "python3 -m pip install -e '.[test]' && ruff check cpn tests bench && pytest\n",
     ]
