@@ -237,3 +237,19 @@ def test_exceptions_01_02_04():
                        (3, 131, 2), (5, 132, 2),                # registers 99 and 1 are not theirs
                        (3, 132, 4), (5, 132, 4),                # code 4 fails while processing (S7)
                        (5, 7, 0)}
+
+
+def test_frames_in_any_order_each_sent_once():
+    # issue 11: the other reading of the thesis's generator (MODBUS.md 3.6 item 14), the timed state space
+    # python -m cpn explore models/modbus/modbus.cpnet --set 'ADRS=[3,5]' --set 'FCS=[4,5,7]' --set 'ORDER="any"'
+    e = Explored(MODBUS, {"ADRS": "[3,5]", "FCS": "[4,5,7]", "ORDER": '"any"'}, time_condensation=False)
+    assert (e.g.n_states, e.g.n_arcs, len(e.dead())) == (14812, 16020, 24)
+    orders = set()
+    for d in e.dead():
+        assert not e.view(d, "Master'Pending 1") and e.only(d, "Master'NextId 1") == 7
+        assert e.view(d, "Master'State 1") == {0: 1}  # Idle
+        for name in ("Modbus'm2b 1", "Modbus'b2m 1", "Modbus's2b 1", "Modbus'b2s 1", "Bus'Line 1"):
+            assert not e.view(d, name)
+        orders.add(e.only(d, "Master'LastClosed 1"))
+    assert orders == {1, 2, 3, 4, 5, 6}  # any frame can be the last one
+    assert not e.has_cycle()
