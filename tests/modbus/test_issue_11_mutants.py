@@ -16,6 +16,7 @@ MUTANTS = os.path.join(ROOT, "specs", "modbus", "mutants")
 # file -> the MODBUS.md properties its bug breaks (issue 11 item 5 and MODBUS.md 4.5)
 BROKEN = {
     "slave_answers_broadcast": {"S-P4"},
+    "slave_answers_broadcast_alone": {"S-P4"},
     "master_sends_early": {"S-P2"},
     "superslave_sends_after_tw": {"SS-P3"},
     "superslave_unicast_reply": {"SS-P2"},
@@ -73,3 +74,15 @@ def test_mutant_is_caught_by_the_property_it_breaks(name):
         assert ev is not None and ev.path[0] == 0, r.spec.name
         dist = dist or _distances(result.exploration.graph)
         assert len(ev.path) - 1 == dist[ev.path[-1]], r.spec.name  # shortest to the bad marking
+
+
+def test_a_reply_to_a_broadcast_is_caught_as_soon_as_it_is_sent():
+    # S-P4 flags the slave's reply itself, not only the collision two replies make
+    scenario = load_scenario(os.path.join(MUTANTS, "slave_answers_broadcast_alone.toml"))
+    result = run_scenario(scenario, scenario.runs[0])
+    (r,) = [r for r in result.results if r.spec.name.startswith("S-P4")]
+    assert r.verdict.status is Status.VIOLATED
+    ev = r.verdict.evidence
+    last = result.engine.binding_element(ev.arcs[-1]).transition
+    assert result.engine.transitions[last].name == "Slave'EndBroadcast 1"
+    assert len(ev.path) - 1 == 6
