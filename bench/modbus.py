@@ -1,0 +1,186 @@
+"""MODBUS: the cost of `cpn-verify check` on the thesis's scenarios, and state spaces beyond 8 slaves.
+
+Usage:
+  python bench/modbus.py [--repeat 3]            # the thesis's scenarios A.1-D.4 (17 files) and all of specs/modbus
+  python bench/modbus.py --scaling [--budget 600]
+  python bench/modbus.py --table [--budget 600]   # the side-by-side table of reports/README.md
+
+The first form times, as a user would, `python -m cpn check FILES --no-reports -q` (a fresh process: start-up,
+loading and compiling the model, exploring, deciding every property) over --repeat runs and prints the
+medians: once for the 17 files A_1.toml ... D_4.toml, once for the whole of specs/modbus/ (with the fault
+variants, Modbus-A N = 1..8 and the mutants). The issue's target is ten minutes on this 2-core machine.
+
+The --table form prints, per thesis scenario, the thesis's figures (MODBUS.md 3.5) next to ours: the gate's
+state space (time condensation, as the scenario file says), the timed state space without condensation
+(what CPN Tools computes) and the timed state space with the frames in any order (ORDER = "any"), each
+explored with `python -m cpn explore models/modbus/modbus.cpnet --set ...` and the scenario's values.
+
+The second form measures growing numbers of slaves, each run bounded by --budget seconds of generation
+(a run stopped by it ends the series):
+- scenario B (slave k at address k, fc [1,2,3,4] for k >= 4) with NS slaves, the frames {1..NS} x {1}
+  (every slave once, as B.6) and {0..NS} x {1} (the same and one broadcast), PO 1, explored with time
+  condensation: `python -m cpn explore models/modbus/modbus.cpnet --time-condensation --set 'CONFIG="B"'
+  --set NS=n --set 'ADRS=[1,...,n]' --set 'FCS=[1]' --set PO=1` (states, arcs, seconds of generation);
+  the model has 16 slave instances, so NS stops at 16;
+- Modbus-A with N slaves: every property of specs/modbus/modbus_a.toml (MA1-MA8) checked by the gate for
+  N beyond the file's 1..8 (MAXN raised with N); N stops at 96: from N = 98 on the ID counter skips the
+  reserved IDs 98 and 99 (MODBUS.md 4.5 E4), so the k-th slave no longer gets ID k and MA2 is violated
+  by design.
+"""
+
+from __future__ import annotations
+
+import argparse
+import glob
+import os
+import statistics
+import subprocess
+import sys
+import time
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+ROOT = os.path.dirname(HERE)
+sys.path.insert(0, ROOT)
+
+THESIS = sorted(f for f in glob.glob(os.path.join(ROOT, "specs", "modbus", "[A-D]_[0-9].toml")))
+
+
+def timed_check(paths: list[str], repeat: int) -> tuple[float, list[float]]:
+    runs = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        r = subprocess.run([sys.executable, "-m", "cpn", "check", *paths, "--no-reports", "-q"], cwd=ROOT,
+                           capture_output=True, text=True)
+        runs.append(time.perf_counter() - t0)
+        if r.returncode != 0:
+            sys.exit(f"check failed ({r.returncode}):\n{r.stdout}{r.stderr}")
+    return statistics.median(runs), runs
+
+
+def scaling_b(budget: float) -> None:
+    from cpn.model import load
+    from cpn.statespace import ExploreOptions, Explorer
+
+    print("scenario B, PO 1, FCS [1], --time-condensation (seconds: generation)")
+    print(f"{'NS':>3} {'states':>9} {'arcs':>10} {'s':>8}   {'+ broadcast: states':>19} {'arcs':>10} {'s':>8}")
+    for ns in range(4, 17, 2):
+        row = []
+        for adrs in (list(range(1, ns + 1)), [0] + list(range(1, ns + 1))):
+            values = {"CONFIG": '"B"', "NS": str(ns), "ADRS": str(adrs).replace(" ", ""), "FCS": "[1]", "PO": "1"}
+            engine = load(os.path.join(ROOT, "models", "modbus", "modbus.cpnet"), set=values).engine(
+                time_condensation=True)
+            t0 = time.perf_counter()
+            x = Explorer(engine, ExploreOptions(time_condensation=True, max_seconds=budget)).run()
+            secs = time.perf_counter() - t0
+            row.append((x.n_states, x.n_arcs, secs, x.complete))
+        print(f"{ns:>3} {row[0][0]:>9,} {row[0][1]:>10,} {row[0][2]:>8.2f}   {row[1][0]:>19,} {row[1][1]:>10,} "
+              f"{row[1][2]:>8.2f}", flush=True)
+        if not (row[0][3] and row[1][3]):
+            print("    (stopped by the budget)")
+            return
+
+
+def scaling_modbus_a(budget: float) -> None:
+    from cpn.checks.gate import run_scenario
+    from cpn.checks.scenario import Run, load_scenario
+    from cpn.checks.verdict import Status
+
+    scenario = load_scenario(os.path.join(ROOT, "specs", "modbus", "modbus_a.toml"))
+    base = scenario.runs[0]
+    print("Modbus-A: every property of specs/modbus/modbus_a.toml (seconds: generation + deciding)")
+    print(f"{'N':>4} {'states':>9} {'arcs':>10} {'s':>8}  verdict")
+    for n in (8, 16, 24, 32, 42, 48, 64, 80, 96):
+        values = {**base.values, "N": n, "MAXN": max(64, n)}
+        run = Run(f"Modbus-A[N={n}]", {"N": n}, values)
+        t0 = time.perf_counter()
+        r = run_scenario(scenario, run, {"max_seconds": budget})
+        secs = time.perf_counter() - t0
+        x = r.exploration
+        verdicts = {p.verdict.status for p in r.results}
+        print(f"{n:>4} {x.n_states:>9,} {x.n_arcs:>10,} {secs:>8.2f}  {r.status.value}"
+              f" ({sum(1 for p in r.results if p.verdict.status is Status.HOLDS)} of {len(r.results)} hold)",
+              flush=True)
+        if not x.complete or Status.UNKNOWN in verdicts:
+            print("    (stopped by the budget)")
+            return
+
+
+# scenario -> (thesis nodes, thesis dead markings, thesis time as printed)
+THESIS_FIGURES = {
+    "A.1": ("13 905", 7, "0:16"), "A.2": ("68 101", 24, "6:45"), "A.3": ("29 245", 6, "4:47"),
+    "A.4": ("150 957", 50, "13:14"), "B.1": ("183 607", 11, "0:19"), "B.2": ("170 399", 22, "0:44"),
+    "B.3": ("190 167", 24, "0:52"), "B.4": ("33 893", 3, "1:53"), "B.5": ("295 195", 2, "24:31"),
+    "B.6": ("68 960", 2, "0:15"), "C.1": ("68 014", 24, "7:13"), "C.2": ("77 819", 24, "7:56"),
+    "C.3": ("143 440", 15, "1:02:53"), "D.1": ("86 546", 24, "0:8 (h:m)"), "D.2": ("148 520", 28, "0:28 (h:m)"),
+    "D.3": ("389 690", 68, "3:52 (h:m)"), "D.4": ("726 624", 31, "47:20 (h:m)"),
+}
+
+
+def _explore(values: dict, condensed: bool, budget: float) -> str:
+    from cpn.model import load
+    from cpn.statespace import ExploreOptions, Explorer
+
+    engine = load(os.path.join(ROOT, "models", "modbus", "modbus.cpnet"), set=values).engine(
+        time_condensation=condensed)
+    t0 = time.perf_counter()
+    x = Explorer(engine, ExploreOptions(time_condensation=condensed, max_seconds=budget)).run()
+    secs = time.perf_counter() - t0
+    if not x.complete:
+        return f"> {x.n_states:,} (stopped after {secs:.0f} s) | | |"
+    dead = [x.graph.states[i] for i in x.graph.dead_states()]
+    untimed = len({engine.untimed(s) for s in dead})
+    return f"{x.n_states:,} | {len(dead)} ({untimed}) | {secs:.2f} |"
+
+
+def table(budget: float) -> None:
+    from cpn.checks.gate import run_scenario
+    from cpn.checks.scenario import load_scenario
+
+    print("| scenario | thesis nodes | thesis DM | thesis time | check: states | arcs | DM | s "
+          "| timed: states | DM (mod. time) | s | any order, timed: states | DM (mod. time) | s |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for path in THESIS:
+        scenario = load_scenario(path)
+        run = scenario.runs[0]
+        t0 = time.perf_counter()
+        r = run_scenario(scenario, run)
+        secs = time.perf_counter() - t0
+        x = r.exploration
+        nodes, dm, tt = THESIS_FIGURES[scenario.name]
+        cells = [scenario.name, nodes, str(dm), tt, f"{x.n_states:,}", f"{x.n_arcs:,}",
+                 str(len(x.graph.dead_states())), f"{secs:.2f}"]
+        values = {k: str(v) for k, v in run.values.items()}
+        print("| " + " | ".join(cells) + " | " + _explore(values, False, budget) + " "
+              + _explore({**values, "ORDER": '"any"'}, False, budget), flush=True)
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--scaling", action="store_true")
+    ap.add_argument("--table", action="store_true")
+    ap.add_argument("--budget", type=float, default=600.0, help="seconds of generation per run (default 600)")
+    a = ap.parse_args(argv)
+    if a.table:
+        table(a.budget)
+        return 0
+    if a.scaling:
+        scaling_b(a.budget)
+        print()
+        scaling_modbus_a(a.budget)
+        return 0
+    try:
+        load = os.getloadavg()[0]
+    except OSError:
+        load = float("nan")
+    print(f"load average at start: {load:.1f}; {os.cpu_count()} CPUs")
+    med, runs = timed_check(THESIS, a.repeat)
+    print(f"check of the {len(THESIS)} thesis scenarios A.1-D.4: median {med:.1f} s "
+          f"(runs: {', '.join(f'{s:.1f}' for s in runs)})")
+    med, runs = timed_check(["specs/modbus"], a.repeat)
+    print(f"check of all of specs/modbus: median {med:.1f} s (runs: {', '.join(f'{s:.1f}' for s in runs)})")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
