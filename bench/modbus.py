@@ -22,6 +22,8 @@ The second form measures growing numbers of slaves, each run bounded by --budget
   condensation: `python -m cpn explore models/modbus/modbus.cpnet --time-condensation --set 'CONFIG="B"'
   --set NS=n --set 'ADRS=[1,...,n]' --set 'FCS=[1]' --set PO=1` (states, arcs, seconds of generation);
   the model has 16 slave instances, so NS stops at 16;
+- Modbus-A with N slaves, generation alone (`explore`), N up to 245 (IDs up to MAX_ID = 247 with 98 and 99
+  skipped);
 - Modbus-A with N slaves: every property of specs/modbus/modbus_a.toml (MA1-MA8) checked by the gate for
   N beyond the file's 1..8 (MAXN raised with N); N stops at 96: from N = 98 on the ID counter skips the
   reserved IDs 98 and 99 (MODBUS.md 4.5 E4), so the k-th slave no longer gets ID k and MA2 is violated
@@ -76,6 +78,26 @@ def scaling_b(budget: float) -> None:
         print(f"{ns:>3} {row[0][0]:>9,} {row[0][1]:>10,} {row[0][2]:>8.2f}   {row[1][0]:>19,} {row[1][1]:>10,} "
               f"{row[1][2]:>8.2f}", flush=True)
         if not (row[0][3] and row[1][3]):
+            print("    (stopped by the budget)")
+            return
+
+
+def scaling_modbus_a_explore(budget: float) -> None:
+    from cpn.model import load
+    from cpn.statespace import ExploreOptions, Explorer
+
+    print("Modbus-A, generation alone: python -m cpn explore models/modbus/modbus_a.cpnet --time-condensation "
+          "--set N=n --set MAXN=max(64,n)")
+    print(f"{'N':>4} {'states':>9} {'arcs':>10} {'dead':>5} {'s':>8}")
+    for n in (8, 16, 32, 42, 64, 96, 128, 192, 245):
+        engine = load(os.path.join(ROOT, "models", "modbus", "modbus_a.cpnet"),
+                      set={"N": str(n), "MAXN": str(max(64, n))}).engine(time_condensation=True)
+        t0 = time.perf_counter()
+        x = Explorer(engine, ExploreOptions(time_condensation=True, max_seconds=budget)).run()
+        secs = time.perf_counter() - t0
+        print(f"{n:>4} {x.n_states:>9,} {x.n_arcs:>10,} {len(x.graph.dead_states()) if x.complete else '-':>5} "
+              f"{secs:>8.2f}", flush=True)
+        if not x.complete:
             print("    (stopped by the budget)")
             return
 
@@ -166,6 +188,8 @@ def main(argv=None) -> int:
         return 0
     if a.scaling:
         scaling_b(a.budget)
+        print()
+        scaling_modbus_a_explore(a.budget)
         print()
         scaling_modbus_a(a.budget)
         return 0
