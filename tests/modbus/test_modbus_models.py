@@ -253,3 +253,12 @@ def test_frames_in_any_order_each_sent_once():
         orders.add(e.only(d, "Master'LastClosed 1"))
     assert orders == {1, 2, 3, 4, 5, 6}  # any frame can be the last one
     assert not e.has_cycle()
+
+
+def test_modbus_a_loads_long_chains():
+    # issue 11: the initial marking of 200 slaves (range was a recursive CPN ML function: it failed past
+    # about 100 slaves); the reset then travels the whole chain
+    model = cpn.load(MODBUS_A, set={"N": "200", "MAXN": "200"})
+    engine = model.engine(time_condensation=True)
+    x = Explorer(engine, cpn.statespace.ExploreOptions(time_condensation=True, max_states=250)).run()
+    assert x.n_states == 250
