@@ -207,7 +207,7 @@ def run_report(result, timings: bool = True) -> dict:
         "scenario": scen.name,
         "run": result.run.name,
         "file": scen.path,
-        "model": scen.model,
+        "model": _portable(scen.model),
         "parameters": result.run.params,
         "values": result.run.values,
         "options": {k: v for k, v in sorted(result.options.items())},
@@ -301,3 +301,12 @@ def render_markdown(doc: dict) -> str:
             out += render_steps(p["trace"], indent="")
             out.append("```")
     return "\n".join(out) + "\n"
+
+
+def _portable(path: str) -> str:
+    """A model path as reports keep it: relative to the working directory (the same in every clone of a
+    repository), absolute only where no relative path exists."""
+    try:
+        return os.path.relpath(path)
+    except ValueError:  # another drive
+        return path
