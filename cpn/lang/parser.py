@@ -10,13 +10,13 @@ import re
 from importlib import resources
 
 from lark import Lark
-from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken
+from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken, VisitError
 
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import ModelSyntaxError
 from cpn.lang import ast as A
 from cpn.lang.syntax_errors import CASE_RULE_DELAY, SYNTAX_ERRORS, TERMINAL_NAMES
-from cpn.lang.transform import ToAst
+from cpn.lang.transform import ToAst, balance_chains
 
 MAX_SYNTAX_ERRORS: int = 50
 BOM: str = "\ufeff"
@@ -266,5 +266,10 @@ def parse(text: str, filename: str = "<string>") -> A.Model:
             work = work[:start] + blank + work[nxt:]
     if diags:
         raise ModelSyntaxError(diags, {filename: text})
-    decls = ToAst(filename).transform(tree)
+    try:
+        decls = ToAst(filename).transform(balance_chains(tree))
+    except VisitError as exc:
+        if isinstance(exc.orig_exc, RecursionError):
+            raise exc.orig_exc from None  # too deeply nested: the caller reports E0206
+        raise
     return A.Model(filename, text, decls)

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from lark import Token, Transformer, v_args
+from lark import Token, Transformer, Tree, v_args
+from lark.tree import Meta
 
 from cpn.diagnostics import Span
 from cpn.lang import ast as A
@@ -23,12 +24,84 @@ def _unescape(text: str) -> str:
     return "".join(out)
 
 
-
 def _end_col(node) -> int:
     """The column of the last character (lark's end column is one past it); on the start line a span
     never ends before it starts, on a later line its end column is its own."""
     end = node.end_column - 1
     return max(end, node.column) if node.end_line == node.line else max(end, 1)
+
+
+# Operators whose chains may be regrouped without changing the value, the order in which the operands are
+# evaluated, or the type: multiset sums, list and string concatenation.
+ASSOCIATIVE_OPS: frozenset[str] = frozenset({"++", "+++", "^^", "@", "^"})
+
+
+def _chain_op(node) -> str | None:
+    if isinstance(node, Tree) and node.data == "binop" and len(node.children) == 3:
+        op = str(node.children[1])
+        if op in ASSOCIATIVE_OPS:
+            return op
+    return None
+
+
+def balance_chains(tree: Tree) -> Tree:
+    """Regroup every long chain of one associative operator (`a ++ b ++ ... ++ z`) into a balanced tree.
+
+    A 600-term `++` initial marking is one flat list of operands, not 600 levels of nesting: regrouped, it
+    is about ten levels deep, so only real nesting (parentheses, `let`, `if` inside each other) can make a
+    model too deep to read. Iterative, so a chain of any length is handled.
+    """
+    stack = [tree]
+    while stack:
+        node = stack.pop()
+        if not isinstance(node, Tree):
+            continue
+        for i, child in enumerate(node.children):
+            op = _chain_op(child)
+            if op is not None:
+                operands = _flatten(child, op)
+                if len(operands) > 2:
+                    node.children[i] = _balanced(operands, op, child.children[1])
+                    stack.extend(operands)
+                    continue
+            stack.append(child)
+    return tree
+
+
+def _flatten(node: Tree, op: str) -> list:
+    """The operands of a chain of `op`, left to right, whichever way the chain is grouped."""
+    out = []
+    todo = [node]
+    while todo:
+        n = todo.pop()
+        if _chain_op(n) == op:
+            todo.append(n.children[2])
+            todo.append(n.children[0])
+        else:
+            out.append(n)
+    return out
+
+
+def _balanced(operands: list, op: str, token) -> Tree:
+    level = list(operands)
+    while len(level) > 1:
+        nxt = [_join(level[k], token, level[k + 1]) for k in range(0, len(level) - 1, 2)]
+        if len(level) % 2:
+            nxt.append(level[-1])
+        level = nxt
+    return level[0]
+
+
+def _join(left, token, right) -> Tree:
+    meta = Meta()
+    first, last = getattr(left, "meta", None), getattr(right, "meta", None)
+    if first is not None and last is not None and not first.empty and not last.empty:
+        meta.line, meta.column = first.line, first.column
+        meta.end_line, meta.end_column = last.end_line, last.end_column
+        meta.start_pos, meta.end_pos = first.start_pos, last.end_pos
+        meta.empty = False
+    return Tree("binop", [left, token, right], meta)
+
 
 class ToAst(Transformer):
     def __init__(self, filename: str):
