@@ -102,7 +102,7 @@ def pat(p: A.Pat) -> str:
         return f"({p.name} ({pat(p.arg)}))"
     if isinstance(p, A.PRecord):
         inner = [f"{label} = {pat(q)}" for label, q in p.fields] + (["..."] if p.flexible else [])
-        return "{" + ", ".join(inner[:-1] if p.flexible else inner) + (" ..." if p.flexible else "") + "}"
+        return "{" + ", ".join(inner) + "}"
     if isinstance(p, A.PAs):
         return f"({p.name} as {pat(p.pat)})"
     if isinstance(p, A.PAnnot):

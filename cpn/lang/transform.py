@@ -428,6 +428,11 @@ class ToAst(Transformer):
         return (str(items[0]), items[1])
 
     @v_args(meta=True)
+    def pfield_annot(self, meta, items):
+        tok, ty = items
+        return (str(tok), A.PAnnot(self.span(meta), A.PVar(self.tspan(tok), str(tok)), ty))
+
+    @v_args(meta=True)
     def let_(self, meta, items):
         decls = [i for i in items if isinstance(i, A.Decl)]
         exprs = [i for i in items if not isinstance(i, A.Decl)]
