@@ -48,6 +48,9 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    help="identify states that differ only by a uniform time shift (CPN Tools' CreationTime)")
     p.add_argument("--no-time-growth-check", action="store_true",
                    help="do not stop a timed search whose markings modulo time no longer change")
+    p.add_argument("--until-time", type=int, metavar="B", default=None,
+                   help="expand no state whose model time (clock) exceeds B: the timed state space up to "
+                        "time B, reported as partial when some state lies beyond B")
     add_output_option(p, "--json", "the result as JSON")
     add_output_option(p, "--dot", "the state space and SCC graph as DOT (small nets)")
     add_output_option(p, "--graphml", "the state space and SCC graph as GraphML (small nets)")
@@ -82,6 +85,8 @@ def run(args) -> int:
     check_limits(args)
     if args.max_listed is not None and args.max_listed < 0:
         raise UsageError(f"--max-listed must not be negative, got {args.max_listed}")
+    if getattr(args, "until_time", None) is not None and args.until_time < 0:
+        raise UsageError(f"--until-time must not be negative, got {args.until_time}")
     _outputs(args)  # before the model is even loaded: a long run must never be lost to a bad path
     if not os.path.exists(args.model):
         raise UsageError(f"no such model file: '{args.model}'")
@@ -94,7 +99,8 @@ def _options(args):
 
     return ExploreOptions(max_states=args.max_states, max_arcs=args.max_arcs, max_seconds=args.max_seconds,
                           max_memory_mb=args.max_memory, time_condensation=args.time_condensation,
-                          detect_time_growth=not args.no_time_growth_check)
+                          detect_time_growth=not args.no_time_growth_check,
+                          until_time=getattr(args, "until_time", None))
 
 
 def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
@@ -107,6 +113,8 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
     outputs = {o.option: o for o in _outputs(args)}
     quiet = bool(getattr(args, "quiet", False))
     options = _options(args)
+    if options.until_time is not None and not getattr(engine, "is_timed", False) and not quiet:
+        print("note: the model is untimed (its clock is always 0): --until-time has no effect", file=sys.stderr)
     display = _ProgressLine() if (not quiet and sys.stderr.isatty()) else None
     try:
         x = Explorer(engine, options, progress=display).run()
@@ -120,7 +128,8 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
     opts = {"set": sets or {}, "max_states": args.max_states, "max_arcs": args.max_arcs,
             "max_seconds": args.max_seconds, "max_memory_mb": args.max_memory,
             "max_memory_is_default": memory_default,
-            "time_condensation": bool(args.time_condensation)}
+            "time_condensation": bool(args.time_condensation),
+            "until_time": getattr(args, "until_time", None)}
     # --max-listed N: every text cap and the number of dead markings listed become N (0: no cap)
     max_listed = getattr(args, "max_listed", None)
     caps = {} if max_listed is None else {"max_listed": max_listed if max_listed > 0 else None}

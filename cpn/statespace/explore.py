@@ -150,6 +150,13 @@ class Explorer:
         watcher = self._watcher
         timed_check = watcher is not None and opts.detect_time_growth and not self._reads_clock
 
+        # --until-time: a state whose clock exceeds the bound gets a provisional negative number and is
+        # stored after all the others when the search ends, so that the expanded states stay 0..expanded-1.
+        until = opts.until_time if engine.is_timed else None
+        clock_of = engine.clock if until is not None else None
+        beyond = _Beyond()
+        beyond_get = beyond.index.get
+
         stop = StopReason.COMPLETE
         predicate_state = None
         successors = engine.successors
@@ -184,7 +191,7 @@ class Explorer:
                     stop = self._check_limits(len(states), n_arcs, len(states) - head)
                     if stop is not StopReason.COMPLETE:
                         break
-                if len(states) >= max_states:
+                if len(states) + len(beyond.states) >= max_states:
                     stop = StopReason.MAX_STATES
                     break
                 if n_arcs >= max_arcs:
@@ -192,7 +199,13 @@ class Explorer:
                     break
                 for be, t in successors(states[head]):
                     j = index_get(t)
-                    if j is None:
+                    if j is None and until is not None and clock_of(t) > until:
+                        j = beyond_get(t)
+                        if j is None:
+                            j = beyond.add(t, head, be)
+                            if pred is not None and pred(t):
+                                stop, predicate_state = StopReason.PREDICATE, j
+                    elif j is None:
                         j = len(states)
                         index[t] = j
                         states_append(t)
@@ -212,6 +225,7 @@ class Explorer:
                 head += 1
         except EvaluationError as err:
             # An inscription or guard failed while expanding state `head`: say how it is reached.
+            beyond.store(g)
             if not err.trace:
                 err.trace = [step.text for step in shortest_trace(g, head, engine).steps]
             raise
@@ -223,6 +237,11 @@ class Explorer:
         finally:
             if gc_was_enabled:
                 gc.enable()
+        if predicate_state is not None and predicate_state < 0:
+            predicate_state = len(states) - 1 - predicate_state
+        if beyond.states and stop is StopReason.COMPLETE:
+            stop = StopReason.UNTIL_TIME
+        beyond.store(g)
         return stop, predicate_state, levels
 
     def _check_limits(self, n_states: int, n_arcs: int, queue: int) -> StopReason:
@@ -261,6 +280,40 @@ class Explorer:
             time_growth=watcher.evidence() if stop is StopReason.TIME_GROWS else None,
             levels=levels, notes=notes,
         )
+
+
+class _Beyond:
+    """The states past the model-time bound, numbered -1, -2, ... while the search runs."""
+
+    def __init__(self):
+        self.index: dict = {}
+        self.states: list = []
+        self.parent: list[int] = []
+        self.parent_be: list[int] = []
+
+    def add(self, state, parent: int, be: int) -> int:
+        j = -1 - len(self.states)
+        self.index[state] = j
+        self.states.append(state)
+        self.parent.append(parent)
+        self.parent_be.append(be)
+        return j
+
+    def store(self, g: StateGraph) -> None:
+        """Append the states to the graph after all the others and renumber the arcs that reach them."""
+        if not self.states:
+            return
+        base = len(g.states)
+        for k, s in enumerate(self.states):
+            g.index[s] = base + k
+        g.states.extend(self.states)
+        g.parent.extend(array("i", self.parent))
+        g.parent_be.extend(array("i", self.parent_be))
+        dst = g.dst
+        for i, d in enumerate(dst):
+            if d < 0:
+                dst[i] = base - 1 - d
+        self.states, self.index, self.parent, self.parent_be = [], {}, [], []
 
 
 class _TimeGrowthWatcher:

@@ -25,6 +25,7 @@ class StopReason(enum.Enum):
     PREDICATE = "predicate"
     INTERRUPTED = "interrupted"
     TIME_GROWS = "time_grows"
+    UNTIL_TIME = "until_time"
 
     def describe(self, options: ExploreOptions | None = None) -> str:
         """One sentence saying why the search stopped, with the limit that stopped it."""
@@ -37,6 +38,9 @@ class StopReason(enum.Enum):
             return "interrupted by the user"
         if self is StopReason.TIME_GROWS:
             return "the state space grows only because time grows"
+        if self is StopReason.UNTIL_TIME:
+            return (f"the model-time bound until_time={o.until_time} was reached: the states whose clock "
+                    "exceeds it were not expanded")
         limit = {StopReason.MAX_STATES: o.max_states, StopReason.MAX_ARCS: o.max_arcs,
                  StopReason.MAX_SECONDS: o.max_seconds, StopReason.MAX_MEMORY: o.max_memory_mb}[self]
         return f"{self.value.replace('max_memory', 'max_memory_mb')}={limit:g} was reached" if limit is not None else f"{self.value} was reached"
@@ -47,7 +51,9 @@ class ExploreOptions:
     """Limits of one exploration. None means no limit.
 
     `stop_predicate(state) -> bool` is evaluated on every newly stored state (and the initial
-    state); the search stops at the first state for which it is true. `time_condensation` is only
+    state); the search stops at the first state for which it is true. `until_time` bounds model time: a
+    state whose clock exceeds it is stored but never expanded (the timed state space up to that time).
+    `time_condensation` is only
     recorded here (the engine applies it when built); `detect_time_growth` lets the explorer stop
     a timed search whose untimed markings no longer change while the clock keeps growing.
     """
@@ -59,6 +65,7 @@ class ExploreOptions:
     stop_predicate: Callable[[tuple], bool] | None = None
     time_condensation: bool = False
     detect_time_growth: bool = True
+    until_time: int | None = None
     progress_interval: float = 0.5
 
 
