@@ -41,7 +41,8 @@ _SEVERITY = [ExitStatus.OK, ExitStatus.UNKNOWN, ExitStatus.VIOLATED, ExitStatus.
 EPILOG = """exit statuses:
   0   done: every property holds on a complete state space (lint: no error)
   1   a property is violated (only 'cpn-verify check' verifies properties)
-  2   unknown: a limit stopped the search first (a partial report is printed)
+  2   unknown: a limit stopped the search first (a partial report is printed), or branching
+      options restricted the state space
   64  bad usage, or a model file that does not exist
   65  bad model or scenario file, or an error while evaluating the model
   70  internal error (a bug in cpn-verify: please report it)

@@ -48,6 +48,13 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    help="identify states that differ only by a uniform time shift (CPN Tools' CreationTime)")
     p.add_argument("--no-time-growth-check", action="store_true",
                    help="do not stop a timed search whose markings modulo time no longer change")
+    p.add_argument("--branch-transitions", metavar="NAMES", default=None,
+                   help="branching option: explore only the binding elements of these transitions "
+                        "(comma-separated; a name as in the report, Top'Send 1, or a transition's name, "
+                        "for all its instances): a restricted state space")
+    p.add_argument("--max-successors", type=int, metavar="N", default=None,
+                   help="branching option: explore at most N successors of each state (the first in the "
+                        "engine's fixed order): a restricted state space")
     p.add_argument("--until-time", type=int, metavar="B", default=None,
                    help="expand no state whose model time (clock) exceeds B: the timed state space up to "
                         "time B, reported as partial when some state lies beyond B")
@@ -85,6 +92,8 @@ def run(args) -> int:
     check_limits(args)
     if args.max_listed is not None and args.max_listed < 0:
         raise UsageError(f"--max-listed must not be negative, got {args.max_listed}")
+    if getattr(args, "max_successors", None) is not None and args.max_successors <= 0:
+        raise UsageError(f"--max-successors must be positive, got {args.max_successors}")
     if getattr(args, "until_time", None) is not None and args.until_time < 0:
         raise UsageError(f"--until-time must not be negative, got {args.until_time}")
     _outputs(args)  # before the model is even loaded: a long run must never be lost to a bad path
@@ -103,6 +112,34 @@ def _options(args):
                           until_time=getattr(args, "until_time", None))
 
 
+def _branching_options(engine, options, names: str | None, max_successors: int | None):
+    """The options with the branching options of the command line (a UsageError for an unknown name)."""
+    import dataclasses
+
+    if names is None and max_successors is None:
+        return options
+    pred = text = None
+    if names is not None:
+        wanted = [n.strip() for n in names.split(",") if n.strip()]
+        if not wanted:
+            raise UsageError("--branch-transitions needs at least one transition name")
+        chosen = set()
+        for name in wanted:
+            found = {i for i, t in enumerate(engine.transitions)
+                     if t.name == name or t.name.rsplit(" ", 1)[0].split("'", 1)[-1] == name}
+            if not found:
+                raise UsageError(f"--branch-transitions: the model has no transition '{name}' (its transitions: "
+                                 + ", ".join(t.name for t in engine.transitions) + ")")
+            chosen |= found
+        names_text = ", ".join(engine.transitions[i].name for i in sorted(chosen))
+        text = f"only the binding elements of {names_text}"
+
+        def pred(be, chosen=frozenset(chosen)):
+            return engine.binding_element(be).transition in chosen
+    return dataclasses.replace(options, branching_predicate=pred, branching_text=text,
+                               max_successors=max_successors)
+
+
 def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
     """Explore, report and export for an already built engine (the part of `run` after loading)."""
     from cpn.errors import EvaluationError
@@ -112,7 +149,8 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
 
     outputs = {o.option: o for o in _outputs(args)}
     quiet = bool(getattr(args, "quiet", False))
-    options = _options(args)
+    options = _branching_options(engine, _options(args), getattr(args, "branch_transitions", None),
+                                 getattr(args, "max_successors", None))
     if options.until_time is not None and not getattr(engine, "is_timed", False) and not quiet:
         print("note: the model is untimed (its clock is always 0): --until-time has no effect", file=sys.stderr)
     display = _ProgressLine() if (not quiet and sys.stderr.isatty()) else None
@@ -129,7 +167,9 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
             "max_seconds": args.max_seconds, "max_memory_mb": args.max_memory,
             "max_memory_is_default": memory_default,
             "time_condensation": bool(args.time_condensation),
-            "until_time": getattr(args, "until_time", None)}
+            "until_time": getattr(args, "until_time", None),
+            "branch_transitions": getattr(args, "branch_transitions", None),
+            "max_successors": getattr(args, "max_successors", None)}
     # --max-listed N: every text cap and the number of dead markings listed become N (0: no cap)
     max_listed = getattr(args, "max_listed", None)
     caps = {} if max_listed is None else {"max_listed": max_listed if max_listed > 0 else None}
@@ -165,6 +205,11 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
               f"{noun(x.unexpanded, 'state was', 'states were')} not expanded", file=sys.stderr)
         for note in report.notes:
             print(f"note: {note}", file=sys.stderr)
+        return ExitStatus.UNKNOWN
+    if x.restricted:
+        # a warning about the result, so printed even with --quiet
+        print(f"restricted state space (branching options: {x.options.restriction()}): its figures are not "
+              "those of the whole state space", file=sys.stderr)
         return ExitStatus.UNKNOWN
     return ExitStatus.OK
 

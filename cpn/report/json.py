@@ -38,6 +38,8 @@ def to_json(r: Report) -> dict:
             "stop_reason": x.stop_reason.value,
             "stop_message": x.stop_reason.describe(x.options),
             "unexpanded": x.unexpanded,
+            "restricted": x.restricted,
+            "restriction": x.options.restriction(),
             "seconds": round(x.seconds, 3),
             "peak_memory_mb": round(x.peak_memory_mb, 1),
             "timed": r.timed,

@@ -147,6 +147,8 @@ def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | No
     status = "Full" if x.complete else (
         f"Partial (stopped because {x.stop_reason.describe(x.options)}; {x.unexpanded} unexpanded "
         f"{noun(x.unexpanded, 'node')})")
+    if x.restricted:
+        status += f"; a restricted state space (branching options: {x.options.restriction()})"
     out += ["  State Space", f"     Nodes:  {x.n_states}", f"     Arcs:   {x.n_arcs}",
             f"     Secs:   {int(x.seconds)}", f"     Status: {status}", ""]
     out += ["  Scc Graph", f"     Nodes:  {r.scc.nodes}", f"     Arcs:   {r.scc.arcs}",

@@ -80,6 +80,11 @@ class Exploration:
     def unexpanded(self) -> int:
         return self.graph.n_states - self.graph.expanded
 
+    @property
+    def restricted(self) -> bool:
+        """Branching options left out some successors: this is a restricted state space."""
+        return self.options.restricted
+
 
 class Explorer:
     """A breadth-first search over an engine's states, recording why it stopped.
@@ -160,6 +165,8 @@ class Explorer:
         stop = StopReason.COMPLETE
         predicate_state = None
         successors = engine.successors
+        if opts.restricted:
+            successors = _branching(successors, opts)
         index_get = index.get
         states_append = states.append
         parent_append = parent.append
@@ -280,6 +287,29 @@ class Explorer:
             time_growth=watcher.evidence() if stop is StopReason.TIME_GROWS else None,
             levels=levels, notes=notes,
         )
+
+
+def _branching(successors, opts: ExploreOptions):
+    """`successors` restricted by the branching options (the predicate is asked once per binding element)."""
+    pred = opts.branching_predicate
+    cap = opts.max_successors
+    verdict: dict[int, bool] = {}
+
+    def keep(be: int) -> bool:
+        v = verdict.get(be)
+        if v is None:
+            v = verdict[be] = bool(pred(be))
+        return v
+
+    def restricted(state):
+        succ = successors(state)
+        if pred is not None:
+            succ = [(be, t) for be, t in succ if keep(be)]
+        if cap is not None:
+            succ = succ[:cap]
+        return succ
+
+    return restricted
 
 
 class _Beyond:

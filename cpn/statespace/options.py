@@ -53,7 +53,11 @@ class ExploreOptions:
     `stop_predicate(state) -> bool` is evaluated on every newly stored state (and the initial
     state); the search stops at the first state for which it is true. `until_time` bounds model time: a
     state whose clock exceeds it is stored but never expanded (the timed state space up to that time).
-    `time_condensation` is only
+    Branching options (CPN Tools' state space tool has them): `branching_predicate(be) -> bool`, on
+    binding element ids (`engine.binding_element(be)` gives the transition and the binding), keeps only the
+    binding elements for which it is true; `max_successors` keeps at most that many arcs per state (the
+    first ones, in the engine's fixed order). Either makes the result a restricted state space, and
+    `branching_text` says how it was restricted in the report. `time_condensation` is only
     recorded here (the engine applies it when built); `detect_time_growth` lets the explorer stop
     a timed search whose untimed markings no longer change while the clock keeps growing.
     """
@@ -66,6 +70,26 @@ class ExploreOptions:
     time_condensation: bool = False
     detect_time_growth: bool = True
     until_time: int | None = None
+    branching_predicate: Callable[[int], bool] | None = None
+    max_successors: int | None = None
+    branching_text: str | None = None
+
+    @property
+    def restricted(self) -> bool:
+        """True if branching options restrict which successors are explored."""
+        return self.branching_predicate is not None or self.max_successors is not None
+
+    def restriction(self) -> str | None:
+        """The branching options in words, for reports (None if there are none)."""
+        if not self.restricted:
+            return None
+        parts = []
+        if self.branching_predicate is not None:
+            parts.append(self.branching_text or "only the binding elements satisfying the branching predicate")
+        if self.max_successors is not None:
+            parts.append(f"at most {self.max_successors} successor{'s' if self.max_successors != 1 else ''} "
+                         "per state")
+        return "; ".join(parts)
     progress_interval: float = 0.5
 
 

@@ -15,7 +15,11 @@ def model_path(name: str) -> str:
 
 def figures(name: str, reference: bool = False, **options) -> tuple[int, int, int]:
     """(nodes, arcs, dead markings) of the state space of a model beside this file."""
-    engine = cpn.load(model_path(name)).engine(reference=reference)
+    return engine_figures(cpn.load(model_path(name)).engine(reference=reference), **options)
+
+
+def engine_figures(engine, **options) -> tuple[int, int, int]:
+    """(nodes, arcs, dead markings) of the state space of an engine."""
     result = Explorer(engine, ExploreOptions(**options)).run()
     g = result.graph
     dead = sum(1 for i in range(g.expanded) if g.offsets[i] == g.offsets[i + 1])
