@@ -149,7 +149,8 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     options = ExploreOptions(max_states=opts.get("max_states"), max_arcs=opts.get("max_arcs"),
                              max_seconds=opts.get("max_seconds"), max_memory_mb=opts.get("max_memory_mb"),
                              stop_predicate=monitor, time_condensation=bool(opts.get("time_condensation", False)),
-                             detect_time_growth=bool(opts.get("detect_time_growth", True)))
+                             detect_time_growth=bool(opts.get("detect_time_growth", True)),
+                             until_time=opts.get("until_time"))
     t0 = time.perf_counter()
     x = Explorer(watch if watch is not None else engine, options, progress=progress).run()
     explore_seconds = time.perf_counter() - t0

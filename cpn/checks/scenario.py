@@ -19,7 +19,8 @@ from cpn.errors import ModelError
 
 TOP_KEYS = {"name", "model", "description", "set", "explore", "parameters", "property"}
 EXPLORE_KEYS = {"max_states": int, "max_arcs": int, "max_seconds": (int, float), "max_memory_mb": (int, float),
-                "time_condensation": bool, "stop_at_first_violation": bool, "detect_time_growth": bool}
+                "time_condensation": bool, "stop_at_first_violation": bool, "detect_time_growth": bool,
+                "until_time": int}
 # kind -> (required fields, optional fields); every kind also takes name and description
 KINDS: dict[str, tuple[set, set]] = {
     "invariant": ({"expr"}, set()),
@@ -347,7 +348,10 @@ def _explore(r: _Reader, table) -> dict:
                     hint=f"The options are {', '.join(sorted(EXPLORE_KEYS))}.")
             continue
         ok = isinstance(v, want) and (want is bool or not isinstance(v, bool))
-        if not ok or (want is not bool and v <= 0):
+        if k == "until_time" and ok and v < 0:  # a model-time bound: 0 is a bound
+            r.error("E0702", "'until_time' must be a model time, 0 or more", r.value_span(("explore",), k))
+            continue
+        if not ok or (want is not bool and k != "until_time" and v <= 0):
             r.error("E0702", f"'{k}' must be {'true or false' if want is bool else 'a positive number'}",
                     r.value_span(("explore",), k))
             continue

@@ -92,3 +92,25 @@ def test_a_negative_bound_is_a_usage_error(capsys):
 def test_an_untimed_model_is_noted(capsys):
     assert main(["explore", "--until-time", "3", model_path("records.cpnet")]) == 0
     assert "untimed" in capsys.readouterr().err
+
+
+def _scenario(tmp_path, explore):
+    path = tmp_path / "s.toml"
+    path.write_text(f'model = "{model_path("until.cpnet")}"\n[explore]\n{explore}\n'
+                    '[[property]]\nname = "one token"\nkind = "invariant"\nexpr = "size (Top\'P 1) = 1"\n',
+                    encoding="utf-8")
+    return str(path)
+
+
+def test_a_scenario_file_bounds_model_time_in_its_explore_table(tmp_path, capsys):
+    code = main(["check", "--reports", str(tmp_path / "r"), _scenario(tmp_path, "until_time = 12")])
+    out = capsys.readouterr().out
+    # the invariant holds on the 5 states up to time 12, but beyond lies more: unknown
+    assert code == 2 and "unknown" in out
+    data = json.loads(next((tmp_path / "r").rglob("*.json")).read_text())
+    assert '"until_time"' in json.dumps(data)
+
+
+def test_a_negative_bound_in_a_scenario_file_is_a_positioned_error(tmp_path, capsys):
+    assert main(["check", "--reports", str(tmp_path / "r"), _scenario(tmp_path, "until_time = -1")]) == 65
+    assert "s.toml:3:14: error[E0702]: 'until_time' must be a model time" in capsys.readouterr().err
