@@ -36,6 +36,11 @@ def _end_col(node) -> int:
 ASSOCIATIVE_OPS: frozenset[str] = frozenset({"++", "+++", "^^", "@", "^"})
 
 
+# A chain `a1 :: a2 :: ... :: t` of at least this many '::' is read as `[a1, a2, ...] @ t` (the same value,
+# the operands evaluated in the same order); shorter chains keep their '::' and its messages.
+LONG_CONS_CHAIN: int = 32
+
+
 def _chain_op(node) -> str | None:
     if isinstance(node, Tree) and node.data == "binop" and len(node.children) == 3:
         op = str(node.children[1])
@@ -57,6 +62,9 @@ def balance_chains(tree: Tree) -> Tree:
         if not isinstance(node, Tree):
             continue
         for i, child in enumerate(node.children):
+            cons = _cons_chain(child)
+            if cons is not None:
+                node.children[i] = child = cons
             op = _chain_op(child)
             if op is not None:
                 operands = _flatten(child, op)
@@ -66,6 +74,40 @@ def balance_chains(tree: Tree) -> Tree:
                     continue
             stack.append(child)
     return tree
+
+
+def _is_cons(node) -> bool:
+    return isinstance(node, Tree) and node.data == "binop" and len(node.children) == 3 \
+        and str(node.children[1]) == "::"
+
+
+def _cons_chain(node) -> Tree | None:
+    """`[a1, ..., an] @ t` for a chain of at least LONG_CONS_CHAIN '::', else None."""
+    if not _is_cons(node):
+        return None
+    heads = []
+    tail = node
+    while _is_cons(tail):
+        heads.append(tail.children[0])
+        tail = tail.children[2]
+    if len(heads) < LONG_CONS_CHAIN:
+        return None
+    if isinstance(tail, Tree) and tail.data == "list_":
+        return Tree("list_", heads + [c for c in tail.children if c is not None], _span_meta(heads[0], tail))
+    lst = Tree("list_", heads, _span_meta(heads[0], heads[-1]))
+    token = Token("CONSOP", "@")
+    return _join(lst, token, tail)
+
+
+def _span_meta(first_node, last_node) -> Meta:
+    meta = Meta()
+    first, last = getattr(first_node, "meta", None), getattr(last_node, "meta", None)
+    if first is not None and last is not None and not first.empty and not last.empty:
+        meta.line, meta.column = first.line, first.column
+        meta.end_line, meta.end_column = last.end_line, last.end_column
+        meta.start_pos, meta.end_pos = first.start_pos, last.end_pos
+        meta.empty = False
+    return meta
 
 
 def _flatten(node: Tree, op: str) -> list:
@@ -93,14 +135,7 @@ def _balanced(operands: list, op: str, token) -> Tree:
 
 
 def _join(left, token, right) -> Tree:
-    meta = Meta()
-    first, last = getattr(left, "meta", None), getattr(right, "meta", None)
-    if first is not None and last is not None and not first.empty and not last.empty:
-        meta.line, meta.column = first.line, first.column
-        meta.end_line, meta.end_column = last.end_line, last.end_column
-        meta.start_pos, meta.end_pos = first.start_pos, last.end_pos
-        meta.empty = False
-    return Tree("binop", [left, token, right], meta)
+    return Tree("binop", [left, token, right], _span_meta(left, right))
 
 
 class ToAst(Transformer):

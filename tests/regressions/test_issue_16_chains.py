@@ -63,3 +63,21 @@ def test_real_nesting_is_still_refused_with_e0206():
 def test_the_chain_model_has_its_hand_checked_figures(name, reference):
     # 600 tokens 0..599; only 598 and 599 pass the guard and each moves once: 4 states, 4 arcs, 1 dead
     assert figures(name, reference=reference) == (4, 4, 1)
+
+
+@pytest.mark.parametrize("reference", [False, True])
+@pytest.mark.parametrize("tail,extra", [("[]", []), ("[7, 8]", [7, 8]), ("l0", [9])])
+def test_a_long_cons_chain_keeps_its_value(reference, tail, extra):
+    n = 600
+    src = ("colset L = list INT;\nval l0 = [9];\n"
+           "val l = " + " :: ".join(str(i) for i in range(n)) + f" :: {tail};\n"
+           "place P : L = 1`l;\n")
+    e = cpn.loads(src, "m.cpnet").engine(reference=reference)
+    expected = "[" + ",".join(str(i) for i in [*range(n), *extra]) + "]"
+    assert e.format_marking(e.initial_state(), 0) == "1`" + expected
+
+
+def test_a_short_cons_chain_keeps_its_own_messages():
+    with pytest.raises(ModelError) as info:
+        cpn.loads('val l = 1 :: "a" :: [];', "m.cpnet")
+    assert "'::'" in info.value.diagnostics[0].message
