@@ -104,6 +104,7 @@ TYPES: dict[str, str] = {
     "union": "''a list -> ''a list -> ''a list",
     "intersect": "''a list -> ''a list -> ''a list",
     "list_to_ms": "'a list -> 'a ms",
+    "ms_to_list": "'a ms -> 'a list",
     "Int.toString": "int -> string",
     "Int.max": "int * int -> int",
     "Int.min": "int * int -> int",

@@ -195,6 +195,11 @@ class TypeInference:
         r = T.TVar()
         pf = T.prune(ft)
         if isinstance(pf, T.TFun):
+            pa, pt = T.prune(pf.arg), T.prune(at)
+            if isinstance(pa, T.TCon) and pa.name == "list" and isinstance(pt, T.TCon) and pt.name == "ms":
+                # a multiset where a list is expected: CPN Tools' multisets are lists (`List.map f (CS.all())`)
+                e.arg = self.ms_as_list(e.arg, pt)
+                at = T.lst(pt.args[0])
             self.must(at, pf.arg, e.arg.span, f"the argument of {self._fn_name(e.fn)}")
             self.must(pf.res, r, e.span, "an application")
         else:

@@ -85,6 +85,13 @@ class MultisetInference:
         fn.ref = self.builtin_syms["list_to_ms"]
         return A.App(e.span, fn, e, ty=mst)
 
+    def ms_as_list(self, e: A.Expr, mst: T.Type) -> A.Expr:
+        """The list of the elements of multiset expression e, in the order of its colour set: ``ms_to_list e``."""
+        lt = T.lst(mst.args[0])
+        fn = A.Name(e.span, "ms_to_list", ty=T.TFun(mst, lt))
+        fn.ref = self.builtin_syms["ms_to_list"]
+        return A.App(e.span, fn, e, ty=lt)
+
     def infer_delay(self, e: A.BinOp, env: Env) -> None:
         """The delay d of `tokens @+ d`: an integer."""
         dt = self.infer(e.right, env)

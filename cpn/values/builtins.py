@@ -137,6 +137,25 @@ def _list_to_ms(lst):
     return Multiset(lst)
 
 
+def _order_key(v):
+    """A total order on the values of one colour set, for the lists CPN Tools' multisets are: numbers,
+    strings, enumeration constants (by declaration) and union constructors (by tag) compare as CPN Tools
+    orders them; products, records and lists compare component by component (records by field name)."""
+    if isinstance(v, tuple):
+        out: tuple = ()
+        for x in v:
+            out += _order_key(x)
+        return out
+    return (v,)
+
+
+def _ms_to_list(m):
+    """The elements of a multiset, each as often as it occurs, in the order of its colour set."""
+    if isinstance(m, TimedMultiset):
+        m = m.untimed()
+    return tuple(x for x, n in sorted(m.items(), key=lambda it: _order_key(it[0])) for _ in range(n))
+
+
 def _foldl(f):
     return lambda init: lambda lst: _fold(f, init, lst)
 
@@ -197,6 +216,7 @@ FUNCTIONS: dict[str, Any] = {
     "union": lambda a: lambda b: a + tuple(x for x in b if x not in a),
     "intersect": lambda a: lambda b: tuple(x for x in a if x in b),
     "list_to_ms": _list_to_ms,
+    "ms_to_list": _ms_to_list,
     "Int.toString": _int_to_string,
     "Int.max": lambda a: max(a),
     "Int.min": lambda a: min(a),
