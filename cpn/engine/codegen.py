@@ -120,7 +120,7 @@ class ExprCompiler:
         if isinstance(e.fn, A.Name) and e.fn.ref.kind == "con" and e.fn.ref.data.kind == "index":
             return f"IDX({self.ns.ref(self.ev.colsets[e.fn.ref.data.colset], 'S')}, {self.expr(e.arg)})"
         if isinstance(e.fn, A.Name) and e.fn.ref.kind == "con" and e.fn.ref.data.kind == "union":
-            return f"({e.fn.ref.data.tag}, {self.expr(e.arg)})"
+            return f"({e.fn.ref.data.tag!r}, {self.expr(e.arg)})"
         if isinstance(e.fn, A.Name) and e.fn.ref.kind == "builtin" and e.fn.name == "not":
             return f"(not {self.expr(e.arg)})"
         return f"{self.expr(e.fn)}({self.expr(e.arg)})"
@@ -150,6 +150,12 @@ class ExprCompiler:
         raise Unsupported()
 
     def _c_Let(self, e):
+        raise Unsupported()
+
+    def _c_Raise(self, e):
+        raise Unsupported()
+
+    def _c_Handle(self, e):
         raise Unsupported()
 
     def _c_Fn(self, e):
@@ -235,7 +241,7 @@ class TransitionCodegen:
             if info.kind == "index":
                 self.gen_match(e.arg, src, bound, blame)
             else:
-                self.emit(f"if type({src}) is not tuple or {src}[0] != {info.tag}: continue")
+                self.emit(f"if type({src}) is not tuple or {src}[0] != {info.tag!r}: continue")
                 self.gen_match(e.arg, f"{src}[1]", bound, blame)
             return
         if isinstance(e, A.BinOp) and e.op == "::":
@@ -520,7 +526,7 @@ class FunctionCodegen:
             info = p.ref.data
             if info.kind == "index":
                 return self._match(p.arg, src, out, locals_)
-            out.append(f"if type({src}) is not tuple or {src}[0] != {info.tag}: continue")
+            out.append(f"if type({src}) is not tuple or {src}[0] != {info.tag!r}: continue")
             return self._match(p.arg, f"{src}[1]", out, locals_)
         if isinstance(p, A.PRecord):
             labels = p.ty_labels

@@ -17,7 +17,7 @@ from __future__ import annotations
 from typing import Any
 
 from cpn.net import expr as A
-from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS, MLError, binop
+from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS, MLError, MLRaise, binop
 from cpn.values.multiset import Multiset, TimedMultiset
 
 
@@ -183,6 +183,19 @@ class Evaluator:
 
     def _e_Fn(self, e, env):
         return Closure([([p], b) for p, b in e.rules], env, self, "fn")
+
+    def _e_Raise(self, e, env):
+        raise MLRaise(self.eval(e.expr, env), f"{e.span.file}:{e.span.line}:{e.span.col}")
+
+    def _e_Handle(self, e, env):
+        try:
+            return self.eval(e.expr, env)
+        except MLRaise as exc:
+            for pat, body in e.rules:
+                env2 = dict(env)
+                if self.match(pat, exc.value, env2):
+                    return self.eval(body, env2)
+            raise
 
     def _e_Let(self, e, env):
         env = dict(env)

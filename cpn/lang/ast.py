@@ -109,6 +109,23 @@ class Fn(Expr):
 
 
 @dataclass(slots=True, eq=False)
+class Raise(Expr):
+    """`raise e`: e is an exception value."""
+
+    expr: Expr
+    ty: Any = None
+
+
+@dataclass(slots=True, eq=False)
+class Handle(Expr):
+    """`e handle pat => e1 | ...`: the rules see the exceptions raised by `raise` while evaluating e."""
+
+    expr: Expr
+    rules: list[tuple[Pat, Expr]]
+    ty: Any = None
+
+
+@dataclass(slots=True, eq=False)
 class Let(Expr):
     decls: list[Decl]
     body: Expr
@@ -320,6 +337,36 @@ class FunDecl(Decl):
     clauses: list[Clause]
     ty: Any = None
     ref: Any = None
+
+
+@dataclass(slots=True, eq=False)
+class ExceptionDecl(Decl):
+    """`exception E` or `exception E of T`: a new exception constructor."""
+
+    name: str
+    type_expr: TypeExpr | None = None
+    ref: Any = None
+
+
+@dataclass(slots=True, eq=False)
+class LocalDecl(Decl):
+    """`local D1 in D2 end`: D1 is seen by D2 only, D2 is global."""
+
+    private: list[Decl]
+    public: list[Decl]
+
+
+def flat_decls(decls: list) -> list:
+    """The declarations with each `local` block replaced by its parts, in order (symbols are unique, so
+    a later stage needs no scopes)."""
+    out = []
+    for d in decls:
+        if isinstance(d, LocalDecl):
+            out.extend(flat_decls(d.private))
+            out.extend(flat_decls(d.public))
+        else:
+            out.append(d)
+    return out
 
 
 @dataclass(slots=True, eq=False)

@@ -100,6 +100,10 @@ def children(e: A.Expr):
         return [e.subject] + [b for _, b in e.rules]
     if isinstance(e, A.Fn):
         return [b for _, b in e.rules]
+    if isinstance(e, A.Raise):
+        return [e.expr]
+    if isinstance(e, A.Handle):
+        return [e.expr] + [b for _, b in e.rules]
     if isinstance(e, A.Let):
         out = []
         for d in e.decls:

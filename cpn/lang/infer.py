@@ -254,6 +254,19 @@ class TypeInference:
             self.must(self.infer(body, env.child(binds)), rt, body.span, "the rules of 'fn'")
         return T.TFun(at, rt)
 
+    def _i_Raise(self, e, env):
+        self.must(self.infer(e.expr, env), T.EXN, e.expr.span, "the operand of 'raise' (an exception)")
+        return T.TVar()
+
+    def _i_Handle(self, e, env):
+        t = self.infer(e.expr, env)
+        for pat, body in e.rules:
+            binds: dict[str, Symbol] = {}
+            self.must(self.infer_pat(pat, binds), T.EXN, pat.span, "a pattern of 'handle' (an exception)")
+            self.must(self.infer(body, env.child(binds)), t, body.span,
+                      "the rules of 'handle' (each must have the type of the expression it handles)")
+        return t
+
     def _i_Let(self, e, env):
         inner = env.child()
         for d in e.decls:
@@ -267,6 +280,10 @@ class TypeInference:
                 if sym is None:
                     raise Abort()
                 inner = inner.child({d.name: sym})
+            elif isinstance(d, A.ExceptionDecl):
+                self.error("E0206", "an exception declared inside 'let' is not supported", d.span,
+                           hint="Declare it at the top level, or in the first part of 'local ... in ... end'.")
+                raise Abort()
         return self.infer(e.body, inner)
 
     def _i_Seq(self, e, env):

@@ -64,6 +64,10 @@ def expr(e: A.Expr) -> str:
         return f"(case {expr(e.subject)} of " + " | ".join(f"{pat(p)} => {expr(b)}" for p, b in e.rules) + ")"
     if isinstance(e, A.Fn):
         return "(fn " + " | ".join(f"{pat(p)} => {expr(b)}" for p, b in e.rules) + ")"
+    if isinstance(e, A.Raise):
+        return f"(raise {expr(e.expr)})"
+    if isinstance(e, A.Handle):
+        return f"({expr(e.expr)} handle " + " | ".join(f"{pat(p)} => {expr(b)}" for p, b in e.rules) + ")"
     if isinstance(e, A.Let):
         body = expr(e.body.items[0]) + "".join("; " + expr(x) for x in e.body.items[1:]) \
             if isinstance(e.body, A.Seq) else expr(e.body)
@@ -130,7 +134,13 @@ def _clauses(d: A.FunDecl) -> str:
 def _decl_in_let(d) -> str:
     if isinstance(d, A.ValDecl):
         return f"val {pat(d.pat)} = {expr(d.expr)};"
+    if isinstance(d, A.ExceptionDecl):
+        return _exception(d)
     return _clauses(d) + ";"
+
+
+def _exception(d: A.ExceptionDecl) -> str:
+    return f"exception {d.name}" + (f" of {ty(d.type_expr)}" if d.type_expr is not None else "") + ";"
 
 
 def _colset(d: A.ColsetDecl) -> str:
@@ -165,6 +175,12 @@ def decl(d: A.Decl, indent: str = "") -> str:
         return f"{indent}val {d.name}{annot} = {expr(d.expr)};"
     if isinstance(d, A.FunDecl):
         return indent + _clauses(d) + ";"
+    if isinstance(d, A.ExceptionDecl):
+        return indent + _exception(d)
+    if isinstance(d, A.LocalDecl):
+        private = " ".join(_decl_in_let(x) for x in d.private)
+        public = " ".join(_decl_in_let(x) for x in d.public)
+        return f"{indent}local {private} in {public} end;"
     if isinstance(d, A.PlaceDecl):
         head = f"port {d.port} " if d.port else "place "
         init = f" = {expr(d.init)}" if d.init is not None else ""

@@ -486,6 +486,29 @@ class ToAst(Transformer):
     def lfun(self, meta, items):
         return self._fun(meta, [i for i in items if i is not None])
 
+    @v_args(meta=True)
+    def lexception(self, meta, items):
+        return A.ExceptionDecl(self.span(meta), str(items[0]), items[1])
+
+    @v_args(meta=True)
+    def exception_decl(self, meta, items):
+        return A.ExceptionDecl(self.span(meta), str(items[0]), items[1])
+
+    @v_args(meta=True)
+    def local_decl(self, meta, items):
+        return A.LocalDecl(self.span(meta), items[0], items[1])
+
+    def local_part(self, items):
+        return list(items)
+
+    @v_args(meta=True)
+    def raise_(self, meta, items):
+        return A.Raise(self.span(meta), items[0])
+
+    @v_args(meta=True)
+    def handle(self, meta, items):
+        return A.Handle(self.span(meta), items[0], items[1])
+
     # -- patterns
     @v_args(meta=True)
     def pannot(self, meta, items):

@@ -22,7 +22,7 @@ from cpn.lang.multisets import MultisetInference
 from cpn.lang.overrides import OverrideChecks, parse_overrides
 from cpn.lang.pages import PageChecks
 from cpn.lang.resolve import NameResolution
-from cpn.lang.symbols import Symbol
+from cpn.lang.symbols import ConInfo, Symbol
 from cpn.values import colours as C
 
 
@@ -72,35 +72,10 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
 
     # ------------------------------------------------------------------ entry point
     def check(self) -> CheckedModel:
-        top_decls = []
+        top_decls: list = []
         modules: dict[str, A.ModuleDecl] = {}
         for d in self.model.decls:
-            if isinstance(d, A.NetHeader):
-                self.net_name = d.name
-            elif isinstance(d, A.ColsetDecl):
-                self.colset_decl(d)
-                if d.name not in self.colsets:
-                    self.failed_names.add(d.name)
-            elif isinstance(d, A.VarDecl):
-                self.var_decl(d)
-                self.failed_names.update(n for n, _ in d.names if n not in self.variables)
-            elif isinstance(d, A.ValDecl):
-                self.val_decl(d)
-                if d.pat.ref is None:
-                    self.failed_names.add(d.name)
-            elif isinstance(d, A.FunDecl):
-                if self.fun_decl(d) is None and isinstance(d.name, str):
-                    self.failed_names.add(d.name)
-            elif isinstance(d, A.ModuleDecl):
-                if d.name in modules:
-                    first = modules[d.name].span
-                    self.error("E0202", f"module '{d.name}' is declared twice", d.span,
-                               notes=[f"first declared at {self._where(first)}"],
-                               hint="Rename one of them; module names must be unique.", name=d.name)
-                else:
-                    modules[d.name] = d
-            else:
-                top_decls.append(d)
+            self.top_decl(d, top_decls, modules)
         self.unused_overrides()
         self.raise_override_problems()
         self.module_decls = modules
@@ -116,10 +91,74 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
         return CheckedModel(self.model, self.net_name, self.colsets, self.cstypes, self.variables, self.globals,
                             self.ev, top, pages, [d for d in self.diags if d.severity is Severity.WARNING])
 
+    def top_decl(self, d: A.Decl, top_decls: list, modules: dict) -> None:
+        if isinstance(d, A.NetHeader):
+            self.net_name = d.name
+        elif isinstance(d, A.ColsetDecl):
+            self.colset_decl(d)
+            if d.name not in self.colsets:
+                self.failed_names.add(d.name)
+        elif isinstance(d, A.VarDecl):
+            self.var_decl(d)
+            self.failed_names.update(n for n, _ in d.names if n not in self.variables)
+        elif isinstance(d, A.ValDecl):
+            if d.name is None:
+                self.error("E0206", "a 'val' with a pattern is only supported inside 'let'", d.span,
+                           hint="Declare each name with its own 'val NAME = ...', or use #1, #2.")
+                return
+            self.val_decl(d)
+            if d.pat.ref is None:
+                self.failed_names.add(d.name)
+        elif isinstance(d, A.ExceptionDecl):
+            self.exception_decl(d)
+        elif isinstance(d, A.LocalDecl):
+            self.local_decl(d, top_decls, modules)
+        elif isinstance(d, A.FunDecl):
+            if self.fun_decl(d) is None and isinstance(d.name, str):
+                self.failed_names.add(d.name)
+        elif isinstance(d, A.ModuleDecl):
+            if d.name in modules:
+                first = modules[d.name].span
+                self.error("E0202", f"module '{d.name}' is declared twice", d.span,
+                           notes=[f"first declared at {self._where(first)}"],
+                           hint="Rename one of them; module names must be unique.", name=d.name)
+            else:
+                modules[d.name] = d
+        else:
+            top_decls.append(d)
+
+    def local_decl(self, d: A.LocalDecl, top_decls: list, modules: dict) -> None:
+        """`local D1 in D2 end`: the names D1 declares are seen by D2, then hidden again (an earlier
+        declaration of the same name is visible after the block)."""
+        before = dict(self.globals)
+        for x in d.private:
+            self.top_decl(x, top_decls, modules)
+        private = {n: s for n, s in self.globals.items() if before.get(n) is not s}
+        for x in d.public:
+            self.top_decl(x, top_decls, modules)
+        for name, sym in private.items():
+            if self.globals.get(name) is sym:
+                if name in before:
+                    self.globals[name] = before[name]
+                else:
+                    del self.globals[name]
+
+    def exception_decl(self, d: A.ExceptionDecl) -> None:
+        arg = None
+        if d.type_expr is not None:
+            arg = self.type_of_annotation(d.type_expr)
+            if arg is None:
+                return
+        sym = Symbol(d.name, "con", T.TFun(arg, T.EXN) if arg is not None else T.EXN, d.span)
+        sym.data = ConInfo("exn", f"{d.name}#{sym.uid}", "union", arg is not None)
+        d.ref = sym
+        self._declare_global(sym)
+
     # ------------------------------------------------------------------ declarations
     def _declare_global(self, sym: Symbol) -> bool:
         old = self.globals.get(sym.name)
-        if old is not None and old.kind in ("var", "con") and sym.kind in ("var", "con"):
+        if old is not None and old.kind in ("var", "con") and sym.kind in ("var", "con") \
+                and not (old.data is not None and getattr(old.data, "colset", None) == "exn"):
             self.error("E0202", f"'{sym.name}' is declared twice", sym.span,
                        notes=[f"first declared at {self._where(old.span)}"],
                        hint="Rename one of them.", name=sym.name)

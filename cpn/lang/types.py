@@ -60,6 +60,7 @@ class TFun(Type):
 INT = TCon("int")
 BOOL = TCon("bool")
 STRING = TCon("string")
+EXN = TCon("exn")  # exceptions (`exception E`, `raise`, `handle`)
 UNIT = TCon("unit")
 REAL = TCon("real")
 

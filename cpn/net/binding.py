@@ -104,6 +104,10 @@ def children(e: E.Expr) -> list[E.Expr]:
         return [e.subject] + [b for _, b in e.rules]
     if isinstance(e, E.Fn):
         return [b for _, b in e.rules]
+    if isinstance(e, E.Raise):
+        return [e.expr]
+    if isinstance(e, E.Handle):
+        return [e.expr] + [b for _, b in e.rules]
     if isinstance(e, E.Let):
         out = []
         for d in e.decls:

@@ -33,7 +33,7 @@ class Constructor:
     """A constructor of a colour set: enumeration constant, index constructor (`ph`) or union constructor."""
 
     colset: str
-    tag: int  # position (enumeration, union); unused for an index
+    tag: int | str  # position (enumeration, union); unused for an index; "E#uid" for an exception
     kind: str  # 'enum' 'index' 'union'
     has_arg: bool
 
@@ -132,6 +132,21 @@ class Case(Expr):
 
 @dataclass(slots=True, eq=False)
 class Fn(Expr):
+    rules: list[tuple[Pat, Expr]]
+
+
+@dataclass(slots=True, eq=False)
+class Raise(Expr):
+    """`raise e`: e is an exception value (the tag ``"E#uid"`` of its constructor, or ``(tag, argument)``)."""
+
+    expr: Expr
+
+
+@dataclass(slots=True, eq=False)
+class Handle(Expr):
+    """`e handle pat => e1 | ...`: the rules see the exceptions raised by `raise` while evaluating e."""
+
+    expr: Expr
     rules: list[tuple[Pat, Expr]]
 
 

@@ -42,6 +42,10 @@ def expr(e: E.Expr) -> str:
         return f"(case {expr(e.subject)} of " + " | ".join(f"{pat(p)} => {expr(b)}" for p, b in e.rules) + ")"
     if isinstance(e, E.Fn):
         return "(fn " + " | ".join(f"{pat(p)} => {expr(b)}" for p, b in e.rules) + ")"
+    if isinstance(e, E.Raise):
+        return f"(raise {expr(e.expr)})"
+    if isinstance(e, E.Handle):
+        return f"({expr(e.expr)} handle " + " | ".join(f"{pat(p)} => {expr(b)}" for p, b in e.rules) + ")"
     if isinstance(e, E.Let):
         return "let " + " ".join(_decl(d) for d in e.decls) + f" in {expr(e.body)} end"
     if isinstance(e, E.Seq):

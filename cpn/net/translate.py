@@ -83,6 +83,12 @@ class Translator:
     def _x_Fn(self, e):
         return E.Fn(e.span, [(self.pat(p), self.expr(b)) for p, b in e.rules])
 
+    def _x_Raise(self, e):
+        return E.Raise(e.span, self.expr(e.expr))
+
+    def _x_Handle(self, e):
+        return E.Handle(e.span, self.expr(e.expr), [(self.pat(p), self.expr(b)) for p, b in e.rules])
+
     def _x_Let(self, e):
         return E.Let(e.span, [self.decl(d) for d in e.decls], self.expr(e.body))
 
@@ -138,7 +144,7 @@ class Translator:
         """The global constants and functions of a checked model; `values` maps the uid of each checked
         constant to its value (a function-valued one is evaluated again from its declaration)."""
         out = E.Globals()
-        for d in model.decls:
+        for d in A.flat_decls(model.decls):
             if isinstance(d, A.FunDecl) and isinstance(d.ref, Symbol):
                 out.decls.append(self.fun(d))
             elif isinstance(d, A.ValDecl) and isinstance(d.pat, A.PVar) and d.pat.ref is not None \

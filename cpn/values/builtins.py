@@ -21,6 +21,20 @@ class MLError(Exception):
     """A run-time error of CPN ML code (an SML exception such as Empty, Subscript, Div, Match)."""
 
 
+class MLRaise(MLError):
+    """An exception raised by `raise` in CPN ML code; `handle` catches it, else it is a run-time error.
+
+    `value` is the exception value: its tag `"E#uid"` (no argument) or `("E#uid", argument)`.
+    """
+
+    def __init__(self, value, where: str):
+        tag, arg = (value if isinstance(value, tuple) else (value, None))
+        name = str(tag).split("#")[0]
+        shown = f"{name} {arg!r}" if arg is not None else name
+        super().__init__(f"uncaught exception {shown}, raised by the 'raise' at {where}")
+        self.value = value
+
+
 def _empty(name):
     raise MLError(f"{name} of an empty list (SML exception Empty)")
 

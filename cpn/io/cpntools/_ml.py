@@ -97,21 +97,29 @@ def assigned_refs(text: str) -> set[str]:
 def declared_functions(text: str) -> list[tuple[str, str]]:
     """(name, body text) for each top-level `fun NAME` / `val NAME` of an ML declaration text.
 
-    Top level means outside `let`/`local` ... `end`. The body is everything up to the next top-level
-    declaration: enough to decide which names a declaration depends on.
+    Top level means outside `let` ... `end` and outside the private part of `local` ... `in`; the
+    declarations between the `in` and the `end` of a `local` block are top level (the net sees them).
+    The body is everything up to the next top-level declaration: enough to decide which names a
+    declaration depends on.
     """
     clean = strip_comments(text)
     heads = []
-    depth = 0
-    for m in re.finditer(r'"(?:[^"\\]|\\.)*"|\b(let|local|struct|sig|end|fun|val|and)\b(?:\s+(?:\(\s*)?'
-                         r"(?:op\s+)?([A-Za-z][A-Za-z0-9_']*))?", clean):
-        kw = m.group(1)
+    blocks: list[str] = []  # the open let/local/struct/sig blocks; 'local-in' once a local's 'in' is read
+    for m in re.finditer(r'"(?:[^"\\]|\\.)*"|\b(let|local|struct|sig|in|end)\b|\b(fun|val|and|exception)\b'
+                         r"(?:\s+(?:\(\s*)?(?:op\s+)?(?!(?:fun|val|and|in|end|local|let)\b)([A-Za-z][A-Za-z0-9_']*))?",
+                         clean):
+        kw = m.group(1) or m.group(2)
         if kw in ("let", "local", "struct", "sig"):
-            depth += 1
+            blocks.append(kw)
+        elif kw == "in":
+            if blocks and blocks[-1] == "local":
+                blocks[-1] = "local-in"
         elif kw == "end":
-            depth = max(depth - 1, 0)
-        elif kw in ("fun", "val", "and") and depth == 0 and m.group(2):
-            heads.append((m.group(2), m.start(), m.end()))
+            if blocks:
+                blocks.pop()
+        elif kw in ("fun", "val", "and", "exception") and m.group(3) \
+                and all(b == "local-in" for b in blocks):
+            heads.append((m.group(3), m.start(), m.end()))
     out = []
     for i, (name, _start, end) in enumerate(heads):
         stop = heads[i + 1][1] if i + 1 < len(heads) else len(clean)

@@ -166,6 +166,8 @@ class _Writer:
                 self.fail(d, "modules and instances cannot be written as PNML (write the flat net)")
             elif isinstance(d, A.ValDecl):
                 self.fail(d, "'val' declarations cannot be written as PNML")
+            elif isinstance(d, (A.LocalDecl, A.ExceptionDecl)):
+                self.fail(d, "'local' and 'exception' declarations cannot be written as PNML")
             elif isinstance(d, A.NetHeader):
                 pass
         pt = all(self.resolve(p.colset)[1] is not None and self.resolve(p.colset)[1].kind == "unit"
