@@ -59,6 +59,10 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
             self.colsets[name] = cs
             self.cstypes[name] = ty
             self.cs_spans[name] = Span("<standard declarations>", 0, 0)
+        # SML's exception Fail of string, which a model may raise and handle like its own
+        fail = Symbol("Fail", "con", T.TFun(T.STRING, T.EXN), Span("<standard declarations>", 0, 0))
+        fail.data = ConInfo("exn", "Fail#0", "union", True)
+        self.globals["Fail"] = fail
 
     # ------------------------------------------------------------------ diagnostics
     def error(self, code, message, span, hint=None, notes=(), **params):

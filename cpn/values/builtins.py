@@ -30,7 +30,7 @@ class MLRaise(MLError):
     def __init__(self, value, where: str):
         tag, arg = (value if isinstance(value, tuple) else (value, None))
         name = str(tag).split("#")[0]
-        shown = f"{name} {arg!r}" if arg is not None else name
+        shown = name if arg is None else f'{name} "{arg}"' if isinstance(arg, str) else f"{name} {arg!r}"
         super().__init__(f"uncaught exception {shown}, raised by the 'raise' at {where}")
         self.value = value
 

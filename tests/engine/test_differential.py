@@ -13,7 +13,11 @@ from tests.engine.randomnets import random_net, random_timed_net
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(__file__)))
 MODELS = sorted(glob.glob(os.path.join(ROOT, "models", "**", "*.cpnet"), recursive=True)
-                + glob.glob(os.path.join(ROOT, "tests", "models", "good", "*.cpnet")))
+                + glob.glob(os.path.join(ROOT, "tests", "models", "good", "*.cpnet"))
+                # the small models of issue 16 (local, exceptions, lists as multisets, long chains), but the
+                # one that stops with an uncaught exception on purpose
+                + [p for p in glob.glob(os.path.join(ROOT, "tests", "regressions", "issue_16", "*.cpnet"))
+                   if not p.endswith("uncaught.cpnet")])
 SMALL = {"dp.cpnet": {"N": 4}, "ms.cpnet": {"N": 2}}
 
 

@@ -117,3 +117,23 @@ def test_an_exception_value_is_evaluated_when_a_val_is_declared():
         cpn.loads("exception E of int; val z = raise E 3;", "m.cpnet")
     d = info.value.diagnostics[0]
     assert d.code == "E0401" and "uncaught exception E 3" in d.message
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_fail_is_predeclared_and_may_be_handled(reference):
+    src = ("colset C = int with 0..9; var x : C;\n"
+           "fun pick x = if x > 0 then raise Fail \"too far\" else x;\n"
+           "fun safe x = pick x handle Fail m => String.size m;\n"
+           "place P : C = 1`2; trans T; arc P -> T : x; arc T -> P : safe x;\n")
+    e = cpn.loads(src, "m.cpnet").engine(reference=reference)
+    [(_, s1)] = e.successors(e.initial_state())
+    assert e.format_marking(s1, 0) == "1`7"  # size "too far"
+    bad = src.replace("arc T -> P : safe x;", "arc T -> P : pick x;")
+    e = cpn.loads(bad, "m.cpnet").engine(reference=reference)
+    with pytest.raises(EvaluationError) as info:
+        e.successors(e.initial_state())
+    assert 'uncaught exception Fail "too far"' in str(info.value)
+
+
+def test_a_model_may_declare_its_own_fail():
+    cpn.loads("exception Fail; val x = (raise Fail) handle Fail => 1;", "m.cpnet")
