@@ -44,8 +44,17 @@ class Namespace:
         return name
 
 
+# Python refuses source nested more deeply than about 200 parentheses or 100 indentation levels: an
+# expression nested deeper than MAX_NESTING (a 300-term `x + x + ...`) is left to the evaluator from there
+# on, and a function whose statements nest deeper than MAX_BLOCKS stays with the evaluator.
+MAX_NESTING: int = 64
+MAX_BLOCKS: int = 40
+
+
 class ExprCompiler:
     """Compiles one expression to a Python expression string, given the Python names of bound variables."""
+
+    _nesting = 0
 
     def __init__(self, ns: Namespace, evaluator, varnames: dict[str, str], params: dict[int, Any],
                  var_uids: dict[str, int]):
@@ -69,10 +78,15 @@ class ExprCompiler:
         return f"EVAL({node}, {{**{env}, {items}}})" if items else f"EVAL({node}, {env})"
 
     def expr(self, e: A.Expr) -> str:
+        if self._nesting >= MAX_NESTING:
+            return self.fallback(e)
+        self._nesting += 1
         try:
             return getattr(self, "_c_" + type(e).__name__)(e)
         except Unsupported:
             return self.fallback(e)
+        finally:
+            self._nesting -= 1
 
     def _c_Const(self, e):
         return self.const(e.value)
@@ -453,6 +467,8 @@ class FunctionCodegen:
 
     def _stmt(self, e: A.Expr, locals_: dict[int, str], depth: int, out: list[str]) -> None:
         """Statements that return the value of e: case, if and let become control flow."""
+        if depth > MAX_BLOCKS:
+            raise Unsupported()
         pad = "    " * depth
         if isinstance(e, A.Case):
             self._n += 1

@@ -81,3 +81,17 @@ def test_a_short_cons_chain_keeps_its_own_messages():
     with pytest.raises(ModelError) as info:
         cpn.loads('val l = 1 :: "a" :: [];', "m.cpnet")
     assert "'::'" in info.value.diagnostics[0].message
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_a_long_arithmetic_chain_and_deep_ifs_run_in_both_engines(reference):
+    # the compiled engine used to fail with Python's "too many nested parentheses" (an internal error)
+    n = 400
+    src = ("colset C = int; var x : C;\n"
+           "fun f y = " + " + ".join(["y"] * n) + ";\n"
+           "fun g y = " + "".join(f"if y = {i} then {i} else " for i in range(60)) + "0;\n"
+           "place P : C = 1`1; place Q : C; trans T; arc P -> T : x;\n"
+           "arc T -> Q : " + " + ".join(["x"] * n) + " + f x + g x;\n")
+    e = cpn.loads(src, "m.cpnet").engine(reference=reference)
+    [(_, s1)] = e.successors(e.initial_state())
+    assert e.format_marking(s1, 1) == f"1`{2 * n + 1}"
