@@ -63,6 +63,9 @@ class Exploration:
     time_growth: dict | None = None
     levels: int = 0
     notes: list = field(default_factory=list)
+    # the partial-order reduction that ran ("stubborn"), None for the full graph; its figures
+    reduction: str | None = None
+    reduction_stats: dict | None = None
 
     @property
     def complete(self) -> bool:
@@ -123,11 +126,30 @@ class Explorer:
         # A model that reads the clock (intTime() in a guard, an inscription, a delay) can change its
         # behaviour at any later time: the markings modulo time say nothing about its future.
         self._reads_clock = self.engine.is_timed and self.engine.reads_clock
+        self._reduced = self._reduction(g)
         stop, predicate_state = self._start(g)
         levels = 0
         if stop is StopReason.COMPLETE:
             stop, predicate_state, levels = self._search(g)
         return self._finish(g, stop, predicate_state, levels)
+
+    def _reduction(self, g: StateGraph):
+        """The reduced successor step asked for by the options, or None (full graph; a note says why
+        when a reduction was asked for but does not apply)."""
+        self._reduction_notes = []
+        if self.options.reduction is None:
+            return None
+        if self.options.reduction != "stubborn":
+            raise ValueError(f"unknown reduction {self.options.reduction!r} (known: 'stubborn')")
+        from cpn.engine.stubborn import StubbornSets
+        from cpn.statespace.reduction import ReducedSuccessors
+
+        sets = StubbornSets(self.engine.net, self.options.visible_places)
+        if sets.refusal is not None:
+            self._reduction_notes.append(f"stubborn sets were not applied: {sets.refusal}; every state was "
+                                         "fully expanded")
+            return None
+        return ReducedSuccessors(self.engine, sets, g.index)
 
     def _start(self, g: StateGraph) -> tuple[StopReason, int | None]:
         """Store the initial state; the search stops at once if it satisfies the stop predicate."""
@@ -164,7 +186,7 @@ class Explorer:
 
         stop = StopReason.COMPLETE
         predicate_state = None
-        successors = engine.successors
+        successors = engine.successors if self._reduced is None else self._reduced
         if opts.restricted:
             successors = _branching(successors, opts)
         index_get = index.get
@@ -273,7 +295,7 @@ class Explorer:
         if self.progress is not None:
             self.progress(Progress(len(g.states), len(g.dst), len(g.states) - g.expanded, seconds,
                                    current_rss_mb()))
-        notes = []
+        notes = list(self._reduction_notes)
         if self._reads_clock and self.options.detect_time_growth and stop is not StopReason.COMPLETE:
             engine = self.engine
             read = engine.clock_reads[min(engine.clock_reads)]
@@ -286,6 +308,11 @@ class Explorer:
             untimed_states=len(watcher.untimed) if watcher is not None else None,
             time_growth=watcher.evidence() if stop is StopReason.TIME_GROWS else None,
             levels=levels, notes=notes,
+            reduction="stubborn" if self._reduced is not None else None,
+            reduction_stats=None if self._reduced is None else {
+                "reduced_states": self._reduced.reduced, "fully_expanded_states": self._reduced.full_expansions,
+                "visible_places": None if self.options.visible_places is None
+                else sorted(self.options.visible_places)},
         )
 
 

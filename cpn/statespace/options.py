@@ -60,6 +60,7 @@ class ExploreOptions:
     `branching_text` says how it was restricted in the report. `time_condensation` is only
     recorded here (the engine applies it when built); `detect_time_growth` lets the explorer stop
     a timed search whose untimed markings no longer change while the clock keeps growing.
+    `reduction` and `visible_places` select a partial-order reduction (see the fields).
     """
 
     max_states: int | None = None
@@ -91,6 +92,11 @@ class ExploreOptions:
                          "per state")
         return "; ".join(parts)
     progress_interval: float = 0.5
+    # "stubborn": follow only the binding elements of a stubborn set in each state (cpn.engine.stubborn),
+    # which preserves the dead markings; with `visible_places` (place indices a property reads) also
+    # the invariants over those places (visibility condition and cycle proviso)
+    reduction: str | None = None
+    visible_places: frozenset | None = None
 
 
 def machine_memory_mb() -> float | None:

@@ -1,0 +1,171 @@
+"""Static stubborn sets of transition instances: the partial-order reduction of the state space.
+
+`StubbornSets(net, visible_places)` chooses, in each state, a subset of the enabled transition
+instances whose binding elements are the only ones the explorer follows (Valmari's strong stubborn sets,
+built from the net's structure as for Petri nets in LoLA and TAPAAL, at the level of transition
+instances of a coloured net). The construction reads only which places each transition instance
+consumes from, produces to, inhibits on and resets (`cpn.arcs.ArcKind`); guards and inscriptions are
+treated conservatively (any binding may consume or produce any colour on each of its arc's places).
+
+Closure rules (a set T_s is stubborn in state s when it is closed under them and holds an enabled one):
+
+- t enabled in T_s: every u that can disable t or that t can disable, or that does not commute with t:
+  u consumes from a place t consumes from; u produces to a place that inhibits t; t produces to a
+  place that inhibits u; u resets a place t consumes from, produces to or resets; t resets a place u
+  consumes from or produces to. Firing is otherwise additive (M' = M - In(t,b) + Out(t,b)), so any
+  other u and t commute (Valmari's D1) and u cannot disable t (D2: every enabled member is a key
+  transition).
+- t disabled in T_s: every u that can help enable it: u produces to a place t consumes from (a
+  consumed place only enables by gaining tokens), or u consumes from or resets a place that inhibits t
+  (an inhibitor place only enables by losing tokens). This is the scapegoat rule with every place of
+  t as scapegoat, so it holds whatever colour or guard disables t.
+
+These preserve every reachable dead marking (Valmari 1990, "Stubborn sets for reduced state space
+generation"; Theorem: D1 and D2 with a key transition in every non-dead state).
+
+For invariants (safety) two more conditions are added (`visible_places` given):
+
+- Visibility: a transition instance is visible when it can change a place the property reads (it
+  consumes from, produces to or resets it). A stubborn set whose enabled members include a visible one
+  is refused; when every candidate is refused the state is fully expanded (the ample-set condition C2
+  of Clarke, Grumberg and Peled, "Model Checking", 1999, ch. 10).
+- Ignoring: the cycle proviso of the explorer (`cpn.statespace.explore`): a state one of whose reduced
+  successors is already stored is fully expanded. In a breadth-first search every cycle of the reduced
+  graph has a state whose successor on the cycle was stored before it (the last-stored state of the
+  cycle), so every cycle holds a fully expanded state, which implies condition C3 (ibid., and Bošnački
+  and Holzmann's breadth-first proviso, SPIN 2005).
+
+Timed nets and nets with priorities are not reduced (full expansion; `refusal` says why): a transition
+that waits for a timestamp or a higher priority is disabled by the clock or by another transition's
+enabling, which the structure above does not capture.
+
+Examples
+--------
+>>> import cpn
+>>> net = cpn.loads("colset U = unit; place A : U = 1`(); place B : U = 1`(); place C : U; place D : U;"
+...                 " trans a; trans b; arc A -> a; arc a -> C; arc B -> b; arc b -> D;").net
+>>> s = StubbornSets(net)
+>>> sorted(s.choose(frozenset({0, 1})))  # independent: one of them is enough
+[0]
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+
+from cpn.arcs import ArcKind
+
+
+class StubbornSets:
+    """Chooses the enabled transition instances to follow in a state (see the module's docstring).
+
+    `choose(enabled)` returns the enabled members of a smallest stubborn set found, or None for a full
+    expansion; it depends on the enabled set only, so it is memoised by it.
+    """
+
+    def __init__(self, net, visible_places: Iterable[int] | None = None):
+        n = len(net.transitions)
+        self.n = n
+        self.refusal: str | None = None
+        if net.is_timed:
+            self.refusal = "the net is timed (a timestamp or the clock can enable a transition instance)"
+        elif any(t.priority is not None for t in net.transitions):
+            self.refusal = "the net has priorities (a higher-priority enabling disables a transition instance)"
+        consume, produce, inhibit, reset = ([set() for _ in range(n)] for _ in range(4))
+        for t in net.transitions:
+            for a in t.arcs:
+                if a.kind.consumes:
+                    consume[t.index].add(a.place)
+                if a.kind.produces:
+                    produce[t.index].add(a.place)
+                if a.kind is ArcKind.INHIBITOR:
+                    inhibit[t.index].add(a.place)
+                if a.kind is ArcKind.RESET:
+                    reset[t.index].add(a.place)
+        by_place = {}
+        for name, sets in (("consume", consume), ("produce", produce), ("inhibit", inhibit), ("reset", reset)):
+            index: dict[int, set[int]] = {}
+            for t, places in enumerate(sets):
+                for p in places:
+                    index.setdefault(p, set()).add(t)
+            by_place[name] = index
+
+        def of(kind: str, places: Iterable[int]) -> set[int]:
+            out: set[int] = set()
+            for p in places:
+                out |= by_place[kind].get(p, set())
+            return out
+
+        # when t is an enabled member: what can disable it, what it can disable, what does not commute
+        self.conflicts: list[tuple[int, ...]] = []
+        # when t is a disabled member: what can enable it
+        self.enablers: list[tuple[int, ...]] = []
+        for t in range(n):
+            c = (of("consume", consume[t]) | of("produce", inhibit[t]) | of("inhibit", produce[t])
+                 | of("reset", consume[t] | produce[t] | reset[t]) | of("consume", reset[t])
+                 | of("produce", reset[t]))
+            c.discard(t)
+            self.conflicts.append(tuple(sorted(c)))
+            e = of("produce", consume[t]) | of("consume", inhibit[t]) | of("reset", inhibit[t])
+            e.discard(t)
+            self.enablers.append(tuple(sorted(e)))
+        self.visible_places = None if visible_places is None else frozenset(visible_places)
+        if self.visible_places is None:
+            self.visible = frozenset()
+        else:
+            vp = self.visible_places
+            self.visible = frozenset(t for t in range(n) if (consume[t] | produce[t] | reset[t]) & vp)
+        self._memo: dict[frozenset, frozenset | None] = {}
+
+    @property
+    def preserves_invariants(self) -> bool:
+        """Whether the visibility condition is on (for invariants over `visible_places`)."""
+        return self.visible_places is not None
+
+    def choose(self, enabled: frozenset) -> frozenset | None:
+        """The enabled members of a smallest stubborn set found for a state whose enabled transition
+        instances are `enabled`; None when the state must be fully expanded."""
+        try:
+            return self._memo[enabled]
+        except KeyError:
+            pass
+        best = None
+        if self.refusal is None and len(enabled) > 1:
+            for seed in sorted(enabled):
+                found = self._closure(seed, enabled, len(best) if best is not None else len(enabled))
+                if found is not None and (best is None or len(found) < len(best)):
+                    best = found
+                    if len(best) == 1:
+                        break
+        if best is not None and len(best) == len(enabled):
+            best = None
+        self._memo[enabled] = best
+        return best
+
+    def _closure(self, seed: int, enabled: frozenset, bound: int) -> frozenset | None:
+        """The enabled members of the closure of {seed}; None once it reaches `bound` enabled members or
+        an enabled visible one."""
+        visible = self.visible
+        conflicts, enablers = self.conflicts, self.enablers
+        members = {seed}
+        stack = [seed]
+        hits = set()
+        while stack:
+            t = stack.pop()
+            if t in enabled:
+                if t in visible:
+                    return None
+                hits.add(t)
+                if len(hits) >= bound:
+                    return None
+                more = conflicts[t]
+            else:
+                more = enablers[t]
+            for u in more:
+                if u not in members:
+                    members.add(u)
+                    stack.append(u)
+        return frozenset(hits)
+
+
+__all__ = ["StubbornSets"]
