@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 from cpn.checks._common import TransitionIndex
 from cpn.checks.predicates import PredicateError, PropertyLanguage
 from cpn.checks.properties import Check, DeadlockFree, GraphView, Reachable, build_checks
+from cpn.checks.reduction import stubborn_plan
 from cpn.checks.scenario import PropertySpec, Run, Scenario
 from cpn.checks.verdict import Status, Verdict, evidence_to
 from cpn.diagnostics import Diagnostic
@@ -146,11 +147,14 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     stop_first = bool(opts.get("stop_at_first_violation", False))
     only_witnesses = all(isinstance(c, Reachable) and c.on_the_fly for c in checks)
     monitor = _Monitor(fly, watch, stop_first, only_witnesses) if (fly or watch is not None) else None
+    reduction = opts.get("reduction")
+    visible, refused = stubborn_plan(checks) if reduction == "stubborn" else (None, {})
     options = ExploreOptions(max_states=opts.get("max_states"), max_arcs=opts.get("max_arcs"),
                              max_seconds=opts.get("max_seconds"), max_memory_mb=opts.get("max_memory_mb"),
                              stop_predicate=monitor, time_condensation=bool(opts.get("time_condensation", False)),
                              detect_time_growth=bool(opts.get("detect_time_growth", True)),
-                             until_time=opts.get("until_time"))
+                             until_time=opts.get("until_time"),
+                             reduction=reduction, visible_places=visible)
     t0 = time.perf_counter()
     x = Explorer(watch if watch is not None else engine, options, progress=progress).run()
     explore_seconds = time.perf_counter() - t0
@@ -169,6 +173,10 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
             if c.error is not None:
                 raise c.error
             verdict = c.decide(view)
+            if x.reduction is not None and c in refused:
+                verdict = Verdict.unknown(refused[c])
+            elif x.reduction is not None and verdict.status is not Status.UNKNOWN:
+                verdict.message += f" (graph reduced by stubborn sets, {x.n_states:,} states: this property is preserved)"
         except PredicateError as exc:
             ev = evidence_to(x.graph, exc.state_id) if exc.state_id is not None else None
             verdict = Verdict(Status.ERROR, str(exc), ev)

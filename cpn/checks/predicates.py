@@ -146,6 +146,7 @@ class Compiled:
     fn: Callable
     uses_enabled: bool
     span: Span | None
+    reads: tuple = ()  # the place instances whose markings the text reads (indices)
 
 
 class PropertyLanguage:
@@ -355,6 +356,7 @@ class PropertyLanguage:
         errors = (MLError, MultisetError, ZeroDivisionError, IndexError, RecursionError)
         reads = sorted({p for n in walk(expr) if isinstance(n, A.Name) and n.ref is not None
                         and n.ref.uid in self.symbols for p in self.symbols[n.ref.uid].places})
+        places_read = tuple(reads)
         if uses_enabled or not hasattr(self.engine, "place_view"):
             def fn(sid, state, raw=raw):
                 try:
@@ -381,7 +383,7 @@ class PropertyLanguage:
                     memo[key] = v
                 return v
 
-        return Compiled(text, expr, fn, uses_enabled, span)
+        return Compiled(text, expr, fn, uses_enabled, span, places_read)
 
     def _reads_clock(self, expr: A.Expr) -> bool:
         """Whether the text reads the clock, directly or through the model's functions and values."""

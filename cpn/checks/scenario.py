@@ -20,7 +20,10 @@ from cpn.errors import ModelError
 TOP_KEYS = {"name", "model", "description", "set", "explore", "parameters", "property"}
 EXPLORE_KEYS = {"max_states": int, "max_arcs": int, "max_seconds": (int, float), "max_memory_mb": (int, float),
                 "time_condensation": bool, "stop_at_first_violation": bool, "detect_time_growth": bool,
-                "until_time": int}
+                "until_time": int,
+                "reduction": str}
+# the partial-order reductions `reduction` may name (docs/specs.md)
+REDUCTIONS: tuple = ("stubborn",)
 # kind -> (required fields, optional fields); every kind also takes name and description
 KINDS: dict[str, tuple[set, set]] = {
     "invariant": ({"expr"}, set()),
@@ -346,6 +349,13 @@ def _explore(r: _Reader, table) -> dict:
         if want is None:
             r.error("E0702", f"unknown exploration option '{k}'", r.key_span(("explore",), k),
                     hint=f"The options are {', '.join(sorted(EXPLORE_KEYS))}.")
+            continue
+        if want is str:
+            if v not in REDUCTIONS:
+                r.error("E0702", f"'{k}' must be one of {', '.join(repr(x) for x in REDUCTIONS)}",
+                        r.value_span(("explore",), k), hint="'stubborn': stubborn sets (partial-order reduction).")
+                continue
+            out[k] = v
             continue
         ok = isinstance(v, want) and (want is bool or not isinstance(v, bool))
         if k == "until_time" and ok and v < 0:  # a model-time bound: 0 is a bound

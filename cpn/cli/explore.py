@@ -46,6 +46,10 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     add_limit_options(p)
     p.add_argument("--time-condensation", action="store_true",
                    help="identify states that differ only by a uniform time shift (CPN Tools' CreationTime)")
+    p.add_argument("--reduction", choices=["stubborn"], default=None,
+                   help="explore a reduced graph: 'stubborn' follows only a stubborn set of transition instances "
+                   "in each state (partial-order reduction; untimed nets without priorities); it preserves the "
+                   "dead markings only, so the report gives them and says which sections are not preserved")
     p.add_argument("--no-time-growth-check", action="store_true",
                    help="do not stop a timed search whose markings modulo time no longer change")
     p.add_argument("--branch-transitions", metavar="NAMES", default=None,
@@ -109,7 +113,8 @@ def _options(args):
     return ExploreOptions(max_states=args.max_states, max_arcs=args.max_arcs, max_seconds=args.max_seconds,
                           max_memory_mb=args.max_memory, time_condensation=args.time_condensation,
                           detect_time_growth=not args.no_time_growth_check,
-                          until_time=getattr(args, "until_time", None))
+                          until_time=getattr(args, "until_time", None),
+                          reduction=getattr(args, "reduction", None))
 
 
 def _branching_options(engine, options, names: str | None, max_successors: int | None):
@@ -169,7 +174,8 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
             "time_condensation": bool(args.time_condensation),
             "until_time": getattr(args, "until_time", None),
             "branch_transitions": getattr(args, "branch_transitions", None),
-            "max_successors": getattr(args, "max_successors", None)}
+            "max_successors": getattr(args, "max_successors", None),
+            "reduction": getattr(args, "reduction", None)}
     # --max-listed N: every text cap and the number of dead markings listed become N (0: no cap)
     max_listed = getattr(args, "max_listed", None)
     caps = {} if max_listed is None else {"max_listed": max_listed if max_listed > 0 else None}

@@ -5,7 +5,7 @@ Imports `cpn.report.model` only.
 
 from __future__ import annotations
 
-from cpn.report.model import Report
+from cpn.report.model import NOT_PRESERVED, REDUCED_SECTIONS, Report
 
 SCHEMA_VERSION: int = 1
 EXAMPLES: int = 10
@@ -27,7 +27,7 @@ def to_json(r: Report) -> dict:
     dec = r.scc.decomposition
     terminal = r.scc.terminal
     home = r.home
-    return {
+    out = {
         "schema": SCHEMA_VERSION,
         "model": r.model,
         "options": r.options,
@@ -88,4 +88,16 @@ def to_json(r: Report) -> dict:
         "report_seconds": round(r.seconds, 3),
         "report_part_seconds": {part: round(sec, 3) for part, sec in r.part_seconds.items()},
         "notes": r.notes,
+        "reduction": None if not r.reduced else {
+            "name": x.reduction, **(x.reduction_stats or {}),
+            "preserves": ["dead_markings"] + (["invariants_over_visible_places"]
+                                              if (x.reduction_stats or {}).get("visible_places") is not None else []),
+            "not_preserved": list(REDUCED_SECTIONS), "why": NOT_PRESERVED},
     }
+    if r.reduced:
+        # a reduced graph says nothing about these: null, never the reduced graph's figures
+        for key in ("scc", "bounds", "multiset_bounds", "dead_transitions", "live_transitions", "home_markings",
+                    "fairness", "infinite_occurrence_sequences", "tokens"):
+            out[key] = None
+        out["statespace"]["reduced"] = True
+    return out

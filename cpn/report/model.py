@@ -26,6 +26,25 @@ from cpn.checks import (
 )
 from cpn.statespace import Exploration, Trace, shortest_trace
 
+# What a reduced state space (stubborn sets) does and does not preserve, as the report says it.
+NOT_PRESERVED: str = "not preserved by stubborn sets"
+REDUCED_SECTIONS: tuple = ("scc", "bounds", "home_markings", "dead_transitions", "live_transitions", "fairness")
+
+
+def reduction_text(x: Exploration) -> str | None:
+    """One sentence naming the reduction that ran and what it preserves (None: the full graph)."""
+    if x.reduction is None:
+        return None
+    visible = (x.reduction_stats or {}).get("visible_places")
+    kept = "the dead markings (their existence and their set)"
+    if visible is not None:
+        names = ", ".join(x.engine.places[p].name for p in visible) or "none"
+        kept += f" and the invariants over the visible places ({names})"
+    return (f"reduction: stubborn sets (partial-order reduction); the node and arc counts are those of the "
+            f"reduced graph; it preserves {kept}; the SCC graph, bounds, home markings, dead and live "
+            f"transition instances and fairness are {NOT_PRESERVED} and not reported")
+
+
 # How many dead markings the report lists with their marking and a shortest trace (text and JSON).
 DEAD_LISTED: int = 10
 
@@ -76,6 +95,11 @@ class Report:
         from cpn.report.html import report_fragment
 
         return report_fragment(self)
+
+    @property
+    def reduced(self) -> bool:
+        """The state space is reduced (stubborn sets): only the dead markings are reported."""
+        return self.exploration.reduction is not None
 
 
 # the parts of the analysis, in the order build_report computes them (keys of Report.part_seconds)
@@ -160,6 +184,8 @@ def build_report(x: Exploration, model: str = "<unsaved net>", options: dict | N
     done("trace")
     analysis = time.perf_counter() - t0
     notes = list(x.notes)
+    if x.reduction is not None:
+        notes.insert(0, reduction_text(x))
     if x.time_growth is not None:
         notes.append(
             "the state space grows only because time grows: after "
@@ -190,4 +216,4 @@ def dead_marking(x: Exploration, state: int) -> DeadMarking:
                        shortest_trace(x.graph, state, engine))
 
 
-__all__ = ["DEAD_LISTED", "REPORT_PARTS", "DeadMarking", "Fairness", "Report", "build_report", "dead_marking"]
+__all__ = ["DEAD_LISTED", "NOT_PRESERVED", "REDUCED_SECTIONS", "reduction_text", "REPORT_PARTS", "DeadMarking", "Fairness", "Report", "build_report", "dead_marking"]

@@ -9,7 +9,7 @@ many entries were left out; the JSON result keeps everything. Imports `cpn.repor
 from __future__ import annotations
 
 from cpn.report._words import noun
-from cpn.report.model import Report
+from cpn.report.model import NOT_PRESERVED, Report
 
 RULE = "-" * 72
 NAME_WIDTH = 24  # CPN Tools wraps place and transition names of 24 or more characters
@@ -106,7 +106,8 @@ def _dead_markings(r: Report, marking_changes: bool, steps_cap: int | None, term
         out += ([f"          {place}: {_short(text, terms_cap)}" for place, text in d.marking.items()]
                 or ["          (every place is empty)"])
         n = len(d.trace)
-        out.append(f"  Shortest trace to dead marking {d.state + 1} ({n} {noun(n, 'step')})")
+        out.append(f"  {'A trace (shortest in the reduced graph)' if r.reduced else 'Shortest trace'} to dead marking "
+                   f"{d.state + 1} ({n} {noun(n, 'step')})")
         k = _cut(n, steps_cap)
         for i, step in enumerate(d.trace.steps[:k], 1):
             out.append(f"     {i}. {step.text}")
@@ -119,6 +120,24 @@ def _dead_markings(r: Report, marking_changes: bool, steps_cap: int | None, term
     if total > len(r.dead_listed) and r.dead_listed:
         out += ["", f"  ({len(r.dead_listed)} of {total:,} dead markings listed with a trace; the JSON result "
                 "lists the same ones, and the count)"]
+    return out
+
+
+def _reduced(r: Report, marking_changes: bool, steps_cap: int | None, terms_cap: int | None) -> list[str]:
+    """The sections of a report on a state space reduced by stubborn sets: the dead markings only."""
+    out = []
+    for title in ("Boundedness Properties", "Home Properties"):
+        out += _heading(title) + [f"     {NOT_PRESERVED}"]
+    out += _heading("Liveness Properties")
+    out += ["  Dead Markings", "     " + _node_list(r.dead.states, r.exploration.graph.n_states)
+            + " (node numbers of the reduced graph)"]
+    if r.dead.unexpanded:
+        out.append(f"     (plus {r.dead.unexpanded} unexpanded {noun(r.dead.unexpanded, 'node')}, "
+                   f"which {noun(r.dead.unexpanded, 'is not a dead marking', 'are not dead markings')})")
+    out += _dead_markings(r, marking_changes, steps_cap, terms_cap)
+    out += ["", "  Dead Transition Instances", f"     {NOT_PRESERVED}"]
+    out += ["", "  Live Transition Instances", f"     {NOT_PRESERVED}"]
+    out += _heading("Fairness Properties") + [f"     {NOT_PRESERVED}"]
     return out
 
 
@@ -149,14 +168,18 @@ def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | No
         f"{noun(x.unexpanded, 'node')})")
     if x.restricted:
         status += f"; a restricted state space (branching options: {x.options.restriction()})"
-    out += ["  State Space", f"     Nodes:  {x.n_states}", f"     Arcs:   {x.n_arcs}",
-            f"     Secs:   {int(x.seconds)}", f"     Status: {status}", ""]
-    out += ["  Scc Graph", f"     Nodes:  {r.scc.nodes}", f"     Arcs:   {r.scc.arcs}",
-            f"     Secs:   {int(r.scc.seconds)}"]
+    out += ["  State Space" + (" (reduced by stubborn sets)" if r.reduced else ""), f"     Nodes:  {x.n_states}",
+            f"     Arcs:   {x.n_arcs}", f"     Secs:   {int(x.seconds)}", f"     Status: {status}", ""]
+    out += (["  Scc Graph", f"     {NOT_PRESERVED}"] if r.reduced else
+            ["  Scc Graph", f"     Nodes:  {r.scc.nodes}", f"     Arcs:   {r.scc.arcs}",
+             f"     Secs:   {int(r.scc.seconds)}"])
     if x.untimed_states is not None:
         out += ["", f"  Markings modulo time: {x.untimed_states}"]
     for note in r.notes:
         out += ["", f"  Note: {note}"]
+
+    if r.reduced:
+        return "\n".join(out + _reduced(r, marking_changes, steps_cap, terms_cap)) + "\n"
 
     out += _heading("Boundedness Properties")
     if not x.complete:

@@ -199,6 +199,9 @@ def run_report(result, timings: bool = True) -> dict:
     dead = g.dead_states()
     stats = {"states": x.n_states, "arcs": x.n_arcs, "complete": x.complete, "stop_reason": x.stop_reason.value,
              "unexpanded": x.unexpanded}
+    if x.reduction is not None:
+        # the counts are the reduced graph's; bounds are not preserved by the reduction
+        stats["reduction"] = x.reduction
     if timings:
         stats["seconds"] = round(result.explore_seconds, 4)
         stats["check_seconds"] = round(result.check_seconds, 4)
@@ -214,7 +217,7 @@ def run_report(result, timings: bool = True) -> dict:
         "verdict": result.status.value,
         "statespace": stats,
         "dead_markings": {"count": len(dead)},
-        "bounds": _integer_bounds(result),
+        "bounds": _integer_bounds(result) if x.reduction is None else None,
         "properties": props,
     }
 
@@ -258,7 +261,8 @@ def render_text(doc: dict) -> str:
         out.append("  values      " + ", ".join(f"{k}={v}" for k, v in doc["values"].items()))
     status = "complete" if st["complete"] else f"partial ({st['stop_reason']}, {st['unexpanded']:,} unexpanded)"
     secs = f", {st['seconds']:.2f} s" if "seconds" in st else ""
-    out.append(f"  state space {st['states']:,} states, {st['arcs']:,} arcs, {status}{secs}")
+    reduced = f" (reduced by {st['reduction']} sets)" if st.get("reduction") else ""
+    out.append(f"  state space {st['states']:,} states, {st['arcs']:,} arcs{reduced}, {status}{secs}")
     out.append(f"  verdict     {doc['verdict']}")
     out.append("")
     for p in doc["properties"]:
@@ -288,7 +292,8 @@ def render_markdown(doc: dict) -> str:
     st = doc["statespace"]
     out = [f"# Scenario `{doc['run']}`", "",
            f"- model: `{os.path.relpath(doc['model'])}`",
-           f"- state space: {st['states']:,} states, {st['arcs']:,} arcs, "
+           f"- state space: {st['states']:,} states, {st['arcs']:,} arcs"
+           + (f" (reduced by {st['reduction']} sets)" if st.get("reduction") else "") + ", "
            + ("complete" if st["complete"] else f"**partial** ({st['stop_reason']})"),
            f"- verdict: **{doc['verdict']}**", "",
            "| property | kind | verdict | detail |", "|---|---|---|---|"]

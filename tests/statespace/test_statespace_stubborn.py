@@ -99,3 +99,12 @@ def test_validation_corpus_subset(name):
         pytest.skip(f"no validation corpus at {folder}")
     path = os.path.join(folder, sorted(os.listdir(folder))[0])
     assert compare(cpn.load(path).engine(), max_states=20000) is not None
+
+
+def test_a_transition_blocked_by_an_inhibitor_brings_the_transitions_that_empty_its_place():
+    # c and t compete for A; t waits until u has emptied I: {c, t} alone is not stubborn (u can enable t)
+    net = """colset U = unit; place A : U = 1`(); place I : U = 1`(); place Z : U; place Done : U;
+    trans c; trans t; trans u; arc A -> c; arc c -> Z; arc A -> t; arc t -> Done; inhibitor I -> t; arc I -> u;"""
+    engine = cpn.loads(net).engine()
+    full, red = _run(engine), _run(engine, reduction="stubborn")
+    assert dead_set(red) == dead_set(full) and len(dead_set(full)) == 2
