@@ -1,6 +1,7 @@
 """Cross-check and measure stubborn sets against the full state space on every model of a directory.
 
     python bench/stubborn.py [../shared/validation models bench/nets ...] [--max-states N] [--max-seconds S]
+                             [--set NAME=VALUE ...]
 
 For each model (`.cpnet`, `.pnml`, `.cpn`, found recursively): the full graph, the reduced graph for
 deadlocks and the reduced graph with the visibility condition on one place, each bounded by the limits.
@@ -45,13 +46,16 @@ def main(argv=None) -> int:
     ap.add_argument("paths", nargs="*", default=["../shared/validation", "models", "bench/nets"])
     ap.add_argument("--max-states", type=int, default=200_000)
     ap.add_argument("--max-seconds", type=float, default=120.0)
+    ap.add_argument("--set", action="append", default=[], metavar="NAME=VALUE",
+                    help="a value of the models' `val` constants (bench/nets: N)")
     args = ap.parse_args(argv)
     bad = 0
     print(f"{'model':58} {'full':>9} {'s':>6} {'deadlk':>9} {'s':>6} {'visible':>9} {'s':>6}  result")
     for path in models(args.paths):
-        name = os.path.relpath(path)
+        name = os.path.relpath(path) + "".join(f" {kv}" for kv in args.set)
         try:
-            engine = cpn.load(path).engine()
+            values = dict(kv.split("=", 1) for kv in args.set)
+            engine = cpn.load(path, set=values or None).engine()
         except Exception as err:  # noqa: BLE001 - a model the loader refuses is listed, not fatal
             print(f"{name:58} not loaded: {str(err).splitlines()[0][:60]}")
             continue

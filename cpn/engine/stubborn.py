@@ -15,10 +15,12 @@ Closure rules (a set T_s is stubborn in state s when it is closed under them and
   consumes from or produces to. Firing is otherwise additive (M' = M - In(t,b) + Out(t,b)), so any
   other u and t commute (Valmari's D1) and u cannot disable t (D2: every enabled member is a key
   transition).
-- t disabled in T_s: every u that can help enable it: u produces to a place t consumes from (a
-  consumed place only enables by gaining tokens), or u consumes from or resets a place that inhibits t
-  (an inhibitor place only enables by losing tokens). This is the scapegoat rule with every place of
-  t as scapegoat, so it holds whatever colour or guard disables t.
+- t disabled in T_s: when a place p that t consumes from is empty and t's arc from p takes at least
+  one token whatever the binding (`1`x`, `k`v` with k > 0, a sum with such a term), p is the scapegoat:
+  every u that produces to p (only they can enable t). Otherwise every u that can help enable t: u
+  produces to a place t consumes from (a consumed place only enables by gaining tokens), or u consumes
+  from or resets a place that inhibits t (an inhibitor place only enables by losing tokens), so it holds
+  whatever colour or guard disables t.
 
 These preserve every reachable dead marking (Valmari 1990, "Stubborn sets for reduced state space
 generation"; Theorem: D1 and D2 with a key transition in every non-dead state).
@@ -54,13 +56,26 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from cpn.arcs import ArcKind
+from cpn.net import expr as E
+
+
+def takes_a_token(e) -> bool:
+    """Whether an arc inscription is a multiset of at least one token for every binding."""
+    if isinstance(e, E.ToMs):
+        return True
+    if isinstance(e, E.BinOp):
+        if e.op == "`":
+            return isinstance(e.left, E.Const) and type(e.left.value) is int and e.left.value > 0
+        if e.op == "++":
+            return takes_a_token(e.left) or takes_a_token(e.right)
+    return False
 
 
 class StubbornSets:
     """Chooses the enabled transition instances to follow in a state (see the module's docstring).
 
-    `choose(enabled)` returns the enabled members of a smallest stubborn set found, or None for a full
-    expansion; it depends on the enabled set only, so it is memoised by it.
+    `choose(enabled, empty)` returns the enabled members of a smallest stubborn set found, or None for a
+    full expansion; it depends on the enabled set and the empty places only, so it is memoised by them.
     """
 
     def __init__(self, net, visible_places: Iterable[int] | None = None):
@@ -72,10 +87,13 @@ class StubbornSets:
         elif any(t.priority is not None for t in net.transitions):
             self.refusal = "the net has priorities (a higher-priority enabling disables a transition instance)"
         consume, produce, inhibit, reset = ([set() for _ in range(n)] for _ in range(4))
+        needs: list[set[int]] = [set() for _ in range(n)]  # consumed places whose arc takes a token
         for t in net.transitions:
             for a in t.arcs:
                 if a.kind.consumes:
                     consume[t.index].add(a.place)
+                    if a.expr is not None and takes_a_token(a.expr):
+                        needs[t.index].add(a.place)
                 if a.kind.produces:
                     produce[t.index].add(a.place)
                 if a.kind is ArcKind.INHIBITOR:
@@ -109,40 +127,48 @@ class StubbornSets:
             e = of("produce", consume[t]) | of("consume", inhibit[t]) | of("reset", inhibit[t])
             e.discard(t)
             self.enablers.append(tuple(sorted(e)))
+        producers = by_place["produce"]
+        # per transition: its scapegoat candidates, each with its producers (fewest first)
+        self.scapegoats: list[tuple[tuple[int, tuple[int, ...]], ...]] = [
+            tuple(sorted(((p, tuple(sorted(producers.get(p, set()) - {t}))) for p in needs[t]),
+                         key=lambda pe: (len(pe[1]), pe[0]))) for t in range(n)]
+        self.scapegoat_places = frozenset(p for ps in needs for p in ps)
         self.visible_places = None if visible_places is None else frozenset(visible_places)
         if self.visible_places is None:
             self.visible = frozenset()
         else:
             vp = self.visible_places
             self.visible = frozenset(t for t in range(n) if (consume[t] | produce[t] | reset[t]) & vp)
-        self._memo: dict[frozenset, frozenset | None] = {}
+        self._memo: dict[tuple, frozenset | None] = {}
 
     @property
     def preserves_invariants(self) -> bool:
         """Whether the visibility condition is on (for invariants over `visible_places`)."""
         return self.visible_places is not None
 
-    def choose(self, enabled: frozenset) -> frozenset | None:
+    def choose(self, enabled: frozenset, empty: frozenset = frozenset()) -> frozenset | None:
         """The enabled members of a smallest stubborn set found for a state whose enabled transition
-        instances are `enabled`; None when the state must be fully expanded."""
+        instances are `enabled` and whose empty places include `empty` (only those of
+        `scapegoat_places` matter); None when the state must be fully expanded."""
+        key = (enabled, empty)
         try:
-            return self._memo[enabled]
+            return self._memo[key]
         except KeyError:
             pass
         best = None
         if self.refusal is None and len(enabled) > 1:
             for seed in sorted(enabled):
-                found = self._closure(seed, enabled, len(best) if best is not None else len(enabled))
+                found = self._closure(seed, enabled, empty, len(best) if best is not None else len(enabled))
                 if found is not None and (best is None or len(found) < len(best)):
                     best = found
                     if len(best) == 1:
                         break
         if best is not None and len(best) == len(enabled):
             best = None
-        self._memo[enabled] = best
+        self._memo[key] = best
         return best
 
-    def _closure(self, seed: int, enabled: frozenset, bound: int) -> frozenset | None:
+    def _closure(self, seed: int, enabled: frozenset, empty: frozenset, bound: int) -> frozenset | None:
         """The enabled members of the closure of {seed}; None once it reaches `bound` enabled members or
         an enabled visible one."""
         visible = self.visible
@@ -161,6 +187,11 @@ class StubbornSets:
                 more = conflicts[t]
             else:
                 more = enablers[t]
+                if empty:
+                    for p, producers in self.scapegoats[t]:
+                        if p in empty:
+                            more = producers
+                            break
             for u in more:
                 if u not in members:
                     members.add(u)

@@ -21,6 +21,7 @@ class ReducedSuccessors:
         self.full_expansions = 0  # states with more than one enabled transition instance, fully expanded
         self.reduced = 0  # states expanded with a proper subset of their enabled transition instances
         self._transition: dict[int, int] = {}
+        self._scapegoats = sorted(sets.scapegoat_places)  # places whose emptiness the sets look at
 
     def __call__(self, state):
         out = self.engine.successors(state)
@@ -33,7 +34,13 @@ class ReducedSuccessors:
             if t is None:
                 t = of[be] = self.engine.binding_element(be).transition
             enabled.add(t)
-        chosen = self.sets.choose(frozenset(enabled)) if len(enabled) > 1 else None
+        chosen = None
+        if len(enabled) > 1:
+            empty = frozenset()
+            if self._scapegoats:
+                counts = self.engine.token_counts(state)
+                empty = frozenset(p for p in self._scapegoats if not counts[p])
+            chosen = self.sets.choose(frozenset(enabled), empty)
         if chosen is None:
             self.full_expansions += len(enabled) > 1
             return out
