@@ -71,6 +71,12 @@ def takes_a_token(e) -> bool:
     return False
 
 
+# How many enabled transition instances are tried as seeds in a state (those with the fewest static
+# conflicts first): every seed gives a stubborn set, more seeds may give a smaller one at the cost of a
+# closure each (a net without independence pays them in every state).
+MAX_SEEDS: int = 6
+
+
 class StubbornSets:
     """Chooses the enabled transition instances to follow in a state (see the module's docstring).
 
@@ -140,6 +146,8 @@ class StubbornSets:
             vp = self.visible_places
             self.visible = frozenset(t for t in range(n) if (consume[t] | produce[t] | reset[t]) & vp)
         self._memo: dict[tuple, frozenset | None] = {}
+        self._weight = lambda t: (len(self.conflicts[t]), t)
+        self._masks: tuple | None = None
 
     @property
     def preserves_invariants(self) -> bool:
@@ -157,7 +165,8 @@ class StubbornSets:
             pass
         best = None
         if self.refusal is None and len(enabled) > 1:
-            for seed in sorted(enabled):
+            weight = self._weight
+            for seed in sorted(enabled, key=weight)[:MAX_SEEDS]:
                 found = self._closure(seed, enabled, empty, len(best) if best is not None else len(enabled))
                 if found is not None and (best is None or len(found) < len(best)):
                     best = found
@@ -170,33 +179,51 @@ class StubbornSets:
 
     def _closure(self, seed: int, enabled: frozenset, empty: frozenset, bound: int) -> frozenset | None:
         """The enabled members of the closure of {seed}; None once it reaches `bound` enabled members or
-        an enabled visible one."""
-        visible = self.visible
-        conflicts, enablers = self.conflicts, self.enablers
-        members = {seed}
-        stack = [seed]
-        hits = set()
-        while stack:
-            t = stack.pop()
-            if t in enabled:
-                if t in visible:
+        an enabled visible one. Sets of transition instances are bit masks here (one OR per member)."""
+        masks = self._masks
+        if masks is None:
+            masks = self._masks = self._make_masks()
+        conflict_mask, enabler_mask, scapegoat_masks, visible_mask = masks
+        enabled_mask = 0
+        for t in enabled:
+            enabled_mask |= 1 << t
+        members = todo = 1 << seed
+        hits = 0
+        n_hits = 0
+        while todo:
+            b = todo & -todo
+            todo ^= b
+            t = b.bit_length() - 1
+            if b & enabled_mask:
+                if b & visible_mask:
                     return None
-                hits.add(t)
-                if len(hits) >= bound:
+                hits |= b
+                n_hits += 1
+                if n_hits >= bound:
                     return None
-                more = conflicts[t]
+                more = conflict_mask[t]
             else:
-                more = enablers[t]
+                more = enabler_mask[t]
                 if empty:
-                    for p, producers in self.scapegoats[t]:
+                    for p, producers in scapegoat_masks[t]:
                         if p in empty:
                             more = producers
                             break
-            for u in more:
-                if u not in members:
-                    members.add(u)
-                    stack.append(u)
-        return frozenset(hits)
+            new = more & ~members
+            if new:
+                members |= new
+                todo |= new
+        return frozenset(t for t in enabled if hits >> t & 1)
+
+    def _make_masks(self) -> tuple:
+        def mask(ts) -> int:
+            m = 0
+            for t in ts:
+                m |= 1 << t
+            return m
+
+        return ([mask(c) for c in self.conflicts], [mask(e) for e in self.enablers],
+                [tuple((p, mask(ps)) for p, ps in sg) for sg in self.scapegoats], mask(self.visible))
 
 
-__all__ = ["StubbornSets"]
+__all__ = ["MAX_SEEDS", "StubbornSets", "takes_a_token"]
