@@ -100,6 +100,9 @@ def run(args) -> int:
         raise UsageError(f"--max-successors must be positive, got {args.max_successors}")
     if getattr(args, "until_time", None) is not None and args.until_time < 0:
         raise UsageError(f"--until-time must not be negative, got {args.until_time}")
+    if getattr(args, "reduction", None) and (args.dot or args.graphml):
+        raise UsageError("--dot and --graphml draw the state space and its SCC graph, which a graph reduced by "
+                         "stubborn sets does not preserve; drop --reduction to draw the full graph")
     _outputs(args)  # before the model is even loaded: a long run must never be lost to a bad path
     if not os.path.exists(args.model):
         raise UsageError(f"no such model file: '{args.model}'")

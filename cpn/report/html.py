@@ -17,7 +17,7 @@ from dataclasses import dataclass
 
 from cpn.report import svg as S
 from cpn.report.graphdraw import bfs_levels, draw_state_space, level_sizes, marking_text
-from cpn.report.model import Report
+from cpn.report.model import Report, reduction_text
 from cpn.report.msc import draw_msc
 from cpn.report.netdraw import draw_net
 from cpn.report.plot import growth_chart
@@ -262,6 +262,15 @@ def _content(r: Report, verdicts: list, heading: str | None = None) -> str:
         parts.append(_verdicts(r, verdicts, failed))
         nav.append(("verdicts", "Verdicts"))
     levels = bfs_levels(x.graph)
+    if r.reduced:
+        # a graph reduced by stubborn sets keeps the dead markings only: no figure of the rest is shown
+        parts.append(_section("statistics", "Statistics", f"<p>{S.esc(reduction_text(x))}.</p>"))
+        nav.append(("statistics", "Statistics"))
+        parts.append(_dead_markings(r, dead_marking_traces(r), levels))
+        nav.append(("dead", "Dead markings"))
+        links = "".join(f'<a href="#{i}">{S.esc(t)}</a>' for i, t in nav)
+        parts.insert(1, f'<nav aria-label="sections">{links}</nav>')
+        return "".join(parts)
     occ = _occurrences(r)
     parts.append(_statistics(r, levels))
     nav.append(("statistics", "Statistics"))
@@ -284,7 +293,8 @@ def _content(r: Report, verdicts: list, heading: str | None = None) -> str:
 def _header(r: Report, status: str, heading: str | None = None) -> str:
     x = r.exploration
     dead = r.dead.count
-    facts = [f"{x.n_states:,} states", f"{x.n_arcs:,} arcs", f"{r.scc.nodes:,} SCCs",
+    facts = [f"{x.n_states:,} states", f"{x.n_arcs:,} arcs"] + (
+        ["reduced by stubborn sets"] if r.reduced else [f"{r.scc.nodes:,} SCCs"]) + [
              f"{dead:,} dead marking{'s' if dead != 1 else ''}", f"{r.seconds:.2f} s"]
     if heading:
         facts.insert(0, os.path.basename(r.model))

@@ -82,3 +82,15 @@ def test_a_bad_reduction_is_a_positioned_error(tmp_path, capsys):
     assert main(["check", str(spec), "--no-reports"]) == 65
     err = capsys.readouterr().err
     assert "s.toml:3:" in err and "error[E0702]" in err and "'reduction' must be one of 'stubborn'" in err
+
+
+def test_html_page_and_drawings_under_the_reduction(tmp_path, capsys):
+    model = tmp_path / "n.cpnet"
+    model.write_text(NET, encoding="utf-8")
+    page = tmp_path / "r.html"
+    assert main(["explore", str(model), "--reduction", "stubborn", "--html", str(page), "--quiet"]) == 0
+    html = page.read_text(encoding="utf-8")
+    assert "reduced by stubborn sets" in html and "not preserved by stubborn sets" in html
+    assert 'id="bounds"' not in html
+    assert main(["explore", str(model), "--reduction", "stubborn", "--dot", str(tmp_path / "g.dot")]) == 64
+    assert "stubborn sets does not preserve" in capsys.readouterr().err
