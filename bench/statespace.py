@@ -2,12 +2,16 @@
 
 Usage:
   python bench/statespace.py [--nets dp,ms] [--sizes dp=5,8,10;ms=4,6,8 | 4,6,8] [--repeat 3]
-                             [--cpncheck] [--json FILE]
+                             [--backends c,python,packed] [--cpncheck] [--json FILE]
 
 Every measurement runs in a fresh subprocess, so peak memory (ru_maxrss) is that run's alone. Per size
 it prints states, arcs, generation seconds, whole-report seconds (generation plus the analysis of the
 standard report), states per second, peak memory after generation and after the report, and bytes per
 state (peak RSS growth during generation divided by the states). Medians over --repeat runs.
+--backends picks the searches to compare: `c` (the native search, `--backend c`), `python` (the Python
+search, `--backend python`: the engine's tuples in a dict below a million states) and `packed` (the Python
+search with the packed state store from the first state). With several, their runs alternate, so that they share the machine's load,
+and each gets its own row.
 
 With --cpncheck, the same nets as CPN Tools .cpn files (shared/bench/make_cpn_nets.py) are run with
 cpncheck from the virtual environment CPNCHECK_VENV (default ../cpncheck-venv; `pip install cpncheck` there): shared/bench/cpncheck_run.py for
@@ -35,12 +39,12 @@ DEFAULT_SIZES = {"dp": [5, 8, 10, 12, 14], "ms": [4, 5, 6, 7, 8]}
 
 # ------------------------------------------------------------------------------------------ child
 
-def child(net: str, n: int) -> dict:
+def child(net: str, n: int, backend: str = "c") -> dict:
     """One measurement, in this (fresh) process: load, generate, report."""
     sys.path.insert(0, ROOT)
     import cpn
     from cpn.report import build_report
-    from cpn.statespace import Explorer
+    from cpn.statespace import ExploreOptions, Explorer
     from cpn.statespace._memory import current_rss_mb, peak_rss_mb
 
     t_start = time.perf_counter()
@@ -49,7 +53,8 @@ def child(net: str, n: int) -> dict:
     load_s = time.perf_counter() - t_start
     rss0 = current_rss_mb()
     cpu0 = time.process_time()
-    x = Explorer(engine).run()
+    x = Explorer(engine, ExploreOptions(pack_from=0 if backend == "packed" else 1_000_000,
+                                        backend="c" if backend == "c" else "python")).run()
     cpu_gen = time.process_time() - cpu0
     rss_gen = current_rss_mb()
     peak_gen = peak_rss_mb()
@@ -58,7 +63,8 @@ def child(net: str, n: int) -> dict:
     peak_all = peak_rss_mb()
     dead = report.dead.count
     return {
-        "net": net, "n": n, "states": x.n_states, "arcs": x.n_arcs, "dead": dead, "complete": x.complete,
+        "net": net, "n": n, # the search asked for, and the one that finished it where that differs ("c>python": handed over)
+        "backend": backend if x.backend == ("c" if backend == "c" else "python") else f"{backend}>{x.backend}", "states": x.n_states, "arcs": x.n_arcs, "dead": dead, "complete": x.complete,
         "load_s": load_s, "gen_s": x.seconds, "report_s": report.seconds, "analysis_s": report.analysis_seconds,
         "peak_gen_mb": peak_gen, "peak_report_mb": peak_all, "rss_before_mb": rss0,
         "gen_cpu_s": cpu_gen, "report_cpu_s": cpu_all,
@@ -83,8 +89,8 @@ def run_measured(cmd: list[str], env=None) -> tuple[str, float, float]:
     return text, wall, usage.ru_maxrss / 1024
 
 
-def ours(net: str, n: int) -> dict:
-    out, wall, peak = run_measured([sys.executable, os.path.abspath(__file__), "--child", net, str(n)])
+def ours(net: str, n: int, backend: str = "c") -> dict:
+    out, wall, peak = run_measured([sys.executable, os.path.abspath(__file__), "--child", net, str(n), backend])
     d = json.loads(out.strip().splitlines()[-1])
     d["process_wall_s"] = wall
     d["process_peak_mb"] = peak
@@ -127,14 +133,16 @@ def main(argv=None) -> int:
     ap.add_argument("--nets", default="dp,ms")
     ap.add_argument("--sizes")
     ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--backends", default="c,python", help="searches to compare: c,python,packed")
     ap.add_argument("--cpncheck", action="store_true")
     ap.add_argument("--json", metavar="FILE")
-    ap.add_argument("--child", nargs=2, metavar=("NET", "N"), help=argparse.SUPPRESS)
+    ap.add_argument("--child", nargs=3, metavar=("NET", "N", "BACKEND"), help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
     if args.child:
-        print(json.dumps(child(args.child[0], int(args.child[1]))))
+        print(json.dumps(child(args.child[0], int(args.child[1]), args.child[2])))
         return 0
     nets = [s.strip() for s in args.nets.split(",") if s.strip()]
+    backends = [s.strip() for s in args.backends.split(",") if s.strip()]
     sizes = parse_sizes(args.sizes, nets)
     cpn_dir = None
     if args.cpncheck and not os.path.exists(os.path.join(CPNCHECK_VENV, "bin", "cpncheck")):
@@ -146,23 +154,34 @@ def main(argv=None) -> int:
         cpn_dir = tempfile.mkdtemp(prefix="cpn-bench-")
         subprocess.run([sys.executable, os.path.join(SHARED_BENCH, "make_cpn_nets.py"), cpn_dir], check=True)
     results = []
-    head = (f"{'net':<6}{'states':>10}{'arcs':>11}{'gen s':>8}{'report s':>9}{'states/s':>10}"
-            f"{'peak MiB':>9}{'rep MiB':>8}{'B/state':>8}")
+    head = (f"{'net':<6}{'backend':>10}{'states':>10}{'arcs':>11}{'gen s':>8}{'report s':>9}{'states/s':>10}"
+            f"{'peak MiB':>9}{'rep MiB':>8}{'B/state':>8}{'wall s':>8}")
     if args.cpncheck:
         head += f" | {'cpncheck gen s':>14}{'report s':>9}{'peak MiB':>9}{'x gen':>7}{'x rep':>7}{'mem':>6}"
     print(head)
     for net in nets:
         for n in sizes[net]:
-            runs = [ours(net, n) for _ in range(args.repeat)]
-            row = {"net": net, "n": n, "states": runs[0]["states"], "arcs": runs[0]["arcs"],
-                   "gen_s": median(runs, "gen_s"), "report_s": median(runs, "report_s"),
-                   "process_wall_s": median(runs, "process_wall_s"),
-                   "peak_gen_mb": median(runs, "peak_gen_mb"), "peak_report_mb": median(runs, "peak_report_mb"),
-                   "bytes_per_state": median(runs, "bytes_per_state"), "runs": runs}
-            row["states_per_s"] = row["states"] / row["gen_s"] if row["gen_s"] else 0.0
-            line = (f"{net}({n})".ljust(6) + f"{row['states']:>10,}{row['arcs']:>11,}{row['gen_s']:>8.2f}"
-                    f"{row['report_s']:>9.2f}{row['states_per_s']:>10,.0f}{row['peak_gen_mb']:>9.0f}"
-                    f"{row['peak_report_mb']:>8.0f}{row['bytes_per_state']:>8.0f}")
+            by_backend: dict[str, list[dict]] = {st: [] for st in backends}
+            for _ in range(args.repeat):
+                for st in backends:
+                    by_backend[st].append(ours(net, n, st))
+            if len({(r[0]["states"], r[0]["arcs"]) for r in by_backend.values()}) > 1:
+                print(f"{net}({n}): COUNTS DIFFER between the back ends", flush=True)
+            for st in backends:
+                runs = by_backend[st]
+                row = {"net": net, "n": n, "backend": runs[0]["backend"], "states": runs[0]["states"],
+                       "arcs": runs[0]["arcs"], "gen_s": median(runs, "gen_s"), "report_s": median(runs, "report_s"),
+                       "process_wall_s": median(runs, "process_wall_s"),
+                       "peak_gen_mb": median(runs, "peak_gen_mb"), "peak_report_mb": median(runs, "peak_report_mb"),
+                       "bytes_per_state": median(runs, "bytes_per_state"), "runs": runs}
+                row["states_per_s"] = row["states"] / row["gen_s"] if row["gen_s"] else 0.0
+                line = (f"{net}({n})".ljust(6) + f"{row['backend']:>10}{row['states']:>10,}{row['arcs']:>11,}"
+                        f"{row['gen_s']:>8.2f}{row['report_s']:>9.2f}{row['states_per_s']:>10,.0f}"
+                        f"{row['peak_gen_mb']:>9.0f}{row['peak_report_mb']:>8.0f}{row['bytes_per_state']:>8.0f}"
+                        f"{row['process_wall_s']:>8.2f}")
+                if st != backends[-1]:
+                    print(line, flush=True)
+                    results.append(row)
             if args.cpncheck:
                 cruns = [cpncheck(cpn_dir, net, n) for _ in range(args.repeat)]
                 c = {"gen_s": median(cruns, "gen_s"), "report_wall_s": median(cruns, "report_wall_s"),

@@ -62,6 +62,10 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p.add_argument("--until-time", type=int, metavar="B", default=None,
                    help="expand no state whose model time (clock) exceeds B: the timed state space up to "
                         "time B, reported as partial when some state lies beyond B")
+    p.add_argument("--backend", choices=("auto", "python", "c"), default="auto",
+                   help="the search: 'c' runs its loop, caches and graph in native code (built with the "
+                   "system C compiler on first use), 'python' in Python; 'auto' (the default) is 'c' "
+                   "where it can run and says why not elsewhere; the state space is the same")
     add_output_option(p, "--json", "the result as JSON")
     add_output_option(p, "--dot", "the state space and SCC graph as DOT (small nets)")
     add_output_option(p, "--graphml", "the state space and SCC graph as GraphML (small nets)")
@@ -117,7 +121,8 @@ def _options(args):
                           max_memory_mb=args.max_memory, time_condensation=args.time_condensation,
                           detect_time_growth=not args.no_time_growth_check,
                           until_time=getattr(args, "until_time", None),
-                          reduction=getattr(args, "reduction", None))
+                          reduction=getattr(args, "reduction", None),
+                          backend=getattr(args, "backend", "auto"))
 
 
 def _branching_options(engine, options, names: str | None, max_successors: int | None):
@@ -170,6 +175,9 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
         raise
     if display:
         display.close()
+    if not quiet or options.backend == "c":
+        for note in x.notes:
+            print(f"note: {note}", file=sys.stderr)
     memory_default = bool(getattr(args, "max_memory_is_default", False))
     opts = {"set": sets or {}, "max_states": args.max_states, "max_arcs": args.max_arcs,
             "max_seconds": args.max_seconds, "max_memory_mb": args.max_memory,

@@ -67,6 +67,11 @@ class EngineAPI:
     def clock(self, state) -> int:
         return state[-1] if self.is_timed else 0
 
+    def successor_groups(self):
+        """The successor function as transition groups for a native search (`TransitionGroups`), or
+        None where the engine cannot give them (the reference interpreter; timed nets; priorities)."""
+        return None
+
     def enabled(self, state) -> list:
         """The enabled binding elements of `state`, in the engine's fixed order."""
         return [self.binding_element(be) for be, _ in self.successors(state)]

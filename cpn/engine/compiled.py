@@ -75,6 +75,56 @@ class _Places:
         return i
 
 
+class TransitionGroups:
+    """`successors` split per transition, for a search that caches each transition's result itself.
+
+    Group k reads the places `groups[k][0]` and only writes the places `groups[k][1]`. `results(k, key)`
+    gives, for the ids `key` of the places it reads, its enabled binding elements in the engine's order,
+    each as the values (binding element, new id of every read place, delta id of every written place),
+    all in one flat list; the id of
+    written place p after the binding is `add(p, old id, delta id)`. A successor of state s is s with
+    those ids put in: the same states in the same order as `successors(s)`.
+    """
+
+    def __init__(self, engine: CompiledEngine):
+        self._engine = engine
+        self.groups = [(tuple(i.read), tuple(i.writes)) for i in engine._plan]
+
+    def caller_caches(self) -> None:
+        """The caller keeps every result from now on: the engine stops memoising its own copies."""
+        for info in self._engine._plan:
+            info.store_results = False
+            info.memo.clear()
+
+    def engine_caches(self) -> None:
+        """The caller stops caching: the engine memoises its results again (as when it was built)."""
+        for info in self._engine._plan:
+            info.store_results = True
+            info.lookups = 0
+
+    def results(self, k: int, key: tuple) -> list[int]:
+        """The entries of group k for `key`, one after the other in one flat list."""
+        e = self._engine
+        info = e._plan[k]
+        nr = len(info.read)
+        memo_key = key if nr > 1 else (key[0] if nr == 1 else ())
+        res = info.memo.get(memo_key)
+        if res is None:
+            res = e._miss(info, memo_key)
+        if not info.writes:
+            return [v for entry in res for v in entry]
+        out: list[int] = []
+        extend = out.extend
+        cut = 1 + nr
+        for entry in res:
+            extend(entry[:cut])
+            extend(entry[cut + 1::2])
+        return out
+
+    def add(self, p: int, cur: int, did: int) -> int:
+        return self._engine._add(p, cur, did)
+
+
 class CompiledEngine(EngineAPI):
     """Successor function of a net, compiled to Python; see docs/internals.md for the protocol."""
 
@@ -199,6 +249,11 @@ class CompiledEngine(EngineAPI):
     def format_marking(self, s: tuple, p: int) -> str:
         pl = self.places[p]
         return format_multiset(pl.colour_set, self.store.dicts[p][s[p]].items(), timed=pl.timed)
+
+    def successor_groups(self) -> TransitionGroups | None:
+        """The untimed successor function without priorities as LTSmin's transition groups: one per
+        transition, with the places it reads and those it only writes (None for other nets)."""
+        return TransitionGroups(self) if self._flat else None
 
     # ------------------------------------------------------------------ successors
     def successors(self, s: tuple) -> list[tuple[int, tuple]]:

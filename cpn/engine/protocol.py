@@ -81,5 +81,8 @@ class Engine(Protocol):
     def format_multiset(self, p: int, ms: dict) -> str:
         """CPN ML text of an untimed multiset (value -> count) of place p's colour set."""
 
+    # Optional: `successor_groups()`, the successor function as transition groups for the native search
+    # (`cpn.engine.compiled.TransitionGroups`, or None); an engine without it is searched in Python.
+
 
 __all__ = ["BindingElementLike", "Engine", "Place", "Transition"]

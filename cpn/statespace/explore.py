@@ -9,14 +9,17 @@ from __future__ import annotations
 import gc
 import time
 from array import array
+from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from cpn.engine import Engine
 from cpn.errors import EvaluationError
+from cpn.statespace import native
 from cpn.statespace._memory import current_rss_mb, peak_rss_mb
 from cpn.statespace.graph import StateGraph
 from cpn.statespace.options import ExploreOptions, StopReason
+from cpn.statespace.store import new_store, pack
 from cpn.statespace.trace import shortest_trace
 
 # How many BFS levels without a new untimed marking, and how far past the clock at which the untimed
@@ -27,6 +30,10 @@ TIME_GROWTH_LEVELS: int = 8
 # successors stores a million states in 512 expansions, far past a memory limit.
 CHECK_EVERY: int = 512
 CHECK_EVERY_ARCS: int = 1 << 16
+#: the native search hands over to the Python search if, by the time it has expanded at most HAND_OVER_BY
+#: states, it has returned to the engine more than HAND_OVER_RATE times per state (DP: about 3; MS: 0.2-0.5)
+HAND_OVER_BY: int = 8192
+HAND_OVER_RATE: float = 1.5
 
 
 @dataclass(frozen=True)
@@ -63,9 +70,16 @@ class Exploration:
     time_growth: dict | None = None
     levels: int = 0
     notes: list = field(default_factory=list)
+    #: which search ran: "c" (cpn.statespace.native) or "python"
+    backend: str = "python"
     # the partial-order reduction that ran ("stubborn"), None for the full graph; its figures
     reduction: str | None = None
     reduction_stats: dict | None = None
+
+    @property
+    def restricted(self) -> bool:
+        """Branching options left out some successors: this is a restricted state space."""
+        return self.options.restricted
 
     @property
     def complete(self) -> bool:
@@ -82,11 +96,6 @@ class Exploration:
     @property
     def unexpanded(self) -> int:
         return self.graph.n_states - self.graph.expanded
-
-    @property
-    def restricted(self) -> bool:
-        """Branching options left out some successors: this is a restricted state space."""
-        return self.options.restricted
 
 
 class Explorer:
@@ -126,11 +135,21 @@ class Explorer:
         # A model that reads the clock (intTime() in a guard, an inscription, a delay) can change its
         # behaviour at any later time: the markings modulo time say nothing about its future.
         self._reads_clock = self.engine.is_timed and self.engine.reads_clock
-        self._reduced = self._reduction(g)
         stop, predicate_state = self._start(g)
+        self._reduced = self._reduction(g)
         levels = 0
+        self._backend = "python"
+        self._notes = []
         if stop is StopReason.COMPLETE:
-            stop, predicate_state, levels = self._search(g)
+            s0 = self._queue[0]
+            why = self._python_only() or native.unavailable(self.engine, opts, s0)
+            if why is None:
+                self._backend = "c"
+                stop, predicate_state, levels = self._search_native(g, s0)
+            else:
+                if opts.backend != "python":
+                    self._notes.append(f"the Python back end searched this net: {why}")
+                stop, predicate_state, levels = self._search(g)
         return self._finish(g, stop, predicate_state, levels)
 
     def _reduction(self, g: StateGraph):
@@ -149,13 +168,71 @@ class Explorer:
             self._reduction_notes.append(f"stubborn sets were not applied: {sets.refusal}; every state was "
                                          "fully expanded")
             return None
-        return ReducedSuccessors(self.engine, sets, g.index)
+        return ReducedSuccessors(self.engine, sets, g.store.index)
+
+    def _python_only(self) -> str | None:
+        """Why only the Python search can run these options (reductions, branching options and the
+        model-time bound are steps of the Python search), or None."""
+        opts = self.options
+        if self._reduced is not None:
+            return "the native search does not reduce the graph (--reduction)"
+        if opts.restricted:
+            return "the native search has no branching options"
+        if opts.until_time is not None and self.engine.is_timed:
+            return "the native search has no model-time bound (--until-time)"
+        return None
+
+    def _search_native(self, g: StateGraph, s0) -> tuple[StopReason, int | None, int]:
+        """The same search as `_search`, its loop in C (`cpn.statespace.native`)."""
+        opts = self.options
+        self._queue = None
+        search = native.NativeSearch(self.engine, g, s0)
+        max_states = opts.max_states if opts.max_states is not None else 1 << 62
+        max_arcs = opts.max_arcs if opts.max_arcs is not None else 1 << 62
+        until = CHECK_EVERY
+        try:
+            while True:
+                # a stop at the arcs cap of this round is a look at the limits, as at `until`
+                round_arcs = min(max_arcs, search.n_arcs + CHECK_EVERY_ARCS)
+                stop = search.run(until, max_states, round_arcs)
+                if stop is StopReason.MAX_ARCS and round_arcs < max_arcs:
+                    stop = None
+                if stop is not None:
+                    break
+                n = len(g.store)
+                stop = self._check_limits(n, search.n_arcs, n - search.head)
+                if stop is not StopReason.COMPLETE:
+                    break
+                if search.head <= HAND_OVER_BY and search.round_trips > HAND_OVER_RATE * search.head:
+                    return self._hand_over(g, search)
+                if search.head >= until:
+                    until += CHECK_EVERY
+        except EvaluationError as err:
+            if not err.trace:
+                err.trace = [step.text for step in shortest_trace(g, search.head, self.engine).steps]
+            raise
+        except KeyboardInterrupt:
+            search.flush()
+            stop = StopReason.INTERRUPTED
+        g.store.finish()
+        return stop, None, search.levels
+
+    def _hand_over(self, g: StateGraph, search) -> tuple[StopReason, int | None, int]:
+        """Go on in Python from where the native search is: its caches are rarely reused on this net."""
+        head = search.head
+        self._notes.append(
+            f"the native search handed over to the Python search after {head:,} states: each state needed "
+            f"the engine {search.round_trips / head:.1f} times on average (transitions' results rarely recur)")
+        self._backend = "python"
+        search.tg.engine_caches()
+        self._queue = deque(g.states[head:])
+        return self._search(g, head, search.level_end, search.levels)
 
     def _start(self, g: StateGraph) -> tuple[StopReason, int | None]:
         """Store the initial state; the search stops at once if it satisfies the stop predicate."""
         s0 = self.engine.initial_state()
-        g.index[s0] = 0
-        g.states.append(s0)
+        g.store = new_store(s0, packed=self.options.packed_states and self.options.pack_from <= 0)
+        self._queue = deque([s0])
         g.parent.append(-1)
         g.parent_be.append(-1)
         if self._watcher is not None:
@@ -165,11 +242,14 @@ class Explorer:
             return StopReason.PREDICATE, 0
         return StopReason.COMPLETE, None
 
-    def _search(self, g: StateGraph) -> tuple[StopReason, int | None, int]:
-        """Expand the states in BFS order: (why it stopped, the state satisfying the predicate, levels)."""
+    def _search(self, g: StateGraph, head: int = 0, level_end: int = 1,
+                levels: int = 0) -> tuple[StopReason, int | None, int]:
+        """Expand the states in BFS order: (why it stopped, the state satisfying the predicate, levels).
+        It goes on from state `head` (its queue `self._queue`) when the native search hands over."""
         engine = self.engine
         opts = self.options
-        states, index = g.states, g.index
+        store = g.store
+        queue = self._queue
         offsets, dst, parent, parent_be = g.offsets, g.dst, g.parent, g.parent_be
         pred = opts.stop_predicate
         max_states = opts.max_states if opts.max_states is not None else 1 << 62
@@ -189,67 +269,112 @@ class Explorer:
         successors = engine.successors if self._reduced is None else self._reduced
         if opts.restricted:
             successors = _branching(successors, opts)
-        index_get = index.get
-        states_append = states.append
+        add_successors = store.add_successors
+        # the tuple store is filled inline (as fast as before the packed store); a packed one through
+        # add_successors, one call per state, with the unexpanded states' tuples in `queue`
+        tuples = store.kind == "tuples"
+        if tuples:
+            states, index = store.states, store.index
+            index_get, states_append = index.get, states.append
+        pop = queue.popleft
+        push = queue.append
         parent_append = parent.append
         pbe_append = parent_be.append
         dst_append = dst.append
         bes_append = g.bes.append
+        bes_extend = g.bes.extend
         off_append = offsets.append
-        head = 0
-        level_end = 1
-        levels = 0
-        n_arcs = 0
-        next_check_arcs = CHECK_EVERY_ARCS
+        n_arcs = len(dst)
+        next_check_arcs = n_arcs + CHECK_EVERY_ARCS
+        n_states = len(store)
+        # a reduction, branching options and the model-time bound keep the tuple store (they read its index)
+        special = self._python_only() is not None
+        pack_from = opts.pack_from if opts.packed_states and tuples and not special else None
+        succ: list | tuple = ()
+        fresh: list | tuple = ()
         # The states are acyclic tuples of ints, yet each allocation burst makes the cyclic collector
         # walk every stored state again: switching it off cut MS(7) generation CPU time by about 25%.
         gc_was_enabled = gc.isenabled()
         gc.disable()
         try:
-            while stop is StopReason.COMPLETE and head < len(states):
+            while stop is StopReason.COMPLETE and head < n_states:
                 if head == level_end:
                     levels += 1
                     if watcher is not None:
-                        watcher.level(states, level_end, len(states))
+                        watcher.level(store.states, level_end, n_states)
                         if timed_check and watcher.grows_only_by_time():
                             stop = StopReason.TIME_GROWS
                             break
-                    level_end = len(states)
+                    level_end = n_states
                 if (not head & (CHECK_EVERY - 1) and head) or n_arcs >= next_check_arcs:
                     next_check_arcs = n_arcs + CHECK_EVERY_ARCS
-                    stop = self._check_limits(len(states), n_arcs, len(states) - head)
+                    stop = self._check_limits(n_states, n_arcs, n_states - head)
                     if stop is not StopReason.COMPLETE:
                         break
-                if len(states) + len(beyond.states) >= max_states:
+                    if pack_from is not None and n_states >= pack_from:
+                        pack_from = None
+                        g.store = store = pack(store)
+                        if store.kind == "packed":
+                            tuples = False
+                            add_successors = store.add_successors
+                            queue = deque(store.states[head:])
+                            pop, push = queue.popleft, queue.append
+                            bes_extend = g.bes.extend
+                if n_states + len(beyond.states) >= max_states:
                     stop = StopReason.MAX_STATES
                     break
                 if n_arcs >= max_arcs:
                     stop = StopReason.MAX_ARCS
                     break
-                for be, t in successors(states[head]):
-                    j = index_get(t)
-                    if j is None and until is not None and clock_of(t) > until:
-                        j = beyond_get(t)
-                        if j is None:
-                            j = beyond.add(t, head, be)
+                if tuples:
+                    for be, t in successors(states[head]):
+                        j = index_get(t)
+                        if j is None and until is not None and clock_of(t) > until:
+                            j = beyond_get(t)
+                            if j is None:
+                                j = beyond.add(t, head, be)
+                                if pred is not None and pred(t):
+                                    stop, predicate_state = StopReason.PREDICATE, j
+                        elif j is None:
+                            j = len(states)
+                            index[t] = j
+                            states_append(t)
+                            parent_append(head)
+                            pbe_append(be)
                             if pred is not None and pred(t):
                                 stop, predicate_state = StopReason.PREDICATE, j
-                    elif j is None:
-                        j = len(states)
-                        index[t] = j
-                        states_append(t)
-                        parent_append(head)
-                        pbe_append(be)
-                        if pred is not None and pred(t):
-                            stop, predicate_state = StopReason.PREDICATE, j
-                    dst_append(j)
-                    try:
-                        bes_append(be)
-                    except OverflowError:
-                        g.bes = array("i", g.bes)  # binding-element ids outgrew 16 bits: widen once
-                        bes_append = g.bes.append
-                        bes_append(be)
-                n_arcs = len(dst)
+                        dst_append(j)
+                        try:
+                            bes_append(be)
+                        except OverflowError:
+                            g.bes = array("i", g.bes)  # binding-element ids outgrew 16 bits: widen once
+                            bes_append, bes_extend = g.bes.append, g.bes.extend
+                            bes_append(be)
+                    n_states = len(states)
+                    n_arcs = len(dst)
+                else:
+                    succ = ()
+                    fresh = ()
+                    succ = successors(queue[0])
+                    if succ:
+                        fresh = add_successors(succ, dst)
+                        try:
+                            bes_extend([be for be, _t in succ])
+                        except OverflowError:
+                            del g.bes[len(dst) - len(succ):]  # extend stopped part-way
+                            g.bes = array("i", g.bes)  # binding-element ids outgrew 16 bits: widen once
+                            bes_extend = g.bes.extend
+                            bes_extend([be for be, _t in succ])
+                        for k in fresh:
+                            be, t = succ[k]
+                            parent_append(head)
+                            pbe_append(be)
+                            push(t)
+                            if pred is not None and pred(t):
+                                stop, predicate_state = StopReason.PREDICATE, n_states
+                            n_states += 1
+                        n_arcs = len(dst)
+                    pop()
                 off_append(n_arcs)
                 head += 1
         except EvaluationError as err:
@@ -262,12 +387,19 @@ class Explorer:
             # A half-expanded state keeps no arcs: it is unexpanded. States it discovered stay.
             del dst[offsets[-1]:]
             del g.bes[offsets[-1]:]
+            # States numbered by the store whose BFS parent was not yet recorded: they came from `head`.
+            missing = len(g.store) - len(parent)
+            for k in fresh[len(fresh) - missing:] if missing > 0 else ():
+                parent.append(head)
+                parent_be.append(succ[k][0])
             stop = StopReason.INTERRUPTED
         finally:
+            self._queue = None
+            store.finish()
             if gc_was_enabled:
                 gc.enable()
         if predicate_state is not None and predicate_state < 0:
-            predicate_state = len(states) - 1 - predicate_state
+            predicate_state = len(g.store) - 1 - predicate_state
         if beyond.states and stop is StopReason.COMPLETE:
             stop = StopReason.UNTIL_TIME
         beyond.store(g)
@@ -307,70 +439,13 @@ class Explorer:
             peak_memory_mb=peak_rss_mb(), predicate_state=predicate_state,
             untimed_states=len(watcher.untimed) if watcher is not None else None,
             time_growth=watcher.evidence() if stop is StopReason.TIME_GROWS else None,
-            levels=levels, notes=notes,
+            levels=levels, notes=self._notes + notes, backend=self._backend,
             reduction="stubborn" if self._reduced is not None else None,
             reduction_stats=None if self._reduced is None else {
                 "reduced_states": self._reduced.reduced, "fully_expanded_states": self._reduced.full_expansions,
                 "visible_places": None if self.options.visible_places is None
                 else sorted(self.options.visible_places)},
         )
-
-
-def _branching(successors, opts: ExploreOptions):
-    """`successors` restricted by the branching options (the predicate is asked once per binding element)."""
-    pred = opts.branching_predicate
-    cap = opts.max_successors
-    verdict: dict[int, bool] = {}
-
-    def keep(be: int) -> bool:
-        v = verdict.get(be)
-        if v is None:
-            v = verdict[be] = bool(pred(be))
-        return v
-
-    def restricted(state):
-        succ = successors(state)
-        if pred is not None:
-            succ = [(be, t) for be, t in succ if keep(be)]
-        if cap is not None:
-            succ = succ[:cap]
-        return succ
-
-    return restricted
-
-
-class _Beyond:
-    """The states past the model-time bound, numbered -1, -2, ... while the search runs."""
-
-    def __init__(self):
-        self.index: dict = {}
-        self.states: list = []
-        self.parent: list[int] = []
-        self.parent_be: list[int] = []
-
-    def add(self, state, parent: int, be: int) -> int:
-        j = -1 - len(self.states)
-        self.index[state] = j
-        self.states.append(state)
-        self.parent.append(parent)
-        self.parent_be.append(be)
-        return j
-
-    def store(self, g: StateGraph) -> None:
-        """Append the states to the graph after all the others and renumber the arcs that reach them."""
-        if not self.states:
-            return
-        base = len(g.states)
-        for k, s in enumerate(self.states):
-            g.index[s] = base + k
-        g.states.extend(self.states)
-        g.parent.extend(array("i", self.parent))
-        g.parent_be.extend(array("i", self.parent_be))
-        dst = g.dst
-        for i, d in enumerate(dst):
-            if d < 0:
-                dst[i] = base - 1 - d
-        self.states, self.index, self.parent, self.parent_be = [], {}, [], []
 
 
 class _TimeGrowthWatcher:
@@ -428,3 +503,61 @@ class _TimeGrowthWatcher:
             "clock_when_untimed_markings_stopped_growing": self.clock_at_saturation,
             "frontier_min_clock": self.last_min_clock,
         }
+
+
+def _branching(successors, opts: ExploreOptions):
+    """`successors` restricted by the branching options (the predicate is asked once per binding element)."""
+    pred = opts.branching_predicate
+    cap = opts.max_successors
+    verdict: dict[int, bool] = {}
+
+    def keep(be: int) -> bool:
+        v = verdict.get(be)
+        if v is None:
+            v = verdict[be] = bool(pred(be))
+        return v
+
+    def restricted(state):
+        succ = successors(state)
+        if pred is not None:
+            succ = [(be, t) for be, t in succ if keep(be)]
+        if cap is not None:
+            succ = succ[:cap]
+        return succ
+
+    return restricted
+
+
+class _Beyond:
+    """The states past the model-time bound, numbered -1, -2, ... while the search runs."""
+
+    def __init__(self):
+        self.index: dict = {}
+        self.states: list = []
+        self.parent: list[int] = []
+        self.parent_be: list[int] = []
+
+    def add(self, state, parent: int, be: int) -> int:
+        j = -1 - len(self.states)
+        self.index[state] = j
+        self.states.append(state)
+        self.parent.append(parent)
+        self.parent_be.append(be)
+        return j
+
+    def store(self, g: StateGraph) -> None:
+        """Append the states to the graph after all the others and renumber the arcs that reach them."""
+        if not self.states:
+            return
+        store = g.store  # the tuple store: the explorer keeps it when a model-time bound is set
+        base = len(store.states)
+        for k, s in enumerate(self.states):
+            store.index[s] = base + k
+        store.states.extend(self.states)
+        g.parent.extend(array("i", self.parent))
+        g.parent_be.extend(array("i", self.parent_be))
+        dst = g.dst
+        for i, d in enumerate(dst):
+            if d < 0:
+                dst[i] = base - 1 - d
+        self.states, self.index, self.parent, self.parent_be = [], {}, [], []

@@ -1,13 +1,16 @@
-"""The occurrence graph as compact arrays: states, CSR arcs and BFS parent pointers.
+"""The occurrence graph as compact arrays: states (a `store`), CSR arcs and BFS parent pointers.
 
-Imports the standard library only. Arcs are stored per source state in breadth-first order, so the
+Arcs are stored per source state in breadth-first order, so the
 arcs of state i are `dst[offsets[i]:offsets[i+1]]` (destinations) and `bes[...]` (binding elements).
 """
 
 from __future__ import annotations
 
 from array import array
+from collections.abc import Sequence
 from dataclasses import dataclass, field
+
+from cpn.statespace.store import TupleStore
 
 
 @dataclass
@@ -19,8 +22,8 @@ class StateGraph:
     so the path they describe is a shortest path from the initial state.
     """
 
-    states: list = field(default_factory=list)
-    index: dict = field(default_factory=dict)
+    #: the states, numbered in discovery order (`cpn.statespace.store`: packed records or tuples)
+    store: object = field(default_factory=TupleStore)
     offsets: array = field(default_factory=lambda: array("q", [0]))
     dst: array = field(default_factory=lambda: array("i"))
     # 16-bit binding-element ids until one does not fit (the explorer widens to 32 bits then):
@@ -30,9 +33,14 @@ class StateGraph:
     parent_be: array = field(default_factory=lambda: array("i"))
 
     @property
+    def states(self) -> Sequence:
+        """The engine's state of every id (a sequence; a packed store decodes a state when it is read)."""
+        return self.store.states
+
+    @property
     def n_states(self) -> int:
         """The number of states found (expanded or not)."""
-        return len(self.states)
+        return len(self.store)
 
     @property
     def n_arcs(self) -> int:
@@ -57,7 +65,7 @@ class StateGraph:
 
     def state_id(self, state: tuple) -> int | None:
         """The number of an engine state in the graph, or None if it was not found."""
-        return self.index.get(state)
+        return self.store.find(state)
 
     def dead_states(self) -> list[int]:
         """Expanded states with no outgoing arc, in increasing order (unexpanded states excluded)."""

@@ -48,3 +48,21 @@ def counts(engine, limit: int = 10**7) -> tuple[int, int, int]:
                 seen.add(t)
                 queue.append(t)
     return len(queue), arcs, dead
+
+
+def same_exploration(a, b) -> None:
+    """Two explorations (`cpn.statespace.Exploration`) of the same net found the very same graph: the
+    same states (their markings and clocks) under the same ids, the same arcs in the same order, the same
+    binding elements, BFS parents and levels, and stopped for the same reason."""
+    ga, gb = a.graph, b.graph
+    assert a.stop_reason is b.stop_reason and a.levels == b.levels
+    assert a.predicate_state == b.predicate_state
+    assert len(ga.states) == len(gb.states)
+    assert [a.engine.marking(s) for s in ga.states] == [b.engine.marking(s) for s in gb.states]
+    assert [a.engine.clock(s) for s in ga.states] == [b.engine.clock(s) for s in gb.states]
+    assert list(ga.offsets) == list(gb.offsets)
+    assert list(ga.dst) == list(gb.dst)
+    assert list(ga.bes) == list(gb.bes)
+    assert [a.engine.format_binding_element(be) for be in sorted(set(ga.bes))] == \
+        [b.engine.format_binding_element(be) for be in sorted(set(gb.bes))]
+    assert list(ga.parent) == list(gb.parent) and list(ga.parent_be) == list(gb.parent_be)

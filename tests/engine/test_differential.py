@@ -1,5 +1,6 @@
 """The compiled engine against the reference interpreter: same enabled binding elements, same successors
-(timestamps included), on every model of the repository and on random nets."""
+(timestamps included), on every model of the repository and on random nets; and the native search
+(`--backend c`) against the Python search with tuples: the same graph."""
 
 import glob
 import os
@@ -8,7 +9,9 @@ import pytest
 
 import cpn
 from cpn.engine.clock import TimeCondensationRefused
-from tests.engine._explore import graph
+from cpn.statespace import ExploreOptions, Explorer
+from cpn.statespace.store import packed_unavailable
+from tests.engine._explore import graph, same_exploration
 from tests.engine.randomnets import random_net, random_timed_net
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(__file__)))
@@ -74,3 +77,29 @@ def test_random_timed_nets(chunk):
                 _compare(model, condensation=True, limit=30)
         except AssertionError:
             raise AssertionError(f"engines differ on random timed net {seed}:\n{text}") from None
+
+
+NATIVE = packed_unavailable()
+
+
+def _same_search(model, limit):
+    cond = model.net.is_timed
+    c = Explorer(model.engine(time_condensation=cond), ExploreOptions(max_states=limit, backend="c")).run()
+    py = Explorer(model.engine(time_condensation=cond),
+                  ExploreOptions(max_states=limit, backend="python", packed_states=False)).run()
+    assert py.backend == "python" and py.graph.store.kind == "tuples"
+    assert c.backend == ("python" if cond else "c"), c.notes
+    same_exploration(c, py)
+
+
+@pytest.mark.skipif(NATIVE is not None, reason=f"no native code: {NATIVE}")
+@pytest.mark.parametrize("chunk", range(5))
+def test_random_nets_native_search(chunk):
+    """The native search on the 1,000 random nets, in five chunks of 200 (the timed ones fall back)."""
+    for seed in range(chunk * 200, chunk * 200 + 200):
+        text = random_net(seed)
+        model = cpn.loads(text, f"random{seed}.cpnet")
+        try:
+            _same_search(model, limit=150)
+        except AssertionError:
+            raise AssertionError(f"native and Python searches differ on random net {seed}:\n{text}") from None

@@ -64,7 +64,7 @@ def test_states_beyond_the_bound_are_stored_after_the_expanded_ones(reference, b
     for i in range(1, g.n_states):
         p = g.parent[i]
         assert 0 <= p < g.expanded and i in {d for _be, d in g.out_arcs(p)}
-    assert all(g.index[s] == i for i, s in enumerate(g.states))
+    assert all(g.state_id(s) == i for i, s in enumerate(g.states))
 
 
 def test_a_bound_beyond_every_clock_leaves_the_state_space_complete():

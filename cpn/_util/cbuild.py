@@ -1,0 +1,116 @@
+"""Build C source into a shared library with the system C compiler, load it through cffi, cache the build.
+
+Nothing is compiled at install time: a library is built the first time it is needed, in the user's
+cache directory (``$CPN_CACHE_DIR``, else ``$XDG_CACHE_HOME/cpn-verify``, else ``~/.cache/cpn-verify``),
+named by a hash of the source, the declarations and the compiler's version, and reused from there.
+Where cffi or a compiler is missing, `load_library` returns None and `why_unavailable` says why, so
+that callers fall back to pure Python and say so.
+
+Examples
+--------
+>>> lib = load_library("int twice(int x) { return 2 * x; }", "int twice(int x);")
+>>> lib is None or lib.lib.twice(21) == 42
+True
+"""
+
+from __future__ import annotations
+
+import hashlib
+import os
+import shutil
+import subprocess
+import tempfile
+from dataclasses import dataclass
+from functools import lru_cache
+
+#: the flags every library is built with
+CFLAGS = ["-O2", "-shared", "-fPIC", "-std=c99"]
+
+_reason: list[str] = []
+
+
+@dataclass(frozen=True)
+class Library:
+    """A loaded library: `ffi` (its cffi interface) and `lib` (its functions)."""
+
+    ffi: object
+    lib: object
+    path: str
+
+
+def cache_dir() -> str:
+    """Where built libraries are kept."""
+    env = os.environ.get("CPN_CACHE_DIR")
+    if env:
+        return env
+    base = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+    return os.path.join(base, "cpn-verify")
+
+
+@lru_cache(maxsize=1)
+def compiler() -> tuple[str, str] | None:
+    """(the C compiler's command, its version line), or None where there is none."""
+    cc = os.environ.get("CC") or shutil.which("cc") or shutil.which("gcc") or shutil.which("clang")
+    if not cc or not shutil.which(cc):
+        return None
+    try:
+        out = subprocess.run([cc, "--version"], capture_output=True, text=True, timeout=30)
+    except (OSError, subprocess.SubprocessError):
+        return None
+    if out.returncode != 0:
+        return None
+    return cc, (out.stdout.splitlines() or [""])[0]
+
+
+def why_unavailable() -> str | None:
+    """Why the last `load_library` returned None (None if it did not)."""
+    return _reason[-1] if _reason else None
+
+
+def _unavailable(reason: str) -> None:
+    _reason.append(reason)
+    return None
+
+
+_loaded: dict[str, Library] = {}
+
+
+def load_library(source: str, cdef: str) -> Library | None:
+    """The library built from C `source` whose functions `cdef` declares (built once, then cached)."""
+    if os.environ.get("CPN_NO_NATIVE"):
+        return _unavailable("native code is switched off (CPN_NO_NATIVE is set)")
+    try:
+        import cffi
+    except ImportError:
+        return _unavailable("cffi is not installed")
+    cc = compiler()
+    if cc is None:
+        return _unavailable("no C compiler found (set CC or install cc/gcc/clang)")
+    key = hashlib.sha256("\0".join([source, cdef, cc[1], " ".join(CFLAGS), cffi.__version__]).encode()).hexdigest()[:24]
+    if key in _loaded:
+        return _loaded[key]
+    directory = cache_dir()
+    path = os.path.join(directory, f"cpn_{key}.so")
+    if not os.path.exists(path):
+        try:
+            os.makedirs(directory, exist_ok=True)
+            with tempfile.TemporaryDirectory(dir=directory) as tmp:
+                src = os.path.join(tmp, "lib.c")
+                with open(src, "w") as f:
+                    f.write(source)
+                out = os.path.join(tmp, "lib.so")
+                res = subprocess.run([cc[0], *CFLAGS, "-o", out, src], capture_output=True, text=True, timeout=300)
+                if res.returncode != 0:
+                    first = (res.stderr.strip().splitlines() or ["no message"])[0]
+                    return _unavailable(f"the C compiler failed: {first}")
+                os.replace(out, path)  # atomic: a concurrent build of the same key is harmless
+        except (OSError, subprocess.SubprocessError) as err:
+            return _unavailable(f"could not build native code: {err}")
+    ffi = cffi.FFI()
+    ffi.cdef(cdef)
+    try:
+        lib = ffi.dlopen(path)
+    except OSError as err:
+        return _unavailable(f"could not load native code: {err}")
+    _loaded[key] = loaded = Library(ffi, lib, path)
+    return loaded

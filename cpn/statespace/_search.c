@@ -1,0 +1,305 @@
+/* The native breadth-first search over transition groups (compiled after _packed.c, whose store it uses).
+ *
+ * A state is K uint32 fields (the engine's place ids). Transition group g reads the fields read[g] and
+ * writes the fields write[g]; its enabled binding elements depend on the read fields only, so its result
+ * is cached per tuple of those values: a list of entries (binding element, new value of each read
+ * field, delta id of each written field). A written field's new value is add(p, delta, old value),
+ * cached per (p, delta, old value). Both caches are filled by the caller (the engine, in Python): the
+ * search returns ND_NEED with what the state being expanded misses first (nd_requests: 0, g, the
+ * key's values for a group, or the written places of one group's bindings: 1, p, delta, old each) and
+ * is called again once it is filled. A state is expanded only once everything it needs is cached, so nothing is stored twice.
+ *
+ * The search expands states in id order (BFS); arcs, per-state arc offsets and the BFS parents of new
+ * states go to batch buffers that the caller empties (nd_clear_batch) between calls.
+ */
+
+/* ---------------------------------------------------------------- a map: uint32[len] -> int64 */
+typedef struct {
+    int len;
+    uint32_t *keys;
+    int64_t *vals;
+    int64_t n, cap;
+    uint32_t *table;
+    uint64_t mask;
+} vmap;
+
+static uint64_t vm_hash(const uint32_t *k, int len) {
+    return cs_hash((const uint8_t *)k, len * 4);
+}
+
+static int vm_init(vmap *m, int len) {
+    m->len = len; m->n = 0; m->cap = 16;
+    m->keys = (uint32_t *)malloc((size_t)(m->cap * (len ? len : 1)) * 4);
+    m->vals = (int64_t *)malloc((size_t)m->cap * 8);
+    m->table = (uint32_t *)calloc(32, 4);
+    m->mask = 31;
+    return (m->keys && m->vals && m->table) ? 0 : -1;
+}
+
+static void vm_free(vmap *m) { free(m->keys); free(m->vals); free(m->table); }
+
+static int64_t vm_get(const vmap *m, const uint32_t *k) {
+    uint64_t h = vm_hash(k, m->len) & m->mask;
+    for (;;) {
+        uint32_t e = m->table[h];
+        if (!e) return -1;
+        if (memcmp(m->keys + (int64_t)(e - 1) * m->len, k, (size_t)m->len * 4) == 0) return m->vals[e - 1];
+        h = (h + 1) & m->mask;
+    }
+}
+
+static int vm_put(vmap *m, const uint32_t *k, int64_t v) {
+    if (m->n == m->cap) {
+        int64_t cap = m->cap * 2;
+        uint32_t *keys = (uint32_t *)realloc(m->keys, (size_t)(cap * (m->len ? m->len : 1)) * 4);
+        if (!keys) return -1;
+        m->keys = keys;
+        int64_t *vals = (int64_t *)realloc(m->vals, (size_t)cap * 8);
+        if (!vals) return -1;
+        m->vals = vals; m->cap = cap;
+    }
+    if ((uint64_t)(m->n + 1) * 4 > (m->mask + 1) * 3) {
+        uint64_t size = (m->mask + 1) * 2;
+        uint32_t *t = (uint32_t *)calloc(size, 4);
+        if (!t) return -1;
+        for (int64_t i = 0; i < m->n; i++) {
+            uint64_t h = vm_hash(m->keys + i * m->len, m->len) & (size - 1);
+            while (t[h]) h = (h + 1) & (size - 1);
+            t[h] = (uint32_t)(i + 1);
+        }
+        free(m->table); m->table = t; m->mask = size - 1;
+    }
+    uint64_t h = vm_hash(k, m->len) & m->mask;
+    while (m->table[h]) h = (h + 1) & m->mask;
+    memcpy(m->keys + m->n * m->len, k, (size_t)m->len * 4);
+    m->vals[m->n] = v;
+    m->table[h] = (uint32_t)(++m->n);
+    return 0;
+}
+
+/* ---------------------------------------------------------------- the search */
+enum { ND_DONE = 0, ND_CHECK = 1, ND_MAX_STATES = 2, ND_MAX_ARCS = 3, ND_NEED = 4, ND_WIDE_BE = 6,
+       ND_NO_MEMORY = -1 };
+
+typedef struct {
+    int K, G;
+    cs_store *st;
+    int *nread, *nwrite;
+    int **read, **write;
+    vmap *groups;            /* per group: read values -> offset into res */
+    int32_t *res; int64_t nres, res_cap;  /* per cached key: [count, count x (be, reads..., deltas...)] */
+    vmap adds;               /* (p, delta, old) -> new */
+    int64_t head, level_end, levels, total_arcs;
+    int be32;
+    /* batch buffers */
+    int32_t *dst; void *bes; int64_t narcs, arcs_cap, bes_cap;
+    int64_t *offsets; int64_t noff, off_cap;
+    int32_t *parent, *parent_be; int64_t nnew, new_cap, pbe_cap;
+    /* the request */
+    uint32_t *req; int64_t nreq, req_cap;
+    uint32_t *req_key, *s, *t;
+    uint32_t *addv; int64_t addv_cap;  /* the written fields' new values found in phase 1, in order */
+} nd_search;
+
+nd_search *nd_new(cs_store *st, int K, int G, const int32_t *nread, const int32_t *nwrite, const int32_t *fields) {
+    nd_search *d = (nd_search *)calloc(1, sizeof(nd_search));
+    if (!d) return NULL;
+    d->K = K; d->G = G; d->st = st;
+    d->nread = (int *)calloc((size_t)G + 1, sizeof(int));
+    d->nwrite = (int *)calloc((size_t)G + 1, sizeof(int));
+    d->read = (int **)calloc((size_t)G + 1, sizeof(int *));
+    d->write = (int **)calloc((size_t)G + 1, sizeof(int *));
+    d->groups = (vmap *)calloc((size_t)G + 1, sizeof(vmap));
+    int pos = 0;
+    for (int g = 0; g < G; g++) {
+        d->nread[g] = nread[g]; d->nwrite[g] = nwrite[g];
+        d->read[g] = (int *)malloc(sizeof(int) * (size_t)(nread[g] + 1));
+        d->write[g] = (int *)malloc(sizeof(int) * (size_t)(nwrite[g] + 1));
+        for (int i = 0; i < nread[g]; i++) d->read[g][i] = fields[pos++];
+        for (int i = 0; i < nwrite[g]; i++) d->write[g][i] = fields[pos++];
+        if (vm_init(&d->groups[g], nread[g]) != 0) return NULL;
+    }
+    if (vm_init(&d->adds, 3) != 0) return NULL;
+    d->res_cap = 1024; d->res = (int32_t *)malloc((size_t)d->res_cap * 4);
+    d->arcs_cap = 4096; d->dst = (int32_t *)malloc((size_t)d->arcs_cap * 4); d->bes_cap = 4096; d->bes = malloc((size_t)d->bes_cap * 4);
+    d->off_cap = 1024; d->offsets = (int64_t *)malloc((size_t)d->off_cap * 8);
+    d->new_cap = 1024; d->parent = (int32_t *)malloc((size_t)d->new_cap * 4);
+    d->pbe_cap = 1024; d->parent_be = (int32_t *)malloc((size_t)d->pbe_cap * 4);
+    d->req_key = (uint32_t *)malloc(4 * (size_t)(K + 1));
+    d->req_cap = 64; d->req = (uint32_t *)malloc(4 * (size_t)d->req_cap);
+    d->s = (uint32_t *)malloc(4 * (size_t)(K + 1));
+    d->t = (uint32_t *)malloc(4 * (size_t)(K + 1));
+    d->addv_cap = 1024; d->addv = (uint32_t *)malloc((size_t)d->addv_cap * 4);
+    d->level_end = 1;
+    return d;
+}
+
+void nd_free(nd_search *d) {
+    if (!d) return;
+    for (int g = 0; g < d->G; g++) { free(d->read[g]); free(d->write[g]); vm_free(&d->groups[g]); }
+    vm_free(&d->adds);
+    free(d->nread); free(d->nwrite); free(d->read); free(d->write); free(d->groups); free(d->res);
+    free(d->dst); free(d->bes); free(d->offsets); free(d->parent); free(d->parent_be);
+    free(d->req_key); free(d->s); free(d->t); free(d->addv); free(d->req); free(d);
+}
+
+/* The result of group g for the read values `key`: n entries of 1 + nread + nwrite values. */
+int nd_put_group(nd_search *d, int g, const uint32_t *key, int64_t n, const int32_t *entries) {
+    if (vm_get(&d->groups[g], key) >= 0) return 0;
+    int64_t width = 1 + d->nread[g] + d->nwrite[g];
+    int64_t need = d->nres + 1 + n * width;
+    if (need > d->res_cap) {
+        int64_t cap = d->res_cap;
+        while (cap < need) cap *= 2;
+        int32_t *r = (int32_t *)realloc(d->res, (size_t)cap * 4);
+        if (!r) return -1;
+        d->res = r; d->res_cap = cap;
+    }
+    int64_t off = d->nres;
+    d->res[off] = (int32_t)n;
+    memcpy(d->res + off + 1, entries, (size_t)(n * width) * 4);
+    d->nres = need;
+    return vm_put(&d->groups[g], key, off);
+}
+
+int nd_put_add(nd_search *d, uint32_t p, uint32_t delta, uint32_t old, uint32_t nid) {
+    uint32_t k[3] = {p, delta, old};
+    if (vm_get(&d->adds, k) >= 0) return 0;
+    return vm_put(&d->adds, k, nid);
+}
+
+static int grow(void **buf, int64_t *cap, int64_t need, size_t size) {
+    if (need <= *cap) return 0;
+    int64_t c = *cap;
+    while (c < need) c *= 2;
+    void *b = realloc(*buf, (size_t)c * size);
+    if (!b) return -1;
+    *buf = b; *cap = c;
+    return 0;
+}
+
+/* Expand states from `head` on; return at `until` (ND_CHECK), at a limit, when the queue is empty,
+ * or when a cache entry is missing (the key is in req_*; call again once it is filled). */
+int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs) {
+    cs_store *st = d->st;
+    int K = d->K;
+    int64_t off[256];
+    int64_t *goff = d->G <= 256 ? off : (int64_t *)malloc(sizeof(int64_t) * (size_t)d->G);
+    int status;
+    for (;;) {
+        int64_t n = st->n;
+        if (d->head >= n) { status = ND_DONE; break; }
+        if (d->head == d->level_end) { d->levels++; d->level_end = n; }
+        if (d->head == until) { status = ND_CHECK; break; }
+        if (n >= max_states) { status = ND_MAX_STATES; break; }
+        if (d->total_arcs >= max_arcs) { status = ND_MAX_ARCS; break; }
+        memcpy(d->s, st->arena + d->head * st->W, (size_t)K * 4);
+        uint32_t *s = d->s;
+        /* phase 1: everything this state needs is cached */
+        int64_t narcs = 0, nadd = 0;
+        status = -2;
+        d->nreq = 0;
+        for (int g = 0; g < d->G && status == -2; g++) {
+            int nr = d->nread[g], nw = d->nwrite[g];
+            uint32_t *key = d->req_key;
+            for (int i = 0; i < nr; i++) key[i] = s[d->read[g][i]];
+            int64_t o = vm_get(&d->groups[g], key);
+            if (o < 0) {
+                if (grow((void **)&d->req, &d->req_cap, d->nreq + 2 + nr, 4) != 0) { status = ND_NO_MEMORY; break; }
+                d->req[d->nreq++] = 0;
+                d->req[d->nreq++] = (uint32_t)g;
+                memcpy(d->req + d->nreq, key, (size_t)nr * 4);
+                d->nreq += nr;
+                break;
+            }
+            goff[g] = o;
+            int64_t cnt = d->res[o];
+            const int32_t *e = d->res + o + 1;
+            for (int64_t j = 0; j < cnt; j++, e += 1 + nr + nw) {
+                if (!d->be32 && e[0] > 65535) { status = ND_WIDE_BE; break; }
+                if (nw && grow((void **)&d->addv, &d->addv_cap, nadd + nw, 4) != 0) { status = ND_NO_MEMORY; break; }
+                for (int w = 0; w < nw; w++) {
+                    uint32_t k[3] = {(uint32_t)d->write[g][w], (uint32_t)e[1 + nr + w], s[d->write[g][w]]};
+                    int64_t v = vm_get(&d->adds, k);
+                    if (v < 0) {
+                        if (grow((void **)&d->req, &d->req_cap, d->nreq + 4, 4) != 0) { status = ND_NO_MEMORY; break; }
+                        d->req[d->nreq++] = 1;
+                        memcpy(d->req + d->nreq, k, sizeof k);
+                        d->nreq += 3;
+                        v = 0;
+                    }
+                    d->addv[nadd++] = (uint32_t)v;
+                }
+                if (status != -2) break;
+            }
+            narcs += cnt;
+            /* what a group misses is asked for before any later group is looked at: the engine then
+             * interns new markings in the order the Python search does (a marking's token order, and
+             * so the order of the bindings found in it, is the order it was first built in) */
+            if (d->nreq) break;
+        }
+        if (status == -2 && d->nreq) status = ND_NEED;
+        if (status != -2) break;
+        /* phase 2: the successors, in group order and each group's binding order */
+        if (grow((void **)&d->dst, &d->arcs_cap, d->narcs + narcs, 4) != 0
+            || grow(&d->bes, &d->bes_cap, d->narcs + narcs, 4) != 0
+            || grow((void **)&d->offsets, &d->off_cap, d->noff + 1, 8) != 0
+            || grow((void **)&d->parent, &d->new_cap, d->nnew + narcs, 4) != 0
+            || grow((void **)&d->parent_be, &d->pbe_cap, d->nnew + narcs, 4) != 0) { status = ND_NO_MEMORY; break; }
+        uint32_t *t = d->t;
+        const uint32_t *addv = d->addv;
+        int failed = 0;
+        for (int g = 0; g < d->G && !failed; g++) {
+            int nr = d->nread[g], nw = d->nwrite[g];
+            int64_t o = goff[g];
+            int64_t cnt = d->res[o];
+            const int32_t *e = d->res + o + 1;
+            for (int64_t j = 0; j < cnt; j++, e += 1 + nr + nw) {
+                memcpy(t, s, (size_t)K * 4);
+                for (int i = 0; i < nr; i++) t[d->read[g][i]] = (uint32_t)e[1 + i];
+                for (int w = 0; w < nw; w++) t[d->write[g][w]] = *addv++;
+                int32_t id, fresh;
+                int64_t r = cs_add_many(st, (const uint8_t *)t, 1, &id, &fresh);
+                if (r < 0) { failed = 1; break; }
+                if (r == 1) {
+                    d->parent[d->nnew] = (int32_t)d->head;
+                    d->parent_be[d->nnew] = e[0];
+                    d->nnew++;
+                }
+                d->dst[d->narcs] = id;
+                if (d->be32) ((int32_t *)d->bes)[d->narcs] = e[0];
+                else ((uint16_t *)d->bes)[d->narcs] = (uint16_t)e[0];
+                d->narcs++;
+            }
+        }
+        if (failed) { status = ND_NO_MEMORY; break; }
+        d->total_arcs += narcs;
+        d->offsets[d->noff++] = d->total_arcs;
+        d->head++;
+    }
+    if (goff != off) free(goff);
+    return status;
+}
+
+void nd_clear_batch(nd_search *d) { d->narcs = 0; d->noff = 0; d->nnew = 0; }
+void nd_set_be32(nd_search *d) { d->be32 = 1; }
+int64_t nd_head(nd_search *d) { return d->head; }
+int64_t nd_levels(nd_search *d) { return d->levels; }
+int64_t nd_level_end(nd_search *d) { return d->level_end; }
+int64_t nd_total_arcs(nd_search *d) { return d->total_arcs; }
+int64_t nd_narcs(nd_search *d) { return d->narcs; }
+int64_t nd_noff(nd_search *d) { return d->noff; }
+int64_t nd_nnew(nd_search *d) { return d->nnew; }
+int32_t *nd_dst(nd_search *d) { return d->dst; }
+void *nd_bes(nd_search *d) { return d->bes; }
+int64_t *nd_offsets(nd_search *d) { return d->offsets; }
+int32_t *nd_parent(nd_search *d) { return d->parent; }
+int32_t *nd_parent_be(nd_search *d) { return d->parent_be; }
+int64_t nd_nrequests(nd_search *d) { return d->nreq; }
+uint32_t *nd_requests(nd_search *d) { return d->req; }
+int64_t nd_cache_bytes(nd_search *d) {
+    int64_t b = d->res_cap * 4 + d->adds.cap * (12 + 8) + (int64_t)(d->adds.mask + 1) * 4;
+    for (int g = 0; g < d->G; g++)
+        b += d->groups[g].cap * (d->groups[g].len * 4 + 8) + (int64_t)(d->groups[g].mask + 1) * 4;
+    return b;
+}

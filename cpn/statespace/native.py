@@ -1,0 +1,198 @@
+"""The native search (`--backend c`): the breadth-first loop, the state store, the transitions' result
+caches and the arcs in C (`_search.c`), the engine consulted only for what is not cached yet.
+
+The engine gives its successor function as transition groups (`Engine.successor_groups`, LTSmin's
+partitioned next-state function): a transition's enabled binding elements and their effects depend only
+on the markings of the places it reads. The C search caches them per tuple of those place ids, and the
+ids of written places per (place, delta, old id); on a miss it returns to Python, which asks the engine
+and fills the cache, and the state is expanded once everything it needs is cached. So the graph is the
+Python search's own: the same states in the same order, the same arcs, the same binding elements.
+
+Where the native search cannot run, `unavailable(engine, options)` says why in one line and the explorer
+uses the Python loop.
+"""
+
+from __future__ import annotations
+
+import os
+from array import array
+
+from cpn._util.cbuild import load_library, why_unavailable
+from cpn.statespace.options import StopReason
+from cpn.statespace.store import _CDEF as _STORE_CDEF
+from cpn.statespace.store import PackedStore
+
+_CDEF = _STORE_CDEF + """
+typedef struct nd_search nd_search;
+nd_search *nd_new(cs_store *st, int K, int G, const int32_t *nread, const int32_t *nwrite, const int32_t *fields);
+void nd_free(nd_search *d);
+int nd_put_group(nd_search *d, int g, const uint32_t *key, int64_t n, const int32_t *entries);
+int nd_put_add(nd_search *d, uint32_t p, uint32_t delta, uint32_t old, uint32_t nid);
+int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs);
+void nd_clear_batch(nd_search *d);
+void nd_set_be32(nd_search *d);
+int64_t nd_head(nd_search *d);
+int64_t nd_levels(nd_search *d);
+int64_t nd_level_end(nd_search *d);
+int64_t nd_total_arcs(nd_search *d);
+int64_t nd_narcs(nd_search *d);
+int64_t nd_noff(nd_search *d);
+int64_t nd_nnew(nd_search *d);
+int32_t *nd_dst(nd_search *d);
+void *nd_bes(nd_search *d);
+int64_t *nd_offsets(nd_search *d);
+int32_t *nd_parent(nd_search *d);
+int32_t *nd_parent_be(nd_search *d);
+int64_t nd_nrequests(nd_search *d);
+uint32_t *nd_requests(nd_search *d);
+int64_t nd_cache_bytes(nd_search *d);
+"""
+
+ND_DONE, ND_CHECK, ND_MAX_STATES, ND_MAX_ARCS, ND_NEED, _, ND_WIDE_BE = range(7)
+_U32 = 1 << 32
+
+
+def library():
+    here = os.path.dirname(os.path.abspath(__file__))
+    parts = []
+    for name in ("_packed.c", "_search.c"):
+        with open(os.path.join(here, name)) as f:
+            parts.append(f.read())
+    return load_library("\n".join(parts), _CDEF)
+
+
+def unavailable(engine, options, s0) -> str | None:
+    """Why the native search cannot run this exploration (None if it can)."""
+    if options.backend == "python":
+        return "the Python back end was asked for"
+    if not options.packed_states:
+        return "the states are to be kept as tuples (packed_states=False)"
+    if options.stop_predicate is not None:
+        return "a stop predicate is a Python function of each new state"
+    if engine.is_timed:
+        return "timed nets are searched by the Python back end"
+    # an optional capability of an engine (the Engine protocol's other members are required)
+    groups = getattr(engine, "successor_groups", None)
+    if groups is None or groups() is None:
+        return "this engine gives no transition groups (priorities, or the reference interpreter)"
+    if not (isinstance(s0, tuple) and s0 and all(type(v) is int and 0 <= v < _U32 for v in s0)):
+        return "the states are not tuples of small non-negative integers"
+    if library() is None:
+        return f"no native code: {why_unavailable()}"
+    return None
+
+
+class NativeSearch:
+    """One native breadth-first search filling a `StateGraph` (see the module's docstring)."""
+
+    def __init__(self, engine, graph, s0):
+        lib = library()
+        self.ffi, self.lib = lib.ffi, lib.lib
+        self.engine = engine
+        self.tg = engine.successor_groups()
+        self.tg.caller_caches()
+        self.round_trips = 0  # returns to Python for what the caches miss
+        self.graph = graph
+        graph.store = self.store = PackedStore(lib, s0, widths=[4] * len(s0))
+        groups = self.tg.groups
+        fields = [p for read, writes in groups for p in (*read, *writes)]
+        ffi = self.ffi
+        handle = self.lib.nd_new(self.store.handle, len(s0), len(groups),
+                                 ffi.new("int32_t[]", [len(r) for r, _ in groups] or [0]),
+                                 ffi.new("int32_t[]", [len(w) for _, w in groups] or [0]),
+                                 ffi.new("int32_t[]", fields or [0]))
+        if handle == ffi.NULL:
+            raise MemoryError("cannot allocate the native search")
+        self.handle = ffi.gc(handle, self.lib.nd_free)
+
+    @property
+    def head(self) -> int:
+        return self.lib.nd_head(self.handle)
+
+    @property
+    def level_end(self) -> int:
+        return self.lib.nd_level_end(self.handle)
+
+    @property
+    def levels(self) -> int:
+        return self.lib.nd_levels(self.handle)
+
+    @property
+    def n_arcs(self) -> int:
+        return self.lib.nd_total_arcs(self.handle)
+
+    def run(self, until: int, max_states: int, max_arcs: int) -> StopReason | None:
+        """Expand states up to state `until` (None: there, the caller looks at its limits) or to a stop."""
+        lib, h = self.lib, self.handle
+        while True:
+            status = lib.nd_run(h, until, max_states, max_arcs)
+            if status == ND_NEED:
+                self.round_trips += 1
+                self._fill()
+            elif status == ND_WIDE_BE:
+                self.flush()
+                g = self.graph
+                g.bes = array("i", g.bes)  # binding-element ids outgrew 16 bits: widen once
+                lib.nd_set_be32(h)
+            elif status < 0:
+                self.flush()
+                raise MemoryError("the native search cannot grow any more")
+            else:
+                self.flush()
+                return {ND_CHECK: None, ND_DONE: StopReason.COMPLETE, ND_MAX_STATES: StopReason.MAX_STATES,
+                        ND_MAX_ARCS: StopReason.MAX_ARCS}[status]
+
+    def _fill(self) -> None:
+        """Ask the engine for what the state being expanded misses: transitions' results for markings of
+        their input places not seen before, then the ids of written places."""
+        lib, h, ffi, tg = self.lib, self.handle, self.ffi, self.tg
+        req = ffi.unpack(lib.nd_requests(h), lib.nd_nrequests(h))
+        i = 0
+        try:
+            while i < len(req):
+                if req[i] == 0:
+                    k = req[i + 1]
+                    nr = len(tg.groups[k][0])
+                    key = req[i + 2:i + 2 + nr]
+                    i += 2 + nr
+                    flat = tg.results(k, tuple(key))
+                    width = 1 + nr + len(tg.groups[k][1])
+                    try:
+                        buf = array("i", flat or (0,))
+                    except OverflowError:
+                        raise OverflowError("an id does not fit the native search's 32 bits") from None
+                    if flat and min(buf) < 0:
+                        raise OverflowError("a negative id cannot be stored by the native search")
+                    if lib.nd_put_group(h, k, ffi.from_buffer("uint32_t[]", array("I", key or (0,))),
+                                        len(flat) // width, ffi.from_buffer("int32_t[]", buf)) != 0:
+                        raise MemoryError("the native search's caches cannot grow any more")
+                else:
+                    p, did, old = req[i + 1:i + 4]
+                    i += 4
+                    nid = tg.add(p, old, did)
+                    if not 0 <= nid < _U32:
+                        raise OverflowError(f"place id {nid} does not fit the native search's 32 bits")
+                    if lib.nd_put_add(h, p, did, old, nid) != 0:
+                        raise MemoryError("the native search's caches cannot grow any more")
+        except BaseException:
+            self.flush()  # the graph up to the state being expanded, for an error's trace
+            raise
+
+    def flush(self) -> None:
+        """Move the arcs, offsets and BFS parents of the states expanded since the last flush to the graph."""
+        lib, h, ffi, g = self.lib, self.handle, self.ffi, self.graph
+        n = lib.nd_narcs(h)
+        if n:
+            g.dst.frombytes(ffi.buffer(lib.nd_dst(h), 4 * n))
+            g.bes.frombytes(ffi.buffer(lib.nd_bes(h), g.bes.itemsize * n))
+        m = lib.nd_noff(h)
+        if m:
+            g.offsets.frombytes(ffi.buffer(lib.nd_offsets(h), 8 * m))
+        k = lib.nd_nnew(h)
+        if k:
+            g.parent.frombytes(ffi.buffer(lib.nd_parent(h), 4 * k))
+            g.parent_be.frombytes(ffi.buffer(lib.nd_parent_be(h), 4 * k))
+        lib.nd_clear_batch(h)
+
+    def cache_bytes(self) -> int:
+        return self.lib.nd_cache_bytes(self.handle)
