@@ -35,3 +35,19 @@ def test_committed_reports_name_files_relative_to_the_repository():
         with open(os.path.join(folder, name), encoding="utf-8") as fh:
             text = fh.read()
         assert ROOT not in text and '"model": "/' not in text, name
+
+
+@pytest.mark.parametrize("image,args", [
+    ("scaling_B.svg", ["--after", "## Scenario B beyond 8 slaves", "--param", "NS", "--states", "states",
+                       "with a broadcast: states", "--seconds", "s", "with a broadcast: s"]),
+    ("scaling_modbus_a.svg", ["--after", "## Modbus-A beyond 8 slaves", "--param", "N"]),
+])
+def test_scaling_images_are_drawn_from_the_tables_beside_them(tmp_path, image, args):
+    out = tmp_path / image
+    r = subprocess.run([sys.executable, os.path.join("bench", "scaling_plot.py"), os.path.join("reports", "README.md"),
+                        *args, "-o", str(out)], cwd=ROOT, capture_output=True, text=True)
+    assert r.returncode == 0, r.stderr
+    with open(os.path.join(ROOT, "reports", image), encoding="utf-8") as fh:
+        assert out.read_text(encoding="utf-8") == fh.read()
+    with open(os.path.join(ROOT, "reports", "README.md"), encoding="utf-8") as fh:
+        assert f"]({image})" in fh.read()
