@@ -110,12 +110,7 @@ def _diagnose(exc: UnexpectedInput, text: str, filename: str) -> Diagnostic:
     if label is not None:
         code, message, hint, _ = SYNTAX_ERRORS[label]
         return Diagnostic(code, f"{message}, found {found}", span, hint=hint, params={"found": found})
-    if isinstance(exc, UnexpectedCharacters):
-        ch = text[exc.pos_in_stream] if exc.pos_in_stream < len(text) else ""
-        if ch == '"':
-            return Diagnostic("E0102", "unterminated string", span, hint="Close the string with '\"' on the same line.")
-        if text.startswith("(*", exc.pos_in_stream):
-            return Diagnostic("E0102", "unterminated comment", span, hint="Close the comment with '*)'.")
+    if isinstance(exc, UnexpectedCharacters):  # an unterminated string or comment returned above
         return Diagnostic("E0101", f"unexpected character {found}", span,
                           hint="Remove it, or put it inside a string or a comment.", params={"found": found})
     expected = _expected_text(exc)
