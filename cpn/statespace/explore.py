@@ -70,7 +70,8 @@ class Exploration:
     time_growth: dict | None = None
     levels: int = 0
     notes: list = field(default_factory=list)
-    #: which search ran: "c" (cpn.statespace.native) or "python"
+    #: which search ran: "c" (cpn.statespace.native), "python", or the partitioned search
+    #: (cpn.statespace.parallel): "workers" (processes) or "ray"
     backend: str = "python"
     # the partial-order reduction that ran ("stubborn"), None for the full graph; its figures
     reduction: str | None = None
@@ -127,6 +128,13 @@ class Explorer:
     def run(self) -> Exploration:
         """Generate the occurrence graph breadth-first until it is complete or a limit stops it."""
         opts = self.options
+        parallel_note = None
+        if opts.workers is not None or opts.ray is not None:
+            from cpn.statespace.parallel import run_partitioned
+
+            partitioned, parallel_note = run_partitioned(self.engine, opts, self.progress)
+            if partitioned is not None:
+                return partitioned
         g = StateGraph()
         self._t0 = t0 = time.perf_counter()
         self._next_progress = t0 + opts.progress_interval
@@ -139,7 +147,7 @@ class Explorer:
         self._reduced = self._reduction(g)
         levels = 0
         self._backend = "python"
-        self._notes = []
+        self._notes = [parallel_note] if parallel_note else []
         if stop is StopReason.COMPLETE:
             s0 = self._queue[0]
             why = self._python_only() or native.unavailable(self.engine, opts, s0)

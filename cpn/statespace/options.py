@@ -106,6 +106,10 @@ class ExploreOptions:
     packed_states: bool = True
     pack_from: int = 1_000_000
     backend: str = "auto"
+    # the partitioned search (cpn.statespace.parallel): `workers` processes (None: this process alone), on
+    # the Ray cluster at `ray` ("auto": a local Ray instance) when that is set
+    workers: int | None = None
+    ray: str | None = None
 
 
 def machine_memory_mb() -> float | None:

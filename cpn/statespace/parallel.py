@@ -1,0 +1,553 @@
+"""The partitioned search (`--workers N`): the breadth-first search in N processes, each owning a part of
+the states, then the graph assembled in the calling process so that every analysis runs unchanged.
+
+How it works (as in Helena, LTSmin and DiVinE's distributed searches):
+
+- Every state belongs to worker `stable_hash(state) % N` (`cpn.engine.transfer`: the same in every
+  process, unlike Python's salted `hash()` of strings). Each worker compiles the net itself (the net is
+  pickled to it), keeps the states it owns (their ids, BFS levels and parents) and expands them with
+  its own engine.
+- The search is level-synchronous: a worker expands the states of the current BFS level it owns, at
+  most `budget` of them per step, and sends every successor owned by another worker to that worker in
+  one batch per step (a state as one canonical key per place, the arc as its source, position and
+  binding element). The coordinator starts the next level only when every worker has expanded its part
+  of this one and every batch was delivered, so each state is reached first at its BFS depth and its
+  parent pointer gives a shortest path, as in the one-process search.
+- The coordinator looks at the limits (states, arcs, seconds, the memory of all the processes) and the
+  progress hook after every step; Ctrl-C (which the workers ignore) stops it the same way. The batches
+  still in flight are then delivered (their states stored unexpanded) and the workers send their parts.
+- Assembly: the expanded states first, by (level, worker, order of arrival), then the unexpanded ones;
+  every state is imported into the caller's engine, every binding element too, and the arcs of a state
+  are put in the order its worker's engine gave them. The result is an ordinary `Exploration` whose graph
+  has the same states, arcs, dead markings and bounds as the one-process search (only the numbering of
+  states and the order of arcs may differ).
+
+`run_partitioned` returns None with a one-line reason where the partitioned search does not apply (timed
+nets, reductions, branching options, the reference interpreter); the caller then searches in one process.
+The transport is pluggable: `LocalWorkers` (processes of this machine, through pipes) here, a Ray
+cluster in `cpn.statespace.distributed`.
+"""
+
+from __future__ import annotations
+
+import pickle
+import signal
+import time
+from array import array
+
+from cpn.errors import EvaluationError
+from cpn.statespace._memory import current_rss_mb, peak_rss_mb
+from cpn.statespace.graph import StateGraph
+from cpn.statespace.options import ExploreOptions, StopReason
+from cpn.statespace.store import new_store
+
+#: states a worker expands per step at most: the limits and Ctrl-C are looked at between steps
+STEP_STATES: int = 4096
+
+
+class WorkerFailed(Exception):
+    """A worker stopped with an error (the caller repeats the search in one process to report it)."""
+
+
+def why_not_partitioned(engine, options: ExploreOptions) -> str | None:
+    """Why these options need the one-process search (None if the partitioned search can run them)."""
+    from cpn.engine.transfer import transfer_for
+
+    if engine.is_timed:
+        return ("timed nets are searched in one process: the time-growth watch and the model-time bound "
+                "look at every state of a level in order")
+    if options.reduction is not None:
+        return "stubborn sets (--reduction) are computed in one process"
+    if options.restricted:
+        return "branching options restrict the search in one process"
+    if transfer_for(engine) is None or not hasattr(engine, "net"):
+        return "this engine cannot send its states to other processes (the reference interpreter)"
+    return None
+
+
+# ------------------------------------------------------------------------------------------ worker
+
+class PartitionWorker:
+    """One worker of the partitioned search: the states it owns, their arcs as they arrive, its engine."""
+
+    def __init__(self, net_blob: bytes, time_condensation: bool, me: int, n: int):
+        from cpn.engine import compile_net
+        from cpn.engine.transfer import transfer_for
+
+        self.engine = compile_net(pickle.loads(net_blob), time_condensation=time_condensation)
+        self.transfer = transfer_for(self.engine)
+        self.me, self.n = me, n
+        self.states: list = []
+        self.ids: dict = {}
+        self.level = array("i")
+        self.parent_w = array("i")
+        self.parent_l = array("q")
+        self.parent_be = array("i")
+        self.expanded = array("q")  # local ids, in the order they were expanded
+        self.degree = array("i")  # number of arcs of each expanded state (same order)
+        # arcs, recorded by the worker owning their destination: source (worker, local id), position among
+        # the source's arcs, binding element (in the source worker's engine), destination (local id)
+        self.arc_w = array("i")
+        self.arc_l = array("q")
+        self.arc_k = array("i")
+        self.arc_be = array("i")
+        self.arc_dst = array("q")
+        self.lvl = 0
+        self.cur: list[int] = []
+        self.pos = 0
+        self.nxt: list[int] = []
+        self.arcs = 0
+        self.sent = 0
+
+    def seed(self, c: tuple) -> None:
+        """Store the initial state (exported form): this worker owns it."""
+        s = self.transfer.import_state(c)
+        self.ids[s] = 0
+        self.states.append(s)
+        self.level.append(0)
+        self.parent_w.append(-1)
+        self.parent_l.append(-1)
+        self.parent_be.append(-1)
+        self.cur.append(0)
+
+    def _arrive(self, s, w: int, src: int, k: int, be: int) -> None:
+        j = self.ids.get(s)
+        if j is None:
+            j = self.ids[s] = len(self.states)
+            self.states.append(s)
+            self.level.append(self.lvl + 1)
+            self.parent_w.append(w)
+            self.parent_l.append(src)
+            self.parent_be.append(be)
+            self.nxt.append(j)
+        self.arc_w.append(w)
+        self.arc_l.append(src)
+        self.arc_k.append(k)
+        self.arc_be.append(be)
+        self.arc_dst.append(j)
+
+    def step(self, budget: int, advance: bool, inboxes) -> tuple:
+        """Store the batches sent to this worker, start the next level if told to, expand at most `budget`
+        states of the current level: (status, one batch (bytes or None) per worker)."""
+        imp = self.transfer.import_state
+        arrive = self._arrive
+        for w, blob in enumerate(inboxes):
+            if not blob:
+                continue
+            src, ks, bes, states = pickle.loads(blob)
+            for i, c in enumerate(states):
+                arrive(imp(c), w, src[i], ks[i], bes[i])
+        if advance:
+            self.cur, self.nxt, self.pos = self.nxt, [], 0
+            self.lvl += 1
+        n, me = self.n, self.me
+        out = [(array("q"), array("i"), array("i"), []) for _ in range(n)]
+        successors = self.engine.successors
+        owner = self.transfer.stable_hash
+        export = self.transfer.export_state
+        states = self.states
+        end = min(len(self.cur), self.pos + budget)
+        expanded_append, degree_append = self.expanded.append, self.degree.append
+        for sid in self.cur[self.pos:end]:
+            succ = successors(states[sid])
+            expanded_append(sid)
+            degree_append(len(succ))
+            for k, (be, t) in enumerate(succ):
+                d = owner(t) % n
+                if d == me:
+                    arrive(t, me, sid, k, be)
+                else:
+                    box = out[d]
+                    box[0].append(sid)
+                    box[1].append(k)
+                    box[2].append(be)
+                    box[3].append(export(t))
+            self.arcs += len(succ)
+        self.pos = end
+        batches = []
+        for box in out:
+            if box[3]:
+                self.sent += len(box[3])
+                batches.append(pickle.dumps(box, protocol=pickle.HIGHEST_PROTOCOL))
+            else:
+                batches.append(None)
+        return self.status(), batches
+
+    def status(self) -> tuple:
+        """(states stored, states expanded, arcs, left in this level, found for the next level, states sent
+        to other workers so far, resident MiB)."""
+        return (len(self.states), len(self.expanded), self.arcs, len(self.cur) - self.pos, len(self.nxt),
+                self.sent, current_rss_mb())
+
+    def collect(self) -> bytes:
+        """This worker's part of the graph, exported (pickled)."""
+        export = self.transfer.export_state
+        part = {
+            "states": [export(s) for s in self.states], "level": self.level, "parent_w": self.parent_w,
+            "parent_l": self.parent_l, "parent_be": self.parent_be, "expanded": self.expanded,
+            "degree": self.degree, "arc_w": self.arc_w, "arc_l": self.arc_l, "arc_k": self.arc_k,
+            "arc_be": self.arc_be, "arc_dst": self.arc_dst,
+            "bes": self.transfer.export_binding_elements(),
+        }
+        return pickle.dumps(part, protocol=pickle.HIGHEST_PROTOCOL)
+
+
+# ------------------------------------------------------------------------------------------ transport
+
+def _serve(conn, net_blob: bytes, time_condensation: bool, me: int, n: int) -> None:
+    """A worker process: answers the coordinator's calls until told to stop."""
+    signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C is the coordinator's: it stops the search
+    try:
+        worker = PartitionWorker(net_blob, time_condensation, me, n)
+    except BaseException as exc:  # noqa: BLE001 - reported to the coordinator
+        conn.send(("error", _describe(exc)))
+        return
+    conn.send(("ok", None))
+    while True:
+        try:
+            msg = conn.recv()
+        except EOFError:
+            return
+        name = msg[0]
+        if name == "stop":
+            return
+        try:
+            result = getattr(worker, name)(*msg[1:])
+        except BaseException as exc:  # noqa: BLE001 - reported to the coordinator
+            conn.send(("error", _describe(exc)))
+            continue
+        conn.send(("ok", result))
+
+
+def _describe(exc: BaseException) -> str:
+    if isinstance(exc, EvaluationError):
+        return exc.render() if hasattr(exc, "render") else str(exc)
+    return f"{type(exc).__name__}: {exc}"
+
+
+class LocalWorkers:
+    """N worker processes of this machine, each behind a pipe; batches are routed by the coordinator."""
+
+    name = "workers"
+
+    def __init__(self, n: int, net_blob: bytes, time_condensation: bool):
+        import multiprocessing as mp
+
+        # fork is cheapest (the workers rebuild their engine from the pickled net either way)
+        method = "fork" if "fork" in mp.get_all_start_methods() else "spawn"
+        ctx = mp.get_context(method)
+        self.n = n
+        self.conns, self.procs = [], []
+        try:
+            for w in range(n):
+                a, b = ctx.Pipe()
+                p = ctx.Process(target=_serve, args=(b, net_blob, time_condensation, w, n), daemon=True,
+                                name=f"cpn-verify worker {w}")
+                p.start()
+                b.close()
+                self.conns.append(a)
+                self.procs.append(p)
+            self._replies(range(n))
+        except BaseException:
+            self.close()
+            raise
+
+    def _replies(self, ws) -> list:
+        """The replies of the workers `ws`, all of them even if Ctrl-C comes meanwhile (then re-raised)."""
+        out, interrupted, failure = [], False, None
+        for w in ws:
+            while True:
+                try:
+                    status, value = self.conns[w].recv()
+                    break
+                except KeyboardInterrupt:
+                    interrupted = True
+                except EOFError:
+                    status, value = "error", f"worker {w} ended unexpectedly (exit code {self.procs[w].exitcode})"
+                    break
+            if status == "error" and failure is None:
+                failure = f"worker {w}: {str(value).splitlines()[0] if value else value}"
+            out.append(value)
+        if failure is not None:
+            raise WorkerFailed(failure)
+        if interrupted:
+            raise KeyboardInterrupt
+        return out
+
+    def call(self, w: int, name: str, *args):
+        self.conns[w].send((name, *args))
+        return self._replies([w])[0]
+
+    def step(self, budget: int, advance: bool, inboxes: list[list]) -> tuple[list, list]:
+        """One step of every worker: (their statuses, outboxes[w][d] the batch from w to d)."""
+        for w in range(self.n):
+            self.conns[w].send(("step", budget, advance, inboxes[w]))
+        replies = self._replies(range(self.n))
+        return [r[0] for r in replies], [r[1] for r in replies]
+
+    def collect(self) -> list[bytes]:
+        for w in range(self.n):
+            self.conns[w].send(("collect",))
+        return self._replies(range(self.n))
+
+    def close(self) -> None:
+        for c in self.conns:
+            try:
+                c.send(("stop",))
+                c.close()
+            except OSError:
+                pass
+        for p in self.procs:
+            p.join(timeout=5)
+            if p.is_alive():
+                p.terminate()
+                p.join(timeout=5)
+        self.conns, self.procs = [], []
+
+
+# ------------------------------------------------------------------------------------------ coordinator
+
+class _CtrlC:
+    """Ctrl-C only sets `hit` while the coordinator runs (a step is never cut in half: its batches would
+    be lost); the coordinator stops at the end of the step. Outside the main thread it changes nothing."""
+
+    def __init__(self):
+        self.hit = False
+        self._old = None
+
+    def __enter__(self):
+        try:
+            self._old = signal.signal(signal.SIGINT, self._handle)
+        except ValueError:  # not the main thread
+            self._old = None
+        return self
+
+    def _handle(self, _signum, _frame):
+        if self.hit:  # a second Ctrl-C: give up the partial result
+            raise KeyboardInterrupt
+        self.hit = True
+
+    def __exit__(self, *exc):
+        if self._old is not None:
+            signal.signal(signal.SIGINT, self._old)
+        return False
+
+
+def run_partitioned(engine, options: ExploreOptions, progress=None):
+    """The partitioned search of `engine` with `options.workers` processes (or on the Ray cluster
+    `options.ray`): (Exploration, None), or (None, why) where it does not apply."""
+    from cpn.engine.transfer import transfer_for
+
+    why = why_not_partitioned(engine, options)
+    if why is not None:
+        return None, f"the search ran in one process: {why}"
+    n = options.workers or 1
+    if n < 1:
+        raise ValueError(f"workers must be at least 1, got {n}")
+    t0 = time.perf_counter()
+    blob = pickle.dumps(engine.net, protocol=pickle.HIGHEST_PROTOCOL)
+    cond = bool(getattr(engine, "time_condensation", False))
+    try:
+        if options.ray is not None:
+            from cpn.statespace.distributed import RayWorkers
+
+            transport = RayWorkers(n, blob, cond, options.ray)
+        else:
+            transport = LocalWorkers(n, blob, cond)
+    except WorkerFailed as exc:
+        return None, f"the search ran in one process: the workers could not start ({exc})"
+    try:
+        search = _Coordinator(engine, transfer_for(engine), options, progress, transport, t0)
+        with _CtrlC() as ctrl_c:
+            search.ctrl_c = ctrl_c
+            return search.run(), None
+    except WorkerFailed as exc:
+        # the one-process search meets the same error and reports it with the trace to its state
+        return None, f"the search was repeated in one process: {exc}"
+    finally:
+        transport.close()
+
+
+class _Coordinator:
+    def __init__(self, engine, transfer, options: ExploreOptions, progress, transport, t0: float):
+        self.engine, self.transfer, self.options = engine, transfer, options
+        self.progress, self.transport, self.t0 = progress, transport, t0
+        self.n = transport.n
+        self.rss = [0.0] * self.n
+        self.ctrl_c = _CtrlC()
+
+    def _memory_mb(self) -> float:
+        return current_rss_mb() + sum(self.rss)
+
+    def run(self):
+        from cpn.statespace.explore import Exploration, Progress
+
+        opts, n, transport = self.options, self.n, self.transport
+        s0 = self.engine.initial_state()
+        c0 = self.transfer.export_state(s0)
+        transport.call(self.transfer.stable_hash(s0) % n, "seed", c0)
+        max_states = opts.max_states if opts.max_states is not None else 1 << 62
+        max_arcs = opts.max_arcs if opts.max_arcs is not None else 1 << 62
+        deadline = self.t0 + opts.max_seconds if opts.max_seconds is not None else None
+        next_progress = self.t0 + opts.progress_interval
+        inboxes = [[None] * n for _ in range(n)]
+        advance = False
+        states, expanded, arcs = 1, 0, 0
+        stop = StopReason.COMPLETE
+        pred = opts.stop_predicate
+        if pred is not None and pred(s0):
+            stop = StopReason.PREDICATE
+        try:
+            while stop is StopReason.COMPLETE:
+                if states >= max_states:
+                    stop = StopReason.MAX_STATES
+                    break
+                if arcs >= max_arcs:
+                    stop = StopReason.MAX_ARCS
+                    break
+                budget = _budget(max_states - states, max_arcs - arcs, expanded, arcs, n)
+                statuses, outboxes = transport.step(budget, advance, inboxes)
+                inboxes = [[outboxes[w][d] for w in range(n)] for d in range(n)]
+                states = sum(s[0] for s in statuses)
+                expanded = sum(s[1] for s in statuses)
+                arcs = sum(s[2] for s in statuses)
+                self.rss = [s[6] for s in statuses]
+                in_flight = any(b is not None for row in outboxes for b in row)
+                left = sum(s[3] for s in statuses)
+                advance = left == 0
+                if left == 0 and not in_flight and sum(s[4] for s in statuses) == 0:
+                    break  # nothing left to expand, nothing on its way
+                now = time.perf_counter()
+                if self.ctrl_c.hit:
+                    stop = StopReason.INTERRUPTED
+                elif deadline is not None and now >= deadline:
+                    stop = StopReason.MAX_SECONDS
+                elif opts.max_memory_mb is not None and self._memory_mb() >= opts.max_memory_mb:
+                    stop = StopReason.MAX_MEMORY
+                if self.progress is not None and now >= next_progress:
+                    next_progress = now + opts.progress_interval
+                    queue = left + sum(s[4] for s in statuses)
+                    self.progress(Progress(states, arcs, queue, now - self.t0, self._memory_mb()))
+        except KeyboardInterrupt:
+            stop = StopReason.INTERRUPTED
+        if any(b is not None for row in inboxes for b in row):
+            # the batches on their way: their states are stored (unexpanded) and their arcs recorded
+            transport.step(0, False, inboxes)
+        parts = [pickle.loads(b) for b in transport.collect()]
+        g, predicate_state = self._assemble(parts, stop)
+        levels = max((lv for part in parts for lv in (part["level"][i] for i in part["expanded"])), default=0)
+        if predicate_state is not None:
+            stop = StopReason.PREDICATE
+        seconds = time.perf_counter() - self.t0
+        if self.progress is not None:
+            self.progress(Progress(g.n_states, g.n_arcs, g.n_states - g.expanded, seconds, self._memory_mb()))
+        where = "Ray actors" if opts.ray is not None else "worker processes"
+        where = where if n > 1 else where.replace("processes", "process").replace("actors", "actor")
+        notes = [f"the search ran in {n} {where}, the states partitioned by a hash of each state"]
+        if predicate_state is not None or (pred is not None and stop is not StopReason.PREDICATE):
+            notes.append("the stop predicate was evaluated on the assembled graph, state by state in "
+                         "breadth-first order (the partitioned search does not stop at the first state)")
+        return Exploration(engine=self.engine, graph=g, options=opts, stop_reason=stop, seconds=seconds,
+                           peak_memory_mb=peak_rss_mb() + sum(self.rss), predicate_state=predicate_state,
+                           levels=levels, notes=notes,
+                           backend=self.transport.name)
+
+    def _assemble(self, parts: list[dict], stop: StopReason) -> tuple[StateGraph, int | None]:
+        """The graph of the workers' parts, numbered breadth-first in this process's engine."""
+        transfer = self.transfer
+        # order: expanded states by (level, worker, arrival), then the unexpanded ones the same way
+        expanded_flags = []
+        for part in parts:
+            flags = bytearray(len(part["states"]))
+            for sid in part["expanded"]:
+                flags[sid] = 1
+            expanded_flags.append(flags)
+        order = []
+        for done in (1, 0):
+            keyed = []
+            for w, part in enumerate(parts):
+                level, flags = part["level"], expanded_flags[w]
+                keyed += [(level[i], w, i) for i in range(len(flags)) if flags[i] == done]
+            keyed.sort()
+            order += [(w, i) for _lv, w, i in keyed]
+        gid = [array("q", bytes(8 * len(p["states"]))) for p in parts]
+        for j, (w, i) in enumerate(order):
+            gid[w][i] = j
+        # binding elements of every worker in this engine
+        bemap = [array("i", [transfer.import_binding_element(key) for key in part["bes"]]) for part in parts]
+        g = StateGraph()
+        first = order[0]
+        s0 = transfer.import_state(parts[first[0]]["states"][first[1]])
+        g.store = new_store(s0, packed=self.options.packed_states)
+        tail = [(0, transfer.import_state(parts[w]["states"][i])) for w, i in order[1:]]
+        ids = array("i")
+        g.store.add_successors(tail, ids)
+        if len(g.store) != len(order):
+            raise RuntimeError("two workers stored the same state (the partition is not a function of the "
+                               "marking)")
+        tail = None
+        # parents
+        parent, parent_be = array("i"), array("i")
+        for w, i in order:
+            part = parts[w]
+            pw = part["parent_w"][i]
+            if pw < 0:
+                parent.append(-1)
+                parent_be.append(-1)
+            else:
+                parent.append(gid[pw][part["parent_l"][i]])
+                parent_be.append(bemap[pw][part["parent_be"][i]])
+        g.parent, g.parent_be = parent, parent_be
+        # arcs: offsets from the degrees of the expanded states, each arc at its source's position k
+        degree = [0] * len(order)
+        for w, part in enumerate(parts):
+            gw = gid[w]
+            for sid, d in zip(part["expanded"], part["degree"]):
+                degree[gw[sid]] = d
+        n_expanded = sum(len(p["expanded"]) for p in parts)
+        offsets = array("q", [0]) * (n_expanded + 1)
+        total = 0
+        for j in range(n_expanded):
+            total += degree[j]
+            offsets[j + 1] = total
+        dst = array("i", bytes(4 * total))
+        bes = [0] * total
+        placed = 0
+        for w, part in enumerate(parts):
+            gw = gid[w]
+            for sw, sl, k, be, d in zip(part["arc_w"], part["arc_l"], part["arc_k"], part["arc_be"],
+                                        part["arc_dst"]):
+                src = gid[sw][sl]
+                if src >= n_expanded:
+                    continue  # an arc of a state whose expansion was not counted (cannot happen)
+                pos = offsets[src] + k
+                dst[pos] = gw[d]
+                bes[pos] = bemap[sw][be]
+                placed += 1
+        if placed != total:
+            raise RuntimeError(f"the workers sent {placed} arcs for {total} expected")
+        g.offsets, g.dst = offsets, dst
+        g.bes = array("H" if not bes or max(bes) < 1 << 16 else "i", bes)
+        g.store.finish()
+        predicate_state = None
+        pred = self.options.stop_predicate
+        if pred is not None and stop is not StopReason.PREDICATE:
+            for j, s in enumerate(g.states):
+                if j and pred(s):
+                    predicate_state = j
+                    break
+        elif stop is StopReason.PREDICATE:
+            predicate_state = 0
+        return g, predicate_state
+
+
+def _budget(states_left: int, arcs_left: int, expanded: int, arcs: int, n: int) -> int:
+    """States each worker may expand in the next step: STEP_STATES, fewer near a states or arcs limit
+    (estimated from the arcs per expanded state so far) so that the search stops close to it."""
+    per_state = arcs / expanded if expanded else 1.0
+    room = min(states_left, arcs_left) / max(per_state, 1.0) / n
+    return max(1, min(STEP_STATES, int(room)))
+
+
+__all__ = ["LocalWorkers", "PartitionWorker", "STEP_STATES", "WorkerFailed", "run_partitioned",
+           "why_not_partitioned"]

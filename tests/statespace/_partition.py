@@ -1,0 +1,80 @@
+"""Cross-checks of the partitioned search against the one-process search: the same states, arcs, dead
+markings, levels and standard report (node numbers aside: the partitioned search numbers states in
+another breadth-first order)."""
+
+from __future__ import annotations
+
+from collections import Counter
+
+from cpn.report import build_report, to_json
+from cpn.statespace import ExploreOptions, Explorer
+from cpn.statespace.trace import shortest_trace
+
+
+def canonical(engine, s) -> tuple:
+    return tuple(frozenset(d.items()) for d in engine.marking(s)) + ((engine.clock(s),) if engine.is_timed else ())
+
+
+def summary(x) -> dict:
+    """What must not depend on the search: every figure, with states named by their markings."""
+    e, g = x.engine, x.graph
+    names = [canonical(e, s) for s in g.states]
+    arcs = Counter()
+    for i in range(g.expanded):
+        for be, d in g.out_arcs(i):
+            arcs[(names[i], e.format_binding_element(be), names[d])] += 1
+    # the BFS tree gives shortest paths: every state's depth is the same in both searches
+    depth = {}
+    for i in range(g.n_states):
+        p = g.parent[i]
+        depth[names[i]] = 0 if p < 0 else depth[names[p]] + 1
+    return {"states": Counter(names), "expanded": Counter(names[:g.expanded]), "arcs": arcs,
+            "dead": sorted(map(repr, (names[i] for i in g.dead_states()))), "depth": depth,
+            "stop": x.stop_reason, "levels": x.levels, "initial": names[0]}
+
+
+def report_figures(x) -> dict:
+    """The standard report as JSON, node numbers replaced by markings and traces by their length."""
+    r = to_json(build_report(x))
+    e, g = x.engine, x.graph
+
+    def name(i):
+        return repr(canonical(e, g.states[i - 1]))  # the report numbers nodes from 1
+
+    for key in ("report_seconds", "report_part_seconds", "notes"):
+        r.pop(key, None)
+    st = r["statespace"]
+    for key in ("seconds", "peak_memory_mb"):
+        st.pop(key, None)
+    r["scc"].pop("seconds", None)
+    dm = r["dead_markings"]
+    ex = dm["examples"] or []
+    dm["examples"] = sorted(name(i) for i in ex) if len(ex) == dm["count"] else len(ex)
+    dm["trace"] = len(dm["trace"] or [])
+    listed = dm.get("listed") or []
+    dm["listed"] = (sorted((name(d["node"]), len(d.get("trace") or [])) for d in listed)
+                    if len(listed) == dm["count"] else len(listed))
+    hm = r["home_markings"]
+    if hm:
+        # the examples listed are the first nodes by number when there are more than the report lists
+        ex = hm["examples"] or []
+        hm["examples"] = sorted(name(i) for i in ex) if len(ex) == hm["count"] else len(ex)
+    return r
+
+
+def compare(model, workers=(1, 2), **opts) -> dict:
+    """The one-process search and the partitioned one with each number of workers: identical figures and
+    report. Returns the one-process summary."""
+    base = Explorer(model.engine(), ExploreOptions(**opts)).run()
+    want, want_report = summary(base), report_figures(base)
+    for n in workers:
+        x = Explorer(model.engine(), ExploreOptions(workers=n, **opts)).run()
+        assert x.backend in ("workers", "ray") or x.engine.is_timed, x.notes
+        got = summary(x)
+        for key in want:
+            assert got[key] == want[key], f"{key} differs with {n} workers"
+        assert report_figures(x) == want_report, f"the report differs with {n} workers"
+        for i in x.graph.dead_states()[:3]:
+            assert len(shortest_trace(x.graph, i, x.engine).steps) == want["depth"][canonical(x.engine,
+                                                                                                x.graph.states[i])]
+    return want
