@@ -91,6 +91,7 @@ class _Monitor:
         self.checks = checks
         self.watch = watch
         self.stop_at_first = stop_at_first
+        self.may_stop = stop_at_first  # else it only observes (the partitioned search calls it afterwards)
         self.only_witnesses = only_witnesses  # every property of the scenario is a `reachable` one
         self.sid = 0
 
@@ -154,11 +155,15 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
                              stop_predicate=monitor, time_condensation=bool(opts.get("time_condensation", False)),
                              detect_time_growth=bool(opts.get("detect_time_growth", True)),
                              until_time=opts.get("until_time"),
-                             reduction=reduction, visible_places=visible)
+                             reduction=reduction, visible_places=visible,
+                             workers=opts.get("workers"), ray=opts.get("ray"))
     t0 = time.perf_counter()
     x = Explorer(watch if watch is not None else engine, options, progress=progress).run()
     explore_seconds = time.perf_counter() - t0
     x.engine = engine
+    if watch is not None and x.backend in ("workers", "ray"):
+        # the partitioned search expanded the states in other processes: the first dead state by number
+        watch.first_dead = next(iter(x.graph.dead_states()), None)
     note = None
     if x.stop_reason.value == "predicate":
         note = "stop_at_first_violation is set and a violation (or witness) was found"

@@ -20,7 +20,7 @@ from cpn.errors import ModelError
 TOP_KEYS = {"name", "model", "description", "set", "explore", "parameters", "property"}
 EXPLORE_KEYS = {"max_states": int, "max_arcs": int, "max_seconds": (int, float), "max_memory_mb": (int, float),
                 "time_condensation": bool, "stop_at_first_violation": bool, "detect_time_growth": bool,
-                "until_time": int,
+                "until_time": int, "workers": int,
                 "reduction": str}
 # the partial-order reductions `reduction` may name (docs/specs.md)
 REDUCTIONS: tuple = ("stubborn",)

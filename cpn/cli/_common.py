@@ -98,6 +98,33 @@ def add_limit_options(p: argparse.ArgumentParser) -> None:
                    "container limit, so that an unbounded model ends with a partial report; 0: no limit)")
 
 
+def add_parallel_options(p: argparse.ArgumentParser) -> None:
+    """--workers N and --ray [ADDRESS]: the partitioned search (cpn.statespace.parallel, .distributed)."""
+    p.add_argument("--workers", type=int, metavar="N", default=None,
+                   help="search with N processes, each owning a part of the states (untimed nets; the same "
+                   "state space and report as one process; timed nets, reductions and branching options "
+                   "are searched in one process, with a note)")
+    p.add_argument("--ray", nargs="?", const="local", default=None, metavar="ADDRESS",
+                   help="run the workers of the partitioned search on a Ray cluster: ADDRESS of its head "
+                   "(host:port), 'auto' for the cluster started on this machine with 'ray start --head', "
+                   "nothing for a local Ray instance started for this command (needs: pip install "
+                   "'cpn-verify[ray]'); --workers defaults to the cluster's CPUs")
+
+
+def check_parallel(args) -> None:
+    """--workers must be positive; --ray needs Ray installed (a UsageError with the install hint)."""
+    workers = getattr(args, "workers", None)
+    if workers is not None and workers < 1:
+        raise UsageError(f"--workers must be at least 1, got {workers}")
+    if getattr(args, "ray", None) is not None:
+        from cpn.statespace.distributed import ray_unavailable
+
+        why = ray_unavailable()
+        if why is not None:
+            raise UsageError(f"--ray: {why}\nhint: pip install 'cpn-verify[ray]' (or run without --ray: "
+                             "--workers N uses the processes of this machine)")
+
+
 def _mib(mb: float | None) -> str:
     return "none" if mb is None else f"{mb:,.0f}"
 

@@ -18,8 +18,10 @@ from cpn.cli._common import (
     UsageError,
     add_limit_options,
     add_output_option,
+    add_parallel_options,
     add_quiet_option,
     check_limits,
+    check_parallel,
     prepare_outputs,
     write_output,
 )
@@ -53,6 +55,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p.add_argument("--trace-format", choices=("text", "json"), default="text",
                    help="how counterexamples are printed (default: text)")
     add_limit_options(p)  # override the limits of every scenario ([explore] in the file)
+    add_parallel_options(p)
     p.add_argument("--stop-at-first-violation", action="store_true",
                    help="stop each search at the first violated invariant or dead marking (fail fast)")
     p.add_argument("--no-timings", action="store_true",
@@ -69,6 +72,7 @@ def run(args) -> int:
     from cpn.report.verdicts import report_name, run_report
 
     check_limits(args)
+    check_parallel(args)
     outputs = {o.option: o for o in prepare_outputs(("--junit", args.junit), ("--sarif", args.sarif))}
     paths = args.paths or [DEFAULT_DIR]
     for p in paths:
@@ -81,7 +85,8 @@ def run(args) -> int:
     overrides = {"max_states": args.max_states, "max_arcs": args.max_arcs, "max_seconds": args.max_seconds,
                  # the default memory limit applies only where a scenario sets none
                  "default_max_memory_mb" if args.max_memory_is_default else "max_memory_mb": args.max_memory,
-                 "stop_at_first_violation": True if args.stop_at_first_violation else None}
+                 "stop_at_first_violation": True if args.stop_at_first_violation else None,
+                 "workers": args.workers, "ray": args.ray}
     if args.html:
         _prepare_html_folder(args.html)  # before any run: a long check must never be lost to a bad path
     pages: list = []

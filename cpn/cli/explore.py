@@ -18,9 +18,11 @@ from cpn.cli._common import (
     UsageError,
     add_limit_options,
     add_output_option,
+    add_parallel_options,
     add_quiet_option,
     add_set_option,
     check_limits,
+    check_parallel,
     parse_sets,
     prepare_outputs,
     sets_of,
@@ -66,6 +68,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    help="the search: 'c' runs its loop, caches and graph in native code (built with the "
                    "system C compiler on first use), 'python' in Python; 'auto' (the default) is 'c' "
                    "where it can run and says why not elsewhere; the state space is the same")
+    add_parallel_options(p)
     add_output_option(p, "--json", "the result as JSON")
     add_output_option(p, "--dot", "the state space and SCC graph as DOT (small nets)")
     add_output_option(p, "--graphml", "the state space and SCC graph as GraphML (small nets)")
@@ -98,6 +101,7 @@ def _outputs(args):
 def run(args) -> int:
     sets = sets_of(args)
     check_limits(args)
+    check_parallel(args)
     if args.max_listed is not None and args.max_listed < 0:
         raise UsageError(f"--max-listed must not be negative, got {args.max_listed}")
     if getattr(args, "max_successors", None) is not None and args.max_successors <= 0:
@@ -122,7 +126,8 @@ def _options(args):
                           detect_time_growth=not args.no_time_growth_check,
                           until_time=getattr(args, "until_time", None),
                           reduction=getattr(args, "reduction", None),
-                          backend=getattr(args, "backend", "auto"))
+                          backend=getattr(args, "backend", "auto"),
+                          workers=getattr(args, "workers", None), ray=getattr(args, "ray", None))
 
 
 def _branching_options(engine, options, names: str | None, max_successors: int | None):

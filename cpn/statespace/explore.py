@@ -76,6 +76,8 @@ class Exploration:
     # the partial-order reduction that ran ("stubborn"), None for the full graph; its figures
     reduction: str | None = None
     reduction_stats: dict | None = None
+    #: the partitioned search's figures (cpn.statespace.parallel): workers, successors and bytes sent between them
+    partition: dict | None = None
 
     @property
     def restricted(self) -> bool:

@@ -23,7 +23,10 @@ How it works (as in Helena, LTSmin and DiVinE's distributed searches):
   states and the order of arcs may differ).
 
 `run_partitioned` returns None with a one-line reason where the partitioned search does not apply (timed
-nets, reductions, branching options, the reference interpreter); the caller then searches in one process.
+nets, reductions, branching options, a stop predicate that may stop the search, the reference
+interpreter); the caller then searches in one process. A stop predicate that only observes the states
+(its attribute `may_stop` is False, as the property checks' monitor without stop_at_first_violation) is
+called on every state of the assembled graph in breadth-first order, as the one-process search calls it.
 The transport is pluggable: `LocalWorkers` (processes of this machine, through pipes) here, a Ray
 cluster in `cpn.statespace.distributed`.
 """
@@ -60,6 +63,8 @@ def why_not_partitioned(engine, options: ExploreOptions) -> str | None:
         return "stubborn sets (--reduction) are computed in one process"
     if options.restricted:
         return "branching options restrict the search in one process"
+    if options.stop_predicate is not None and getattr(options.stop_predicate, "may_stop", True):
+        return "a stop predicate ends the search at the first state satisfying it in breadth-first order"
     if transfer_for(engine) is None or not hasattr(engine, "net"):
         return "this engine cannot send its states to other processes (the reference interpreter)"
     return None
@@ -171,13 +176,13 @@ class PartitionWorker:
                 batches.append(pickle.dumps(box, protocol=pickle.HIGHEST_PROTOCOL))
             else:
                 batches.append(None)
-        return self.status(), batches
+        return self.status([len(b) if b else 0 for b in batches]), batches
 
-    def status(self) -> tuple:
-        """(states stored, states expanded, arcs, left in this level, found for the next level, states sent
-        to other workers so far, resident MiB)."""
+    def status(self, sizes=()) -> tuple:
+        """(states stored, states expanded, arcs, left in this level, found for the next level, successors
+        sent to other workers so far, resident MiB, bytes of this step's batch for each worker)."""
         return (len(self.states), len(self.expanded), self.arcs, len(self.cur) - self.pos, len(self.nxt),
-                self.sent, current_rss_mb())
+                self.sent, current_rss_mb(), list(sizes))
 
     def collect(self) -> bytes:
         """This worker's part of the graph, exported (pickled)."""
@@ -307,6 +312,17 @@ class LocalWorkers:
 
 # ------------------------------------------------------------------------------------------ coordinator
 
+def net_blob(net) -> bytes:
+    """The net, pickled for the workers, without the front end's checked model (`Net.checked`, which the
+    engine never reads and the property checks extend with functions that cannot be pickled)."""
+    import copy
+
+    light = copy.copy(net)
+    if hasattr(light, "checked"):
+        light.checked = None
+    return pickle.dumps(light, protocol=pickle.HIGHEST_PROTOCOL)
+
+
 class _CtrlC:
     """Ctrl-C only sets `hit` while the coordinator runs (a step is never cut in half: its batches would
     be lost); the coordinator stops at the end of the step. Outside the main thread it changes nothing."""
@@ -341,11 +357,11 @@ def run_partitioned(engine, options: ExploreOptions, progress=None):
     why = why_not_partitioned(engine, options)
     if why is not None:
         return None, f"the search ran in one process: {why}"
-    n = options.workers or 1
-    if n < 1:
+    n = options.workers
+    if n is not None and n < 1:
         raise ValueError(f"workers must be at least 1, got {n}")
     t0 = time.perf_counter()
-    blob = pickle.dumps(engine.net, protocol=pickle.HIGHEST_PROTOCOL)
+    blob = net_blob(engine.net)
     cond = bool(getattr(engine, "time_condensation", False))
     try:
         if options.ray is not None:
@@ -353,7 +369,7 @@ def run_partitioned(engine, options: ExploreOptions, progress=None):
 
             transport = RayWorkers(n, blob, cond, options.ray)
         else:
-            transport = LocalWorkers(n, blob, cond)
+            transport = LocalWorkers(n or 1, blob, cond)
     except WorkerFailed as exc:
         return None, f"the search ran in one process: the workers could not start ({exc})"
     try:
@@ -375,6 +391,8 @@ class _Coordinator:
         self.n = transport.n
         self.rss = [0.0] * self.n
         self.ctrl_c = _CtrlC()
+        self.bytes_sent = 0  # the batches' bytes, all steps
+        self.sent = 0  # successors sent to another worker (one per arc whose target another worker owns)
 
     def _memory_mb(self) -> float:
         return current_rss_mb() + sum(self.rss)
@@ -412,6 +430,8 @@ class _Coordinator:
                 expanded = sum(s[1] for s in statuses)
                 arcs = sum(s[2] for s in statuses)
                 self.rss = [s[6] for s in statuses]
+                self.bytes_sent += sum(sum(s[7]) for s in statuses)
+                self.sent = sum(s[5] for s in statuses)
                 in_flight = any(b is not None for row in outboxes for b in row)
                 left = sum(s[3] for s in statuses)
                 advance = left == 0
@@ -432,7 +452,8 @@ class _Coordinator:
             stop = StopReason.INTERRUPTED
         if any(b is not None for row in inboxes for b in row):
             # the batches on their way: their states are stored (unexpanded) and their arcs recorded
-            transport.step(0, False, inboxes)
+            statuses, _ = transport.step(0, False, inboxes)
+            self.sent = sum(s[5] for s in statuses)
         parts = [pickle.loads(b) for b in transport.collect()]
         g, predicate_state = self._assemble(parts, stop)
         levels = max((lv for part in parts for lv in (part["level"][i] for i in part["expanded"])), default=0)
@@ -444,13 +465,11 @@ class _Coordinator:
         where = "Ray actors" if opts.ray is not None else "worker processes"
         where = where if n > 1 else where.replace("processes", "process").replace("actors", "actor")
         notes = [f"the search ran in {n} {where}, the states partitioned by a hash of each state"]
-        if predicate_state is not None or (pred is not None and stop is not StopReason.PREDICATE):
-            notes.append("the stop predicate was evaluated on the assembled graph, state by state in "
-                         "breadth-first order (the partitioned search does not stop at the first state)")
         return Exploration(engine=self.engine, graph=g, options=opts, stop_reason=stop, seconds=seconds,
                            peak_memory_mb=peak_rss_mb() + sum(self.rss), predicate_state=predicate_state,
-                           levels=levels, notes=notes,
-                           backend=self.transport.name)
+                           levels=levels, notes=notes, backend=self.transport.name,
+                           partition={"workers": n, "successors_sent": self.sent, "bytes_sent": self.bytes_sent,
+                                      "worker_states": [len(p["states"]) for p in parts]})
 
     def _assemble(self, parts: list[dict], stop: StopReason) -> tuple[StateGraph, int | None]:
         """The graph of the workers' parts, numbered breadth-first in this process's engine."""

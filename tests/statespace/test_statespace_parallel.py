@@ -7,6 +7,7 @@ from __future__ import annotations
 import glob
 import os
 import pickle
+from collections import Counter
 
 import pytest
 
@@ -15,7 +16,7 @@ from cpn.engine.transfer import transfer_for
 from cpn.statespace import ExploreOptions, Explorer, StopReason
 from cpn.statespace.parallel import PartitionWorker, why_not_partitioned
 from tests._shared import ROOT, SHARED
-from tests.statespace._partition import compare, summary
+from tests.statespace._partition import canonical, compare, summary
 
 MODELS = sorted(os.path.relpath(p, ROOT) for p in glob.glob(os.path.join(ROOT, "models", "**", "*.cpnet"),
                                                                recursive=True))
@@ -118,23 +119,31 @@ def test_max_memory_counts_the_workers_memory():
     assert x.stop_reason is StopReason.MAX_MEMORY and x.n_states >= 1
 
 
-def test_the_stop_predicate_is_evaluated_on_the_assembled_graph_in_breadth_first_order():
+def test_an_observing_stop_predicate_sees_every_state_in_breadth_first_order():
     model = _load("bench/nets/dp.cpnet:5")
-    seen = []
 
-    def pred(s):
-        seen.append(s)
-        return len(seen) == 40
+    class Observer:
+        may_stop = False  # it never ends the search: the partitioned search calls it afterwards
 
-    x = Explorer(model.engine(), ExploreOptions(workers=2, stop_predicate=pred)).run()
-    assert x.stop_reason is StopReason.PREDICATE and x.predicate_state == 39
-    assert seen == [x.graph.states[i] for i in range(40)]
-    assert any("stop predicate" in n for n in x.notes)
+        def __init__(self):
+            self.seen = []
+
+        def __call__(self, s):
+            self.seen.append(s)
+            return False
+
+    one, two = Observer(), Observer()
+    x = Explorer(model.engine(), ExploreOptions(stop_predicate=one)).run()
+    y = Explorer(model.engine(), ExploreOptions(workers=2, stop_predicate=two)).run()
+    assert y.backend == "workers" and x.complete and y.complete
+    assert two.seen == list(y.graph.states)
+    assert Counter(canonical(x.engine, s) for s in one.seen) == Counter(canonical(y.engine, s) for s in two.seen)
 
 
 @pytest.mark.parametrize("options,why", [
     ({"reduction": "stubborn"}, "stubborn sets"),
     ({"max_successors": 1}, "branching options"),
+    ({"stop_predicate": lambda s: False}, "stop predicate"),
 ])
 def test_what_the_partitioned_search_cannot_run_falls_back_with_a_note(options, why):
     model = _load("bench/nets/dp.cpnet:4")
