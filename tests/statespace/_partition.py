@@ -62,14 +62,14 @@ def report_figures(x) -> dict:
     return r
 
 
-def compare(model, workers=(1, 2), **opts) -> dict:
+def compare(model, workers=(1, 2), ray=None, **opts) -> dict:
     """The one-process search and the partitioned one with each number of workers: identical figures and
     report. Returns the one-process summary."""
     base = Explorer(model.engine(), ExploreOptions(**opts)).run()
     want, want_report = summary(base), report_figures(base)
     for n in workers:
-        x = Explorer(model.engine(), ExploreOptions(workers=n, **opts)).run()
-        assert x.backend in ("workers", "ray") or x.engine.is_timed, x.notes
+        x = Explorer(model.engine(), ExploreOptions(workers=n, ray=ray, **opts)).run()
+        assert x.backend == ("ray" if ray else "workers") or x.engine.is_timed, x.notes
         got = summary(x)
         for key in want:
             assert got[key] == want[key], f"{key} differs with {n} workers"
