@@ -7,7 +7,9 @@ multiset as the sorted, flattened items of `compiled.canonical_key`; a binding e
 and the values of its variables) and back, and gives each state a hash that is the same in every process
 (Python's `hash()` of a string is salted per process; the hash of a tuple of ints is not).
 
-Used by the partitioned search (`cpn.statespace.parallel`) to send states between processes.
+Used by the partitioned search (`cpn.statespace.parallel`) to send states between processes: there a
+state travels as its tuple of ids, with the keys of the ids the receiver has not been sent yet
+(`place_keys`, `import_place_keys`), so that each marking of a place crosses once per pair of processes.
 
 Examples
 --------
@@ -26,6 +28,7 @@ True
 from __future__ import annotations
 
 import hashlib
+from operator import getitem
 
 from cpn.engine.compiled import canonical_key
 
@@ -59,31 +62,28 @@ class StateTransfer:
             text = repr(key) if type(key) is tuple else repr(sorted(map(repr, key)))
             hashes.append(int.from_bytes(hashlib.blake2b(text.encode(), digest_size=8).digest(), "little") >> 1)
 
+    def _ensure(self, s: tuple) -> None:
+        for p in range(self.n_places):
+            if s[p] >= len(self._keys[p]):
+                self._extend(p, s[p])
+
     def export_state(self, s: tuple) -> tuple:
         """The state as one canonical key per place (and the clock of a timed net)."""
-        out = []
-        for p in range(self.n_places):
-            keys = self._keys[p]
-            i = s[p]
-            if i >= len(keys):
-                self._extend(p, i)
-            out.append(keys[i])
-        if self.timed:
-            out.append(s[-1])
-        return tuple(out)
+        try:
+            out = tuple(map(getitem, self._keys, s))  # map stops at the places: the clock is not an id
+        except IndexError:
+            self._ensure(s)
+            out = tuple(map(getitem, self._keys, s))
+        return out + (s[-1],) if self.timed else out
 
     def stable_hash(self, s: tuple) -> int:
         """A hash of the state equal in every process and engine of the net (not salted)."""
-        hs = []
-        for p in range(self.n_places):
-            h = self._hashes[p]
-            i = s[p]
-            if i >= len(h):
-                self._extend(p, i)
-            hs.append(h[i])
-        if self.timed:
-            hs.append(s[-1])
-        return hash(tuple(hs))
+        try:
+            hs = tuple(map(getitem, self._hashes, s))
+        except IndexError:
+            self._ensure(s)
+            hs = tuple(map(getitem, self._hashes, s))
+        return hash((hs, s[-1])) if self.timed else hash(hs)
 
     def import_state(self, c: tuple) -> tuple:
         """This engine's state for an exported one (its place markings interned when new)."""
@@ -100,6 +100,29 @@ class StateTransfer:
         if self.timed:
             ids.append(c[-1])
         return tuple(ids)
+
+    def place_count(self, p: int) -> int:
+        """How many markings of place p this engine has interned (their ids are 0..count-1)."""
+        return len(self._places.dicts[p])
+
+    def place_keys(self, p: int, start: int = 0, stop: int | None = None) -> list:
+        """The canonical keys of place p's markings with ids start..stop-1 (stop: all of them)."""
+        stop = self.place_count(p) if stop is None else stop
+        if stop > len(self._keys[p]):
+            self._extend(p, stop - 1)
+        return self._keys[p][start:stop]
+
+    def import_place_keys(self, p: int, keys) -> list[int]:
+        """This engine's ids of place p's markings given by their canonical keys (interned when new)."""
+        places = self._places
+        get = places.index[p].get
+        out = []
+        for key in keys:
+            i = get(key)
+            if i is None:
+                i = places.intern(p, dict(key) if type(key) is frozenset else dict(zip(key[0::2], key[1::2])))
+            out.append(i)
+        return out
 
     def export_binding_elements(self, start: int = 0) -> list:
         """The binding elements from id `start` on, each as (transition, values of its variables)."""

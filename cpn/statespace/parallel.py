@@ -37,6 +37,8 @@ import pickle
 import signal
 import time
 from array import array
+from bisect import bisect_right
+from operator import ge, getitem
 
 from cpn.errors import EvaluationError
 from cpn.statespace._memory import current_rss_mb, peak_rss_mb
@@ -46,6 +48,8 @@ from cpn.statespace.store import new_store
 
 #: states a worker expands per step at most: the limits and Ctrl-C are looked at between steps
 STEP_STATES: int = 4096
+#: a worker remembers the owner of at most this many states of other workers (cleared when full)
+REMOTE_CACHE: int = 1 << 18
 
 
 class WorkerFailed(Exception):
@@ -73,7 +77,13 @@ def why_not_partitioned(engine, options: ExploreOptions) -> str | None:
 # ------------------------------------------------------------------------------------------ worker
 
 class PartitionWorker:
-    """One worker of the partitioned search: the states it owns, their arcs as they arrive, its engine."""
+    """One worker of the partitioned search: the states it owns, the arcs of those it expanded, its engine.
+
+    Arcs are kept by their source, in the order the engine gave them (the arcs of the i-th expanded state
+    follow those of the (i-1)-th): the binding element and the destination's local id, or -1 where another
+    worker owns the destination. That worker records (source worker, arc position, its local id) when the
+    successor arrives. A state's parent is the arc that found it first: (worker, arc position).
+    """
 
     def __init__(self, net_blob: bytes, time_condensation: bool, me: int, n: int):
         from cpn.engine import compile_net
@@ -86,23 +96,23 @@ class PartitionWorker:
         self.ids: dict = {}
         self.level = array("i")
         self.parent_w = array("i")
-        self.parent_l = array("q")
-        self.parent_be = array("i")
+        self.parent_pos = array("q")
         self.expanded = array("q")  # local ids, in the order they were expanded
         self.degree = array("i")  # number of arcs of each expanded state (same order)
-        # arcs, recorded by the worker owning their destination: source (worker, local id), position among
-        # the source's arcs, binding element (in the source worker's engine), destination (local id)
-        self.arc_w = array("i")
-        self.arc_l = array("q")
-        self.arc_k = array("i")
-        self.arc_be = array("i")
-        self.arc_dst = array("q")
+        self.dst = array("q")  # per arc: the local id of its destination, -1 if another worker owns it
+        self.bes = array("i")  # per arc: its binding element (in this worker's engine)
+        self.in_w = array("i")  # arcs of other workers into this worker's states: source worker,
+        self.in_pos = array("q")  # position of the arc there,
+        self.in_dst = array("q")  # and the local id of the destination here
         self.lvl = 0
         self.cur: list[int] = []
         self.pos = 0
         self.nxt: list[int] = []
-        self.arcs = 0
         self.sent = 0
+        self.remote: dict = {}  # successors owned by other workers met before: their owner
+        k = len(self.engine.places)
+        self.sent_upto = [[0] * k for _ in range(n)]  # per worker: the place ids whose keys it was sent
+        self.tables = [[array("q") for _ in range(k)] for _ in range(n)]  # per sender, place: its id -> ours
 
     def seed(self, c: tuple) -> None:
         """Store the initial state (exported form): this worker owns it."""
@@ -111,88 +121,115 @@ class PartitionWorker:
         self.states.append(s)
         self.level.append(0)
         self.parent_w.append(-1)
-        self.parent_l.append(-1)
-        self.parent_be.append(-1)
+        self.parent_pos.append(-1)
         self.cur.append(0)
 
-    def _arrive(self, s, w: int, src: int, k: int, be: int) -> None:
-        j = self.ids.get(s)
-        if j is None:
-            j = self.ids[s] = len(self.states)
-            self.states.append(s)
-            self.level.append(self.lvl + 1)
-            self.parent_w.append(w)
-            self.parent_l.append(src)
-            self.parent_be.append(be)
-            self.nxt.append(j)
-        self.arc_w.append(w)
-        self.arc_l.append(src)
-        self.arc_k.append(k)
-        self.arc_be.append(be)
-        self.arc_dst.append(j)
+    def _new(self, s, w: int, pos: int) -> int:
+        j = self.ids[s] = len(self.states)
+        self.states.append(s)
+        self.level.append(self.lvl + 1)
+        self.parent_w.append(w)
+        self.parent_pos.append(pos)
+        self.nxt.append(j)
+        return j
 
     def step(self, budget: int, advance: bool, inboxes) -> tuple:
         """Store the batches sent to this worker, start the next level if told to, expand at most `budget`
         states of the current level: (status, one batch (bytes or None) per worker)."""
-        imp = self.transfer.import_state
-        arrive = self._arrive
+        ids_get = self.ids.get
+        new = self._new
         for w, blob in enumerate(inboxes):
             if not blob:
                 continue
-            src, ks, bes, states = pickle.loads(blob)
-            for i, c in enumerate(states):
-                arrive(imp(c), w, src[i], ks[i], bes[i])
+            positions, states, keys = pickle.loads(blob)
+            tables = self.tables[w]
+            for p, start, ks in keys:
+                if start != len(tables[p]):
+                    raise RuntimeError(f"worker {w} sent the keys of place {p} out of order")
+                tables[p].extend(array("q", self.transfer.import_place_keys(p, ks)))
+            self.in_w.extend(array("i", [w]) * len(positions))
+            self.in_pos.extend(positions)
+            in_dst = self.in_dst.append
+            for pos, c in zip(positions, states):
+                s = tuple(map(getitem, tables, c))  # the sender's ids to ours
+                j = ids_get(s)
+                in_dst(new(s, w, pos) if j is None else j)
         if advance:
             self.cur, self.nxt, self.pos = self.nxt, [], 0
             self.lvl += 1
         n, me = self.n, self.me
-        out = [(array("q"), array("i"), array("i"), []) for _ in range(n)]
+        out = [(array("q"), [], []) for _ in range(n)]
         successors = self.engine.successors
         owner = self.transfer.stable_hash
-        export = self.transfer.export_state
+        sent_upto = self.sent_upto
         states = self.states
+        known = self.remote
+        known_get = known.get
         end = min(len(self.cur), self.pos + budget)
         expanded_append, degree_append = self.expanded.append, self.degree.append
+        dst_append, bes_append = self.dst.append, self.bes.append
+        pos = len(self.dst)
         for sid in self.cur[self.pos:end]:
             succ = successors(states[sid])
             expanded_append(sid)
             degree_append(len(succ))
-            for k, (be, t) in enumerate(succ):
-                d = owner(t) % n
-                if d == me:
-                    arrive(t, me, sid, k, be)
-                else:
-                    box = out[d]
-                    box[0].append(sid)
-                    box[1].append(k)
-                    box[2].append(be)
-                    box[3].append(export(t))
-            self.arcs += len(succ)
+            for be, t in succ:
+                bes_append(be)
+                j = ids_get(t)
+                if j is None:
+                    d = known_get(t)
+                    if d is None:
+                        d = owner(t) % n if n > 1 else me
+                        if d != me:
+                            if len(known) >= REMOTE_CACHE:
+                                known.clear()
+                            known[t] = d
+                    if d == me:
+                        j = new(t, me, pos)
+                    else:
+                        j = -1
+                        box = out[d]
+                        box[0].append(pos)
+                        box[1].append(t)
+                        if any(map(ge, t, sent_upto[d])):
+                            self._send_keys(t, sent_upto[d], box[2])
+                dst_append(j)
+                pos += 1
         self.pos = end
         batches = []
         for box in out:
-            if box[3]:
-                self.sent += len(box[3])
+            if box[1]:
+                self.sent += len(box[1])
                 batches.append(pickle.dumps(box, protocol=pickle.HIGHEST_PROTOCOL))
             else:
                 batches.append(None)
         return self.status([len(b) if b else 0 for b in batches]), batches
 
+    def _send_keys(self, t: tuple, upto: list[int], keys: list) -> None:
+        """Add to a batch the keys of the place ids of `t` its receiver was not sent yet (with those of
+        every id before them, so that the receiver's tables stay dense)."""
+        tr = self.transfer
+        for p, i in enumerate(t):
+            if i >= upto[p]:
+                stop = tr.place_count(p)
+                keys.append((p, upto[p], tr.place_keys(p, upto[p], stop)))
+                upto[p] = stop
+
     def status(self, sizes=()) -> tuple:
         """(states stored, states expanded, arcs, left in this level, found for the next level, successors
         sent to other workers so far, resident MiB, bytes of this step's batch for each worker)."""
-        return (len(self.states), len(self.expanded), self.arcs, len(self.cur) - self.pos, len(self.nxt),
+        return (len(self.states), len(self.expanded), len(self.dst), len(self.cur) - self.pos, len(self.nxt),
                 self.sent, current_rss_mb(), list(sizes))
 
     def collect(self) -> bytes:
         """This worker's part of the graph, exported (pickled)."""
-        export = self.transfer.export_state
+        tr = self.transfer
         part = {
-            "states": [export(s) for s in self.states], "level": self.level, "parent_w": self.parent_w,
-            "parent_l": self.parent_l, "parent_be": self.parent_be, "expanded": self.expanded,
-            "degree": self.degree, "arc_w": self.arc_w, "arc_l": self.arc_l, "arc_k": self.arc_k,
-            "arc_be": self.arc_be, "arc_dst": self.arc_dst,
-            "bes": self.transfer.export_binding_elements(),
+            "states": self.states, "keys": [tr.place_keys(p) for p in range(len(self.engine.places))],
+            "level": self.level, "parent_w": self.parent_w,
+            "parent_pos": self.parent_pos, "expanded": self.expanded, "degree": self.degree, "dst": self.dst,
+            "bes": self.bes, "in_w": self.in_w, "in_pos": self.in_pos, "in_dst": self.in_dst,
+            "be_keys": tr.export_binding_elements(),
         }
         return pickle.dumps(part, protocol=pickle.HIGHEST_PROTOCOL)
 
@@ -401,6 +438,7 @@ class _Coordinator:
         from cpn.statespace.explore import Exploration, Progress
 
         opts, n, transport = self.options, self.n, self.transport
+        self.t_started = time.perf_counter()  # the workers are up
         s0 = self.engine.initial_state()
         c0 = self.transfer.export_state(s0)
         transport.call(self.transfer.stable_hash(s0) % n, "seed", c0)
@@ -454,8 +492,11 @@ class _Coordinator:
             # the batches on their way: their states are stored (unexpanded) and their arcs recorded
             statuses, _ = transport.step(0, False, inboxes)
             self.sent = sum(s[5] for s in statuses)
+        t_search = time.perf_counter()
         parts = [pickle.loads(b) for b in transport.collect()]
+        t_collect = time.perf_counter()
         g, predicate_state = self._assemble(parts, stop)
+        t_assemble = time.perf_counter()
         levels = max((lv for part in parts for lv in (part["level"][i] for i in part["expanded"])), default=0)
         if predicate_state is not None:
             stop = StopReason.PREDICATE
@@ -469,7 +510,11 @@ class _Coordinator:
                            peak_memory_mb=peak_rss_mb() + sum(self.rss), predicate_state=predicate_state,
                            levels=levels, notes=notes, backend=self.transport.name,
                            partition={"workers": n, "successors_sent": self.sent, "bytes_sent": self.bytes_sent,
-                                      "worker_states": [len(p["states"]) for p in parts]})
+                                      "worker_states": [len(p["states"]) for p in parts],
+                                      "seconds": {"start": round(self.t_started - self.t0, 3),
+                                                  "search": round(t_search - self.t_started, 3),
+                                                  "collect": round(t_collect - t_search, 3),
+                                                  "assemble": round(t_assemble - t_collect, 3)}})
 
     def _assemble(self, parts: list[dict], stop: StopReason) -> tuple[StateGraph, int | None]:
         """The graph of the workers' parts, numbered breadth-first in this process's engine."""
@@ -493,19 +538,35 @@ class _Coordinator:
         for j, (w, i) in enumerate(order):
             gid[w][i] = j
         # binding elements of every worker in this engine
-        bemap = [array("i", [transfer.import_binding_element(key) for key in part["bes"]]) for part in parts]
+        bemap = [array("i", [transfer.import_binding_element(key) for key in part["be_keys"]]) for part in parts]
+        # every worker's place ids in this engine
+        maps = [[array("q", transfer.import_place_keys(p, ks)) for p, ks in enumerate(part["keys"])]
+                for part in parts]
         g = StateGraph()
         first = order[0]
-        s0 = transfer.import_state(parts[first[0]]["states"][first[1]])
+        s0 = tuple(map(getitem, maps[first[0]], parts[first[0]]["states"][first[1]]))
         g.store = new_store(s0, packed=self.options.packed_states)
-        tail = [(0, transfer.import_state(parts[w]["states"][i])) for w, i in order[1:]]
-        ids = array("i")
-        g.store.add_successors(tail, ids)
+        tail = [(0, tuple(map(getitem, maps[w], parts[w]["states"][i]))) for w, i in order[1:]]
+        g.store.add_successors(tail, array("i"))
         if len(g.store) != len(order):
             raise RuntimeError("two workers stored the same state (the partition is not a function of the "
                                "marking)")
         tail = None
-        # parents
+        # the arcs of each worker's e-th expanded state start at starts[w][e] in its arrays
+        starts = []
+        for part in parts:
+            st, total = array("q"), 0
+            for d in part["degree"]:
+                st.append(total)
+                total += d
+            starts.append(st)
+
+        def source(w: int, pos: int) -> tuple[int, int]:
+            """(the expanded state's index in worker w's expansion order, its local id) of arc `pos` of w."""
+            e = bisect_right(starts[w], pos) - 1
+            return e, parts[w]["expanded"][e]
+
+        # parents: the arc that found each state
         parent, parent_be = array("i"), array("i")
         for w, i in order:
             part = parts[w]
@@ -514,39 +575,41 @@ class _Coordinator:
                 parent.append(-1)
                 parent_be.append(-1)
             else:
-                parent.append(gid[pw][part["parent_l"][i]])
-                parent_be.append(bemap[pw][part["parent_be"][i]])
+                pos = part["parent_pos"][i]
+                parent.append(gid[pw][source(pw, pos)[1]])
+                parent_be.append(bemap[pw][parts[pw]["bes"][pos]])
         g.parent, g.parent_be = parent, parent_be
-        # arcs: offsets from the degrees of the expanded states, each arc at its source's position k
-        degree = [0] * len(order)
+        # arcs: global offsets from the degrees, in the global order of the expanded states
+        n_expanded = sum(len(p["expanded"]) for p in parts)
+        degree = array("q", bytes(8 * n_expanded))
         for w, part in enumerate(parts):
             gw = gid[w]
             for sid, d in zip(part["expanded"], part["degree"]):
                 degree[gw[sid]] = d
-        n_expanded = sum(len(p["expanded"]) for p in parts)
         offsets = array("q", [0]) * (n_expanded + 1)
         total = 0
         for j in range(n_expanded):
             total += degree[j]
             offsets[j + 1] = total
         dst = array("i", bytes(4 * total))
-        bes = [0] * total
-        placed = 0
+        bes = array("i", bytes(4 * total))
         for w, part in enumerate(parts):
-            gw = gid[w]
-            for sw, sl, k, be, d in zip(part["arc_w"], part["arc_l"], part["arc_k"], part["arc_be"],
-                                        part["arc_dst"]):
-                src = gid[sw][sl]
-                if src >= n_expanded:
-                    continue  # an arc of a state whose expansion was not counted (cannot happen)
-                pos = offsets[src] + k
-                dst[pos] = gw[d]
-                bes[pos] = bemap[sw][be]
-                placed += 1
-        if placed != total:
-            raise RuntimeError(f"the workers sent {placed} arcs for {total} expected")
+            gw, bm, pdst, pbes = gid[w], bemap[w], part["dst"], part["bes"]
+            for e, sid in enumerate(part["expanded"]):
+                lo, d = starts[w][e], part["degree"][e]
+                g0 = offsets[gw[sid]]
+                dst[g0:g0 + d] = array("i", [gw[x] if x >= 0 else -1 for x in pdst[lo:lo + d]])
+                bes[g0:g0 + d] = array("i", [bm[b] for b in pbes[lo:lo + d]])
+        # the arcs into another worker's states, as that worker recorded them
+        for d, part in enumerate(parts):
+            gd = gid[d]
+            for w, pos, j in zip(part["in_w"], part["in_pos"], part["in_dst"]):
+                e, sid = source(w, pos)
+                dst[offsets[gid[w][sid]] + pos - starts[w][e]] = gd[j]
+        if total and min(dst) < 0:
+            raise RuntimeError("an arc's destination was not received from the worker owning it")
         g.offsets, g.dst = offsets, dst
-        g.bes = array("H" if not bes or max(bes) < 1 << 16 else "i", bes)
+        g.bes = array("H", bes) if not bes or max(bes) < 1 << 16 else bes
         g.store.finish()
         predicate_state = None
         pred = self.options.stop_predicate
