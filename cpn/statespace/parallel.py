@@ -33,6 +33,7 @@ cluster in `cpn.statespace.distributed`.
 
 from __future__ import annotations
 
+import gc
 import pickle
 import signal
 import time
@@ -136,12 +137,22 @@ class PartitionWorker:
     def step(self, budget: int, advance: bool, inboxes) -> tuple:
         """Store the batches sent to this worker, start the next level if told to, expand at most `budget`
         states of the current level: (status, one batch (bytes or None) per worker)."""
+        # as in the one-process search: the cyclic collector would walk every stored state again and again
+        enabled = gc.isenabled()
+        gc.disable()
+        try:
+            return self._step(budget, advance, inboxes)
+        finally:
+            if enabled:
+                gc.enable()
+
+    def _step(self, budget: int, advance: bool, inboxes) -> tuple:
         ids_get = self.ids.get
         new = self._new
         for w, blob in enumerate(inboxes):
             if not blob:
                 continue
-            positions, states, keys = pickle.loads(blob)
+            positions, states, keys, refs = pickle.loads(blob)
             tables = self.tables[w]
             for p, start, ks in keys:
                 if start != len(tables[p]):
@@ -150,15 +161,24 @@ class PartitionWorker:
             self.in_w.extend(array("i", [w]) * len(positions))
             self.in_pos.extend(positions)
             in_dst = self.in_dst.append
-            for pos, c in zip(positions, states):
-                s = tuple(map(getitem, tables, c))  # the sender's ids to ours
-                j = ids_get(s)
-                in_dst(new(s, w, pos) if j is None else j)
+            resolved = [-1] * len(states)
+            for pos, x in zip(positions, refs):
+                j = resolved[x]
+                if j < 0:
+                    s = tuple(map(getitem, tables, states[x]))  # the sender's ids to ours
+                    j = ids_get(s)
+                    if j is None:
+                        j = new(s, w, pos)
+                    resolved[x] = j
+                in_dst(j)
         if advance:
             self.cur, self.nxt, self.pos = self.nxt, [], 0
             self.lvl += 1
         n, me = self.n, self.me
-        out = [(array("q"), [], []) for _ in range(n)]
+        # per worker: positions of the arcs, their states (each once), keys of new place ids, and for
+        # each arc the index of its state in the batch
+        out = [(array("q"), [], [], array("i")) for _ in range(n)]
+        in_batch = [{} for _ in range(n)]
         successors = self.engine.successors
         owner = self.transfer.stable_hash
         sent_upto = self.sent_upto
@@ -189,17 +209,21 @@ class PartitionWorker:
                     else:
                         j = -1
                         box = out[d]
+                        x = in_batch[d].get(t)
+                        if x is None:
+                            x = in_batch[d][t] = len(box[1])
+                            box[1].append(t)
+                            if any(map(ge, t, sent_upto[d])):
+                                self._send_keys(t, sent_upto[d], box[2])
                         box[0].append(pos)
-                        box[1].append(t)
-                        if any(map(ge, t, sent_upto[d])):
-                            self._send_keys(t, sent_upto[d], box[2])
+                        box[3].append(x)
                 dst_append(j)
                 pos += 1
         self.pos = end
         batches = []
         for box in out:
             if box[1]:
-                self.sent += len(box[1])
+                self.sent += len(box[0])
                 batches.append(pickle.dumps(box, protocol=pickle.HIGHEST_PROTOCOL))
             else:
                 batches.append(None)
@@ -217,9 +241,9 @@ class PartitionWorker:
 
     def status(self, sizes=()) -> tuple:
         """(states stored, states expanded, arcs, left in this level, found for the next level, successors
-        sent to other workers so far, resident MiB, bytes of this step's batch for each worker)."""
+        sent to other workers so far, resident MiB, bytes of this step's batch for each worker, CPU seconds)."""
         return (len(self.states), len(self.expanded), len(self.dst), len(self.cur) - self.pos, len(self.nxt),
-                self.sent, current_rss_mb(), list(sizes))
+                self.sent, current_rss_mb(), list(sizes), time.process_time())
 
     def collect(self) -> bytes:
         """This worker's part of the graph, exported (pickled)."""
@@ -427,6 +451,7 @@ class _Coordinator:
         self.progress, self.transport, self.t0 = progress, transport, t0
         self.n = transport.n
         self.rss = [0.0] * self.n
+        self.cpu = [0.0] * self.n  # the workers' CPU seconds (process time, their start included)
         self.ctrl_c = _CtrlC()
         self.bytes_sent = 0  # the batches' bytes, all steps
         self.sent = 0  # successors sent to another worker (one per arc whose target another worker owns)
@@ -468,6 +493,7 @@ class _Coordinator:
                 expanded = sum(s[1] for s in statuses)
                 arcs = sum(s[2] for s in statuses)
                 self.rss = [s[6] for s in statuses]
+                self.cpu = [s[8] for s in statuses]
                 self.bytes_sent += sum(sum(s[7]) for s in statuses)
                 self.sent = sum(s[5] for s in statuses)
                 in_flight = any(b is not None for row in outboxes for b in row)
@@ -511,6 +537,7 @@ class _Coordinator:
                            levels=levels, notes=notes, backend=self.transport.name,
                            partition={"workers": n, "successors_sent": self.sent, "bytes_sent": self.bytes_sent,
                                       "worker_states": [len(p["states"]) for p in parts],
+                                      "worker_cpu_seconds": [round(c, 3) for c in self.cpu],
                                       "seconds": {"start": round(self.t_started - self.t0, 3),
                                                   "search": round(t_search - self.t_started, 3),
                                                   "collect": round(t_collect - t_search, 3),
