@@ -39,7 +39,7 @@ import signal
 import time
 from array import array
 from bisect import bisect_right
-from operator import ge, getitem
+from operator import getitem
 
 from cpn.errors import EvaluationError
 from cpn.statespace._memory import current_rss_mb, peak_rss_mb
@@ -112,8 +112,9 @@ class PartitionWorker:
         self.sent = 0
         self.remote: dict = {}  # successors owned by other workers met before: their owner
         k = len(self.engine.places)
-        self.sent_upto = [[0] * k for _ in range(n)]  # per worker: the place ids whose keys it was sent
-        self.tables = [[array("q") for _ in range(k)] for _ in range(n)]  # per sender, place: its id -> ours
+        # per worker and place: a flag per place id, set once the key of that id was sent to the worker
+        self.key_sent = [[bytearray() for _ in range(k)] for _ in range(n)]
+        self.tables = [[{} for _ in range(k)] for _ in range(n)]  # per sender and place: its id -> ours
 
     def seed(self, c: tuple) -> None:
         """Store the initial state (exported form): this worker owns it."""
@@ -154,10 +155,8 @@ class PartitionWorker:
                 continue
             positions, states, keys, refs = pickle.loads(blob)
             tables = self.tables[w]
-            for p, start, ks in keys:
-                if start != len(tables[p]):
-                    raise RuntimeError(f"worker {w} sent the keys of place {p} out of order")
-                tables[p].extend(array("q", self.transfer.import_place_keys(p, ks)))
+            for p, their_ids, ks in keys:
+                tables[p].update(zip(their_ids, self.transfer.import_place_keys(p, ks)))
             self.in_w.extend(array("i", [w]) * len(positions))
             self.in_pos.extend(positions)
             in_dst = self.in_dst.append
@@ -181,7 +180,7 @@ class PartitionWorker:
         in_batch = [{} for _ in range(n)]
         successors = self.engine.successors
         owner = self.transfer.stable_hash
-        sent_upto = self.sent_upto
+        key_sent = self.key_sent
         states = self.states
         known = self.remote
         known_get = known.get
@@ -213,8 +212,12 @@ class PartitionWorker:
                         if x is None:
                             x = in_batch[d][t] = len(box[1])
                             box[1].append(t)
-                            if any(map(ge, t, sent_upto[d])):
-                                self._send_keys(t, sent_upto[d], box[2])
+                            try:
+                                every_key_sent = all(map(getitem, key_sent[d], t))
+                            except IndexError:
+                                every_key_sent = False
+                            if not every_key_sent:
+                                self._send_keys(t, key_sent[d], box[2])
                         box[0].append(pos)
                         box[3].append(x)
                 dst_append(j)
@@ -229,15 +232,16 @@ class PartitionWorker:
                 batches.append(None)
         return self.status([len(b) if b else 0 for b in batches]), batches
 
-    def _send_keys(self, t: tuple, upto: list[int], keys: list) -> None:
-        """Add to a batch the keys of the place ids of `t` its receiver was not sent yet (with those of
-        every id before them, so that the receiver's tables stay dense)."""
+    def _send_keys(self, t: tuple, sent: list[bytearray], keys: list) -> None:
+        """Add to a batch the keys of the place ids of `t` its receiver was not sent yet."""
         tr = self.transfer
         for p, i in enumerate(t):
-            if i >= upto[p]:
-                stop = tr.place_count(p)
-                keys.append((p, upto[p], tr.place_keys(p, upto[p], stop)))
-                upto[p] = stop
+            flags = sent[p]
+            if i >= len(flags):
+                flags.extend(bytes(max(i + 1 - len(flags), len(flags))))
+            if not flags[i]:
+                flags[i] = 1
+                keys.append((p, (i,), tr.place_keys(p, i, i + 1)))
 
     def status(self, sizes=()) -> tuple:
         """(states stored, states expanded, arcs, left in this level, found for the next level, successors

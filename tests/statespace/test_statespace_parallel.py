@@ -172,3 +172,21 @@ def test_an_error_in_a_worker_is_reported_by_the_one_process_search_with_its_tra
     with pytest.raises(EvaluationError) as err:
         Explorer(net.engine(), ExploreOptions(workers=2)).run()
     assert err.value.trace
+
+
+def test_ctrl_c_stops_the_partitioned_search_with_a_consistent_partial_graph():
+    import signal
+
+    calls = []
+
+    def progress(p):
+        if not calls:
+            os.kill(os.getpid(), signal.SIGINT)  # what Ctrl-C sends; the workers ignore it
+        calls.append(p)
+
+    engine = _load("bench/nets/dp.cpnet:12").engine()
+    x = Explorer(engine, ExploreOptions(workers=2, progress_interval=0.0), progress=progress).run()
+    assert x.stop_reason is StopReason.INTERRUPTED and x.unexpanded > 0 and x.n_states < 39202
+    g = x.graph
+    assert len(g.offsets) == g.expanded + 1 and g.n_arcs == g.offsets[-1] and all(0 <= d < g.n_states for d in g.dst)
+    assert signal.getsignal(signal.SIGINT) is signal.default_int_handler  # given back after the search
