@@ -142,6 +142,12 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     index = TransitionIndex(engine)
     lang = PropertyLanguage(model.net, engine, index)
     checks = build_checks(scenario.properties, lang, scenario.source)
+    if opts.get("sweep_line"):  # the sweep-line method: no graph, the properties it can decide (docs/specs.md)
+        from cpn.checks.sweep import sweep_run
+
+        x, decided, t_x, t_c = sweep_run(scenario, engine, lang, checks, opts, progress)
+        return RunResult(scenario, run, x, engine, [PropertyResult(c.spec, v, s) for c, v, s in decided], t_x, t_c,
+                         opts)
     fly = [c for c in checks if c.on_the_fly and not isinstance(c, DeadlockFree)]
     needs_deadlock = any(isinstance(c, DeadlockFree) for c in checks)
     watch = _DeadlockWatch(engine) if needs_deadlock else None

@@ -21,7 +21,7 @@ TOP_KEYS = {"name", "model", "description", "set", "explore", "parameters", "pro
 EXPLORE_KEYS = {"max_states": int, "max_arcs": int, "max_seconds": (int, float), "max_memory_mb": (int, float),
                 "time_condensation": bool, "stop_at_first_violation": bool, "detect_time_growth": bool,
                 "until_time": int, "workers": int,
-                "reduction": str}
+                "reduction": str, "sweep_line": bool, "progress": str}
 # the partial-order reductions `reduction` may name (docs/specs.md)
 REDUCTIONS: tuple = ("stubborn",)
 # kind -> (required fields, optional fields); every kind also takes name and description
@@ -92,6 +92,7 @@ class Scenario:
     runs: list[Run]
     properties: list[PropertySpec]
     value_spans: dict = field(default_factory=dict)  # constant name -> Span of its value in [set] or a row
+    explore_texts: dict = field(default_factory=dict)  # [explore] key -> (TextOrigin, Span) of a text value
 
 
 def _line_col(text: str, offset: int) -> tuple[int, int]:
@@ -315,8 +316,9 @@ def loads_scenario(text: str, path: str = "<scenario>") -> Scenario:
     elif isinstance(data.get("parameters"), list):
         for i, row in enumerate(data["parameters"], 1):
             spans.update({k: r.value_span(("parameters", i), k) for k in row if k not in spans})
+    texts = {k: (r.origin(("explore",), k), r.value_span(("explore",), k)) for k in ("progress",) if k in explore}
     return Scenario(path, text, name, model_path, str(data.get("description", "")), values, explore, runs, props,
-                    spans)
+                    spans, texts)
 
 
 def _show(v) -> str:
@@ -350,6 +352,13 @@ def _explore(r: _Reader, table) -> dict:
             r.error("E0702", f"unknown exploration option '{k}'", r.key_span(("explore",), k),
                     hint=f"The options are {', '.join(sorted(EXPLORE_KEYS))}.")
             continue
+        if k == "progress":  # a progress measure for the sweep-line method, checked with the model
+            if not isinstance(v, str) or not v.strip():
+                r.error("E0702", "'progress' must be an integer expression over the marking, as a string",
+                        r.value_span(("explore",), k), hint="For example: progress = \"ms_to_col (Master'NextId 1)\".")
+                continue
+            out[k] = v
+            continue
         if want is str:
             if v not in REDUCTIONS:
                 r.error("E0702", f"'{k}' must be one of {', '.join(repr(x) for x in REDUCTIONS)}",
@@ -366,6 +375,14 @@ def _explore(r: _Reader, table) -> dict:
                     r.value_span(("explore",), k))
             continue
         out[k] = v
+    if out.get("sweep_line") and (out.get("reduction") or "until_time" in out):
+        key = "reduction" if out.get("reduction") else "until_time"
+        r.error("E0702", f"'sweep_line' cannot be combined with '{key}'", r.key_span(("explore",), key),
+                hint="The sweep-line method explores the whole state space in the order of its progress measure; "
+                     "drop one of the two options.")
+    if "progress" in out and not out.get("sweep_line"):
+        r.error("E0702", "'progress' is the sweep-line method's progress measure, but 'sweep_line' is not set",
+                r.key_span(("explore",), "progress"), hint="Add sweep_line = true, or drop 'progress'.")
     return out
 
 

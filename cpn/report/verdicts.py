@@ -196,9 +196,10 @@ def run_report(result, timings: bool = True) -> dict:
         if v.details:
             doc["details"] = v.details
         props.append(doc)
-    dead = g.dead_states()
+    sweep = getattr(x, "method", None) == "sweep-line"  # no graph: its own dead markings and bounds
+    dead = x.dead if sweep else g.dead_states()
     stats = {"states": x.n_states, "arcs": x.n_arcs, "complete": x.complete, "stop_reason": x.stop_reason.value,
-             "unexpanded": x.unexpanded}
+             "unexpanded": x.unexpanded, **(x.statistics() if sweep else {})}
     if x.reduction is not None:
         # the counts are the reduced graph's; bounds are not preserved by the reduction
         stats["reduction"] = x.reduction
@@ -217,7 +218,7 @@ def run_report(result, timings: bool = True) -> dict:
         "verdict": result.status.value,
         "statespace": stats,
         "dead_markings": {"count": len(dead)},
-        "bounds": _integer_bounds(result) if x.reduction is None else None,
+        "bounds": x.integer_bounds() if sweep else _integer_bounds(result) if x.reduction is None else None,
         "properties": props,
     }
 
@@ -262,6 +263,7 @@ def render_text(doc: dict) -> str:
     status = "complete" if st["complete"] else f"partial ({st['stop_reason']}, {st['unexpanded']:,} unexpanded)"
     secs = f", {st['seconds']:.2f} s" if "seconds" in st else ""
     reduced = f" (reduced by {st['reduction']} sets)" if st.get("reduction") else ""
+    reduced += _sweep_text(st)
     out.append(f"  state space {st['states']:,} states, {st['arcs']:,} arcs{reduced}, {status}{secs}")
     out.append(f"  verdict     {doc['verdict']}")
     out.append("")
@@ -280,6 +282,14 @@ def render_text(doc: dict) -> str:
     return "\n".join(out) + "\n"
 
 
+def _sweep_text(st: dict) -> str:
+    """How a sweep-line search counted (its states are not kept: no traces)."""
+    if st.get("method") != "sweep-line":
+        return ""
+    exact = "exact counts" if st["exact"] else "upper bounds: some states were explored more than once"
+    return f" (sweep-line, {exact}; at most {st['peak_states']:,} states held at once)"
+
+
 def label(p: dict) -> str:
     """A property's verdict as printed: 'violated (expected)' when its scenario expects the violation,
     'holds (expected violated)' when it expects one that did not happen."""
@@ -293,7 +303,7 @@ def render_markdown(doc: dict) -> str:
     out = [f"# Scenario `{doc['run']}`", "",
            f"- model: `{os.path.relpath(doc['model'])}`",
            f"- state space: {st['states']:,} states, {st['arcs']:,} arcs"
-           + (f" (reduced by {st['reduction']} sets)" if st.get("reduction") else "") + ", "
+           + (f" (reduced by {st['reduction']} sets)" if st.get("reduction") else "") + _sweep_text(st) + ", "
            + ("complete" if st["complete"] else f"**partial** ({st['stop_reason']})"),
            f"- verdict: **{doc['verdict']}**", "",
            "| property | kind | verdict | detail |", "|---|---|---|---|"]
