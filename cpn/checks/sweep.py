@@ -233,7 +233,9 @@ def sweep_run(scenario, engine, lang: PropertyLanguage, checks: list[Check], opt
     measure = text = None
     if opts.get("progress"):
         text = opts["progress"]
-        origin, span = scenario.explore_texts.get("progress", (None, None))
+        # the scenario's own text has its place in the file; one from the command line has none
+        own = scenario.explore.get("progress") == text
+        origin, span = scenario.explore_texts.get("progress", (None, None)) if own else (None, None)
         measure = progress_measure(lang, text, origin, span)
     monitor = SweepMonitor(checks, bool(opts.get("stop_at_first_violation", False)))
     options = ExploreOptions(max_states=opts.get("max_states"), max_arcs=opts.get("max_arcs"),

@@ -58,6 +58,12 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     add_parallel_options(p)
     p.add_argument("--stop-at-first-violation", action="store_true",
                    help="stop each search at the first violated invariant or dead marking (fail fast)")
+    p.add_argument("--sweep-line", action="store_true",
+                   help="explore every run with the sweep-line method (as sweep_line = true in [explore]; "
+                   "docs/specs.md): less memory, no graph, so properties that need one are unknown")
+    p.add_argument("--progress", metavar="EXPR", default=None,
+                   help="the sweep-line's progress measure, an integer expression over the marking "
+                   "(as progress = \"...\" in [explore]); default: the scenario's, else the global clock")
     p.add_argument("--no-timings", action="store_true",
                    help="leave run times out of the output and reports (byte-identical reruns)")
     add_quiet_option(p)
@@ -86,7 +92,8 @@ def run(args) -> int:
                  # the default memory limit applies only where a scenario sets none
                  "default_max_memory_mb" if args.max_memory_is_default else "max_memory_mb": args.max_memory,
                  "stop_at_first_violation": True if args.stop_at_first_violation else None,
-                 "workers": args.workers, "ray": args.ray}
+                 "workers": args.workers, "ray": args.ray,
+                 "sweep_line": True if args.sweep_line or args.progress else None, "progress": args.progress}
     if args.html:
         _prepare_html_folder(args.html)  # before any run: a long check must never be lost to a bad path
     pages: list = []
@@ -124,7 +131,7 @@ def run(args) -> int:
                 _print_run(doc, args.trace_format)
             if not args.no_reports:
                 _write_reports(args.reports, report_name(r.name), doc)
-            if args.html:
+            if args.html and result.exploration.graph is not None:  # a sweep-line run has no graph to draw
                 pages.append(_write_html_page(args.html, result, report_name(r.name)))
     if not stdout_taken:
         _print_summary(docs, timings)

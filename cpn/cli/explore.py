@@ -64,6 +64,14 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p.add_argument("--until-time", type=int, metavar="B", default=None,
                    help="expand no state whose model time (clock) exceeds B: the timed state space up to "
                         "time B, reported as partial when some state lies beyond B")
+    p.add_argument("--sweep-line", action="store_true",
+                   help="explore in the order of a progress measure (default: the global clock of a timed net, "
+                   "without time condensation) and delete the states behind it from memory: exact counts, "
+                   "dead markings and bounds, but no graph (no SCCs, home, liveness, fairness or traces)")
+    p.add_argument("--progress", metavar="EXPR", default=None,
+                   help="the sweep-line's progress measure: an integer expression over the marking, as in a "
+                   "scenario's properties (implies --sweep-line); an arc that decreases it is handled "
+                   "and reported, and the counts are then upper bounds")
     p.add_argument("--backend", choices=("auto", "python", "c"), default="auto",
                    help="the search: 'c' runs its loop, caches and graph in native code (built with the "
                    "system C compiler on first use), 'python' in Python; 'auto' (the default) is 'c' "
@@ -114,6 +122,10 @@ def run(args) -> int:
     _outputs(args)  # before the model is even loaded: a long run must never be lost to a bad path
     if not os.path.exists(args.model):
         raise UsageError(f"no such model file: '{args.model}'")
+    if getattr(args, "sweep_line", False) or getattr(args, "progress", None):
+        from cpn.cli._sweep import run_sweep
+
+        return run_sweep(args, sets)
     engine = load_engine(args.model, sets, args.time_condensation)
     return explore_engine(engine, args, sets)
 

@@ -148,6 +148,7 @@ class SweepLine:
                  measure_text: str | None = None, progress: Callable | None = None):
         self.engine = engine
         self.options = options or ExploreOptions()
+        self.by_clock = measure is None
         if measure is None:
             measure = default_measure(engine, self.options)
             measure_text = CLOCK_MEASURE
@@ -167,9 +168,9 @@ class SweepLine:
         bounds = _Bounds(engine)
         observe = bounds.observe
         watcher = None
-        if (measure is engine.clock and engine.is_timed and opts.detect_time_growth
+        if (self.by_clock and opts.detect_time_growth
                 and not getattr(engine, "reads_clock", False)):
-            watcher = _TimeGrowthWatcher(engine)
+            watcher = _SweepTimeGrowth(engine)
 
         held: dict[int, set] = {}  # progress value -> the states held with it (the sweep-line)
         held_keys: list[int] = []  # heap of the keys of `held`
@@ -315,6 +316,30 @@ class SweepLine:
             bounds=bounds.counts, multiset_upper=bounds.upper, multiset_lower=bounds.lower,
             regress_example=regress_example, predicate_state=predicate_state,
             time_growth=watcher.evidence() if stop is StopReason.TIME_GROWS else None, notes=notes)
+
+
+class _SweepTimeGrowth(_TimeGrowthWatcher):
+    """`explore`'s time-growth watch, fed one clock value at a time as the sweep-line passes it. A clock
+    value is a much finer step than a breadth-first level (a sequential protocol has one state per clock
+    value), so the sweep also asks that at least as many states were met since the last new marking
+    modulo time as before it: MODBUS A.1 without condensation, whose last new untimed marking comes after a
+    quiet spell of 16 clock values, would otherwise be stopped before its end."""
+
+    def __init__(self, engine):
+        super().__init__(engine)
+        self.states_seen = 0
+        self.states_at_saturation = 0
+
+    def level(self, states, start, end):
+        before = len(self.untimed)
+        super().level(states, start, end)
+        self.states_seen += max(0, end - start)
+        if len(self.untimed) > before:
+            self.states_at_saturation = self.states_seen
+
+    def grows_only_by_time(self) -> bool:
+        return (super().grows_only_by_time()
+                and self.states_seen - self.states_at_saturation >= self.states_at_saturation)
 
 
 class _Bounds:
