@@ -4,6 +4,7 @@ Usage:
   python bench/modbus.py [--repeat 3]            # the thesis's scenarios A.1-D.4 (17 files) and all of specs/modbus
   python bench/modbus.py --scaling [--budget 600]
   python bench/modbus.py --table [--budget 600]   # the side-by-side table of reports/README.md
+  python bench/modbus.py --sweep [--budget 600] [--max-ns 16] [--max-k 256]   # the sweep-line against the full search
 
 The first form times, as a user would, `python -m cpn check FILES --no-reports -q` (a fresh process: start-up,
 loading and compiling the model, exploring, deciding every property) over --repeat runs and prints the
@@ -176,15 +177,89 @@ def table(budget: float) -> None:
               + _explore({**values, "ORDER": '"any"'}, False, budget), flush=True)
 
 
+# the sweep-line's progress measure for scenario B: the id of the last master frame the bus delivered
+# (x 64) plus the copies of it the slaves have taken; no occurrence decreases it (no regress arc)
+SWEEP_MEASURE = "let val (i, _, r) = ms_to_col (Bus'Delivered 1) in i * 64 + length r - size (Modbus'b2s 1) end"
+
+
+def _explore_process(values: dict, budget: float, sweep: bool) -> dict:
+    """`python -m cpn explore models/modbus/modbus.cpnet --time-condensation ... --json -` in a fresh
+    process (so that its peak memory is its own): the JSON statistics, with the wall-clock seconds."""
+    cmd = [sys.executable, "-m", "cpn", "explore", os.path.join("models", "modbus", "modbus.cpnet"),
+           "--time-condensation", "-q", "--json", "-", "--max-seconds", str(budget)]
+    for k, v in values.items():
+        cmd += ["--set", f"{k}={v}"]
+    if sweep:
+        cmd += ["--progress", SWEEP_MEASURE]
+    t0 = time.perf_counter()
+    r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    if r.returncode not in (0, 2):
+        sys.exit(f"explore failed ({r.returncode}):\n{r.stderr}")
+    import json
+
+    d = json.loads(r.stdout)
+    st = d["statespace"]
+    st["dead"] = d["dead_markings"]["count"]
+    st["wall"] = wall
+    return st
+
+
+def _sweep_row(label, values: dict, budget: float) -> bool:
+    full = _explore_process(values, budget, False)
+    sweep = _explore_process(values, budget, True)
+    same = (full["states"], full["arcs"], full["dead"]) == (sweep["states"], sweep["arcs"], sweep["dead"])
+    if full["complete"] and sweep["complete"] and not same:
+        sys.exit(f"the sweep-line differs from the full search at {label}: {full} {sweep}")
+    cells = [label, f"{sweep['states']:,}", f"{sweep['arcs']:,}", str(sweep["dead"]),
+             f"{full['peak_memory_mb']:.0f}" if full["complete"] else "stopped", f"{full['seconds']:.2f}",
+             f"{sweep['peak_states']:,}", f"{sweep['peak_memory_mb']:.0f}", f"{sweep['seconds']:.2f}",
+             "yes" if sweep["exact"] else "no"]
+    print("| " + " | ".join(cells) + " |", flush=True)
+    return sweep["complete"]
+
+
+def sweep_scaling(budget: float, max_ns: int, max_k: int) -> None:
+    """Scenario B with broadcasts, full search against the sweep-line (each in a fresh process)."""
+    header = ("| {} | states | arcs | DM | full: peak MiB | s | sweep-line: peak states held | peak MiB | s "
+              "| exact |\n|---|---|---|---|---|---|---|---|---|---|")
+    print(f"scenario B with one broadcast, PO 1, FCS [1], --time-condensation; sweep-line: --progress "
+          f"\"{SWEEP_MEASURE}\"")
+    print(header.format("NS"))
+    for ns in range(4, max_ns + 1, 2):
+        values = {"CONFIG": '"B"', "NS": str(ns), "ADRS": str([0] + list(range(1, ns + 1))).replace(" ", ""),
+                  "FCS": "[1]", "PO": "1"}
+        if not _sweep_row(str(ns), values, budget):
+            print("    (stopped by the budget)")
+            break
+    print()
+    print("scenario B, NS 10, the frames {1..10} x {1} and k broadcasts (ADRS = [0,1,...,10,0,...,0])")
+    print(header.format("k"))
+    k = 1
+    while k <= max_k:
+        values = {"CONFIG": '"B"', "NS": "10", "ADRS": str([0] + list(range(1, 11)) + [0] * (k - 1)).replace(" ", ""),
+                  "FCS": "[1]", "PO": "1"}
+        if not _sweep_row(str(k), values, budget):
+            print("    (stopped by the budget)")
+            break
+        k *= 4
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--scaling", action="store_true")
     ap.add_argument("--table", action="store_true")
+    ap.add_argument("--sweep", action="store_true", help="the sweep-line against the full search (scenario B)")
+    ap.add_argument("--max-ns", type=int, default=16, help="--sweep: the largest NS (default 16)")
+    ap.add_argument("--max-k", type=int, default=256, help="--sweep: the largest number of broadcasts (default 256)")
     ap.add_argument("--budget", type=float, default=600.0, help="seconds of generation per run (default 600)")
     a = ap.parse_args(argv)
     if a.table:
         table(a.budget)
+        return 0
+    if a.sweep:
+        sweep_scaling(a.budget, a.max_ns, a.max_k)
         return 0
     if a.scaling:
         scaling_b(a.budget)

@@ -38,6 +38,10 @@ from cpn.statespace.options import ExploreOptions, StopReason
 
 #: the name of the default progress measure in reports
 CLOCK_MEASURE: str = "the global clock"
+#: the compiled engine's memo tables of transition results are emptied each time this many states have been
+#: deleted behind the sweep-line: they outgrow the states themselves (MODBUS B, NS 10, 16 broadcasts:
+#: 1.8 million entries for 16,597 states; emptied, the peak resident memory fell from 360 to 128 MiB)
+FORGET_EVERY: int = 1024
 
 
 @dataclass
@@ -196,6 +200,8 @@ class SweepLine:
         observe(s0)
         if pred is not None and pred(s0):
             stop, predicate_state = StopReason.PREDICATE, s0
+        forget = _memo_tables(engine)
+        deleted = 0
         gc_was_enabled = gc.isenabled()
         gc.disable()  # states are acyclic tuples: see Explorer._search
         try:
@@ -227,6 +233,10 @@ class SweepLine:
                     k = heapq.heappop(held_keys)
                     gone = held.pop(k)
                     n_held -= len(gone)
+                    deleted += len(gone)
+                    if deleted >= FORGET_EVERY and forget is not None:
+                        forget()
+                        deleted = 0
                     if watcher is not None:
                         watcher.level(list(gone), 0, len(gone))
                         if watcher.grows_only_by_time():
@@ -316,6 +326,24 @@ class SweepLine:
             bounds=bounds.counts, multiset_upper=bounds.upper, multiset_lower=bounds.lower,
             regress_example=regress_example, predicate_state=predicate_state,
             time_growth=watcher.evidence() if stop is StopReason.TIME_GROWS else None, notes=notes)
+
+
+def _memo_tables(engine) -> Callable | None:
+    """A function that empties the compiled engine's memo tables of transition results (their keys are
+    markings of the places a transition reads, mostly behind the sweep-line once it has moved on), or None
+    for an engine without them. Emptying them changes no result, only what is computed again."""
+    plan = getattr(engine, "_plan", None)
+    fire = getattr(engine, "_fire_memo", None)
+    if not plan or not all(isinstance(getattr(i, "memo", None), dict) for i in plan):
+        return None
+
+    def forget() -> None:
+        for info in plan:
+            info.memo.clear()  # in place: the engine keeps bound `memo.get` methods
+        if isinstance(fire, dict):
+            fire.clear()
+
+    return forget
 
 
 class _SweepTimeGrowth(_TimeGrowthWatcher):
