@@ -4,7 +4,10 @@ Usage:
   python bench/modbus.py [--repeat 3]            # the thesis's scenarios A.1-D.4 (17 files) and all of specs/modbus
   python bench/modbus.py --scaling [--budget 600]
   python bench/modbus.py --table [--budget 600]   # the side-by-side table of reports/README.md
-  python bench/modbus.py --sweep [--budget 600] [--max-ns 16] [--max-k 256]   # the sweep-line against the full search
+  python bench/modbus.py --sweep [--budget 600] [--ns 4,6,...] [--ks 1,4,...] [--full-max-memory 4096]
+                                                  # the sweep-line against the full search (scenario B)
+  python bench/modbus.py --sweep-thesis           # the same on the thesis's scenarios A.1-D.4 and the fault variants
+  python bench/modbus.py --sweep-memo 16          # the sweep-line with the engine's memo tables emptied, then kept
 
 The first form times, as a user would, `python -m cpn check FILES --no-reports -q` (a fresh process: start-up,
 loading and compiling the model, exploring, deciding every property) over --repeat runs and prints the
@@ -182,7 +185,7 @@ def table(budget: float) -> None:
 SWEEP_MEASURE = "let val (i, _, r) = ms_to_col (Bus'Delivered 1) in i * 64 + length r - size (Modbus'b2s 1) end"
 
 
-def _explore_process(values: dict, budget: float, sweep: bool) -> dict:
+def _explore_process(values: dict, budget: float, sweep: bool, max_memory: float = 0) -> dict:
     """`python -m cpn explore models/modbus/modbus.cpnet --time-condensation ... --json -` in a fresh
     process (so that its peak memory is its own): the JSON statistics, with the wall-clock seconds."""
     cmd = [sys.executable, "-m", "cpn", "explore", os.path.join("models", "modbus", "modbus.cpnet"),
@@ -191,6 +194,8 @@ def _explore_process(values: dict, budget: float, sweep: bool) -> dict:
         cmd += ["--set", f"{k}={v}"]
     if sweep:
         cmd += ["--progress", SWEEP_MEASURE]
+    if max_memory:
+        cmd += ["--max-memory", str(max_memory)]
     t0 = time.perf_counter()
     r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
     wall = time.perf_counter() - t0
@@ -205,44 +210,111 @@ def _explore_process(values: dict, budget: float, sweep: bool) -> dict:
     return st
 
 
-def _sweep_row(label, values: dict, budget: float) -> bool:
-    full = _explore_process(values, budget, False)
+def _sweep_row(label, values: dict, budget: float, full_memory: float) -> bool:
+    full = _explore_process(values, budget, False, full_memory)
     sweep = _explore_process(values, budget, True)
     same = (full["states"], full["arcs"], full["dead"]) == (sweep["states"], sweep["arcs"], sweep["dead"])
     if full["complete"] and sweep["complete"] and not same:
         sys.exit(f"the sweep-line differs from the full search at {label}: {full} {sweep}")
     cells = [label, f"{sweep['states']:,}", f"{sweep['arcs']:,}", str(sweep["dead"]),
-             f"{full['peak_memory_mb']:.0f}" if full["complete"] else "stopped", f"{full['seconds']:.2f}",
+             f"{full['peak_memory_mb']:.0f}" if full["complete"] else f"stopped ({full['stop_reason']}) after "
+             f"{full['states']:,} states", f"{full['seconds']:.2f}",
              f"{sweep['peak_states']:,}", f"{sweep['peak_memory_mb']:.0f}", f"{sweep['seconds']:.2f}",
              "yes" if sweep["exact"] else "no"]
     print("| " + " | ".join(cells) + " |", flush=True)
     return sweep["complete"]
 
 
-def sweep_scaling(budget: float, max_ns: int, max_k: int) -> None:
-    """Scenario B with broadcasts, full search against the sweep-line (each in a fresh process)."""
+def sweep_scaling(budget: float, ns_list: list[int], ks: list[int], full_memory: float) -> None:
+    """Scenario B with broadcasts, full search against the sweep-line (each in a fresh process; the full
+    search bounded by `full_memory` MiB on this shared machine). The sweep-line's measure is SWEEP_MEASURE."""
     header = ("| {} | states | arcs | DM | full: peak MiB | s | sweep-line: peak states held | peak MiB | s "
               "| exact |\n|---|---|---|---|---|---|---|---|---|---|")
     print(f"scenario B with one broadcast, PO 1, FCS [1], --time-condensation; sweep-line: --progress "
           f"\"{SWEEP_MEASURE}\"")
     print(header.format("NS"))
-    for ns in range(4, max_ns + 1, 2):
+    for ns in ns_list:
         values = {"CONFIG": '"B"', "NS": str(ns), "ADRS": str([0] + list(range(1, ns + 1))).replace(" ", ""),
                   "FCS": "[1]", "PO": "1"}
-        if not _sweep_row(str(ns), values, budget):
+        if not _sweep_row(str(ns), values, budget, full_memory):
             print("    (stopped by the budget)")
             break
     print()
     print("scenario B, NS 10, the frames {1..10} x {1} and k broadcasts (ADRS = [0,1,...,10,0,...,0])")
     print(header.format("k"))
-    k = 1
-    while k <= max_k:
+    for k in ks:
         values = {"CONFIG": '"B"', "NS": "10", "ADRS": str([0] + list(range(1, 11)) + [0] * (k - 1)).replace(" ", ""),
                   "FCS": "[1]", "PO": "1"}
-        if not _sweep_row(str(k), values, budget):
+        if not _sweep_row(str(k), values, budget, full_memory):
             print("    (stopped by the budget)")
             break
-        k *= 4
+
+
+THESIS_MEASURE = "ms_to_col (Master'LastClosed 1)"
+
+
+def sweep_thesis() -> None:
+    """Per thesis scenario (and the fault variants): the full search and the sweep-line, condensed with
+    the measure THESIS_MEASURE and timed (no condensation) with the clock; in this process, generation only."""
+    from cpn.checks._common import TransitionIndex
+    from cpn.checks.predicates import PropertyLanguage
+    from cpn.checks.scenario import load_scenario
+    from cpn.checks.sweep import progress_measure
+    from cpn.model import load
+    from cpn.statespace import ExploreOptions, Explorer
+    from cpn.statespace.sweep import SweepLine
+
+    paths = THESIS + [os.path.join(ROOT, "specs", "modbus", f) for f in ("A_2_faults.toml", "D_4_faults.toml")]
+    print(f"condensed: --time-condensation --progress \"{THESIS_MEASURE}\"; timed: --sweep-line (the clock)")
+    print("| scenario | condensed: states | arcs | DM | peak held | regress arcs | timed: states | arcs | DM "
+          "| peak held |")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    for path in paths:
+        scenario = load_scenario(path)
+        model = load(scenario.model, set=scenario.runs[0].values)
+        cells = [scenario.name]
+        for condensed in (True, False):
+            engine = model.engine(time_condensation=condensed)
+            opts = ExploreOptions(time_condensation=condensed)
+            x = Explorer(engine, opts).run()
+            measure = text = None
+            if condensed:
+                text = THESIS_MEASURE
+                measure = progress_measure(PropertyLanguage(model.net, engine, TransitionIndex(engine)), text)
+            y = SweepLine(engine, opts, measure, text).run()
+            full = (x.n_states, x.n_arcs, len(x.graph.dead_states()))
+            if not (x.complete and y.complete and y.exact and full == (y.states, y.arcs, len(y.dead))):
+                sys.exit(f"{scenario.name}: the sweep-line differs from the full search: {full} {y}")
+            cells += [f"{y.states:,}", f"{y.arcs:,}", str(len(y.dead)), f"{y.peak_states:,}"]
+            if condensed:
+                cells.append(str(y.regress_arcs))
+        print("| " + " | ".join(cells) + " |", flush=True)
+
+
+def sweep_memo(k: int, forget: bool) -> None:
+    """One sweep-line run of scenario B (NS 10, k broadcasts) in this process, with the engine's memo
+    tables emptied behind the sweep-line (the default) or kept: entries left, peak memory, seconds."""
+    from cpn.checks._common import TransitionIndex
+    from cpn.checks.predicates import PropertyLanguage
+    from cpn.checks.sweep import progress_measure
+    from cpn.model import load
+    from cpn.statespace import ExploreOptions
+    from cpn.statespace import sweep as sweep_module
+    from cpn.statespace._memory import peak_rss_mb
+
+    if not forget:
+        sweep_module.FORGET_EVERY = 1 << 62
+    values = {"CONFIG": '"B"', "NS": "10", "ADRS": str([0] + list(range(1, 11)) + [0] * (k - 1)).replace(" ", ""),
+              "FCS": "[1]", "PO": "1"}
+    model = load(os.path.join(ROOT, "models", "modbus", "modbus.cpnet"), set=values)
+    engine = model.engine(time_condensation=True)
+    measure = progress_measure(PropertyLanguage(model.net, engine, TransitionIndex(engine)), SWEEP_MEASURE)
+    t0 = time.perf_counter()
+    x = sweep_module.SweepLine(engine, ExploreOptions(time_condensation=True), measure, SWEEP_MEASURE).run()
+    secs = time.perf_counter() - t0
+    entries = sum(len(i.memo) for i in engine._plan)
+    print(f"k={k} memo tables {'emptied' if forget else 'kept'}: {x.states:,} states, peak {x.peak_states:,} held, "
+          f"{entries:,} memo entries left, peak {peak_rss_mb():.0f} MiB, {secs:.2f} s")
 
 
 def main(argv=None) -> int:
@@ -251,15 +323,35 @@ def main(argv=None) -> int:
     ap.add_argument("--scaling", action="store_true")
     ap.add_argument("--table", action="store_true")
     ap.add_argument("--sweep", action="store_true", help="the sweep-line against the full search (scenario B)")
-    ap.add_argument("--max-ns", type=int, default=16, help="--sweep: the largest NS (default 16)")
-    ap.add_argument("--max-k", type=int, default=256, help="--sweep: the largest number of broadcasts (default 256)")
+    ap.add_argument("--sweep-thesis", action="store_true",
+                    help="the sweep-line against the full search on the thesis scenarios and the fault variants")
+    ap.add_argument("--sweep-memo", metavar="K", type=int, default=None,
+                    help="one sweep-line run (NS 10, K broadcasts) with the engine's memo tables emptied, then kept")
+    ap.add_argument("--keep-memo", action="store_true", help=argparse.SUPPRESS)
+    ap.add_argument("--ns", default="4,6,8,10,12,14,16", help="--sweep: the numbers of slaves (default 4,6,...,16)")
+    # past about 150 frames the model's initial FRAMES (a recursive CPN ML function) exceeds the recursion depth
+    ap.add_argument("--ks", default="1,4,16,64,128",
+                    help="--sweep: the numbers of broadcasts at NS 10 (default 1,4,16,64,128)")
+    ap.add_argument("--full-max-memory", type=float, default=4096,
+                    help="--sweep: the full search's --max-memory in MiB (default 4096, on a shared machine)")
     ap.add_argument("--budget", type=float, default=600.0, help="seconds of generation per run (default 600)")
     a = ap.parse_args(argv)
     if a.table:
         table(a.budget)
         return 0
+    if a.sweep_thesis:
+        sweep_thesis()
+        return 0
+    if a.sweep_memo is not None:
+        if a.keep_memo:
+            sweep_memo(a.sweep_memo, False)
+            return 0
+        for extra in ([], ["--keep-memo"]):  # each in a fresh process: its peak memory is its own
+            subprocess.run([sys.executable, __file__, "--sweep-memo", str(a.sweep_memo), *extra], check=True)
+        return 0
     if a.sweep:
-        sweep_scaling(a.budget, a.max_ns, a.max_k)
+        sweep_scaling(a.budget, [int(n) for n in a.ns.split(",") if n], [int(k) for k in a.ks.split(",") if k],
+                      a.full_max_memory)
         return 0
     if a.scaling:
         scaling_b(a.budget)

@@ -42,6 +42,9 @@ CLOCK_MEASURE: str = "the global clock"
 #: deleted behind the sweep-line: they outgrow the states themselves (MODBUS B, NS 10, 16 broadcasts:
 #: 1.8 million entries for 16,597 states; emptied, the peak resident memory fell from 360 to 128 MiB)
 FORGET_EVERY: int = 1024
+#: the sweep's time-growth watch waits until the clock is this many times the clock at which the markings
+#: modulo time stopped changing (see _SweepTimeGrowth)
+TIME_GROWTH_FACTOR: int = 10
 
 
 @dataclass
@@ -347,11 +350,12 @@ def _memo_tables(engine) -> Callable | None:
 
 
 class _SweepTimeGrowth(_TimeGrowthWatcher):
-    """`explore`'s time-growth watch, fed one clock value at a time as the sweep-line passes it. A clock
-    value is a much finer step than a breadth-first level (a sequential protocol has one state per clock
-    value), so the sweep also asks that at least as many states were met since the last new marking
-    modulo time as before it: MODBUS A.1 without condensation, whose last new untimed marking comes after a
-    quiet spell of 16 clock values, would otherwise be stopped before its end."""
+    """`explore`'s time-growth watch, fed one clock value at a time as the sweep-line passes it. It is a
+    heuristic, and a clock value is a much finer step than a breadth-first level (a sequential protocol
+    has one state per clock value), so the sweep asks for more: the clock past TIME_GROWTH_FACTOR times
+    the clock at which the markings modulo time stopped changing, and at least as many states met since
+    then as before. (With `explore`'s test alone MODBUS A.1 and B.6 without condensation, which have quiet
+    spells of 16 and 34 clock values before their last new states, were stopped before their end.)"""
 
     def __init__(self, engine):
         super().__init__(engine)
@@ -367,6 +371,7 @@ class _SweepTimeGrowth(_TimeGrowthWatcher):
 
     def grows_only_by_time(self) -> bool:
         return (super().grows_only_by_time()
+                and self.last_min_clock > TIME_GROWTH_FACTOR * (self.clock_at_saturation + 1)
                 and self.states_seen - self.states_at_saturation >= self.states_at_saturation)
 
 

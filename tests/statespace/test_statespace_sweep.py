@@ -75,6 +75,19 @@ def test_modbus_timed_scenario_held_states_are_a_fraction():
     assert len(y.dead) == 4 and y.peak_states < y.states // 5
 
 
+@pytest.mark.parametrize("name", ["B_6", "D_2"])
+def test_modbus_timed_scenarios_with_quiet_spells_are_not_cut_short(name):
+    # B.6 without condensation has a quiet spell of 34 clock values (no new marking modulo time) before
+    # its last states: the time-growth watch must not stop the sweep there
+    from cpn.checks.scenario import load_scenario
+
+    scenario = load_scenario(os.path.join(ROOT, "specs", "modbus", f"{name}.toml"))
+    engine = cpn.load(scenario.model, set=scenario.runs[0].values).engine()
+    x = Explorer(engine).run()
+    y = SweepLine(engine).run()
+    assert x.complete and y.complete and (y.states, y.arcs, set(y.dead)) == _full_figures(engine, x)[:3]
+
+
 CYCLE = """colset N = int with 0..3; var x : N; place P : N = 1`0; place Q : N = 1`0;
 trans step [x < 3]; arc P -> step : x; arc step -> P : x + 1;
 trans back [x = 3]; arc P -> back : x; arc back -> P : 0;
