@@ -327,7 +327,7 @@ def main(argv=None) -> int:
                     help="the sweep-line against the full search on the thesis scenarios and the fault variants")
     ap.add_argument("--sweep-memo", metavar="K", type=int, default=None,
                     help="one sweep-line run (NS 10, K broadcasts) with the engine's memo tables emptied, then kept")
-    ap.add_argument("--keep-memo", action="store_true", help=argparse.SUPPRESS)
+    ap.add_argument("--memo-child", choices=("emptied", "kept"), default=None, help=argparse.SUPPRESS)
     ap.add_argument("--ns", default="4,6,8,10,12,14,16", help="--sweep: the numbers of slaves (default 4,6,...,16)")
     # past about 150 frames the model's initial FRAMES (a recursive CPN ML function) exceeds the recursion depth
     ap.add_argument("--ks", default="1,4,16,64,128",
@@ -343,11 +343,12 @@ def main(argv=None) -> int:
         sweep_thesis()
         return 0
     if a.sweep_memo is not None:
-        if a.keep_memo:
-            sweep_memo(a.sweep_memo, False)
+        if a.memo_child is not None:
+            sweep_memo(a.sweep_memo, a.memo_child == "emptied")
             return 0
-        for extra in ([], ["--keep-memo"]):  # each in a fresh process: its peak memory is its own
-            subprocess.run([sys.executable, __file__, "--sweep-memo", str(a.sweep_memo), *extra], check=True)
+        for how in ("emptied", "kept"):  # each in a fresh process: its peak memory is its own
+            subprocess.run([sys.executable, __file__, "--sweep-memo", str(a.sweep_memo), "--memo-child", how],
+                           check=True)
         return 0
     if a.sweep:
         sweep_scaling(a.budget, [int(n) for n in a.ns.split(",") if n], [int(k) for k in a.ks.split(",") if k],
