@@ -46,6 +46,7 @@ def render_sweep_text(x: SweepExploration, model: str, max_listed: int | None = 
     lines += [f"     Nodes:  {x.states}{exact}", f"     Arcs:   {x.arcs}{exact}", f"     Secs:   {int(x.seconds)}",
               f"     Status: {'Full' if x.complete else 'Partial'}",
               f"     Peak nodes held in memory: {x.peak_states}",
+              f"     Peak memory: {x.peak_memory_mb:.0f} MiB (the process)",
               f"     Sweeps: {x.sweeps}; regress arcs: {x.regress_arcs}; persistent nodes: {x.persistent}"]
     if not x.complete:
         lines.append(f"     Stopped because {x.stop_reason.describe(x.options)}; {x.unexpanded:,} nodes not expanded")

@@ -13,9 +13,10 @@ from cpn.statespace.scc import (
     has_cycle,
     strongly_connected_components,
 )
+from cpn.statespace.sweep import SweepExploration, SweepLine
 from cpn.statespace.trace import Step, Trace, replay, shortest_trace
 
 __all__ = [
     "Exploration", "Explorer", "ExploreOptions", "Progress", "SccDecomposition", "StateGraph", "Step",
-    "StopReason", "Trace", "first_cycle_component", "has_cycle", "replay", "shortest_trace", "strongly_connected_components",
+    "StopReason", "SweepExploration", "SweepLine", "Trace", "first_cycle_component", "has_cycle", "replay", "shortest_trace", "strongly_connected_components",
 ]

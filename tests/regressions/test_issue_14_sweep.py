@@ -204,3 +204,11 @@ def test_random_timed_nets_verdicts_equal_the_full_search(tmp_path):
         assert verdicts[0] == verdicts[1], f"random timed net {seed}:\n{text}"
         compared += 1
     assert compared >= 12
+
+
+def test_check_html_skips_the_page_of_a_sweep_line_run(tmp_path, capsys):
+    path = tmp_path / "s.toml"
+    path.write_text(SCENARIO.format(model=MODBUS, extra=""), encoding="utf-8")
+    status = main(["check", str(path), "--sweep-line", "--progress", "ms_to_col (Master'LastClosed 1)",
+                   "--no-reports", "--html", str(tmp_path / "h")])
+    assert status == 1 and (tmp_path / "h").is_dir()
