@@ -13,10 +13,11 @@ import sys
 from cpn.cli._common import ExitStatus, UsageError, write_output
 from cpn.report._words import noun
 
-# options of `explore` that need the whole graph, or restrict it, and so do not combine with the sweep-line
+# options of `explore` that need the whole graph, restrict it or partition it, and so do not combine with
+# the sweep-line
 _REFUSED = (("reduction", "--reduction"), ("until_time", "--until-time"), ("branch_transitions", "--branch-transitions"),
             ("max_successors", "--max-successors"), ("dot", "--dot"), ("graphml", "--graphml"), ("html", "--html"),
-            ("msc", "--msc"))
+            ("msc", "--msc"), ("workers", "--workers"), ("ray", "--ray"))
 
 
 def run_sweep(args, sets: dict) -> int:
@@ -31,8 +32,8 @@ def run_sweep(args, sets: dict) -> int:
 
     for attr, option in _REFUSED:
         if getattr(args, attr, None):
-            raise UsageError(f"{option} cannot be combined with --sweep-line: the sweep-line method keeps no graph "
-                             "and explores every successor; drop one of the two")
+            raise UsageError(f"{option} cannot be combined with --sweep-line: the sweep-line method explores every "
+                             "successor in one process and keeps no graph; drop one of the two")
     outputs = {o.option: o for o in _outputs(args)}
     quiet = bool(getattr(args, "quiet", False))
     model = load_model(args.model, sets)

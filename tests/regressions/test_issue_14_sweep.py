@@ -60,6 +60,8 @@ def test_explore_sweep_line_refusals(tmp_path, capsys):
     assert "untimed" in capsys.readouterr().err
     assert main(["explore", TIMER, "--sweep-line", "--dot", str(tmp_path / "g.dot")]) == 64
     assert "--dot cannot be combined with --sweep-line" in capsys.readouterr().err
+    assert main(["explore", TIMER, "--sweep-line", "--workers", "2"]) == 64
+    assert "--workers cannot be combined with --sweep-line" in capsys.readouterr().err
     assert main(["explore", TIMER, "--progress", "size (TimerCancel'Sendz 1)"]) == 65
     err = capsys.readouterr().err
     assert "--progress:1:7: error[E0201]" in err and "^" in err
