@@ -49,8 +49,8 @@ kind = "home"
 
 def _figures(text: str) -> list[str]:
     """The text report without what names nodes (numbered in another breadth-first order), the steps of
-    a trace (another shortest path may be chosen), the date and the notes."""
-    skip = r"\[\d|[Mm]arking \d|^\s+\d+\. |Report generated|Note:"
+    a trace (another shortest path may be chosen), the date, the seconds and the notes."""
+    skip = r"\[\d|[Mm]arking \d|^\s+\d+\. |Report generated|Note:|^\s*Secs:"
     return [line for line in text.splitlines() if line.strip() and not re.search(skip, line)]
 
 
