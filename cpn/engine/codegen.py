@@ -14,6 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from cpn._util.deep import left_spine
 from cpn.engine import plan
 from cpn.net import binding as B
 from cpn.net import expr as A
@@ -21,6 +22,28 @@ from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS
 
 _PY_BINOPS = {"+": "+", "-": "-", "*": "*", "^": "+", "^^": "+", "@": "+", "=": "==", "<>": "!=",
               "<": "<", "<=": "<=", ">": ">", ">=": ">="}
+
+
+def _binop_code(op: str, left: str, right: str) -> str:
+    if op == "andalso":
+        return f"({left} and {right})"
+    if op == "orelse":
+        return f"({left} or {right})"
+    if op == "::":
+        return f"(({left},) + {right})"
+    if op in _PY_BINOPS:
+        return f"({left} {_PY_BINOPS[op]} {right})"
+    return f"BINOP({op!r}, {left}, {right})"
+
+
+def sum_code(parts: list[str], ns: Namespace) -> str:
+    """Python code of the sum of `parts` (tuples or lists), in chunks of CHAIN_CHUNK (see `_c_BinOp`)."""
+    if len(parts) <= CHAIN_CHUNK:
+        return " + ".join(parts)
+    temp = ns.temp()
+    chunks = [" + ".join(parts[i:i + CHAIN_CHUNK]) for i in range(0, len(parts), CHAIN_CHUNK)]
+    steps = [f"({temp} := {chunks[0]})"] + [f"({temp} := {temp} + {c})" for c in chunks[1:-1]]
+    return "(" + ", ".join(steps) + f", {temp} + {chunks[-1]})[-1]"
 
 
 class Unsupported(Exception):
@@ -33,6 +56,12 @@ class Namespace:
 
     objects: dict[str, Any] = field(default_factory=dict)
     _ids: dict[int, str] = field(default_factory=dict)
+    _temps: int = 0
+
+    def temp(self) -> str:
+        """A fresh name for a temporary of generated code."""
+        self._temps += 1
+        return f"_W{self._temps}"
 
     def ref(self, obj: Any, hint: str = "K") -> str:
         key = id(obj)
@@ -49,6 +78,8 @@ class Namespace:
 # on, and a function whose statements nest deeper than MAX_BLOCKS stays with the evaluator.
 MAX_NESTING: int = 64
 MAX_BLOCKS: int = 40
+#: operators of one chain compiled into one Python expression before its value goes to a temporary
+CHAIN_CHUNK: int = 32
 
 
 class ExprCompiler:
@@ -149,16 +180,23 @@ class ExprCompiler:
         return f"MS1({self.expr(e.expr)})"
 
     def _c_BinOp(self, e):
-        op = e.op
-        if op == "andalso":
-            return f"({self.expr(e.left)} and {self.expr(e.right)})"
-        if op == "orelse":
-            return f"({self.expr(e.left)} or {self.expr(e.right)})"
-        if op == "::":
-            return f"(({self.expr(e.left)},) + {self.expr(e.right)})"
-        if op in _PY_BINOPS:
-            return f"({self.expr(e.left)} {_PY_BINOPS[op]} {self.expr(e.right)})"
-        return f"BINOP({op!r}, {self.expr(e.left)}, {self.expr(e.right)})"
+        # The left spine (`a + b - c ...`, `a andalso b andalso ...`) in a loop. Python's compiler recurses
+        # on nested operators too (a 5,000-term sum is a RecursionError there): every CHAIN_CHUNK operators
+        # the partial result goes to a temporary, `(_W := a + .. + k, _W := _W + l + .., _W + .. + z)[-1]`,
+        # which evaluates the same operands in the same order, short circuits included.
+        first, spine = left_spine(e, A.BinOp)
+        acc = self.expr(first)
+        parts = []
+        temp = None
+        for k, node in enumerate(spine):
+            if k and k % CHAIN_CHUNK == 0:
+                temp = temp or self.ns.temp()
+                parts.append(f"({temp} := {acc})")
+                acc = temp
+            acc = _binop_code(node.op, acc, self.expr(node.right))
+        if not parts:
+            return acc
+        return "(" + ", ".join(parts) + f", {acc})[-1]"
 
     def _c_Case(self, e):
         raise Unsupported()
@@ -196,8 +234,8 @@ def out_terms(e: A.Expr, ec: ExprCompiler, delay: str = "0") -> list[str]:
     if isinstance(e, A.Name) and e.ref is not None and e.ref.kind == "builtin" and e.name == "empty":
         return []
     if isinstance(e, A.If):
-        a = " + ".join(out_terms(e.then, ec, delay)) or "()"
-        b = " + ".join(out_terms(e.else_, ec, delay)) or "()"
+        a = sum_code(out_terms(e.then, ec, delay), ec.ns) or "()"
+        b = sum_code(out_terms(e.else_, ec, delay), ec.ns) or "()"
         return [f"(({a}) if {ec.expr(e.cond)} else ({b}))"]
     return [f"MSITEMS({ec.expr(e)}, {delay})"]
 
@@ -412,7 +450,7 @@ class TransitionCodegen:
                 parts = out_terms(a.expr, self.ec)
                 if parts:
                     var = f"_o{a.place}_{len(produced)}"
-                    self.emit(f"{var} = {' + '.join(parts)}", ("arc", a))
+                    self.emit(f"{var} = {sum_code(parts, self.ns)}", ("arc", a))
                     produced.append(f"({a.place}, {var})")
         delay = "0"
         if t.delay is not None:

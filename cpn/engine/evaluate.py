@@ -16,6 +16,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from cpn._util.deep import left_spine
 from cpn.net import expr as A
 from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS, MLError, MLRaise, binop
 from cpn.values.multiset import Multiset, TimedMultiset
@@ -217,12 +218,18 @@ class Evaluator:
         return lambda pair: binop(e.op, pair[0], pair[1])
 
     def _e_BinOp(self, e, env):
-        op = e.op
-        if op == "andalso":
-            return bool(self.eval(e.left, env)) and bool(self.eval(e.right, env))
-        if op == "orelse":
-            return bool(self.eval(e.left, env)) or bool(self.eval(e.right, env))
-        return binop(op, self.eval(e.left, env), self.eval(e.right, env))
+        # the left spine (`a + b + ... + z`, `a andalso b andalso ...`) in a loop: one frame for a chain
+        first, spine = left_spine(e, A.BinOp)
+        v = self.eval(first, env)
+        for node in spine:
+            op = node.op
+            if op == "andalso":
+                v = bool(v) and bool(self.eval(node.right, env))
+            elif op == "orelse":
+                v = bool(v) or bool(self.eval(node.right, env))
+            else:
+                v = binop(op, v, self.eval(node.right, env))
+        return v
 
     # ------------------------------------------------------------------ declarations
     def declare(self, d: A.ValDecl | A.FunDecl, env: dict) -> None:

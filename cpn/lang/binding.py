@@ -72,14 +72,16 @@ def is_pattern(e: A.Expr) -> bool:
 def all_vars(e, acc: set[str] | None = None) -> set[str]:
     """Every transition variable occurring in an expression."""
     acc = set() if acc is None else acc
-    if e is None:
-        return acc
-    if isinstance(e, A.Name):
-        if e.ref is not None and e.ref.kind == "var":
-            acc.add(e.name)
-        return acc
-    for child in children(e):
-        all_vars(child, acc)
+    stack = [e]  # iterative: an expression may be a chain thousands of terms long
+    while stack:
+        x = stack.pop()
+        if x is None:
+            continue
+        if isinstance(x, A.Name):
+            if x.ref is not None and x.ref.kind == "var":
+                acc.add(x.name)
+            continue
+        stack.extend(children(x))
     return acc
 
 

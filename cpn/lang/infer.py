@@ -8,10 +8,19 @@ Imports `cpn.lang.*` and layer 0.
 from __future__ import annotations
 
 from cpn._util import did_you_mean
+from cpn._util.deep import left_spine
 from cpn.lang import ast as A
 from cpn.lang import types as T
 from cpn.lang.checked import Abort, Env
 from cpn.lang.symbols import Symbol
+
+
+# operators with a typing rule of their own (multisets, time), which end a chain of plain operators
+_MS_OPS: frozenset[str] = frozenset({"++", "--", "+++", "@+", "@@"})
+
+
+def _not_plain(node: A.BinOp) -> bool:
+    return node.op in _MS_OPS
 
 
 class TypeInference:
@@ -353,10 +362,16 @@ class TypeInference:
         if op == "@@":
             self.error("E0206", "absolute timestamps '@@' are not supported; use '@+' delays", e.span)
             raise Abort()
-        a, b, r = self._op_types(op, e)
-        self.must(self.infer(e.left, env), a, e.left.span, f"the left operand of '{op}'")
-        self.must(self.infer(e.right, env), b, e.right.span, f"the right operand of '{op}'")
-        return r
+        # `a + b - c * d ...`: the left spine in a loop, so that a chain of any length is one frame deep
+        first, spine = left_spine(e, A.BinOp, _not_plain)
+        t = self.infer(first, env)
+        for node in spine:
+            op = node.op
+            a, b, r = self._op_types(op, node)
+            self.must(t, a, node.left.span, f"the left operand of '{op}'")
+            self.must(self.infer(node.right, env), b, node.right.span, f"the right operand of '{op}'")
+            node.ty = t = r
+        return t
 
     # ------------------------------------------------------------------ patterns
     def infer_pat(self, p: A.Pat, binds: dict[str, Symbol]) -> T.Type:

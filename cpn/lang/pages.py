@@ -345,10 +345,15 @@ class PageChecks:
 
 
 def _has_delay(e) -> bool:
-    if isinstance(e, A.BinOp):
-        return e.op == "@+" or _has_delay(e.left) or _has_delay(e.right)
-    if isinstance(e, A.If):
-        return _has_delay(e.then) or _has_delay(e.else_)
+    stack = [e]  # iterative: an inscription may be a chain thousands of terms long
+    while stack:
+        x = stack.pop()
+        if isinstance(x, A.BinOp):
+            if x.op == "@+":
+                return True
+            stack += (x.right, x.left)
+        elif isinstance(x, A.If):
+            stack += (x.else_, x.then)
     return False
 
 
@@ -369,33 +374,54 @@ def _delay_node(e):
     return None
 
 
-def _replace_ran(e):
-    """Replace the App nodes marked by CS.ran() with their synthetic variables."""
+_RAN_FIELDS = ("fn", "arg", "left", "right", "operand", "cond", "then", "else_", "expr", "body", "subject")
+
+
+def _ran_name(e):
+    """The synthetic variable of an App node marked by CS.ran(), or None."""
     vsym = getattr(e, "ran_var", None) if isinstance(e, A.App) else None
-    if vsym is not None:
-        n = A.Name(e.span, vsym.name, ty=e.ty)
-        n.ref = vsym
-        return n
-    for attr in ("items",):
-        if hasattr(e, attr) and isinstance(getattr(e, attr), list):
-            setattr(e, attr, [_replace_ran(x) for x in getattr(e, attr)])
-    if isinstance(e, A.RecordE):
-        e.fields = [(label, _replace_ran(x)) for label, x in e.fields]
-    for attr in ("fn", "arg", "left", "right", "operand", "cond", "then", "else_", "expr", "body", "subject"):
-        if hasattr(e, attr) and isinstance(getattr(e, attr), A.Expr):
-            setattr(e, attr, _replace_ran(getattr(e, attr)))
-    if isinstance(e, A.Case):
-        e.rules = [(p, _replace_ran(b)) for p, b in e.rules]
+    if vsym is None:
+        return None
+    n = A.Name(e.span, vsym.name, ty=e.ty)
+    n.ref = vsym
+    return n
+
+
+def _replace_ran(e):
+    """Replace the App nodes marked by CS.ran() with their synthetic variables (iteratively: an expression
+    may be a chain thousands of terms long)."""
+    top = _ran_name(e)
+    if top is not None:
+        return top
+    stack = [e]
+    while stack:
+        x = stack.pop()
+
+        def fix(y):
+            n = _ran_name(y)
+            if n is not None:
+                return n
+            stack.append(y)
+            return y
+        if isinstance(getattr(x, "items", None), list):
+            x.items = [fix(y) for y in x.items]
+        if isinstance(x, A.RecordE):
+            x.fields = [(label, fix(y)) for label, y in x.fields]
+        for attr in _RAN_FIELDS:
+            if isinstance(getattr(x, attr, None), A.Expr):
+                setattr(x, attr, fix(getattr(x, attr)))
+        if isinstance(x, A.Case):
+            x.rules = [(p, fix(b)) for p, b in x.rules]
     return e
 
 
 def _find_name_span(e, name: str) -> Span | None:
-    if isinstance(e, A.Name) and e.name == name:
-        return e.span
-    for c in children(e):
-        sp = _find_name_span(c, name)
-        if sp:
-            return sp
+    stack = [e]  # depth first, left to right, without recursion
+    while stack:
+        x = stack.pop()
+        if isinstance(x, A.Name) and x.name == name:
+            return x.span
+        stack.extend(reversed(children(x)))
     return None
 
 

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import re
 
+from cpn._util.deep import left_spine
 from cpn.lang import ast as A
 
 _IDENT = re.compile(r"^[A-Za-z][A-Za-z0-9_']*$")
@@ -55,7 +56,11 @@ def expr(e: A.Expr) -> str:
     if isinstance(e, A.App):
         return f"({expr(e.fn)} {_atom(e.arg)})"
     if isinstance(e, A.BinOp):
-        return f"({expr(e.left)} {e.op} {expr(e.right)})"
+        first, spine = left_spine(e, A.BinOp)  # a chain of any length in a loop
+        text = expr(first)
+        for node in spine:
+            text = f"({text} {node.op} {expr(node.right)})"
+        return text
     if isinstance(e, A.Neg):
         return f"(~ {_atom(e.operand)})"
     if isinstance(e, A.If):

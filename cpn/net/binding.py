@@ -75,14 +75,16 @@ def is_pattern(e: E.Expr) -> bool:
 def all_vars(e: E.Expr | None, acc: set[str] | None = None) -> set[str]:
     """Every transition variable occurring in an expression."""
     acc = set() if acc is None else acc
-    if e is None:
-        return acc
-    if isinstance(e, E.Name):
-        if e.ref.kind == "var":
-            acc.add(e.name)
-        return acc
-    for child in children(e):
-        all_vars(child, acc)
+    stack = [e]  # iterative: an expression may be a chain thousands of terms long
+    while stack:
+        x = stack.pop()
+        if x is None:
+            continue
+        if isinstance(x, E.Name):
+            if x.ref.kind == "var":
+                acc.add(x.name)
+            continue
+        stack.extend(children(x))
     return acc
 
 

@@ -12,6 +12,7 @@ Examples
 
 from __future__ import annotations
 
+from cpn._util.deep import left_spine
 from cpn.lang.pretty import const
 from cpn.net import expr as E
 
@@ -33,7 +34,11 @@ def expr(e: E.Expr) -> str:
     if isinstance(e, E.App):
         return f"({expr(e.fn)} {_atom(e.arg)})"
     if isinstance(e, E.BinOp):
-        return f"({expr(e.left)} {e.op} {expr(e.right)})"
+        first, spine = left_spine(e, E.BinOp)  # a chain of any length in a loop
+        text = expr(first)
+        for node in spine:
+            text = f"({text} {node.op} {expr(node.right)})"
+        return text
     if isinstance(e, E.Neg):
         return f"(~ {_atom(e.operand)})"
     if isinstance(e, E.If):

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from cpn._util.deep import left_spine
 from cpn.lang import ast as A
 from cpn.lang.symbols import ConInfo, Symbol
 from cpn.net import expr as E
@@ -69,7 +70,13 @@ class Translator:
         return E.App(e.span, self.expr(e.fn), self.expr(e.arg))
 
     def _x_BinOp(self, e):
-        return E.BinOp(e.span, e.op, self.expr(e.left), self.expr(e.right))
+        # the left spine in a loop (a chain of any length is one frame deep), sharing nodes done before
+        first, spine = left_spine(e, A.BinOp, lambda n: n is not e and self._done.get(id(n), (None,))[0] is n)
+        x = self.expr(first)
+        for node in spine:
+            x = E.BinOp(node.span, node.op, x, self.expr(node.right))
+            self._done[id(node)] = (node, x)
+        return x
 
     def _x_Neg(self, e):
         return E.Neg(e.span, self.expr(e.operand))
