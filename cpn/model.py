@@ -10,6 +10,7 @@ import os
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import ConfigurationError, ModelError
 from cpn.io import importer_for
+from cpn.lang.nesting import too_deep
 from cpn.lang.overrides import parse_overrides, usage_error
 from cpn.lang.parser import parse as _parse
 from cpn.lang.typecheck import check as _check
@@ -122,15 +123,14 @@ def loads(text: str, filename: str = "<string>", set: dict | None = None) -> Mod
     {(): 3}
     """
     overrides = parse_overrides(_normalise_overrides(set))  # once, before checking: a bad value is a usage error
+    model = None
     try:
         model = _parse(text, filename)
         checked = _check(model, overrides)
         net = _lower(checked)
     except RecursionError:
-        raise ModelError([Diagnostic("E0206", "the model is nested too deeply to be read (expressions or "
-                                     "declarations inside thousands of parentheses)", Span(filename, 1, 1),
-                                     hint="Split the expression with 'let' or auxiliary functions.")],
-                         {filename: text}) from None
+        # chains of operators are read in loops: only expressions nested inside each other get here
+        raise ModelError([too_deep(model.decls if model is not None else [], filename)], {filename: text}) from None
     return Model(filename, text, net, checked.warnings)
 
 
