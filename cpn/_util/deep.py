@@ -72,3 +72,42 @@ def call_deep(fn: Callable[..., Any], *args: Any) -> Any:
     if error:
         raise error[0]
     return result[0]
+
+
+def deepest_recursion(exc: BaseException, label: Callable[[Any], str | None]) -> tuple[str, int] | None:
+    """The function that recursed in the traceback of `exc` and how many of its calls were nested there.
+
+    `label(frame)` names the function a frame runs (None for frames of no interest). The function with
+    the most frames wins; of two with as many, the innermost.
+    """
+    counts: dict[str, int] = {}
+    last = None
+    tb = exc.__traceback__
+    while tb is not None:
+        name = label(tb.tb_frame)
+        if name is not None:
+            counts[name] = counts.get(name, 0) + 1
+            last = name
+        tb = tb.tb_next
+    if not counts:
+        return None
+    name = max(counts, key=lambda k: (counts[k], k == last))
+    return name, counts[name]
+
+
+def run_deep(fn: Callable[..., Any], args: tuple, too_deep: Callable[[RecursionError], BaseException],
+             label: Callable[[Any], str | None]) -> Any:
+    """`fn(*args)`; if that runs out of Python's recursion limit, once more by `call_deep`. Past what the deep
+    stack allows, `too_deep(message)` is raised with the traceback of the recursion (which tells where it
+    started), the message naming the function that recursed (`deepest_recursion` with `label`)."""
+    try:
+        return fn(*args)
+    except RecursionError:
+        pass  # the retry runs outside this handler, so that the first attempt's frames are freed
+    try:
+        return call_deep(fn, *args)
+    except RecursionError as exc:
+        found = deepest_recursion(exc, label)
+        message = "recursion too deep" if found is None else (
+            f"function '{found[0]}' recursed too deeply ({found[1]:,} nested calls, more than can be evaluated)")
+        raise too_deep(message).with_traceback(exc.__traceback__) from None

@@ -12,6 +12,7 @@ from itertools import chain
 
 from cpn.engine import codegen
 from cpn.engine.api import EngineAPI
+from cpn.engine.evaluate import FUNCTION_FILE, run_deep
 from cpn.engine.runtime import RUNTIME
 from cpn.errors import EvaluationError
 from cpn.net import expr as E
@@ -156,16 +157,18 @@ class CompiledEngine(EngineAPI):
         sources = []
         decls = [d for d in self.net.globals.decls if isinstance(d, E.FunDecl)]
         for d in decls:
+            functions[d.ref.uid] = None  # visible to its own recursive calls and to later functions
             src = fc.compile(d)
-            if src is not None:
-                functions[d.ref.uid] = None  # visible to later and recursive calls
+            if src is None:
+                del functions[d.ref.uid]  # stays with the evaluator
+            else:
                 sources.append((d, src))
         glob = dict(RUNTIME)
         glob.update(ns.objects)
         ev = self.ev
         glob["TIMEFN"] = lambda _u: ev.time
         for d, src in sources:
-            exec(compile(src, f"<cpn function {d.name}>", "exec"), glob)  # noqa: S102 - generated from the AST
+            exec(compile(src, f"{FUNCTION_FILE}{d.name}>", "exec"), glob)  # noqa: S102 - generated from the AST
         for d, _ in sources:
             functions[d.ref.uid] = glob[f"_F{d.ref.uid}"]
         return functions
@@ -323,7 +326,8 @@ class CompiledEngine(EngineAPI):
 
     def _call(self, info, views):
         try:
-            return info.fn(*views)
+            # a function of the model may recurse deeper than Python's limit: then again on a deep stack
+            return run_deep(info.fn, *views)
         except (MLError, MultisetError, ArithmeticError, IndexError, TypeError, ValueError, KeyError,
                 RecursionError) as exc:
             raise self._blame(info, exc) from None

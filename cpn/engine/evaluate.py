@@ -17,6 +17,7 @@ from __future__ import annotations
 from typing import Any
 
 from cpn._util.deep import left_spine
+from cpn._util.deep import run_deep as _run_deep
 from cpn.net import expr as A
 from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS, MLError, MLRaise, binop
 from cpn.values.multiset import Multiset, TimedMultiset
@@ -35,7 +36,7 @@ class Closure:
         self.name = name
         self.args = args
 
-    def __call__(self, arg):
+    def call(self, arg):
         args = self.args + (arg,)
         if len(args) < self.arity:
             return Closure(self.clauses, self.env, self.ev, self.name, self.arity, args)
@@ -44,6 +45,29 @@ class Closure:
             if all(self.ev.match(p, a, env) for p, a in zip(params, args)):
                 return self.ev.eval(body, env)
         raise MLError(f"no clause of '{self.name}' matches its argument (SML exception Match)")
+
+    __call__ = call
+
+
+def ml_function_of(frame) -> str | None:
+    """The name of the model's function a Python frame runs, or None (for `deepest_recursion`)."""
+    code = frame.f_code
+    if code is _CALL_CODE:
+        return frame.f_locals["self"].name
+    if code.co_filename.startswith(FUNCTION_FILE):
+        return code.co_filename[len(FUNCTION_FILE):-1]
+    return None
+
+
+_CALL_CODE = Closure.call.__code__
+#: the file name of a compiled function of the model: FUNCTION_FILE + name + ">"
+FUNCTION_FILE: str = "<cpn function "
+
+
+def run_deep(fn, *args):
+    """`fn(*args)`, on a deep stack if a function of the model recurses beyond Python's recursion limit
+    (`cpn._util.deep.run_deep`); deeper than that stack allows, an MLError naming the function."""
+    return _run_deep(fn, args, MLError, ml_function_of)
 
 
 class Evaluator:
@@ -154,18 +178,20 @@ class Evaluator:
         return lambda v: v[idx]
 
     def _e_TupleE(self, e, env):
-        return tuple(self.eval(x, env) for x in e.items)
+        return tuple([self.eval(x, env) for x in e.items])
 
     def _e_RecordE(self, e, env):
         vals = {label: self.eval(x, env) for label, x in e.fields}
         return tuple(vals[label] for label in sorted(vals))
 
     def _e_ListE(self, e, env):
-        return tuple(self.eval(x, env) for x in e.items)
+        return tuple([self.eval(x, env) for x in e.items])
 
     def _e_App(self, e, env):
         f = self.eval(e.fn, env)
         a = self.eval(e.arg, env)
+        if f.__class__ is Closure:
+            return f.call(a)  # a Python call, not through __call__: no C stack per level of recursion
         return f(a)
 
     def _e_Neg(self, e, env):

@@ -14,7 +14,6 @@ from cpn.lang import types as T
 from cpn.lang.checked import Abort, Env
 from cpn.lang.symbols import Symbol
 
-
 # operators with a typing rule of their own (multisets, time), which end a chain of plain operators
 _MS_OPS: frozenset[str] = frozenset({"++", "--", "+++", "@+", "@@"})
 

@@ -18,6 +18,7 @@ from cpn.errors import ConfigurationError, ModelError
 from cpn.lang import ast as A
 from cpn.lang import types as T
 from cpn.lang.builtins import MLError
+from cpn.lang.evaluate import run_deep
 from cpn.lang.parser import parse
 
 _NAME = re.compile(r"[A-Za-z][A-Za-z0-9_']*\Z")
@@ -132,7 +133,7 @@ class OverrideChecks:
                                       declared=d.pat.span)
                 return None
         try:
-            value = self.ev.eval(ov.expr, {})
+            value = run_deep(self.ev.eval, ov.expr, {})
         except (MLError, ArithmeticError, RecursionError) as exc:
             self.override_problem(ov, f"evaluating the value failed: {exc}")
             return None

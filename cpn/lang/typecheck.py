@@ -16,7 +16,7 @@ from cpn.lang import types as T
 from cpn.lang.builtins import BUILTINS, MLError, parse_type
 from cpn.lang.checked import Abort, ArcInfo, CheckedModel, Env, PageInfo, TransInfo
 from cpn.lang.colsets import ColourSetConstruction
-from cpn.lang.evaluate import Evaluator
+from cpn.lang.evaluate import Evaluator, run_deep
 from cpn.lang.infer import TypeInference
 from cpn.lang.multisets import MultisetInference
 from cpn.lang.overrides import OverrideChecks, parse_overrides
@@ -197,7 +197,7 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
                 if at is not None and not self.unify(t, at, expr.span, f"the value of '{name}'"):
                     return
             try:
-                value = self.ev.eval(expr, {})
+                value = run_deep(self.ev.eval, expr, {})
             except (MLError, RecursionError) as exc:
                 self.error("E0401", f"evaluating 'val {name}' failed: {exc}", expr.span)
                 return

@@ -12,6 +12,7 @@ from cpn.diagnostics import Diagnostic
 from cpn.errors import ModelError
 from cpn.lang import ast as A
 from cpn.lang.builtins import MLError
+from cpn.lang.evaluate import run_deep
 from cpn.lang.typecheck import CheckedModel, PageInfo
 from cpn.net.model import ArcInstance, Net, PlaceInstance, TransitionInstance
 from cpn.net.translate import Translator
@@ -47,7 +48,7 @@ class _Lowerer:
         if d.init is None:
             return {}
         try:
-            m = self.cm.evaluator.eval(d.init, env)
+            m = run_deep(self.cm.evaluator.eval, d.init, env)  # a deeply recursive function: deep stack
         except (MLError, ArithmeticError, RecursionError) as exc:
             self.error("E0401", f"evaluating the initial marking of place '{d.name}' failed: {exc}", d.init.span)
             return {}

@@ -8,7 +8,6 @@ import pytest
 
 import cpn
 from cpn.errors import EvaluationError, ModelError
-from cpn.io.cpntools import translate_text
 from tests.regressions._issue_16 import cpn_document
 
 # family: (colour set as .cpnet text, as CPN XML, operator, terms of an n-term chain, the value by hand,
