@@ -109,5 +109,5 @@ def run_deep(fn: Callable[..., Any], args: tuple, too_deep: Callable[[RecursionE
     except RecursionError as exc:
         found = deepest_recursion(exc, label)
         message = "recursion too deep" if found is None else (
-            f"function '{found[0]}' recursed too deeply ({found[1]:,} nested calls, more than can be evaluated)")
+            f"recursion too deep in function '{found[0]}' ({found[1]:,} nested calls, more than can be evaluated)")
         raise too_deep(message).with_traceback(exc.__traceback__) from None

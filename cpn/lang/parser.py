@@ -7,9 +7,10 @@ from __future__ import annotations
 
 import functools
 import re
+import threading
 from importlib import resources
 
-from lark import Lark
+from lark import Lark, Token, Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken, VisitError
 
 from cpn.diagnostics import Diagnostic, Span
@@ -19,6 +20,14 @@ from cpn.lang.syntax_errors import CASE_RULE_DELAY, SYNTAX_ERRORS, TERMINAL_NAME
 from cpn.lang.transform import ToAst, balance_chains
 
 MAX_SYNTAX_ERRORS: int = 50
+
+# Standard ML's reserved words: CPN Tools refuses them as the name of a value, function, variable, colour
+# set, record field or pattern variable (places and transitions are no ML names: they may be called so)
+RESERVED_WORDS: frozenset[str] = frozenset(
+    """abstype and andalso as case datatype do else end eqtype exception fn fun functor handle if in include
+    infix infixr let local nonfix of op open orelse raise rec sharing sig signature struct structure then type
+    val where while with withtype""".split()
+)
 BOM: str = "\ufeff"
 
 _STMT_START = re.compile(
@@ -27,11 +36,29 @@ _STMT_START = re.compile(
 )
 
 
+_lexed = threading.local()
+
+
+def _note_name(tok: Token) -> Token:
+    """Lexer callback: remember the names that are reserved words (for the messages of a failed parse)."""
+    if tok.value in RESERVED_WORDS:
+        _lexed_reserved().append(tok)
+    return tok
+
+
+def _lexed_reserved() -> list:
+    got = getattr(_lexed, "reserved", None)
+    if got is None:
+        got = _lexed.reserved = []
+    return got
+
+
 @functools.lru_cache(maxsize=None)
 def _parser() -> Lark:
     text = resources.files("cpn.lang").joinpath("grammar.lark").read_text(encoding="utf-8")
     # cache=True keeps the LALR tables in the temporary directory: 0.57 s of every start otherwise
-    return Lark(text, parser="lalr", propagate_positions=True, maybe_placeholders=True, cache=True)
+    return Lark(text, parser="lalr", propagate_positions=True, maybe_placeholders=True, cache=True,
+                lexer_callbacks={"NAME": _note_name})
 
 
 def _expected_text(exc: UnexpectedInput) -> str:
@@ -76,7 +103,40 @@ def describe_char(ch: str) -> str:
     return f"U+{ord(ch):04X}" + (f" ({name.lower()})" if name else "")
 
 
+def reserved_word(tok: Token, filename: str) -> Diagnostic:
+    """E0101 at a reserved word written where a name is expected."""
+    word = str(tok)
+    return Diagnostic(
+        "E0101", f"'{word}' is a reserved word of CPN ML and cannot be used as a name",
+        Span(filename, tok.line, tok.column, tok.end_line or tok.line, (tok.end_column or tok.column + 1) - 1),
+        hint=f"Choose another name, e.g. '{word}1' or 'my_{word}': reserved words (val, fun, end, type, in, of, "
+        "...) cannot name values, functions, variables, colour sets or record fields.",
+        params={"found": word})
+
+
+def _reserved_names(tree: Tree, filename: str) -> list[Diagnostic]:
+    """A reserved word the parser took for a name (where no keyword could stand), at the word itself."""
+    out = []
+    for sub in tree.iter_subtrees():
+        if sub.data == "name":  # a place, transition or instance name
+            continue
+        for tok in sub.children:
+            if isinstance(tok, Token) and tok.type == "NAME" and str(tok) in RESERVED_WORDS:
+                out.append(reserved_word(tok, filename))
+    return out
+
+
 def _diagnose(exc: UnexpectedInput, text: str, filename: str) -> Diagnostic:
+    if isinstance(exc, UnexpectedToken):
+        if str(exc.token) in RESERVED_WORDS and "NAME" in (exc.expected or ()):
+            return reserved_word(exc.token, filename)
+    pos = getattr(exc, "pos_in_stream", None)
+    if pos is not None:
+        # a reserved word read as a name earlier in the statement is the likely cause of a later error
+        start = text.rfind(";", 0, pos)
+        earlier = [t for t in _lexed_reserved() if start < t.start_pos < pos]
+        if earlier:
+            return reserved_word(earlier[-1], filename)
     line = getattr(exc, "line", None)
     col = getattr(exc, "column", None)
     if isinstance(exc, UnexpectedToken) and exc.token.type == "$END" or line in (None, -1):
@@ -85,11 +145,9 @@ def _diagnose(exc: UnexpectedInput, text: str, filename: str) -> Diagnostic:
     span = Span(filename, line, col, line, col)
     found = _found(exc, text)
     if isinstance(exc, UnexpectedCharacters):
-        ch = text[exc.pos_in_stream] if exc.pos_in_stream < len(text) else ""
-        if ch == '"':
-            return Diagnostic("E0102", "unterminated string", span, hint="Close the string with '\"' on the same line.")
-        if text.startswith("(*", exc.pos_in_stream):
-            return Diagnostic("E0102", "unterminated comment", span, hint="Close the comment with '*)'.")
+        open_ = unterminated(text, filename)
+        if open_ is not None:
+            return open_
     label = None
     try:
         label = exc.match_examples(_parser().parse, {i: ex for i, (_, msg, _, ex) in enumerate(SYNTAX_ERRORS)
@@ -159,6 +217,66 @@ def _missing_semicolon(exc: UnexpectedInput, text: str, filename: str) -> Diagno
     )
 
 
+_OPENERS = re.compile(r'\(\*|"|//')
+_IN_COMMENT = re.compile(r"\(\*|\*\)")
+
+
+def blank_comments(text: str, filename: str) -> tuple[str, Diagnostic | None]:
+    """The text with its comments `(* .. *)` blanked out (nested, as in SML; line breaks kept, so positions
+    stay), and E0102 for the first comment without its `*)` or string without its closing quote on its line.
+
+    Scanned in the order the lexer reads: a `(*` inside a string or after `//` opens no comment, a quote
+    inside a comment opens no string.
+    """
+    out = []
+    done = pos = 0
+    while True:
+        m = _OPENERS.search(text, pos)
+        if m is None:
+            break
+        start = m.start()
+        if m.group() == "//":
+            end = text.find("\n", start)
+            if end < 0:
+                break
+            pos = end + 1
+        elif m.group() == "(*":
+            depth, at = 1, start + 2
+            while depth:
+                c = _IN_COMMENT.search(text, at)
+                if c is None:
+                    line, col = _line_col(text, start)
+                    return text, Diagnostic(
+                        "E0102", f"the comment opened at {filename}:{line}:{col} is never closed",
+                        Span(filename, line, col, line, col + 1), params={"kind": "comment"},
+                        hint="Close it with '*)': everything from this '(*' to the end of the text is inside the "
+                        "comment (comments nest: each '(*' inside it needs its own '*)').")
+                depth += 1 if c.group() == "(*" else -1
+                at = c.end()
+            out.append(text[done:start])
+            out.append(re.sub(r"[^\n]", " ", text[start:at]))
+            done = pos = at
+        else:
+            string = _STRING_AT.match(text, start)
+            if string is None:
+                line, col = _line_col(text, start)
+                return text, Diagnostic(
+                    "E0102", f"the string opened at {filename}:{line}:{col} is never closed",
+                    Span(filename, line, col, line, col), params={"kind": "string"},
+                    hint="Close the string with '\"' on the same line (write a line break inside a string as \\n).")
+            pos = string.end()
+    out.append(text[done:])
+    return "".join(out), None
+
+
+def unterminated(text: str, filename: str) -> Diagnostic | None:
+    """E0102 for the first comment or string of the text that is never closed (`blank_comments`)."""
+    return blank_comments(text, filename)[1]
+
+
+_STRING_AT = re.compile(r'"(?:\\.|[^"\\\n])*"')
+
+
 def _offset(text: str, line: int, col: int) -> int:
     lines = text.splitlines(keepends=True)
     return sum(len(x) for x in lines[: line - 1]) + col - 1
@@ -224,9 +342,13 @@ def parse(text: str, filename: str = "<string>") -> A.Model:
         # a UTF-8 byte-order mark is no part of the text (editors on Windows write one)
         text = text[len(BOM):]
     diags: list[Diagnostic] = []
-    work = text
+    work, open_ = blank_comments(text, filename)
+    if open_ is not None:
+        # the rest of the text is inside the comment or string: nothing after it can be read
+        raise ModelSyntaxError([open_], {filename: text})
     seen_lines: set[int] = set()
     while True:
+        _lexed_reserved().clear()
         try:
             tree = parser.parse(work)
             break
@@ -259,7 +381,11 @@ def parse(text: str, filename: str = "<string>") -> A.Model:
                 break
             blank = re.sub(r"[^\n]", " ", work[start:nxt])
             work = work[:start] + blank + work[nxt:]
+    if tree is not None:
+        seen = {d.span.line for d in diags}
+        diags += [d for d in _reserved_names(tree, filename) if d.span.line not in seen]
     if diags:
+        diags.sort(key=lambda d: (d.span.line, d.span.col))
         raise ModelSyntaxError(diags, {filename: text})
     try:
         decls = ToAst(filename).transform(balance_chains(tree))

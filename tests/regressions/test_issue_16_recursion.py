@@ -69,7 +69,7 @@ def test_endless_recursion_is_a_positioned_error_naming_the_function_and_the_bin
     with pytest.raises(EvaluationError) as info:
         e.successors(e.initial_state())
     text = str(info.value)
-    assert "function 'loop' recursed too deeply" in text and "x=7" in text and "Top'T 1" in text
+    assert "recursion too deep in function 'loop'" in text and "x=7" in text and "Top'T 1" in text
     assert info.value.span.line == 6
     assert "Traceback" not in info.value.render()
 
@@ -79,4 +79,4 @@ def test_endless_recursion_while_the_model_is_checked_names_the_function():
     with pytest.raises(ModelError) as info:
         cpn.loads(src, "m.cpnet")
     d = info.value.diagnostics[0]
-    assert d.code == "E0401" and d.span.line == 3 and "function 'loop' recursed too deeply" in d.message
+    assert d.code == "E0401" and d.span.line == 3 and "recursion too deep in function 'loop'" in d.message

@@ -71,9 +71,12 @@ class _Page:
 
 
 class _Translator(_Declarations):
-    def __init__(self, path: str, root: Element) -> None:
+    def __init__(self, path: str, root: Element, data: bytes = b"") -> None:
         self.path = path
         self.root = root
+        # the file's lines as written (entities such as '&gt;' unexpanded), to put a column in the text
+        # of an element at its column in the file
+        self.raw_lines = data.decode("latin-1").splitlines()
         self.errors: list[Diagnostic] = []
         self.notes: list[str] = []
         self.out = _Out()
@@ -548,14 +551,14 @@ def translate_file(path: str) -> Translation:
             data = f.read()
     except OSError as exc:
         raise ModelError([Diagnostic("E0501", f"cannot read '{path}': {exc.strerror}", Span(path, 1, 1))]) from None
-    return _Translator(path, parse_xml(data, path)).run()
+    return _Translator(path, parse_xml(data, path), data).run()
 
 
 def translate_text(data: bytes | str, path: str = "<cpn>") -> Translation:
     """Translate the XML text of a `.cpn` file (for tests and in-memory use)."""
     if isinstance(data, str):
         data = data.encode("utf-8")
-    return _Translator(path, parse_xml(data, path)).run()
+    return _Translator(path, parse_xml(data, path), data).run()
 
 
 def translate(path: str) -> str:

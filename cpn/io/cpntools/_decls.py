@@ -9,6 +9,7 @@ from __future__ import annotations
 import os
 import re
 
+from cpn.diagnostics import Diagnostic, Span
 from cpn.io.cpntools import _ml as ml
 from cpn.io.cpntools._text import Origin, _clean, _short, _text_origin_from
 from cpn.io.cpntools._xml import Element
@@ -145,8 +146,39 @@ class _Declarations:
                            "is not part of the marking",
                            hint="Make it a constant ('val') or a token on a place.")
 
+    def _unclosed(self, text: str, origin: Origin) -> bool:
+        """E0102 where a comment or a string of the CPN ML text at `origin` is never closed."""
+        found = ml.unclosed(text)
+        if found is None:
+            return False
+        line, col = self._file_position(origin.line, origin.col, text[:found[0]])
+        kind = found[1]
+        hint = ("Close it with '*)': everything from this '(*' to the end of the text is inside the comment."
+                if kind == "comment" else "Close the string with '\"' on the same line.")
+        self.errors.append(Diagnostic("E0102", f"the {kind} opened at {self.path}:{line}:{col} is never "
+                                      f"closed (in {origin.describe()})", Span(self.path, line, col),
+                                      hint=hint, params={"kind": kind}))
+        return True
+
+    def _file_position(self, line: int, col: int, before: str) -> tuple[int, int]:
+        """The position in the file of the character after `before`, the text of an element from (line, col):
+        an entity ('&gt;') of the file is one character of the text."""
+        lines = getattr(self, "raw_lines", None) or []
+        for ch in before:
+            if ch == "\n":
+                line, col = line + 1, 1
+                continue
+            raw = lines[line - 1] if 0 < line <= len(lines) else ""
+            if col - 1 < len(raw) and raw[col - 1] == "&" and ";" in raw[col - 1:col + 10]:
+                col = raw.index(";", col - 1) + 2
+            else:
+                col += 1
+        return line, col
+
     def _inscription(self, text: str, origin: Origin, what: str) -> str:
         """Check and prepare one inscription (guard, arc, delay, initial marking)."""
+        if self._unclosed(text, origin):
+            return text
         self._refuse_random(text, origin, what)
         if "@++" in text:
             self.error(origin, f"{what} uses '@++', a real-valued delay ('{_short(text)}'): a state space "
@@ -307,9 +339,16 @@ class _Declarations:
 
     def _ml(self, el: Element, text: str | None = None) -> None:
         pruned = text is None and id(el) not in self.needed_ml
+        own = text is None  # the element's own text: positions in it are positions in the file
         text = _clean(el.text if text is None else text)
         if not text:
             return
+        if own and el.text:
+            raw = el.text.replace("\r\n", "\n")
+            at = _text_origin_from(el.text_line, el.text_col, raw[: len(raw) - len(raw.lstrip())],
+                                   self._origin(el, None, "declaration"))
+            if self._unclosed(text, at):
+                return
         if pruned:
             heads = [name for name, _ in ml.declared_functions(text)]
             what = ", ".join(heads) if heads else _short(text, 30)

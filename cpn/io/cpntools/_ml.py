@@ -41,6 +41,36 @@ _TOKEN_RE = re.compile(
 )
 
 
+def unclosed(text: str) -> tuple[int, str] | None:
+    """(offset, 'comment' or 'string') of the first (nested) comment or string that is never closed."""
+    depth = 0
+    opened: list[int] = []
+    i = 0
+    n = len(text)
+    while i < n:
+        two = text[i : i + 2]
+        if depth == 0 and text[i] == '"':
+            j = i + 1
+            while j < n and text[j] not in '"\n':
+                j += 2 if text[j] == "\\" else 1
+            if j >= n or text[j] != '"':
+                return i, "string"
+            i = j + 1
+            continue
+        if two == "(*":
+            depth += 1
+            opened.append(i)
+            i += 2
+            continue
+        if two == "*)" and depth:
+            depth -= 1
+            opened.pop()
+            i += 2
+            continue
+        i += 1
+    return (opened[0], "comment") if opened else None
+
+
 def strip_comments(text: str) -> str:
     """Replace (nested) ML comments by blanks of the same shape, so positions stay valid."""
     out = []
