@@ -8,7 +8,7 @@ import pytest
 
 import cpn
 from cpn.errors import EvaluationError, ModelError
-from tests.regressions._issue_16 import cpn_document
+from tests.regressions._issue_16 import cpn_document, figures
 
 # family: (colour set as .cpnet text, as CPN XML, operator, terms of an n-term chain, the value by hand,
 # that value as CPN ML text)
@@ -173,3 +173,10 @@ def test_parentheses_around_a_chain_are_not_nesting():
            "place P : C = 1`x;\n"
     e = cpn.loads(text, "m.cpnet").engine()
     assert e.format_marking(e.initial_state(), 0) == f"1`{n * (n + 1) // 2}"
+
+
+@pytest.mark.parametrize("name", ["chains.cpnet", "chains.cpn"])
+@pytest.mark.parametrize("reference", [False, True])
+def test_the_chains_model_has_its_hand_checked_figures(name, reference):
+    # every operator with 600 terms (the model's header works the figures out)
+    assert figures(name, reference=reference) == (6, 5, 1)
