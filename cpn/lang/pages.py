@@ -359,18 +359,20 @@ def _has_delay(e) -> bool:
 
 def _delay_node(e):
     """The first '@+' of an output inscription, wherever it delays the tokens the arc produces."""
-    if isinstance(e, A.BinOp):
-        if e.op == "@+":
-            return e
-        if e.op in ("++", "+++", "--"):
-            return _delay_node(e.left) or _delay_node(e.right)
-        return None
-    if isinstance(e, A.If):
-        return _delay_node(e.then) or _delay_node(e.else_)
-    if isinstance(e, A.Case):
-        return next((n for n in (_delay_node(b) for _, b in e.rules) if n is not None), None)
-    if isinstance(e, A.Let):
-        return _delay_node(e.body)
+    stack = [e]  # depth first, left to right, without recursion (a sum may have thousands of terms)
+    while stack:
+        x = stack.pop()
+        if isinstance(x, A.BinOp):
+            if x.op == "@+":
+                return x
+            if x.op in ("++", "+++", "--"):
+                stack += (x.right, x.left)
+        elif isinstance(x, A.If):
+            stack += (x.else_, x.then)
+        elif isinstance(x, A.Case):
+            stack.extend(b for _, b in reversed(x.rules))
+        elif isinstance(x, A.Let):
+            stack.append(x.body)
     return None
 
 

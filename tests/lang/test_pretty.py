@@ -18,17 +18,27 @@ MODELS = sorted(glob.glob(os.path.join(ROOT, "**", "*.cpnet"), recursive=True))
 
 
 def shape(x):
-    """The syntax tree without positions and annotations."""
-    if isinstance(x, (A.Expr, A.Pat, A.Decl, A.TypeExpr, A.ColsetBody, A.Clause)):
-        fields = {k: shape(getattr(x, k)) for k in x.__dataclass_fields__
-                  if k not in ("span", "ty", "ref", "op_ty", "index", "ty_labels", "ran_var")
-                  and not k.endswith("_span")}
-        return (type(x).__name__, tuple(sorted(fields.items())))
-    if isinstance(x, Span):
-        return None
-    if isinstance(x, (list, tuple)):
-        return tuple(shape(i) for i in x if not isinstance(i, Span))
-    return x
+    """The syntax tree without positions and annotations, as a flat list in preorder (iterative, and flat so
+    that comparing two shapes does not recurse: a model may hold a chain of thousands of operators)."""
+    out = []
+    stack = [x]
+    while stack:
+        y = stack.pop()
+        if isinstance(y, (A.Expr, A.Pat, A.Decl, A.TypeExpr, A.ColsetBody, A.Clause)):
+            keys = sorted(k for k in y.__dataclass_fields__
+                          if k not in ("span", "ty", "ref", "op_ty", "index", "ty_labels", "ran_var")
+                          and not k.endswith("_span"))
+            out.append((type(y).__name__, tuple(keys)))
+            stack.extend(getattr(y, k) for k in reversed(keys))
+        elif isinstance(y, Span):
+            out.append(None)
+        elif isinstance(y, (list, tuple)):
+            items = [i for i in y if not isinstance(i, Span)]
+            out.append(("items", len(items)))
+            stack.extend(reversed(items))
+        else:
+            out.append(y)
+    return out
 
 
 def roundtrip(text):
