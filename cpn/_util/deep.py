@@ -58,13 +58,22 @@ def call_deep(fn: Callable[..., Any], *args: Any) -> Any:
     with _deep_lock:
         old_limit = sys.getrecursionlimit()
         old_size = threading.stack_size()
-        try:
-            threading.stack_size(DEEP_STACK_BYTES)
-            sys.setrecursionlimit(max(old_limit, DEEP_RECURSION_LIMIT))
-            worker = threading.Thread(target=run, name="cpn-deep-evaluation", daemon=True)
-            worker.start()
-        finally:
-            threading.stack_size(old_size)
+        worker = None
+        # where the address space is limited (ulimit -v), a smaller stack with a limit to match
+        for size, limit in ((DEEP_STACK_BYTES, DEEP_RECURSION_LIMIT), (DEEP_STACK_BYTES // 8, DEEP_RECURSION_LIMIT // 8)):
+            try:
+                threading.stack_size(size)
+                worker = threading.Thread(target=run, name="cpn-deep-evaluation", daemon=True)
+                sys.setrecursionlimit(max(old_limit, limit))
+                worker.start()
+                break
+            except (RuntimeError, ValueError, MemoryError):
+                sys.setrecursionlimit(old_limit)
+                worker = None
+            finally:
+                threading.stack_size(old_size)
+        if worker is None:
+            raise RecursionError("no thread with a deep stack could be started")
         try:
             worker.join()
         finally:

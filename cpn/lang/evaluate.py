@@ -236,6 +236,13 @@ class Evaluator:
         return lambda pair: binop(e.op, pair[0], pair[1])
 
     def _e_BinOp(self, e, env):
+        if e.left.__class__ is not A.BinOp:  # one operator: as it always was
+            op = e.op
+            if op == "andalso":
+                return bool(self.eval(e.left, env)) and bool(self.eval(e.right, env))
+            if op == "orelse":
+                return bool(self.eval(e.left, env)) or bool(self.eval(e.right, env))
+            return binop(op, self.eval(e.left, env), self.eval(e.right, env))
         # the left spine (`a + b + ... + z`, `a andalso b andalso ...`) in a loop: one frame for a chain
         first, spine = left_spine(e, A.BinOp)
         v = self.eval(first, env)
