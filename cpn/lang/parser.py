@@ -172,7 +172,8 @@ def _diagnose(exc: UnexpectedInput, text: str, filename: str) -> Diagnostic:
         return Diagnostic("E0101", f"unexpected character {found}", span,
                           hint="Remove it, or put it inside a string or a comment.", params={"found": found})
     expected = _expected_text(exc)
-    msg = f"unexpected {found}" + (f", expected {expected}" if expected else "")
+    msg = ("unexpected end of the file" if found == "the end of the file" else f"unexpected {found}") \
+        + (f", expected {expected}" if expected else "")
     return Diagnostic("E0101", msg, span, params={"found": found})
 
 

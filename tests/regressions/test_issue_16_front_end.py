@@ -112,3 +112,8 @@ def test_a_reserved_word_in_the_cpn_ml_of_a_cpn_file(tmp_path):
 def test_a_variable_named_type_in_a_cpn_file(tmp_path):
     path, lines, d = _first_cpn(tmp_path, guard="[type > 0]", arc="type", var="type")
     assert d.code == "E0101" and "'type' is a reserved word" in d.message and "<var" in lines[d.span.line - 1]
+
+
+def test_a_statement_cut_short_says_end_of_the_file():
+    d = _first("colset C = int;\nval x = let val a = 1 in")
+    assert d.code == "E0101" and d.message.startswith("unexpected end of the file, expected ")
