@@ -113,6 +113,12 @@ def run_deep(fn: Callable[..., Any], args: tuple, too_deep: Callable[[RecursionE
         return fn(*args)
     except RecursionError:
         pass  # the retry runs outside this handler, so that the first attempt's frames are freed
+    return run_deep_again(fn, args, too_deep, label)
+
+
+def run_deep_again(fn: Callable[..., Any], args: tuple, too_deep: Callable[[RecursionError], BaseException],
+                   label: Callable[[Any], str | None]) -> Any:
+    """The second half of `run_deep`: `fn(*args)` by `call_deep`, after it ran out of the ordinary stack."""
     try:
         return call_deep(fn, *args)
     except RecursionError as exc:

@@ -18,6 +18,7 @@ from typing import Any
 
 from cpn._util.deep import left_spine
 from cpn._util.deep import run_deep as _run_deep
+from cpn._util.deep import run_deep_again as _run_deep_again
 from cpn.net import expr as A
 from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS, MLError, MLRaise, binop
 from cpn.values.multiset import Multiset, TimedMultiset
@@ -68,6 +69,12 @@ def run_deep(fn, *args):
     """`fn(*args)`, on a deep stack if a function of the model recurses beyond Python's recursion limit
     (`cpn._util.deep.run_deep`); deeper than that stack allows, an MLError naming the function."""
     return _run_deep(fn, args, MLError, ml_function_of)
+
+
+def run_deep_again(fn, *args):
+    """`run_deep` after `fn(*args)` ran out of Python's recursion limit on the ordinary stack (so that the
+    ordinary case costs no call)."""
+    return _run_deep_again(fn, args, MLError, ml_function_of)
 
 
 class Evaluator:

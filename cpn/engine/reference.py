@@ -10,7 +10,7 @@ from __future__ import annotations
 import itertools
 
 from cpn.engine.api import EngineAPI
-from cpn.engine.evaluate import run_deep
+from cpn.engine.evaluate import run_deep_again
 from cpn.errors import EvaluationError
 from cpn.net import binding as B
 from cpn.net import expr as A
@@ -60,7 +60,11 @@ class ReferenceEngine(EngineAPI):
     # -- evaluation helpers
     def _eval(self, e, env, t, what):
         try:
-            return run_deep(self.ev.eval, e, env)  # deep recursion in a function: again on a deep stack
+            try:
+                return self.ev.eval(e, env)
+            except RecursionError:
+                pass  # a function of the model recursing deeply: again on a deep stack, outside this handler
+            return run_deep_again(self.ev.eval, e, env)
         except (MLError, MultisetError, ArithmeticError, IndexError, TypeError, RecursionError) as exc:
             binding = {}
             for name in t.variables:
