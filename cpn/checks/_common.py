@@ -10,6 +10,7 @@ from array import array
 from operator import itemgetter
 
 from cpn.engine import Engine
+from cpn.statespace import graphnative
 
 
 def is_timed_place(engine: Engine, p: int) -> bool:
@@ -25,7 +26,7 @@ def has_place_columns(engine, states: list) -> bool:
     return isinstance(s0, tuple) and len(s0) in (n, n + 1) and all(type(x) is int for x in s0[:n])
 
 
-def place_markings(engine, states: list) -> list[list[tuple[object, dict, int]]]:
+def place_markings(engine, states: list, store=None) -> list[list[tuple[object, dict, int]]]:
     """Per place, every distinct marking it takes over `states`: (key, untimed multiset, tokens).
 
     With the compiled engine's state layout (docs/internals.md: item p of a state is the intern id of
@@ -39,16 +40,20 @@ def place_markings(engine, states: list) -> list[list[tuple[object, dict, int]]]
     tables = _intern_tables(engine)
     if tables is not None and has_place_columns(engine, states):
         views, counts = tables
-        ids: list[set] = [set() for _ in range(n)]
-        adders = [s.update for s in ids]
-        getters = [itemgetter(p) for p in range(n)]
-        for chunk in state_chunks(states):
-            for add, get in zip(adders, getters):
-                add(map(get, chunk))
+        # a packed store's records are read in C, without decoding a state
+        ids = None if store is None else graphnative.place_columns(store, [len(v) for v in views])
+        if ids is None:
+            seen: list[set] = [set() for _ in range(n)]
+            adders = [s.update for s in seen]
+            getters = [itemgetter(p) for p in range(n)]
+            for chunk in state_chunks(states):
+                for add, get in zip(adders, getters):
+                    add(map(get, chunk))
+            ids = [sorted(s) for s in seen]
         out = []
         for p in range(n):
             vp, cp = views[p], counts[p]
-            out.append([(i, vp[i], cp[i]) for i in sorted(ids[p])])
+            out.append([(i, vp[i], cp[i]) for i in ids[p]])
         return out
     seen: list[dict] = [{} for _ in range(n)]
     for s in states:
@@ -101,6 +106,7 @@ class TransitionIndex:
         self._by_obj = {id(t): i for i, t in enumerate(engine.transitions)}
         self._by_name = {t.name: i for i, t in enumerate(engine.transitions)}
         self._cache: dict[int, int] = {}
+        self._distinct: tuple | None = None  # (the bes array, its length, its distinct values)
 
     def __call__(self, be: int) -> int:
         t = self._cache.get(be)
@@ -115,9 +121,20 @@ class TransitionIndex:
             self._cache[be] = t
         return t
 
+    def distinct(self, bes: array) -> list[int]:
+        """The distinct binding elements of an array of arcs, increasing (kept for the last array)."""
+        known = self._distinct
+        if known is not None and known[0] is bes and known[1] == len(bes):
+            return known[2]
+        distinct = graphnative.distinct_ids(bes)
+        if distinct is None:
+            distinct = sorted(set(bes))
+        self._distinct = (bes, len(bes), distinct)
+        return distinct
+
     def arc_transitions(self, bes: array) -> array:
         """The transition instance of every arc, as an array parallel to `bes`."""
-        distinct = sorted(set(bes))
+        distinct = self.distinct(bes)
         if not distinct:
             return array("i")
         table = [0] * (distinct[-1] + 1)
@@ -125,4 +142,5 @@ class TransitionIndex:
             table[be] = self(be)
         n = len(self.engine.transitions)
         code = "B" if n <= 0xFF else "H" if n <= 0xFFFF else "i"
-        return array(code, map(table.__getitem__, bes))
+        fast = graphnative.map_ids(bes, table, code)
+        return fast if fast is not None else array(code, map(table.__getitem__, bes))

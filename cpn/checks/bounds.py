@@ -10,7 +10,7 @@ from dataclasses import dataclass
 from operator import itemgetter
 
 from cpn.checks._common import has_place_columns, place_markings, state_chunks
-from cpn.statespace import Exploration
+from cpn.statespace import Exploration, graphnative
 
 
 @dataclass(frozen=True)
@@ -44,7 +44,7 @@ def boundedness(x: Exploration) -> Boundedness:
     """
     engine = x.engine
     states = x.graph.states
-    markings = place_markings(engine, states)
+    markings = place_markings(engine, states, x.graph.store)
     out = []
     for p, place in enumerate(engine.places):
         upper_ms: dict = {}
@@ -76,15 +76,15 @@ def boundedness(x: Exploration) -> Boundedness:
         ))
     return Boundedness(
         places=out,
-        max_tokens_per_marking=_max_tokens_per_marking(engine, states, markings),
+        max_tokens_per_marking=_max_tokens_per_marking(engine, states, markings, x.graph.store),
         max_tokens_in_place=max((b.upper for b in out), default=0),
         max_of_one_colour_in_place=max((b.max_of_one_colour for b in out), default=0),
     )
 
 
-def _max_tokens_per_marking(engine, states, markings) -> int:
+def _max_tokens_per_marking(engine, states, markings, store=None) -> int:
     """The most tokens in one state. A place whose markings all hold the same number of tokens adds
-    that number to every state; only the others are read state by state."""
+    that number to every state; only the others are read state by state (in C from a packed `store`)."""
     if not states:
         return 0
     constant = 0
@@ -103,7 +103,11 @@ def _max_tokens_per_marking(engine, states, markings) -> int:
             table = [0] * (max(k for k, _ms, _c in markings[p]) + 1)
             for k, _ms, c in markings[p]:
                 table[k] = c
-            tables.append((table.__getitem__, itemgetter(p)))
+            tables.append(table)
+        fast = None if store is None else graphnative.max_sum(store, varying, tables)
+        if fast is not None:
+            return constant + fast
+        tables = [(table.__getitem__, itemgetter(p)) for table, p in zip(tables, varying)]
         best = 0
         for chunk in state_chunks(states):
             columns = [map(count, map(get, chunk)) for count, get in tables]

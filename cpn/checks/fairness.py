@@ -1,6 +1,8 @@
 """Fairness of transition instances (CPN Tools' TIsFairness), decided on the SCCs of the graph.
 
-Imports `cpn.checks._cycles` and `cpn.statespace` only. For a transition instance t and the infinite
+Imports `cpn.checks._cycles` and `cpn.statespace` only. Where native code is available the whole
+decision runs in C (`cpn.statespace.graphnative.fairness`, the same shortcuts and confined searches
+without the walks); the Python code below is the fallback and the tests' reference. For a transition instance t and the infinite
 occurrence sequences:
 - impartial: t occurs infinitely often in every infinite occurrence sequence;
 - fair: t occurs infinitely often in every infinite sequence in which it is enabled infinitely often;
@@ -19,7 +21,7 @@ from collections.abc import Callable
 from itertools import compress
 
 from cpn.checks._cycles import ConfinedSearch, walk_cycle
-from cpn.statespace import Exploration
+from cpn.statespace import Exploration, graphnative
 from cpn.statespace.scc import SccDecomposition
 
 # cheap witness cycles before any search: walks per SCC, in the largest SCCs of at least some size
@@ -38,7 +40,7 @@ class Fairness(enum.Enum):
 
 
 def fairness(x: Exploration, dec: SccDecomposition, arc_transitions: array,
-             progress: Callable[[int, int], None] | None = None) -> dict[int, Fairness] | None:
+             progress: Callable[[int, int], None] | None = None, native: bool = True) -> dict[int, Fairness] | None:
     """Fairness class of each transition instance, or None when there is no infinite sequence.
 
     Every cycle lies in a nontrivial SCC of the graph. One pass over the states of those SCCs records,
@@ -56,7 +58,7 @@ def fairness(x: Exploration, dec: SccDecomposition, arc_transitions: array,
     2. a cycle avoiding t among the states where t is enabled: No Fairness;
     3. otherwise, unless already known not fair, a nontrivial SCC of the graph less t through a state
        enabling t, within the SCCs where t is enabled: Just, else Fair.
-    `progress(done, total)` is called after each transition instance.
+    `progress(done, total)` is called after each transition instance (once at the end with `native`).
     """
     nontrivial = dec.nontrivial
     if not any(nontrivial):
@@ -66,6 +68,12 @@ def fairness(x: Exploration, dec: SccDecomposition, arc_transitions: array,
     off, dst, comp = g.offsets, g.dst, dec.comp
     ntrans = len(x.engine.transitions)
     labels = arc_transitions
+    if native:
+        fast = graphnative.fairness(n, off, dst, labels, ntrans, comp, dec.members, dec.start, nontrivial)
+        if fast is not None:
+            if progress is not None:
+                progress(ntrans, ntrans)
+            return {t: Fairness(name) for t, name in enumerate(fast)}
     cyclic_components = [c for c in range(dec.count) if nontrivial[c]]
     enabled_in, inside = _components_of(dec, cyclic_components, off, dst, labels, ntrans)
     impartial_candidate = [len(inside[t]) == len(cyclic_components) for t in range(ntrans)]

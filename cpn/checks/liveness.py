@@ -11,7 +11,7 @@ from array import array
 from dataclasses import dataclass
 
 from cpn.checks._common import TransitionIndex
-from cpn.statespace import Exploration, SccDecomposition
+from cpn.statespace import Exploration, SccDecomposition, graphnative
 from cpn.statespace.scc import scc_graph_arcs, strongly_connected_components
 
 DEAD_EXAMPLES: int = 10
@@ -49,7 +49,9 @@ class DeadMarkings:
 
 def dead_markings(x: Exploration) -> DeadMarkings:
     g = x.graph
-    dead = g.dead_states()
+    dead = graphnative.dead_states(g.offsets)
+    if dead is None:
+        dead = g.dead_states()
     untimed = None
     if x.engine.is_timed:
         untimed = len({x.engine.untimed(g.states[i]) for i in dead})
@@ -59,17 +61,21 @@ def dead_markings(x: Exploration) -> DeadMarkings:
 def dead_transitions(x: Exploration, tindex: TransitionIndex | None = None) -> list[int]:
     """Transition instances (indices) that label no arc; on a partial space: none seen so far."""
     tindex = tindex or TransitionIndex(x.engine)
-    seen = {tindex(be) for be in set(x.graph.bes)}
+    seen = {tindex(be) for be in tindex.distinct(x.graph.bes)}
     return [t for t in range(len(x.engine.transitions)) if t not in seen]
 
 
-def live_transitions(x: Exploration, scc: SccSummary, arc_transitions) -> list[int] | None:
+def live_transitions(x: Exploration, scc: SccSummary, arc_transitions, native: bool = True) -> list[int] | None:
     """Transition instances that label an arc inside every terminal SCC (None if partial)."""
     if not x.complete:
         return None
     g = x.graph
     dec = scc.decomposition
     ntrans = len(x.engine.transitions)
+    if native:
+        fast = graphnative.live(g.offsets, arc_transitions, ntrans, dec.members, dec.start, dec.terminal)
+        if fast is not None:
+            return [t for t in range(ntrans) if fast[t]]
     live = set(range(ntrans))
     off = g.offsets
     for c in dec.terminal_components():

@@ -1,6 +1,9 @@
 """Strongly connected components of the occurrence graph: an iterative Tarjan on the CSR arrays.
 
-Imports the standard library only. No recursion, so graphs of millions of states are fine.
+Imports the standard library and `cpn.statespace.graphnative` only. No recursion, so graphs of millions
+of states are fine. The plain decomposition and the SCC graph's arcs run in C where native code is
+available (`graphnative`, the same algorithm in the same order, so the same numbering); the Python code
+here is the fallback and the tests' reference.
 
 References
 ----------
@@ -11,6 +14,8 @@ from __future__ import annotations
 
 from array import array
 from dataclasses import dataclass
+
+from cpn.statespace import graphnative
 
 
 @dataclass
@@ -49,7 +54,7 @@ def _padded(offsets: array, n: int) -> array:
 
 
 def strongly_connected_components(n: int, offsets: array, dst: array, arc_labels=None, avoid: int = -1,
-                                  keep_node=None, stop_at=None):
+                                  keep_node=None, stop_at=None, native: bool = True):
     """Tarjan's algorithm, iterative, over states 0..n-1 and the arcs `dst[offsets[v]:offsets[v+1]]`.
 
     Parameters
@@ -65,6 +70,9 @@ def strongly_connected_components(n: int, offsets: array, dst: array, arc_labels
     -------
     SccDecomposition, or (with stop_at) the first accepted nontrivial SCC's states or None.
 
+    Without labels, kept states or stop_at, and with `native`, the decomposition is computed in C where
+    that is available (`graphnative.scc`): the same SCCs, numbered the same way.
+
     Examples
     --------
     >>> from array import array
@@ -72,6 +80,10 @@ def strongly_connected_components(n: int, offsets: array, dst: array, arc_labels
     >>> d.count, list(d.comp), list(d.terminal)
     (2, [0, 0, 1], [1, 1])
     """
+    if native and arc_labels is None and keep_node is None and stop_at is None:
+        fast = graphnative.scc(n, offsets, dst)
+        if fast is not None:
+            return SccDecomposition(*fast)
     offsets = _padded(offsets, n)
     index = array("i", [-1]) * n
     low = array("i", [0]) * n
@@ -229,7 +241,7 @@ def first_cycle_component(n: int, offsets: array, dst: array, accept, arc_labels
     return strongly_connected_components(n, offsets, dst, arc_labels, avoid, keep_node, stop_at=accept)
 
 
-def scc_graph_arcs(dec: SccDecomposition, offsets: array, dst: array) -> tuple[int, int]:
+def scc_graph_arcs(dec: SccDecomposition, offsets: array, dst: array, native: bool = True) -> tuple[int, int]:
     """Arcs of the SCC graph: (state-space arcs between distinct SCCs, distinct ordered SCC pairs).
 
     CPN Tools' report counts the first: LimitProtocol (CPN book ch. 7) has 37,312 such arcs, published
@@ -237,6 +249,10 @@ def scc_graph_arcs(dec: SccDecomposition, offsets: array, dst: array) -> tuple[i
     """
     if dec.count <= 1:
         return 0, 0
+    if native:
+        fast = graphnative.scc_arcs(offsets, dst, dec.comp, dec.members, dec.start)
+        if fast is not None:
+            return fast
     comp = dec.comp
     offsets = _padded(offsets, len(comp))
     members, start = dec.members, dec.start

@@ -16,11 +16,12 @@ from contextlib import contextmanager
 from types import SimpleNamespace
 
 import networkx as nx
+import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from cpn.checks import Fairness, TransitionIndex, boundedness, fairness
-from cpn.statespace import ExploreOptions, Explorer
+from cpn.statespace import ExploreOptions, Explorer, graphnative
 from cpn.statespace.graph import StateGraph
 from cpn.statespace.scc import strongly_connected_components
 from cpn.statespace.store import TupleStore
@@ -73,11 +74,26 @@ def _plain(n: int, arcs, ntrans: int) -> dict[int, Fairness] | None:
     return out
 
 
-def _ours(n: int, arcs, ntrans: int):
+def _ours(n: int, arcs, ntrans: int, native: bool = False):
+    """The report's fairness: the Python code (the reference of the native one), or the native code."""
     g = _graph(n, arcs)
     x = SimpleNamespace(graph=g, engine=SimpleNamespace(transitions=list(range(ntrans))), complete=True)
-    dec = strongly_connected_components(n, g.offsets, g.dst)
-    return fairness(x, dec, array("i", g.bes))
+    with native_for_every_size():
+        dec = strongly_connected_components(n, g.offsets, g.dst, native=native)
+        if native:
+            assert graphnative.library() is not None, "no native code to test here"
+        return fairness(x, dec, array("BHi"[ntrans % 3], g.bes), native=native)  # every label width
+
+
+@contextmanager
+def native_for_every_size():
+    """Native code even for the small graphs of the tests (it is left to Python below MIN_ITEMS)."""
+    saved = graphnative.MIN_ITEMS
+    graphnative.MIN_ITEMS = 0
+    try:
+        yield
+    finally:
+        graphnative.MIN_ITEMS = saved
 
 
 @contextmanager
@@ -102,9 +118,10 @@ def labelled_graphs(draw, max_states=12, max_trans=4):
 
 @settings(max_examples=400, deadline=None)
 @given(labelled_graphs())
-def test_fairness_matches_the_definitions_on_random_graphs(case):
+@pytest.mark.parametrize("native", [False, True], ids=["python", "native"])
+def test_fairness_matches_the_definitions_on_random_graphs(native, case):
     n, arcs, ntrans = case
-    assert _ours(n, arcs, ntrans) == _plain(n, arcs, ntrans)
+    assert _ours(n, arcs, ntrans, native) == _plain(n, arcs, ntrans)
 
 
 @settings(max_examples=300, deadline=None)
@@ -134,9 +151,10 @@ def cyclic_graphs(draw):
 
 @settings(max_examples=200, deadline=None)
 @given(cyclic_graphs())
-def test_fairness_on_larger_cyclic_graphs_matches_the_definitions(case):
+@pytest.mark.parametrize("native", [False, True], ids=["python", "native"])
+def test_fairness_on_larger_cyclic_graphs_matches_the_definitions(native, case):
     n, arcs, ntrans = case
-    assert _ours(n, arcs, ntrans) == _plain(n, arcs, ntrans)
+    assert _ours(n, arcs, ntrans, native) == _plain(n, arcs, ntrans)
 
 
 def test_the_shortcuts_decide_without_a_search(monkeypatch):
@@ -189,11 +207,34 @@ def _plain_bounds(engine, states):
 
 def _check_bounds(engine):
     x = Explorer(engine, ExploreOptions(max_states=5000)).run()
-    b = boundedness(x)
     per_place, per_marking = _plain_bounds(engine, x.graph.states)
-    assert [(pb.upper, pb.lower, pb.upper_multiset, pb.lower_multiset) for pb in b.places] == per_place
-    assert b.max_tokens_per_marking == per_marking
-    assert b.max_of_one_colour_in_place == max((max(u.values(), default=0) for _, _, u, _ in per_place), default=0)
+    # the columns of packed states read in C, and in Python
+    for b in (_native_bounds(x), boundedness(x)):
+        assert [(pb.upper, pb.lower, pb.upper_multiset, pb.lower_multiset) for pb in b.places] == per_place
+        assert b.max_tokens_per_marking == per_marking
+        assert b.max_of_one_colour_in_place == max((max(u.values(), default=0) for _, _, u, _ in per_place),
+                                                   default=0)
+
+
+def _native_bounds(x):
+    calls = []
+    real = graphnative.place_columns
+
+    def counting(store, caps):
+        out = real(store, caps)
+        calls.append(out is not None)
+        return out
+
+    graphnative.place_columns = counting
+    try:
+        with native_for_every_size():
+            b = boundedness(x)
+    finally:
+        graphnative.place_columns = real
+    # packed states (the native search of an untimed net with the compiled engine) are read in C
+    if x.graph.store.kind == "packed" and graphnative.library() is not None:
+        assert calls == [True]
+    return b
 
 
 def test_bounds_match_every_state_on_the_toy_nets():
@@ -226,6 +267,7 @@ arc Drop -> Count : 1`();
 """
     model = cpn.loads(text)
     compiled, reference = model.engine(), model.engine(reference=True)
+    assert Explorer(model.engine()).run().graph.store.kind == "packed"  # the C reading of the columns runs
     _check_bounds(compiled)
     _check_bounds(reference)
     bc, br = boundedness(Explorer(compiled).run()), boundedness(Explorer(reference).run())
@@ -264,8 +306,10 @@ def test_report_gives_each_part_its_seconds_and_calls_progress():
     assert [c[0] for c in calls if c[1:] == (0, 1)] == list(REPORT_PARTS)
     assert [c[0] for c in calls if c[1:] == (1, 1)] == list(REPORT_PARTS)
     ntrans = len(x.engine.transitions)
-    assert [c for c in calls if c[0] == "fairness" and c[2] == ntrans] == [
-        ("fairness", k, ntrans) for k in range(1, ntrans + 1)]
+    steps = [c[1] for c in calls if c[0] == "fairness" and c[2] == ntrans]
+    # the Python code reports each transition instance, the native code all of them at once
+    assert steps in ([ntrans], list(range(1, ntrans + 1)))
+    assert steps == sorted(steps) and steps[-1] == ntrans
 
 
 def test_report_progress_line_on_a_terminal_only(monkeypatch, capsys, tmp_path):

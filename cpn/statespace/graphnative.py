@@ -1,0 +1,250 @@
+"""The standard report's graph algorithms in C (`_graph.c`): SCCs, the SCC graph's arcs, arc labels, dead
+states, live transition instances, fairness classes and the place columns of packed states.
+
+Built with the system C compiler through cffi on first use and cached (`cpn._util.cbuild`). Every
+function here takes the graph's own arrays (no copy: `ffi.from_buffer`) and returns None when native
+code is unavailable or an array is not of the expected type; the callers then run their pure-Python
+reference (`cpn.statespace.scc`, `cpn.checks`), which gives the same results (tests/statespace and
+tests/checks compare both on random graphs).
+
+Setting the module's `enabled` to False (or the environment variable CPN_NO_NATIVE) makes every
+function return None, and so does a graph of fewer than MIN_ITEMS arcs (states for `place_columns` and
+`max_sum`): there the Python code takes less time than loading the library (about 5 ms of CPU).
+"""
+
+from __future__ import annotations
+
+import os
+from array import array
+from functools import lru_cache
+from itertools import compress
+
+from cpn._util.cbuild import load_library
+
+_CDEF = """
+int64_t gr_scc(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, int32_t *comp,
+               int32_t *members, int32_t *start, uint8_t *terminal, uint8_t *nontrivial);
+int gr_scc_arcs(int64_t nexp, const int64_t *off, const int32_t *dst, const int32_t *comp,
+                const int32_t *members, const int32_t *start, int64_t count, int64_t *out);
+int64_t gr_max_id(const void *ids, int bw, int64_t m);
+void gr_mark_ids(const void *ids, int bw, int64_t m, uint8_t *seen);
+void gr_map_ids(const void *ids, int bw, int64_t m, const int32_t *table, void *out, int ow);
+int64_t gr_dead(int64_t nexp, const int64_t *off, int32_t *out);
+int gr_live(int64_t nexp, const int64_t *off, const void *labels, int lw, int ntrans, const int32_t *members,
+            const int32_t *start, const uint8_t *terminal, int64_t count, uint8_t *live);
+int gr_fairness(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, const void *labels, int lw,
+                int ntrans, const int32_t *comp, const int32_t *members, const int32_t *start,
+                const uint8_t *nontrivial, int64_t count, uint8_t *cls);
+int gr_columns(const uint8_t *arena, int64_t n, int size, int nf, const int32_t *fo, const int32_t *fw,
+               const int64_t *so, const int64_t *cap, uint8_t *seen);
+int64_t gr_max_sum(const uint8_t *arena, int64_t n, int size, int nf, const int32_t *fo, const int32_t *fw,
+                   const int64_t *to, const int64_t *table);
+"""
+
+#: False: every function returns None (the pure-Python path runs); tests switch it to compare both
+enabled: bool = True
+#: graphs with fewer arcs (stores with fewer states) are left to the Python code; tests set it to 0
+MIN_ITEMS: int = 5000
+_ID_CODES = {"B": 1, "H": 2, "i": 4}
+
+
+def library(items: int | None = None):
+    """The loaded library, or None (no compiler, no cffi, CPN_NO_NATIVE, `enabled` is False, or a graph
+    of `items` arcs or states below MIN_ITEMS)."""
+    if not enabled or (items is not None and items < MIN_ITEMS):
+        return None
+    return load_library(_source(), _CDEF)
+
+
+@lru_cache(maxsize=1)
+def _source() -> str:
+    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "_graph.c")) as f:
+        return f.read()
+
+
+def _csr_ok(offsets, dst) -> bool:
+    return (isinstance(offsets, array) and offsets.typecode == "q" and isinstance(dst, array)
+            and dst.typecode == "i")
+
+
+def _ids_ok(ids) -> bool:
+    return isinstance(ids, array) and ids.typecode in _ID_CODES
+
+
+def _buf(ffi, ctype: str, data):
+    """A C view of an array (its first item when empty, never read)."""
+    return ffi.from_buffer(ctype, data if len(data) else array(data.typecode, [0]))
+
+
+def scc(n: int, offsets: array, dst: array):
+    """Tarjan's SCCs as (comp, members, start, terminal, nontrivial), as `scc.strongly_connected_components`
+    numbers them; None where native code is unavailable. `offsets` may cover only the first states."""
+    lib = library(len(dst))
+    if lib is None or not _csr_ok(offsets, dst):
+        return None
+    ffi, c = lib.ffi, lib.lib
+    nexp = len(offsets) - 1
+    comp = array("i", bytes(4 * n))
+    members = array("i", bytes(4 * n))
+    start = array("i", bytes(4 * (n + 1)))
+    terminal = bytearray(n)
+    nontrivial = bytearray(n)
+    count = c.gr_scc(n, nexp, _buf(ffi, "int64_t[]", offsets), _buf(ffi, "int32_t[]", dst),
+                     _buf(ffi, "int32_t[]", comp), _buf(ffi, "int32_t[]", members), _buf(ffi, "int32_t[]", start),
+                     ffi.from_buffer("uint8_t[]", terminal or bytearray(1)),
+                     ffi.from_buffer("uint8_t[]", nontrivial or bytearray(1)))
+    if count == -2:
+        return None  # 2^30 states or more: the Python code
+    if count < 0:
+        raise MemoryError("no memory for the SCC decomposition")
+    del start[count + 1:]
+    del terminal[count:]
+    del nontrivial[count:]
+    return comp, members, start, terminal, nontrivial
+
+
+def scc_arcs(offsets: array, dst: array, comp: array, members: array, start: array) -> tuple[int, int] | None:
+    """(arcs between different SCCs, distinct ordered pairs of SCCs joined by an arc), or None."""
+    lib = library(len(dst))
+    if lib is None or not _csr_ok(offsets, dst):
+        return None
+    ffi = lib.ffi
+    out = ffi.new("int64_t[2]")
+    if lib.lib.gr_scc_arcs(len(offsets) - 1, _buf(ffi, "int64_t[]", offsets), _buf(ffi, "int32_t[]", dst),
+                           _buf(ffi, "int32_t[]", comp), _buf(ffi, "int32_t[]", members),
+                           _buf(ffi, "int32_t[]", start), len(start) - 1, out) != 0:
+        raise MemoryError("no memory for the SCC graph")
+    return out[0], out[1]
+
+
+def distinct_ids(ids: array) -> list[int] | None:
+    """The distinct values of an array of non-negative ids (e.g. the arcs' binding elements), increasing."""
+    lib = library(len(ids))
+    if lib is None or not _ids_ok(ids):
+        return None
+    ffi = lib.ffi
+    bw = _ID_CODES[ids.typecode]
+    top = lib.lib.gr_max_id(_buf(ffi, "uint8_t[]", ids), bw, len(ids))
+    if top < 0:
+        return []
+    seen = bytearray(top + 1)
+    lib.lib.gr_mark_ids(_buf(ffi, "uint8_t[]", ids), bw, len(ids), ffi.from_buffer("uint8_t[]", seen))
+    return list(compress(range(top + 1), seen))
+
+
+def map_ids(ids: array, table: list[int], code: str) -> array | None:
+    """array(code, [table[i] for i in ids]) (code "B", "H" or "i"; every id < len(table)), or None."""
+    lib = library(len(ids))
+    if lib is None or not _ids_ok(ids) or code not in _ID_CODES:
+        return None
+    ffi = lib.ffi
+    out = array(code, bytes(array(code).itemsize * len(ids)))
+    lib.lib.gr_map_ids(_buf(ffi, "uint8_t[]", ids), _ID_CODES[ids.typecode], len(ids),
+                       _buf(ffi, "int32_t[]", array("i", table or [0])), _buf(ffi, "uint8_t[]", out),
+                       _ID_CODES[code])
+    return out
+
+
+def dead_states(offsets: array) -> list[int] | None:
+    """The expanded states without an arc, increasing, or None."""
+    lib = library(len(offsets) - 1)
+    if lib is None or not isinstance(offsets, array) or offsets.typecode != "q":
+        return None
+    ffi = lib.ffi
+    out = array("i", bytes(4 * max(1, len(offsets) - 1)))
+    k = lib.lib.gr_dead(len(offsets) - 1, _buf(ffi, "int64_t[]", offsets), _buf(ffi, "int32_t[]", out))
+    return out[:k].tolist()
+
+
+def live(offsets: array, labels: array, ntrans: int, members: array, start: array, terminal: bytearray):
+    """Per transition instance, 1 if it labels an arc in every terminal SCC (a bytearray), or None."""
+    lib = library(len(labels))
+    if lib is None or not isinstance(offsets, array) or offsets.typecode != "q" or not _ids_ok(labels):
+        return None
+    ffi = lib.ffi
+    out = bytearray(max(1, ntrans))
+    if lib.lib.gr_live(len(offsets) - 1, _buf(ffi, "int64_t[]", offsets), _buf(ffi, "uint8_t[]", labels),
+                       _ID_CODES[labels.typecode], ntrans, _buf(ffi, "int32_t[]", members),
+                       _buf(ffi, "int32_t[]", start), ffi.from_buffer("uint8_t[]", bytes(terminal) or b"\0"),
+                       len(start) - 1, ffi.from_buffer("uint8_t[]", out)) != 0:
+        raise MemoryError("no memory for the live transitions")
+    return out[:ntrans]
+
+
+FAIRNESS_CLASSES = ("Impartial", "Fair", "Just", "No Fairness")
+
+
+def fairness(n: int, offsets: array, dst: array, labels: array, ntrans: int, comp: array, members: array,
+             start: array, nontrivial: bytearray) -> list[str] | None:
+    """The fairness class (a name of FAIRNESS_CLASSES) of every transition instance, or None where native
+    code is unavailable. The graph must have a nontrivial SCC and be complete."""
+    lib = library(len(dst))
+    if lib is None or not _csr_ok(offsets, dst) or not _ids_ok(labels):
+        return None
+    ffi = lib.ffi
+    out = bytearray(max(1, ntrans))
+    if lib.lib.gr_fairness(n, len(offsets) - 1, _buf(ffi, "int64_t[]", offsets), _buf(ffi, "int32_t[]", dst),
+                           _buf(ffi, "uint8_t[]", labels), _ID_CODES[labels.typecode], ntrans,
+                           _buf(ffi, "int32_t[]", comp), _buf(ffi, "int32_t[]", members),
+                           _buf(ffi, "int32_t[]", start), ffi.from_buffer("uint8_t[]", bytes(nontrivial) or b"\0"),
+                           len(start) - 1, ffi.from_buffer("uint8_t[]", out)) != 0:
+        raise MemoryError("no memory for the fairness searches")
+    return [FAIRNESS_CLASSES[k] for k in out[:ntrans]]
+
+
+def _records(store):
+    """(arena buffer, number of records, record size, byte offset and width of each field) of a packed
+    store (`cpn.statespace.store.PackedStore`), or None for any other store."""
+    if getattr(store, "kind", None) != "packed":
+        return None
+    size = store.struct.size
+    n = len(store)
+    arena = store.ffi.buffer(store.lib.cs_arena(store.handle), n * size) if n else b"\0"
+    offsets, o = [], 0
+    for w in store.widths:
+        offsets.append(o)
+        o += w
+    return arena, n, size, offsets, list(store.widths)
+
+
+def place_columns(store, caps: list[int]) -> list[list[int]] | None:
+    """Per field f < len(caps) of a packed store's states, its distinct values, increasing; None when the
+    store is not packed, native code is unavailable, or a value of field f is not below caps[f]."""
+    rec = _records(store)
+    lib = library(rec[1]) if rec is not None else None
+    if lib is None:
+        return None
+    arena, n, size, fo, fw = rec
+    nf = len(caps)
+    if nf > len(fo):
+        return None
+    ffi = lib.ffi
+    so = array("q", [0])
+    for c in caps:
+        so.append(so[-1] + c)
+    seen = bytearray(max(1, so[-1]))
+    if lib.lib.gr_columns(ffi.from_buffer("uint8_t[]", arena), n, size, nf, ffi.new("int32_t[]", fo[:nf] or [0]),
+                          ffi.new("int32_t[]", fw[:nf] or [0]), _buf(ffi, "int64_t[]", so),
+                          _buf(ffi, "int64_t[]", array("q", caps)), ffi.from_buffer("uint8_t[]", seen)) != 0:
+        return None
+    return [list(compress(range(caps[f]), seen[so[f]:so[f + 1]])) for f in range(nf)]
+
+
+def max_sum(store, fields: list[int], tables: list[list[int]]) -> int | None:
+    """The largest sum over `fields` of tables[k][value of field fields[k]] over the packed store's states
+    (every value must index its table, as `place_columns` checked); None when not available."""
+    rec = _records(store)
+    lib = library(rec[1]) if rec is not None else None
+    if lib is None:
+        return None
+    arena, n, size, fo, fw = rec
+    ffi = lib.ffi
+    to = array("q", [0])
+    flat = array("q")
+    for table in tables:
+        flat.extend(table)
+        to.append(len(flat))
+    return lib.lib.gr_max_sum(ffi.from_buffer("uint8_t[]", arena), n, size, len(fields),
+                              ffi.new("int32_t[]", [fo[f] for f in fields] or [0]),
+                              ffi.new("int32_t[]", [fw[f] for f in fields] or [0]), _buf(ffi, "int64_t[]", to),
+                              _buf(ffi, "int64_t[]", flat))
