@@ -7,6 +7,7 @@ where it has them (`_intern_tables`, a fast path).
 from __future__ import annotations
 
 from array import array
+from itertools import islice
 from operator import itemgetter
 
 from cpn.engine import Engine
@@ -72,9 +73,16 @@ CHUNK_STATES: int = 1024
 
 
 def state_chunks(states: list):
-    """The states in consecutive slices of CHUNK_STATES."""
-    for k in range(0, len(states), CHUNK_STATES):
-        yield states[k:k + CHUNK_STATES]
+    """The states in consecutive lists of CHUNK_STATES. A sequence that is not a list (a packed store's
+    states) is iterated, which decodes its records a few thousand at a time; its slices decode them one
+    by one (IBM319-PT-none: 0.066 s against 0.005 s for 2,482 states of 253 places, under cProfile)."""
+    if isinstance(states, list):
+        for k in range(0, len(states), CHUNK_STATES):
+            yield states[k:k + CHUNK_STATES]
+        return
+    it = iter(states)
+    while chunk := list(islice(it, CHUNK_STATES)):
+        yield chunk
 
 
 def _intern_tables(engine):

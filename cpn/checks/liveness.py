@@ -73,7 +73,8 @@ def live_transitions(x: Exploration, scc: SccSummary, arc_transitions, native: b
     dec = scc.decomposition
     ntrans = len(x.engine.transitions)
     if native:
-        fast = graphnative.live(g.offsets, arc_transitions, ntrans, dec.members, dec.start, dec.terminal)
+        fast = graphnative.live(g.offsets, arc_transitions, ntrans, dec.comp, dec.members, dec.start,
+                                dec.terminal)
         if fast is not None:
             return [t for t in range(ntrans) if fast[t]]
     live = set(range(ntrans))

@@ -167,14 +167,37 @@ int64_t gr_dead(int64_t nexp, const int64_t *off, int32_t *out) {
     return k;
 }
 
-/* live[t] = 1 iff t labels an arc leaving a state of every terminal SCC (arcs of a terminal SCC stay in it). */
-int gr_live(int64_t nexp, const int64_t *off, const void *labels, int lw, int ntrans, const int32_t *members,
-            const int32_t *start, const uint8_t *terminal, int64_t count, uint8_t *live) {
-    int64_t *stamp = (int64_t *)malloc((size_t)(ntrans ? ntrans : 1) * 8);
-    if (!stamp) return -1;
+/* live[t] = 1 iff t labels an arc leaving a state of every terminal SCC (arcs of a terminal SCC stay in
+ * it). The terminal SCCs of at least n / 8 states (at most 8) are read in one pass over the states in
+ * increasing order (the order the arcs are stored in); the others state by state. */
+int gr_live(int64_t n, int64_t nexp, const int64_t *off, const void *labels, int lw, int ntrans,
+            const int32_t *comp, const int32_t *members, const int32_t *start, const uint8_t *terminal,
+            int64_t count, uint8_t *live) {
+    enum { BIG = 8 };
+    int nt_ = ntrans ? ntrans : 1;
+    int64_t *stamp = (int64_t *)malloc((size_t)nt_ * 8);
+    int32_t *bigidx = (int32_t *)calloc((size_t)(count ? count : 1), 4);
+    uint8_t *seen = (uint8_t *)calloc((size_t)nt_ * BIG, 1);
+    if (!stamp || !bigidx || !seen) { free(stamp); free(bigidx); free(seen); return -1; }
+    int nbig = 0;
+    for (int64_t c = 0; c < count; c++)
+        if (terminal[c] && (int64_t)(start[c + 1] - start[c]) * BIG >= n && nbig < BIG) bigidx[c] = ++nbig;
+    if (nbig) {
+        for (int64_t v = 0; v < nexp; v++) {
+            int b = bigidx[comp[v]] - 1;
+            if (b < 0) continue;
+            for (int64_t j = off[v]; j < off[v + 1]; j++) seen[gr_label(labels, lw, j) * BIG + b] = 1;
+        }
+    }
     for (int t = 0; t < ntrans; t++) { live[t] = 1; stamp[t] = -1; }
     for (int64_t c = 0; c < count; c++) {
         if (!terminal[c]) continue;
+        if (bigidx[c]) {
+            int b = bigidx[c] - 1;
+            for (int t = 0; t < ntrans; t++)
+                if (!seen[t * BIG + b]) live[t] = 0;
+            continue;
+        }
         for (int64_t k = start[c]; k < start[c + 1]; k++) {
             int32_t v = members[k];
             for (int64_t j = ARCS_FROM(v); j < ARCS_TO(v); j++) stamp[gr_label(labels, lw, j)] = c;
@@ -182,7 +205,7 @@ int gr_live(int64_t nexp, const int64_t *off, const void *labels, int lw, int nt
         for (int t = 0; t < ntrans; t++)
             if (stamp[t] != c) live[t] = 0;
     }
-    free(stamp);
+    free(stamp); free(bigidx); free(seen);
     return 0;
 }
 

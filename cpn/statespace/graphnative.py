@@ -8,8 +8,9 @@ reference (`cpn.statespace.scc`, `cpn.checks`), which gives the same results (te
 tests/checks compare both on random graphs).
 
 Setting the module's `enabled` to False (or the environment variable CPN_NO_NATIVE) makes every
-function return None, and so does a graph of fewer than MIN_ITEMS arcs (states for `place_columns` and
-`max_sum`): there the Python code takes less time than loading the library (about 5 ms of CPU).
+function return None, and so does a graph of fewer than MIN_ITEMS arcs (for `place_columns` and
+`max_sum`: states times fields read): there the Python code takes less time than loading the library
+(about 5 ms of CPU).
 """
 
 from __future__ import annotations
@@ -30,8 +31,9 @@ int64_t gr_max_id(const void *ids, int bw, int64_t m);
 void gr_mark_ids(const void *ids, int bw, int64_t m, uint8_t *seen);
 void gr_map_ids(const void *ids, int bw, int64_t m, const int32_t *table, void *out, int ow);
 int64_t gr_dead(int64_t nexp, const int64_t *off, int32_t *out);
-int gr_live(int64_t nexp, const int64_t *off, const void *labels, int lw, int ntrans, const int32_t *members,
-            const int32_t *start, const uint8_t *terminal, int64_t count, uint8_t *live);
+int gr_live(int64_t n, int64_t nexp, const int64_t *off, const void *labels, int lw, int ntrans,
+            const int32_t *comp, const int32_t *members, const int32_t *start, const uint8_t *terminal,
+            int64_t count, uint8_t *live);
 int gr_fairness(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, const void *labels, int lw,
                 int ntrans, const int32_t *comp, const int32_t *members, const int32_t *start,
                 const uint8_t *nontrivial, int64_t count, uint8_t *cls);
@@ -156,15 +158,17 @@ def dead_states(offsets: array) -> list[int] | None:
     return out[:k].tolist()
 
 
-def live(offsets: array, labels: array, ntrans: int, members: array, start: array, terminal: bytearray):
+def live(offsets: array, labels: array, ntrans: int, comp: array, members: array, start: array,
+         terminal: bytearray):
     """Per transition instance, 1 if it labels an arc in every terminal SCC (a bytearray), or None."""
     lib = library(len(labels))
     if lib is None or not isinstance(offsets, array) or offsets.typecode != "q" or not _ids_ok(labels):
         return None
     ffi = lib.ffi
     out = bytearray(max(1, ntrans))
-    if lib.lib.gr_live(len(offsets) - 1, _buf(ffi, "int64_t[]", offsets), _buf(ffi, "uint8_t[]", labels),
-                       _ID_CODES[labels.typecode], ntrans, _buf(ffi, "int32_t[]", members),
+    if lib.lib.gr_live(len(comp), len(offsets) - 1, _buf(ffi, "int64_t[]", offsets),
+                       _buf(ffi, "uint8_t[]", labels), _ID_CODES[labels.typecode], ntrans,
+                       _buf(ffi, "int32_t[]", comp), _buf(ffi, "int32_t[]", members),
                        _buf(ffi, "int32_t[]", start), ffi.from_buffer("uint8_t[]", bytes(terminal) or b"\0"),
                        len(start) - 1, ffi.from_buffer("uint8_t[]", out)) != 0:
         raise MemoryError("no memory for the live transitions")
@@ -211,7 +215,7 @@ def place_columns(store, caps: list[int]) -> list[list[int]] | None:
     """Per field f < len(caps) of a packed store's states, its distinct values, increasing; None when the
     store is not packed, native code is unavailable, or a value of field f is not below caps[f]."""
     rec = _records(store)
-    lib = library(rec[1]) if rec is not None else None
+    lib = library(rec[1] * len(caps)) if rec is not None else None
     if lib is None:
         return None
     arena, n, size, fo, fw = rec
@@ -234,7 +238,7 @@ def max_sum(store, fields: list[int], tables: list[list[int]]) -> int | None:
     """The largest sum over `fields` of tables[k][value of field fields[k]] over the packed store's states
     (every value must index its table, as `place_columns` checked); None when not available."""
     rec = _records(store)
-    lib = library(rec[1]) if rec is not None else None
+    lib = library(rec[1] * len(fields)) if rec is not None else None
     if lib is None:
         return None
     arena, n, size, fo, fw = rec

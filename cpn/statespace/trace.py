@@ -6,6 +6,8 @@ Imports `cpn.statespace.graph` and the standard library only.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from itertools import compress
+from operator import ne
 
 from cpn.statespace.graph import StateGraph
 
@@ -46,19 +48,23 @@ def shortest_trace(graph: StateGraph, target: int, engine=None) -> Trace:
         path.append((parent_be[v], parent[v], v))
         v = parent[v]
     path.reverse()
+    if engine is None:
+        return Trace(target, tuple(Step(be, a, b) for be, a, b in path))
     steps = []
+    places = engine.places
+    states = graph.states
+    sb = states[0] if path else None
     for be, a, b in path:
-        if engine is None:
-            steps.append(Step(be, a, b))
-            continue
-        sa, sb = graph.states[a], graph.states[b]
+        # each state is read (a packed store decodes it) once: a step starts where the previous ended
+        sa, sb = sb, states[b]
+        # the places whose item differs (one pass in C), then any place beyond the state's items
+        common = min(len(places), len(sa))
+        differing = [*compress(range(common), map(ne, sa, sb)), *range(common, len(places))]
         changes = []
-        for p, place in enumerate(engine.places):
-            if p < len(sa) and sa[p] == sb[p]:
-                continue
+        for p in differing:
             before, after = engine.format_marking(sa, p), engine.format_marking(sb, p)
             if before != after:
-                changes.append((place.name, before, after))
+                changes.append((places[p].name, before, after))
         steps.append(Step(be, a, b, engine.format_binding_element(be), tuple(changes)))
     return Trace(target, tuple(steps))
 

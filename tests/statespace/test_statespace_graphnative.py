@@ -67,7 +67,7 @@ def test_native_dead_states_and_live_transitions_are_the_python_ones(seed):
     for code in "BHi":
         labels = array(code, lab)
         assert live_transitions(x, scc, labels) == live_transitions(x, scc, labels, native=False)
-    assert graphnative.live(off, array("B", lab), ntrans, dec.members, dec.start, dec.terminal) is not None
+    assert graphnative.live(off, array("B", lab), ntrans, dec.comp, dec.members, dec.start, dec.terminal) is not None
 
 
 @pytest.mark.parametrize("code", ["H", "i"])
