@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from array import array
 from dataclasses import dataclass
+from itertools import compress
 
 from cpn.checks._common import TransitionIndex
 from cpn.statespace import Exploration, SccDecomposition, graphnative
@@ -117,8 +118,15 @@ def home_markings(x: Exploration, scc: SccSummary) -> HomeMarkings:
     homes: object = []
     if len(terms) == 1:
         nodes = dec.nodes(terms[0])
-        # A range or an int array, not a list: a list of 531,441 ids costs 19 MB (MS(8)).
-        homes = range(x.graph.n_states) if len(nodes) == x.graph.n_states else array("i", sorted(nodes))
+        n = x.graph.n_states
+        # A range or an int array, not a list: a list of 531,441 ids costs 19 MB (MS(8)). A large SCC's
+        # states are picked from its column in increasing order rather than sorted.
+        if len(nodes) == n:
+            homes = range(n)
+        elif 8 * len(nodes) >= n:
+            homes = array("i", compress(range(n), map(terms[0].__eq__, dec.comp)))
+        else:
+            homes = array("i", sorted(nodes))
     engine = x.engine
     states = x.graph.states
     if engine.is_timed:

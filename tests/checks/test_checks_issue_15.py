@@ -342,3 +342,37 @@ def test_report_progress_line_on_a_terminal_only(monkeypatch, capsys, tmp_path):
     assert run(quiet=True, terminal=True) == ""
     # off a terminal: no progress line (a note such as which back end searched may still be said)
     assert [line for line in run(quiet=False, terminal=False).splitlines() if not line.startswith("note: ")] == []
+
+
+# ---------------------------------------------------------------------- home markings and liveness
+
+@settings(max_examples=200, deadline=None)
+@given(labelled_graphs(max_states=20))
+def test_home_markings_and_live_transitions_match_the_definitions(case):
+    """Home markings: the states reachable from every state (the report takes the unique terminal SCC);
+    live transition instances: those that can occur again from every state (the report: an arc inside
+    every terminal SCC). The Python and the native code against the definitions."""
+    from cpn.checks import home_markings, live_transitions, scc_summary
+
+    n, arcs, ntrans = case
+    g = _graph(n, arcs)
+    x = SimpleNamespace(graph=g, engine=SimpleNamespace(transitions=list(range(ntrans)), is_timed=False),
+                        complete=True)
+    whole = nx.MultiDiGraph()
+    whole.add_nodes_from(range(n))
+    whole.add_edges_from((s, d, t) for s, d, t in arcs)
+    reach = {v: nx.descendants(whole, v) | {v} for v in range(n)}
+    homes = [h for h in range(n) if all(h in reach[v] for v in range(n))]
+    live = [t for t in range(ntrans)
+            if all(any(lab == t for s, _d, lab in arcs if s in reach[v]) for v in range(n))]
+    for native in (False, True):
+        with native_for_every_size():
+            scc = scc_summary(x) if native else None
+            if not native:
+                graphnative.enabled = False
+                try:
+                    scc = scc_summary(x)
+                finally:
+                    graphnative.enabled = True
+            assert list(home_markings(x, scc).states) == homes
+            assert live_transitions(x, scc, array("B", g.bes), native=native) == live
