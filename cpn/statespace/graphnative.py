@@ -8,9 +8,9 @@ reference (`cpn.statespace.scc`, `cpn.checks`), which gives the same results (te
 tests/checks compare both on random graphs).
 
 Setting the module's `enabled` to False (or the environment variable CPN_NO_NATIVE) makes every
-function return None, and so does a graph of fewer than MIN_ITEMS arcs (for `place_columns` and
-`max_sum`: states times fields read): there the Python code takes less time than loading the library
-(about 5 ms of CPU).
+function return None, and so does a graph of fewer than MIN_ITEMS arcs (about 5,000 steps of Tarjan in
+Python, 5 ms of CPU, the time of loading the library; where the Python code runs at C speed, such as
+the place columns, MIN_ITEMS x CHEAP items): there the Python code is faster.
 """
 
 from __future__ import annotations
@@ -47,6 +47,9 @@ int64_t gr_max_sum(const uint8_t *arena, int64_t n, int size, int nf, const int3
 enabled: bool = True
 #: graphs with fewer arcs (stores with fewer states) are left to the Python code; tests set it to 0
 MIN_ITEMS: int = 5000
+#: where the Python code runs at C speed (`set`, `map`, `itemgetter`) it handles about this many items
+#: in the time of one of Tarjan's arcs, so it is left more of them
+CHEAP: int = 20
 _ID_CODES = {"B": 1, "H": 2, "i": 4}
 
 
@@ -121,7 +124,7 @@ def scc_arcs(offsets: array, dst: array, comp: array, members: array, start: arr
 
 def distinct_ids(ids: array) -> list[int] | None:
     """The distinct values of an array of non-negative ids (e.g. the arcs' binding elements), increasing."""
-    lib = library(len(ids))
+    lib = library(len(ids) // CHEAP)
     if lib is None or not _ids_ok(ids):
         return None
     ffi = lib.ffi
@@ -136,7 +139,7 @@ def distinct_ids(ids: array) -> list[int] | None:
 
 def map_ids(ids: array, table: list[int], code: str) -> array | None:
     """array(code, [table[i] for i in ids]) (code "B", "H" or "i"; every id < len(table)), or None."""
-    lib = library(len(ids))
+    lib = library(len(ids) // CHEAP)
     if lib is None or not _ids_ok(ids) or code not in _ID_CODES:
         return None
     ffi = lib.ffi
@@ -149,7 +152,7 @@ def map_ids(ids: array, table: list[int], code: str) -> array | None:
 
 def dead_states(offsets: array) -> list[int] | None:
     """The expanded states without an arc, increasing, or None."""
-    lib = library(len(offsets) - 1)
+    lib = library((len(offsets) - 1) // CHEAP)
     if lib is None or not isinstance(offsets, array) or offsets.typecode != "q":
         return None
     ffi = lib.ffi
@@ -161,7 +164,7 @@ def dead_states(offsets: array) -> list[int] | None:
 def live(offsets: array, labels: array, ntrans: int, comp: array, members: array, start: array,
          terminal: bytearray):
     """Per transition instance, 1 if it labels an arc in every terminal SCC (a bytearray), or None."""
-    lib = library(len(labels))
+    lib = library(len(labels) // 10)
     if lib is None or not isinstance(offsets, array) or offsets.typecode != "q" or not _ids_ok(labels):
         return None
     ffi = lib.ffi
@@ -218,7 +221,7 @@ def place_columns(store, caps: list[int]) -> list[list[int]] | None:
     """Per field f < len(caps) of a packed store's states, its distinct values, increasing; None when the
     store is not packed, native code is unavailable, or a value of field f is not below caps[f]."""
     rec = _records(store)
-    lib = library(rec[1] * len(caps)) if rec is not None else None
+    lib = library(rec[1] * len(caps) // CHEAP) if rec is not None else None
     if lib is None:
         return None
     arena, n, size, fo, fw = rec
@@ -241,7 +244,7 @@ def max_sum(store, fields: list[int], tables: list[list[int]]) -> int | None:
     """The largest sum over `fields` of tables[k][value of field fields[k]] over the packed store's states
     (every value must index its table, as `place_columns` checked); None when not available."""
     rec = _records(store)
-    lib = library(rec[1] * len(fields)) if rec is not None else None
+    lib = library(rec[1] * len(fields) // CHEAP) if rec is not None else None
     if lib is None:
         return None
     arena, n, size, fo, fw = rec
