@@ -376,3 +376,40 @@ def test_home_markings_and_live_transitions_match_the_definitions(case):
                     graphnative.enabled = True
             assert list(home_markings(x, scc).states) == homes
             assert live_transitions(x, scc, array("B", g.bes), native=native) == live
+
+
+# ---------------------------------------------------------------------- the whole report, native and Python
+
+def _figures(data):
+    """A report's JSON without its timings."""
+    timing = {"seconds", "report_seconds", "report_part_seconds", "peak_memory_mb"}
+    if isinstance(data, dict):
+        return {k: _figures(v) for k, v in data.items() if k not in timing}
+    if isinstance(data, list):
+        return [_figures(v) for v in data]
+    return data
+
+
+@pytest.mark.parametrize("net, n", [("ms", "4"), ("dp", "6")])
+def test_the_report_is_the_same_with_and_without_native_code(net, n, monkeypatch):
+    import cpn
+    from cpn.report import build_report, to_json
+
+    if graphnative.library() is None:
+        pytest.skip("no native code here")
+    root = os.path.join(os.path.dirname(__file__), "..", "..")
+    model = cpn.load(os.path.join(root, "bench", "nets", f"{net}.cpnet"), set={"N": n})
+    x = Explorer(model.engine()).run()
+    used = []
+    for name in ("scc", "fairness", "live", "place_columns"):
+        real = getattr(graphnative, name)
+        monkeypatch.setattr(graphnative, name, lambda *a, _real=real, _name=name: used.append(_name) or _real(*a))
+    with native_for_every_size():
+        native = _figures(to_json(build_report(x, "m")))
+        assert {"scc", "fairness", "live", "place_columns"} <= set(used)
+        graphnative.enabled = False
+        try:
+            python = _figures(to_json(build_report(x, "m")))
+        finally:
+            graphnative.enabled = True
+    assert native == python
