@@ -258,6 +258,20 @@ class CompiledEngine(EngineAPI):
         transition, with the places it reads and those it only writes (None for other nets)."""
         return TransitionGroups(self) if self._flat else None
 
+    def native_code(self):
+        """(the C of this net's transitions, None) for the native search (`cpn.engine.ccodegen`), or
+        (None, why) where no place marking can be held in C; computed once."""
+        got = getattr(self, "_native_code", None)
+        if got is None:
+            from cpn.engine import ccodegen
+
+            try:
+                got = (ccodegen.native_code(self), None) if self._flat else (None, "the net has priorities")
+            except ccodegen.NotNative as exc:
+                got = (None, str(exc))
+            self._native_code = got
+        return got
+
     # ------------------------------------------------------------------ successors
     def successors(self, s: tuple) -> list[tuple[int, tuple]]:
         self._nstates += 1

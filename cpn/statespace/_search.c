@@ -99,7 +99,15 @@ typedef struct {
     uint32_t *req; int64_t nreq, req_cap;
     uint32_t *req_key, *s, *t;
     uint32_t *addv; int64_t addv_cap;  /* the written fields' new values found in phase 1, in order */
+    void *gen;               /* the C generated from the net's inscriptions, if any (ND_GENERATED) */
 } nd_search;
+
+#ifdef ND_GENERATED
+/* compiled after this file (cpn/engine/ccodegen.py): a group's result or a written place's new id
+ * computed in C; -1: left to the caller (Python), -2: no memory */
+static int gen_group(void *g, nd_search *d, int k, const uint32_t *key);
+static int64_t gen_add(void *g, uint32_t p, uint32_t did, uint32_t old);
+#endif
 
 nd_search *nd_new(cs_store *st, int K, int G, const int32_t *nread, const int32_t *nwrite, const int32_t *fields) {
     nd_search *d = (nd_search *)calloc(1, sizeof(nd_search));
@@ -204,6 +212,13 @@ int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs) {
             uint32_t *key = d->req_key;
             for (int i = 0; i < nr; i++) key[i] = s[d->read[g][i]];
             int64_t o = vm_get(&d->groups[g], key);
+#ifdef ND_GENERATED
+            if (o < 0 && d->gen) {
+                int rc = gen_group(d->gen, d, g, key);
+                if (rc == -2) { status = ND_NO_MEMORY; break; }
+                if (rc == 0) o = vm_get(&d->groups[g], key);
+            }
+#endif
             if (o < 0) {
                 if (grow((void **)&d->req, &d->req_cap, d->nreq + 2 + nr, 4) != 0) { status = ND_NO_MEMORY; break; }
                 d->req[d->nreq++] = 0;
@@ -221,6 +236,15 @@ int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs) {
                 for (int w = 0; w < nw; w++) {
                     uint32_t k[3] = {(uint32_t)d->write[g][w], (uint32_t)e[1 + nr + w], s[d->write[g][w]]};
                     int64_t v = vm_get(&d->adds, k);
+#ifdef ND_GENERATED
+                    if (v < 0 && d->gen) {
+                        int64_t nid = gen_add(d->gen, k[0], k[1], k[2]);
+                        if (nid >= 0) {
+                            if (vm_put(&d->adds, k, nid) != 0) { status = ND_NO_MEMORY; break; }
+                            v = nid;
+                        }
+                    }
+#endif
                     if (v < 0) {
                         if (grow((void **)&d->req, &d->req_cap, d->nreq + 4, 4) != 0) { status = ND_NO_MEMORY; break; }
                         d->req[d->nreq++] = 1;
@@ -283,6 +307,7 @@ int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs) {
 
 void nd_clear_batch(nd_search *d) { d->narcs = 0; d->noff = 0; d->nnew = 0; }
 void nd_set_be32(nd_search *d) { d->be32 = 1; }
+void nd_set_gen(nd_search *d, void *g) { d->gen = g; }
 int64_t nd_head(nd_search *d) { return d->head; }
 int64_t nd_levels(nd_search *d) { return d->levels; }
 int64_t nd_level_end(nd_search *d) { return d->level_end; }

@@ -8,6 +8,13 @@ ids of written places per (place, delta, old id); on a miss it returns to Python
 and fills the cache, and the state is expanded once everything it needs is cached. So the graph is the
 Python search's own: the same states in the same order, the same arcs, the same binding elements.
 
+Where the engine can give it (`CompiledEngine.native_code`, `cpn.engine.ccodegen`), the transitions'
+results and the written places' ids are computed by C generated from the net's inscriptions, compiled
+into the same library: the search then returns to Python only for the transitions left to the Python
+engine (each named with the reason in `notes`) and for what the C code cannot evaluate. Both keep
+the same tables of markings, deltas and binding elements with the same ids (copied across before and
+after every return to Python), so the graph is the same either way.
+
 Where the native search cannot run, `unavailable(engine, options)` says why in one line and the explorer
 uses the Python loop.
 """
@@ -52,13 +59,32 @@ ND_DONE, ND_CHECK, ND_MAX_STATES, ND_MAX_ARCS, ND_NEED, _, ND_WIDE_BE = range(7)
 _U32 = 1 << 32
 
 
-def library():
+def library(code=None):
+    """The native search's library; with `code` (a `NativeCode`), the net's generated C compiled in."""
     here = os.path.dirname(os.path.abspath(__file__))
-    parts = []
+    parts = ["#define ND_GENERATED"] if code is not None else []
     for name in ("_packed.c", "_search.c"):
         with open(os.path.join(here, name)) as f:
             parts.append(f.read())
-    return load_library("\n".join(parts), _CDEF)
+    if code is None:
+        return load_library("\n".join(parts), _CDEF)
+    return load_library("\n".join(parts + [code.source]), _CDEF + code.cdef)
+
+
+def generated(engine, options) -> tuple[object | None, list[str]]:
+    """The net's generated C (a `NativeCode`, or None) and the notes saying what is left to Python."""
+    if options.backend == "python" or os.environ.get("CPN_NO_GENERATED"):
+        return None, []
+    make = getattr(engine, "native_code", None)  # an optional capability of the compiled engine
+    if make is None:
+        return None, ["the C back end has no code of this engine's transitions (the reference interpreter)"]
+    code, why = make()
+    if code is None:
+        return None, [f"the Python engine computes every transition's bindings: {why}"]
+    names = engine.transitions
+    notes = [f"the Python engine computes the bindings of transition '{names[t].name}': {reason}"
+             for t, reason in sorted(code.left.items())]
+    return code, notes
 
 
 def unavailable(engine, options, s0) -> str | None:
@@ -85,8 +111,16 @@ def unavailable(engine, options, s0) -> str | None:
 class NativeSearch:
     """One native breadth-first search filling a `StateGraph` (see the module's docstring)."""
 
-    def __init__(self, engine, graph, s0):
-        lib = library()
+    def __init__(self, engine, graph, s0, options=None):
+        self.code, self.notes = generated(engine, options) if options is not None else (None, [])
+        lib = library(self.code) if self.code is not None else None
+        if self.code is not None and lib is None:
+            self.notes = [f"the C of the net's transitions could not be built ({why_unavailable()}): the Python "
+                          "engine computes every transition's bindings"]
+            self.code = None
+        if lib is None:
+            lib = library()
+        self.native_lib = lib
         self.ffi, self.lib = lib.ffi, lib.lib
         self.engine = engine
         self.tg = engine.successor_groups()
@@ -104,6 +138,14 @@ class NativeSearch:
         if handle == ffi.NULL:
             raise MemoryError("cannot allocate the native search")
         self.handle = ffi.gc(handle, self.lib.nd_free)
+        self.gen = None
+        if self.code is not None:
+            gen = self.lib.gen_new()
+            if gen == ffi.NULL:
+                raise MemoryError("cannot allocate the native transitions' tables")
+            self.gen = ffi.gc(gen, self.lib.gen_free)
+            self.code.to_c(engine, lib, self.gen)
+            self.lib.nd_set_gen(self.handle, self.gen)
 
     @property
     def head(self) -> int:
@@ -148,6 +190,8 @@ class NativeSearch:
         lib, h, ffi, tg = self.lib, self.handle, self.ffi, self.tg
         req = ffi.unpack(lib.nd_requests(h), lib.nd_nrequests(h))
         i = 0
+        if self.gen is not None:
+            self.code.to_python(self.engine, self.native_lib, self.gen)
         try:
             while i < len(req):
                 if req[i] == 0:
@@ -177,10 +221,14 @@ class NativeSearch:
         except BaseException:
             self.flush()  # the graph up to the state being expanded, for an error's trace
             raise
+        if self.gen is not None:
+            self.code.to_c(self.engine, self.native_lib, self.gen)
 
     def flush(self) -> None:
         """Move the arcs, offsets and BFS parents of the states expanded since the last flush to the graph."""
         lib, h, ffi, g = self.lib, self.handle, self.ffi, self.graph
+        if self.gen is not None:  # the engine gets the markings and binding elements made in C
+            self.code.to_python(self.engine, self.native_lib, self.gen)
         n = lib.nd_narcs(h)
         if n:
             g.dst.frombytes(ffi.buffer(lib.nd_dst(h), 4 * n))

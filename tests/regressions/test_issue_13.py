@@ -163,17 +163,22 @@ def test_cli_says_why_the_python_back_end_searches(capsys):
 
 
 @needs_native
-def test_native_search_hands_over_where_results_rarely_recur():
-    """DP's transitions see new markings of their input places in nearly every state: the native search
-    hands over to the Python search at its first look (512 states), and the graph is still the same."""
+def test_native_search_hands_over_where_results_rarely_recur(monkeypatch):
+    """DP's transitions see new markings of their input places in nearly every state: without C code of
+    its inscriptions, the native search hands over to the Python search at its first look (512 states), and
+    the graph is still the same; with it, the native search goes on to the end."""
     from tests.engine._explore import same_exploration
 
     model = cpn.load(os.path.join(ROOT, "bench", "nets", "dp.cpnet"), set={"N": 8})
+    generated = Explorer(model.engine(), ExploreOptions(backend="c")).run()
+    assert generated.backend == "c" and generated.notes == []
+    monkeypatch.setenv("CPN_NO_GENERATED", "1")
     c = Explorer(model.engine(), ExploreOptions(backend="c")).run()
     py = Explorer(model.engine(), ExploreOptions(backend="python", packed_states=False)).run()
     assert c.backend == "python" and c.graph.store.kind == "packed"
     assert any("handed over to the Python search after 512 states" in n for n in c.notes)
     same_exploration(c, py)
+    same_exploration(generated, py)
     ms = cpn.load(os.path.join(ROOT, "bench", "nets", "ms.cpnet"), set={"N": 4})
     x = Explorer(ms.engine(), ExploreOptions(backend="c")).run()
     assert x.backend == "c" and x.notes == []

@@ -1,0 +1,989 @@
+"""C from a net's inscriptions: each transition's enabled bindings and their effects, for the native search.
+
+The compiled Python engine (`cpn.engine.compiled`, `cpn.engine.codegen`) stays the reference; this module
+generates C that does what it does, step for step, for transitions whose inscriptions map to machine
+values: unit, bool, int ranges, enumerations, index colour sets and products and records of these, as
+64-bit integers (a product as its components); a token is its colour id (its position in `CS.all()`), a
+place marking a list of (colour id, count) pairs in the order its Python dict has them. Guards and arc
+inscriptions over these (arithmetic, `div`, `mod`, comparisons, `andalso`, `orelse`, `not`, `if`,
+tuples, `#i`, index constructors, constants) and the model's functions over them (clauses with
+constant, variable, tuple and record patterns, `if`, `case`, `let val`) are compiled; anything else
+leaves its transition to the Python engine, with the reason.
+
+The generated group function of transition t (`grp_t`) follows the binding plan of `cpn.engine.plan`
+exactly as `TransitionCodegen` does: the same loops over the same tokens in the same order, the same
+tests, so it finds the same bindings in the same order; then, as `CompiledEngine._miss` does, it numbers
+each binding element and interns the markings and deltas its occurrence makes, in the same order, into
+tables (`_cnet.c`) that the Python engine's tables mirror (`NativeCode.to_python`, `NativeCode.to_c`):
+the ids agree on both sides. What C cannot evaluate at run time (a division by zero, a value outside its
+colour set, a pattern that does not match, deep recursion) is left to the Python engine for that key,
+which computes it or reports the error with its position.
+
+Examples
+--------
+>>> import cpn
+>>> model = cpn.loads("colset N = int with 0..3; var x : N; place P : N = 1`0;"
+...                   " trans t [x < 3]; arc P -> t : x; arc t -> P : x + 1;")
+>>> code = native_code(model.engine())
+>>> sorted(code.native), code.left
+([0], {})
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from itertools import product as _cartesian
+
+from cpn.engine import plan
+from cpn.net import binding as B
+from cpn.net import expr as A
+from cpn.values.colours import AliasCS, BoolCS, EnumCS, IndexCS, IntCS, ProductCS, RecordCS, UnitCS
+
+#: colour sets with more values than this are not laid out as colour ids
+MAX_COLOURS: int = 1 << 20
+#: a transition whose variables have more bindings than this is left to Python (one slot each)
+MAX_BINDINGS: int = 1 << 22
+#: user functions nested deeper than this at run time are left to Python (its recursion limit decides)
+MAX_DEPTH: int = 200
+_I64 = 1 << 62
+
+
+class NotNative(Exception):
+    """An inscription, colour set or net outside what the C code generator handles (the reason)."""
+
+
+# ---------------------------------------------------------------------------- values in C
+@dataclass
+class S:
+    """A scalar: a C expression of type int64_t (bool 0/1, unit 0, an enumeration's position, an int)."""
+
+    code: str
+
+
+@dataclass
+class Tp:
+    """A product or record: its components (records in the order of their labels)."""
+
+    items: list
+
+
+def leaves(cv) -> list[str]:
+    if isinstance(cv, S):
+        return [cv.code]
+    out: list[str] = []
+    for x in cv.items:
+        out.extend(leaves(x))
+    return out
+
+
+def shape(cv):
+    return None if isinstance(cv, S) else tuple(shape(x) for x in cv.items)
+
+
+@dataclass
+class Layout:
+    """How the values of a colour set are colour ids: leaves (low, count) in mixed radix, the first most
+    significant (the order of `itertools.product`, hence of `CS.all()`)."""
+
+    leaves: list[tuple[int, int]]
+    shape: object
+    values: list
+    index: dict = field(default_factory=dict)
+
+    @property
+    def size(self) -> int:
+        return len(self.values)
+
+    def strides(self) -> list[int]:
+        out, s = [], 1
+        for _lo, n in reversed(self.leaves):
+            out.append(s)
+            s *= n
+        return list(reversed(out))
+
+    def decode(self, code: str):
+        """The value (as a C value) of colour id `code`."""
+        strides = self.strides()
+        it = iter(range(len(self.leaves)))
+
+        def build(sh):
+            if sh is None:
+                i = next(it)
+                lo, n = self.leaves[i]
+                x = code if strides[i] == 1 else f"({code} / {strides[i]})"
+                if i > 0:
+                    x = f"({x} % {n})"
+                return S(x if lo == 0 else f"({lo} + {x})")
+            return Tp([build(s) for s in sh])
+        return build(self.shape)
+
+
+def _base(cs):
+    while isinstance(cs, AliasCS):
+        cs = cs.base
+    return cs
+
+
+def _layout_parts(cs):
+    cs = _base(cs)
+    if isinstance(cs, UnitCS):
+        return [(0, 1)], None
+    if isinstance(cs, BoolCS):
+        return [(0, 2)], None
+    if isinstance(cs, IntCS):
+        if cs.low is None or cs.high < cs.low:
+            raise NotNative(f"colour set {cs.name} is not a finite int range")
+        return [(cs.low, cs.high - cs.low + 1)], None
+    if isinstance(cs, EnumCS):
+        return [(0, len(cs.constants))], None
+    if isinstance(cs, IndexCS):
+        return [(cs.low, cs.high - cs.low + 1)], None
+    if isinstance(cs, (ProductCS, RecordCS)):
+        comps = cs.components if isinstance(cs, ProductCS) else [c for _, c in cs.fields]
+        out, shapes = [], []
+        for c in comps:
+            lv, sh = _layout_parts(c)
+            out.extend(lv)
+            shapes.append(sh)
+        return out, tuple(shapes)
+    raise NotNative(f"colour set {cs.name} ({cs.kind}) has no C layout")
+
+
+def layout(cs) -> Layout:
+    """The layout of a colour set, checked against its values (NotNative if it has none)."""
+    lv, sh = _layout_parts(cs)
+    total = 1
+    for lo, n in lv:
+        if abs(lo) + n >= _I64 >> 20:
+            raise NotNative(f"colour set {cs.name} has values too large for C")
+        total *= n
+        if total > MAX_COLOURS:
+            raise NotNative(f"colour set {cs.name} has more than {MAX_COLOURS:,} values")
+    vals = cs.values()
+    if vals is None or len(vals) != total:
+        raise NotNative(f"colour set {cs.name} is not enumerable")
+    lay = Layout(lv, sh, vals)
+    # the colour ids must be the positions in CS.all(): check the mixed radix against the values
+    ranges = [range(lo, lo + n) for lo, n in lv]
+    for cid, flat in enumerate(_cartesian(*ranges)):
+        if _flatten(vals[cid]) != list(flat):
+            raise NotNative(f"colour set {cs.name}: its values are not in mixed-radix order")
+    lay.index = {v: i for i, v in enumerate(vals)}
+    return lay
+
+
+def _flatten(v) -> list:
+    if v == ():
+        return [0]
+    if isinstance(v, tuple):
+        out = []
+        for x in v:
+            out.extend(_flatten(x))
+        return out
+    return [int(v)]
+
+
+def py_cv(v):
+    """A Python value of a constant as a C value (NotNative for strings, reals, lists, unions)."""
+    if isinstance(v, bool):
+        return S("1" if v else "0")
+    if isinstance(v, int):
+        if abs(v) >= _I64:
+            raise NotNative(f"the integer {v} does not fit 64 bits")
+        return S(f"INT64_C({v})" if abs(v) > 1 << 30 else str(v))
+    if v == ():
+        return S("0")
+    if isinstance(v, tuple):
+        return Tp([py_cv(x) for x in v])
+    raise NotNative(f"the value {v!r} has no C form")
+
+
+# ---------------------------------------------------------------------------- the module
+class Module:
+    """The C text of one net: encoders, user functions, then one group function per transition."""
+
+    def __init__(self, net, evaluator):
+        self.net = net
+        self.ev = evaluator
+        self.encoders: dict[tuple, str] = {}
+        self.functions: dict[tuple, str] = {}  # (uid, argument shape) -> C name
+        self.fun_decls: dict[int, A.FunDecl] = {d.ref.uid: d for d in net.globals.decls if isinstance(d, A.FunDecl)}
+        self.parts: list[str] = []  # function definitions, in order
+        self.protos: list[str] = []
+        self._n = 0
+
+    def fresh(self, hint: str) -> str:
+        self._n += 1
+        return f"{hint}{self._n}"
+
+    def encoder(self, lay: Layout) -> str:
+        key = tuple(lay.leaves)
+        name = self.encoders.get(key)
+        if name is None:
+            name = self.encoders[key] = f"enc{len(self.encoders)}"
+            args = ", ".join(f"int64_t x{i}" for i in range(len(lay.leaves)))
+            body = []
+            expr = "0"
+            for i, (lo, n) in enumerate(lay.leaves):
+                body.append(f"    if (x{i} < {lo} || x{i} > {lo + n - 1}) return -1;")
+                expr = f"(x{i} - {lo})" if i == 0 else f"({expr} * {n} + (x{i} - {lo}))"
+            body.append(f"    return {expr};")
+            self.protos.append(f"static int64_t {name}({args});")
+            self.parts.append(f"static int64_t {name}({args}) {{\n" + "\n".join(body) + "\n}")
+        return name
+
+    def encode(self, lay: Layout, cv) -> str:
+        """C code of the colour id of value cv in the layout, or -1 if it is not a value of it."""
+        if shape(cv) != lay.shape:
+            raise NotNative("a value's shape differs from its colour set's")
+        return f"{self.encoder(lay)}({', '.join(leaves(cv))})"
+
+    # -- user functions, one C function per argument shape
+    def function(self, uid: int, arg) -> str:
+        key = (uid, shape(arg))
+        name = self.functions.get(key)
+        if name is not None:
+            return name
+        fd = self.fun_decls.get(uid)
+        if fd is None or len(fd.clauses[0].params) != 1:
+            raise NotNative("a function of several curried arguments")
+        name = self.functions[key] = f"uf{uid}_{len(self.functions)}"
+        nargs = len(leaves(arg))
+        params = "".join(f", int64_t a{i}" for i in range(nargs))
+        self.protos.append(f"static int64_t {name}(gctx *c{params});")
+        it = iter(range(nargs))
+
+        def build(sh):
+            return S(f"a{next(it)}") if sh is None else Tp([build(s) for s in sh])
+        argv = build(shape(arg))
+        fx = FunctionC(self, fd.name)
+        lines = []
+        try:
+            for clause in fd.clauses:
+                tests: list[str] = []
+                binds: dict[int, object] = {}
+                fx.match(clause.params[0], argv, tests, binds)
+                lines.append(f"    if ({' && '.join(tests) or '1'}) {{")
+                fx.stmt(clause.body, fx.bind_locals(binds, 2, lines), 2, lines)
+                lines.append("    }")
+        except NotNative:
+            del self.functions[key]
+            raise
+        args = "".join(f", a{i}" for i in range(nargs))
+        self.parts.append(
+            f"static int64_t {name}_body(gctx *c{params}) {{\n" + "\n".join(lines)
+            + "\n    return g_fail(c);\n}\n"
+            f"static int64_t {name}(gctx *c{params}) {{\n"
+            f"    if (c->depth >= {MAX_DEPTH}) return g_fail(c);\n"
+            f"    c->depth++;\n    int64_t r = {name}_body(c{args});\n    c->depth--;\n    return r;\n}}")
+        self.protos.append(f"static int64_t {name}_body(gctx *c{params});")
+        return name
+
+
+class ExprC:
+    """One expression to a C value; `vars` maps transition variables, `locals` function locals to values."""
+
+    def __init__(self, mod: Module, vars_: dict, params: dict):
+        self.mod = mod
+        self.vars = vars_
+        self.params = params
+        self.locals: dict[int, object] = {}
+
+    def with_locals(self, locals_: dict) -> ExprC:
+        e = ExprC(self.mod, self.vars, self.params)
+        e.locals = locals_
+        return e
+
+    def scalar(self, e) -> str:
+        cv = self.cx(e)
+        if not isinstance(cv, S):
+            raise NotNative("a tuple where a scalar is expected")
+        return cv.code
+
+    def cx(self, e):
+        fn = getattr(self, "_c_" + type(e).__name__, None)
+        if fn is None:
+            raise NotNative(f"{type(e).__name__} expressions")
+        return fn(e)
+
+    def _c_Const(self, e):
+        if e.kind in ("int", "bool", "unit"):
+            return py_cv(e.value)
+        raise NotNative(f"{e.kind} constants")
+
+    def _c_Name(self, e):
+        sym = e.ref
+        k = sym.kind
+        if k == "var":
+            return self.vars[sym.name]
+        if k == "local":
+            if sym.uid not in self.locals:
+                raise NotNative("a local that is not a value")
+            return self.locals[sym.uid]
+        if k == "val":
+            return py_cv(self.mod.ev.globals[sym.uid])
+        if k == "param" and sym.uid in self.params:
+            return py_cv(self.params[sym.uid])
+        if k == "con" and sym.data.kind == "enum":
+            return S(str(sym.data.tag))
+        raise NotNative(f"the name {sym.name} ({k})")
+
+    def _c_TupleE(self, e):
+        return Tp([self.cx(x) for x in e.items])
+
+    def _c_RecordE(self, e):
+        return Tp([self.cx(x) for _, x in sorted(e.fields, key=lambda f: f[0])])
+
+    def _c_App(self, e):
+        fn = e.fn
+        if isinstance(fn, A.Select):
+            v = self.cx(e.arg)
+            if not isinstance(v, Tp) or not 0 <= fn.index < len(v.items):
+                raise NotNative("#i of a value that is not a product")
+            return v.items[fn.index]
+        if isinstance(fn, A.Name):
+            sym = fn.ref
+            if sym.kind == "con" and sym.data.kind == "index":
+                cs = self.mod.net.colsets[sym.data.colset]
+                return S(f"g_rng(c, {self.scalar(e.arg)}, {cs.low}, {cs.high})")
+            if sym.kind == "builtin" and sym.name == "not":
+                return S(f"(!{self.scalar(e.arg)})")
+            if sym.kind == "fun":
+                arg = self.cx(e.arg)
+                name = self.mod.function(sym.uid, arg)
+                return S(f"{name}(c{''.join(', ' + x for x in leaves(arg))})")
+        raise NotNative("an application of something other than a function of the model, not or a constructor")
+
+    def _c_Neg(self, e):
+        return S(f"(-{self.scalar(e.operand)})")
+
+    def _c_If(self, e):
+        cond = self.scalar(e.cond)
+        a, b = self.cx(e.then), self.cx(e.else_)
+        if shape(a) != shape(b):
+            raise NotNative("if branches of different shapes")
+
+        def join(x, y):
+            if isinstance(x, S):
+                return S(f"({cond} ? {x.code} : {y.code})")
+            return Tp([join(p, q) for p, q in zip(x.items, y.items)])
+        return join(a, b)
+
+    def _c_BinOp(self, e):
+        op = e.op
+        if op in ("=", "<>"):
+            eq = equal(self.cx(e.left), self.cx(e.right))
+            return S(eq if op == "=" else f"(!{eq})")
+        if op in ("andalso", "orelse", "+", "-", "*", "<", "<=", ">", ">=", "div", "mod"):
+            a, b = self.scalar(e.left), self.scalar(e.right)
+            if op == "div":
+                return S(f"g_div(c, {a}, {b})")
+            if op == "mod":
+                return S(f"g_mod(c, {a}, {b})")
+            cop = {"andalso": "&&", "orelse": "||"}.get(op, op)
+            return S(f"({a} {cop} {b})")
+        raise NotNative(f"the operator {op}")
+
+
+def equal(a, b) -> str:
+    la, lb = leaves(a), leaves(b)
+    if shape(a) != shape(b):
+        raise NotNative("a comparison of values of different shapes")
+    return "(" + " && ".join(f"({x}) == ({y})" for x, y in zip(la, lb)) + ")" if la else "1"
+
+
+class FunctionC:
+    """The body of a model function as C statements (clauses, `if`, `case`, `let val`)."""
+
+    def __init__(self, mod: Module, name: str):
+        self.mod = mod
+        self.name = name
+
+    def match(self, p, cv, tests: list, binds: dict) -> None:
+        if isinstance(p, A.PWild):
+            return
+        if isinstance(p, A.PVar):
+            if p.ref.kind == "con":
+                if p.ref.data.kind != "enum" or not isinstance(cv, S):
+                    raise NotNative("a constructor pattern")
+                tests.append(f"({cv.code}) == {p.ref.data.tag}")
+            else:
+                binds[p.ref.uid] = cv
+            return
+        if isinstance(p, A.PConst):
+            if p.kind not in ("int", "bool", "unit") or not isinstance(cv, S):
+                raise NotNative(f"a {p.kind} pattern")
+            tests.append(f"({cv.code}) == {py_cv(p.value).code}")
+            return
+        if isinstance(p, A.PTuple):
+            if not isinstance(cv, Tp) or len(cv.items) != len(p.items):
+                raise NotNative("a tuple pattern against a value of another shape")
+            for q, x in zip(p.items, cv.items):
+                self.match(q, x, tests, binds)
+            return
+        if isinstance(p, A.PRecord):
+            if not isinstance(cv, Tp) or len(cv.items) != len(p.ty_labels):
+                raise NotNative("a record pattern against a value of another shape")
+            for label, q in p.fields:
+                self.match(q, cv.items[p.ty_labels.index(label)], tests, binds)
+            return
+        if isinstance(p, A.PCon) and p.ref.data.kind == "index":
+            self.match(p.arg, cv, tests, binds)
+            return
+        if isinstance(p, A.PAs):
+            binds[p.ref.uid] = cv
+            self.match(p.pat, cv, tests, binds)
+            return
+        raise NotNative(f"a {type(p).__name__} pattern")
+
+    def bind_locals(self, binds: dict, depth: int, out: list, locals_: dict | None = None) -> dict:
+        """Declare C locals for the values bound by a pattern (each evaluated once)."""
+        locals_ = dict(locals_ or {})
+        pad = "    " * depth
+        for uid, cv in binds.items():
+            def put(x):
+                if isinstance(x, S):
+                    name = self.mod.fresh("l")
+                    out.append(f"{pad}int64_t {name} = {x.code};")
+                    return S(name)
+                return Tp([put(y) for y in x.items])
+            locals_[uid] = put(cv)
+        return locals_
+
+    def stmt(self, e, locals_: dict, depth: int, out: list) -> None:
+        if depth > 40:
+            raise NotNative("functions nested too deeply")
+        pad = "    " * depth
+        ex = ExprC(self.mod, {}, {}).with_locals(locals_)
+        if isinstance(e, A.If):
+            out.append(f"{pad}if ({ex.scalar(e.cond)}) {{")
+            self.stmt(e.then, locals_, depth + 1, out)
+            out.append(f"{pad}}} else {{")
+            self.stmt(e.else_, locals_, depth + 1, out)
+            out.append(f"{pad}}}")
+            return
+        if isinstance(e, A.Case):
+            subj = self.bind_locals({-1: ex.cx(e.subject)}, depth, out)[-1]
+            for pat, body in e.rules:
+                tests: list[str] = []
+                binds: dict = {}
+                self.match(pat, subj, tests, binds)
+                out.append(f"{pad}if ({' && '.join(tests) or '1'}) {{")
+                self.stmt(body, self.bind_locals(binds, depth + 1, out, locals_), depth + 1, out)
+                out.append(f"{pad}}}")
+            out.append(f"{pad}return g_fail(c);")
+            return
+        if isinstance(e, A.Let) and all(isinstance(d, A.ValDecl) for d in e.decls):
+            inner = dict(locals_)
+            out.append(f"{pad}{{")
+            for d in e.decls:
+                v = ExprC(self.mod, {}, {}).with_locals(inner).cx(d.expr)
+                tests: list[str] = []
+                binds: dict = {}
+                self.match(d.pat, v, tests, binds)
+                if tests:
+                    out.append(f"{pad}    if (!({' && '.join(tests)})) return g_fail(c);")
+                inner = self.bind_locals(binds, depth + 1, out, inner)
+            self.stmt(e.body, inner, depth + 1, out)
+            out.append(f"{pad}}}")
+            return
+        out.append(f"{pad}return {ex.scalar(e)};")
+
+
+# ---------------------------------------------------------------------------- transitions
+class TransitionC:
+    """The group function of one transition: its bindings on the markings of the places it reads (in the
+    order of `TransitionCodegen`), then each binding element's effect (as `CompiledEngine._miss`)."""
+
+    def __init__(self, mod: Module, t, k: int, read: list[int], writes: list[int], place_layouts: list):
+        self.mod, self.t, self.k, self.read, self.writes = mod, t, k, read, writes
+        self.pl = place_layouts
+        net = mod.net
+        self.var_lay = []
+        self.vars: dict[str, object] = {}
+        for i, v in enumerate(t.variables):
+            cs = net.colsets[net.variables[v].data]
+            lay = layout(cs)
+            self.var_lay.append(lay)
+            self.vars[v] = S(f"v{i}") if lay.shape is None else lay.decode(f"v{i}")
+        self.ex = ExprC(mod, self.vars, t.params)
+        self.lines: list[str] = []
+        self.depth = 1
+        self.size = 1
+        for lay in self.var_lay:
+            self.size *= lay.size
+        if self.size > MAX_BINDINGS:
+            raise NotNative(f"its variables have more than {MAX_BINDINGS:,} bindings")
+
+    def emit(self, line: str) -> None:
+        self.lines.append("    " * self.depth + line)
+
+    def open(self, line: str) -> None:
+        self.emit(line)
+        self.depth += 1
+
+    # -- binding
+    def assign(self, var: str, cv, from_token: bool) -> None:
+        """Bind variable `var` to value cv (from a token: a value outside its colour set is Python's)."""
+        i = self.t.variables.index(var)
+        lay = self.var_lay[i]
+        if lay.shape is None:
+            if not isinstance(cv, S):
+                raise NotNative("a tuple bound to a scalar variable")
+            self.emit(f"v{i} = {cv.code};")
+        else:
+            self.emit(f"v{i} = {self.mod.encode(lay, cv)};")
+            self.emit(f"if (v{i} < 0) {'FAIL' if from_token else 'continue'};")
+
+    def match(self, e, src, bound: set) -> None:
+        if B.is_var(e):
+            if e.name in bound:
+                self.emit(f"if (!{equal(self.vars[e.name], src)}) continue;")
+            else:
+                self.assign(e.name, src, True)
+                bound.add(e.name)
+            return
+        if isinstance(e, (A.TupleE, A.RecordE)):
+            items = e.items if isinstance(e, A.TupleE) else [x for _, x in sorted(e.fields, key=lambda f: f[0])]
+            if not isinstance(src, Tp) or len(src.items) != len(items):
+                raise NotNative("a tuple pattern against a value of another shape")
+            for x, s in zip(items, src.items):
+                self.match(x, s, bound)
+            return
+        if isinstance(e, A.App) and B.is_constructor_fn(e.fn):
+            if e.fn.ref.data.kind != "index":
+                raise NotNative("a union constructor pattern")
+            self.match(e.arg, src, bound)
+            return
+        if isinstance(e, (A.ListE,)) or (isinstance(e, A.BinOp) and e.op == "::"):
+            raise NotNative("a list pattern")
+        self.emit(f"if (!{equal(src, self.ex.cx(e))}) continue;")
+
+    def token(self, pi: int, code: str):
+        return self.pl[self.read[pi]].decode(code)
+
+    def generate(self) -> str:
+        t = self.t
+        self.in_terms = plan.input_terms(t, self.read)
+        for it in self.in_terms:
+            if it.term.opaque is not None:
+                raise NotNative("an input arc's inscription is a multiset expression")
+        steps = plan.binding_plan(self.in_terms, t.guards, t.variables, t.free)
+        conj = B.guard_conjuncts(t.guards)
+        nv = len(t.variables)
+        head = [f"static int bind{self.k}(gctx *c, const uint32_t *key) {{"]
+        for i, p in enumerate(self.read):
+            head.append(f"    const int32_t *M{i} = c->mk[{p}].pairs + c->mk[{p}].off[key[{i}]];")
+            head.append(f"    const int32_t N{i} = c->mk[{p}].len[key[{i}]];")
+            head.append(f"    (void)M{i}; (void)N{i};")
+        for i in range(nv):
+            head.append(f"    int64_t v{i} = 0;")
+        head.append("    c->nb = 0;")
+        self.open("do {")
+        bound: set[str] = set()
+        self.loop_token: dict[int, str] = {}
+        for step in steps:
+            if isinstance(step, plan.Test):
+                self.emit(f"if (!({self.ex.scalar(conj[step.guard])})) continue;")
+            elif isinstance(step, plan.Loop):
+                it = self.in_terms[step.term]
+                j = self.mod.fresh("j")
+                tok = self.mod.fresh("t")
+                self.open(f"for (int32_t {j} = 0; {j} < N{it.place}; {j}++) {{")
+                self.emit(f"const int64_t {tok} = M{it.place}[2 * {j}];")
+                self.loop_token[step.term] = tok
+                self.match(it.term.value, self.token(it.place, tok), bound)
+            elif isinstance(step, plan.Bind):
+                tok = self.ex.cx(step.expr)
+                self.match_bind(step.pattern, tok, bound)
+                for v in sorted(step.new):
+                    self.check_member(v)
+            else:
+                i = t.variables.index(step.var)
+                lay = self.var_lay[i]
+                j = self.mod.fresh("e")
+                self.open(f"for (int64_t {j} = 0; {j} < {lay.size}; {j}++) {{")
+                self.emit(f"v{i} = {j}{'' if lay.shape is not None or lay.leaves[0][0] == 0 else f' + {lay.leaves[0][0]}'};")
+                bound.add(step.var)
+        self.consumption_tests()
+        self.inhibitor_tests()
+        self.emit(f"if (g_grow((void **)&c->bind, &c->bind_cap, c->nb + {max(nv, 1)}, 8)) {{ c->err = 2; goto done; }}")
+        for i in range(nv):
+            self.emit(f"c->bind[c->nb + {i}] = v{i};")
+        self.emit(f"c->nb += {max(nv, 1)};")
+        while self.depth > 2:
+            self.depth -= 1
+            self.emit("}")
+        self.depth = 1
+        self.emit("} while (0);")
+        self.lines.append("done:")
+        self.lines.append("    return c->err ? -1 : 0;")
+        self.lines.append("}")
+        body = "\n".join(head + self.lines)
+        self.lines = []
+        return body + "\n" + self.recipe() + "\n" + self.group()
+
+    def match_bind(self, e, src, bound: set) -> None:
+        """A guard binder `pattern = e`: as `match`, but a value outside a variable's colour set only
+        skips the binding (`check_member`)."""
+        if B.is_var(e) and e.name not in bound:
+            self.assign(e.name, src, False)
+            bound.add(e.name)
+            return
+        if isinstance(e, (A.TupleE, A.RecordE)) and isinstance(src, Tp):
+            items = e.items if isinstance(e, A.TupleE) else [x for _, x in sorted(e.fields, key=lambda f: f[0])]
+            if len(items) != len(src.items):
+                raise NotNative("a tuple pattern against a value of another shape")
+            for x, s in zip(items, src.items):
+                self.match_bind(x, s, bound)
+            return
+        self.match(e, src, bound)
+
+    def check_member(self, var: str) -> None:
+        i = self.t.variables.index(var)
+        lay = self.var_lay[i]
+        if lay.shape is None:
+            lo, n = lay.leaves[0]
+            self.emit(f"if (v{i} < {lo} || v{i} > {lo + n - 1}) continue;")
+
+    def value_code(self, term, k):
+        """The value of an input term (the token itself for a looped pattern), as (C value, colour id)."""
+        return self.ex.cx(term.value)
+
+    def consumption_tests(self) -> None:
+        per_place: dict[int, list] = {}
+        for k, it in enumerate(self.in_terms):
+            per_place.setdefault(it.place, []).append((k, it.term))
+        for pi in range(len(self.read)):
+            entries = per_place.get(pi)
+            if not entries:
+                continue
+            lay = self.pl[self.read[pi]]
+            k, term = entries[0]
+            if len(entries) == 1 and k in self.loop_token and term.coef is None and not term.cond \
+                    and B.is_pattern(term.value):
+                continue
+            if len(entries) == 1 and not term.cond:
+                col = self.mod.fresh("col")
+                if term.coef is None:
+                    self.emit(f"{{ const int64_t {col} = {self.mod.encode(lay, self.ex.cx(term.value))};")
+                    self.emit(f"  if ({col} < 0 || ms_count(M{pi}, N{pi}, {col}) == 0) continue; }}")
+                else:
+                    n = self.mod.fresh("n")
+                    self.emit(f"{{ const int64_t {n} = {self.ex.scalar(term.coef)};")
+                    self.emit(f"  if ({n} < 0) FAIL;")
+                    self.emit(f"  const int64_t {col} = {self.mod.encode(lay, self.ex.cx(term.value))};")
+                    self.emit(f"  if ({n} && ({col} < 0 || ms_count(M{pi}, N{pi}, {col}) < {n})) continue; }}")
+                continue
+            buf = self.mod.fresh("cb")
+            cnt = self.mod.fresh("cn")
+            self.emit(f"int32_t {buf}[{2 * len(entries)}]; int32_t {cnt} = 0; (void){buf};")
+            for _k, term in entries:
+                self.accumulate(term, lay, buf, cnt, "continue")
+            self.emit(f"if (!g_enough(M{pi}, N{pi}, {buf}, {cnt})) continue;")
+
+    def accumulate(self, term, lay, buf: str, cnt: str, outside: str, check_all: bool = False) -> None:
+        """`c[v] = c.get(v, 0) + n` for one term; a value outside the colour set with n > 0 (with any n if
+        `check_all`, as the engine checks every produced token): `outside`."""
+        opened = 0
+        for ce, pol in term.cond:
+            self.open(f"if ({'' if pol else '!'}({self.ex.scalar(ce)})) {{")
+            opened += 1
+        n = self.mod.fresh("n")
+        col = self.mod.fresh("col")
+        self.emit(f"{{ const int64_t {n} = {'1' if term.coef is None else self.ex.scalar(term.coef)};")
+        self.emit(f"  if ({n} < 0) FAIL;")
+        if check_all:
+            self.emit(f"  {{ const int64_t {col} = {self.mod.encode(lay, self.ex.cx(term.value))};")
+            self.emit(f"    if ({col} < 0) {outside}; else if ({n}) {cnt} = g_acc({buf}, {cnt}, {col}, {n}); }} }}")
+        else:
+            self.emit(f"  if ({n}) {{ const int64_t {col} = {self.mod.encode(lay, self.ex.cx(term.value))};")
+            self.emit(f"    if ({col} < 0) {outside}; else {cnt} = g_acc({buf}, {cnt}, {col}, {n}); }} }}")
+        for _ in range(opened):
+            self.depth -= 1
+            self.emit("}")
+
+    def inhibitor_tests(self) -> None:
+        for a in self.t.arcs:
+            if not a.kind.blocks:
+                continue
+            pi = self.read.index(a.place)
+            if a.expr is None:
+                self.emit(f"if (N{pi}) continue;")
+                continue
+            terms = plan.terms(a.expr)
+            if any(tm.opaque is not None for tm in terms):
+                raise NotNative("an inhibitor arc's inscription is a multiset expression")
+            lay = self.pl[a.place]
+            buf, cnt, miss = self.mod.fresh("ib"), self.mod.fresh("in"), self.mod.fresh("im")
+            self.emit(f"{{ int32_t {buf}[{2 * len(terms) + 2}]; int32_t {cnt} = 0; int {miss} = 0; (void){buf};")
+            self.depth += 1
+            for tm in terms:
+                self.accumulate(tm, lay, buf, cnt, f"{miss} = 1")
+            self.emit(f"int any = {miss}; for (int32_t q = 0; q < {cnt}; q++) any |= {buf}[2 * q + 1] != 0;")
+            self.emit(f"if (!any) {{ if (N{pi}) continue; }}")
+            self.emit(f"else if (!{miss} && g_enough(M{pi}, N{pi}, {buf}, {cnt})) continue;")
+            self.depth -= 1
+            self.emit("}")
+
+    # -- a binding element's effect: its deltas, in the order `_recipe` and `_flat_recipe` intern them
+    def recipe(self) -> str:
+        t = self.t
+        self.depth = 1
+        self.lines = [f"static int rcp{self.k}(gctx *c, const int64_t *v, int64_t be) {{"]
+        for i in range(len(t.variables)):
+            self.emit(f"const int64_t v{i} = v[{i}]; (void)v{i};")
+        # produced tokens, per place, in arc and term order (all checked before any delta is interned)
+        produced: dict[int, tuple[str, str]] = {}
+        out_terms: dict[int, list] = {}
+        for a in t.arcs:
+            if a.kind.produces and a.expr is not None:
+                out_terms.setdefault(a.place, []).extend(plan.terms(a.expr))
+        for p, terms in out_terms.items():
+            if any(tm.opaque is not None for tm in terms):
+                raise NotNative("an output arc's inscription is a multiset expression")
+            buf, cnt = self.mod.fresh("pb"), self.mod.fresh("pn")
+            self.emit(f"int32_t {buf}[{2 * len(terms) + 2}]; int32_t {cnt} = 0; (void){buf};")
+            produced[p] = (buf, cnt)
+            for tm in terms:
+                self.accumulate(tm, self.pl[p], buf, cnt, "FAIL", check_all=True)
+        consumed: dict[int, list] = {}
+        for it in plan.input_terms(t, self.read):
+            consumed.setdefault(it.place, []).append(it.term)
+        width = 3 * len(self.read) + len(self.writes)
+        self.emit(f"if (g_grow((void **)&c->pool, &c->pool_cap, c->npool + {max(width, 1)}, 4)) {{ c->err = 2; goto done; }}")
+        self.emit("int32_t *r = c->pool + c->npool;")
+        resets = {a.place for a in t.arcs if a.kind.empties}
+        for i, p in enumerate(self.read):
+            terms = consumed.get(i, [])
+            if terms:
+                buf, cnt = self.mod.fresh("cb"), self.mod.fresh("cn")
+                self.emit(f"int32_t {buf}[{2 * len(terms) + 2}]; int32_t {cnt} = 0; (void){buf};")
+                for tm in terms:
+                    self.accumulate(tm, self.pl[p], buf, cnt, "FAIL")
+                self.emit(f"r[{3 * i}] = {cnt} ? (int32_t)g_delta(c, {p}, {buf}, {cnt}) : -1;")
+            else:
+                self.emit(f"r[{3 * i}] = -1;")
+            if p in produced:
+                buf, cnt = produced[p]
+                self.emit(f"r[{3 * i + 1}] = {cnt} ? (int32_t)g_delta(c, {p}, {buf}, {cnt}) : -1;")
+            else:
+                self.emit(f"r[{3 * i + 1}] = -1;")
+            self.emit(f"r[{3 * i + 2}] = {1 if p in resets else 0};")
+        base = 3 * len(self.read)
+        for w, p in enumerate(self.writes):
+            buf, cnt = produced.get(p, ("NULL", "0"))
+            self.emit(f"r[{base + w}] = {cnt} ? (int32_t)g_delta(c, {p}, {buf}, {cnt}) : -2;")
+        for w, p in enumerate(self.writes):  # the empty delta of a written place this binding leaves alone
+            self.emit(f"if (r[{base + w}] == -2) r[{base + w}] = (int32_t)g_delta(c, {p}, NULL, 0);")
+        self.emit("if (c->err) goto done;")
+        self.emit("c->rcp[be] = c->npool;")
+        self.emit(f"c->npool += {max(width, 1)};")
+        self.lines.append("done:")
+        self.lines.append("    return c->err ? -1 : 0;")
+        self.lines.append("}")
+        return "\n".join(self.lines)
+
+    def group(self) -> str:
+        nv, nr, nw = len(self.t.variables), len(self.read), len(self.writes)
+        width = 1 + nr + nw
+        lines = [f"static int grp{self.k}(gctx *c, nd_search *d, const uint32_t *key) {{",
+                 "    c->err = 0;",
+                 f"    if (bind{self.k}(c, key)) return c->err == 2 ? -2 : -1;",
+                 f"    const int64_t nb = c->nb / {max(nv, 1)};",
+                 f"    if (g_grow((void **)&c->out, &c->out_cap, nb * {width} + 1, 4)) return -2;",
+                 "    for (int64_t b = 0; b < nb; b++) {",
+                 f"        const int64_t *v = c->bind + b * {max(nv, 1)};",
+                 "        int64_t bk = 0, x;",
+                 "        (void)v; (void)x;"]
+        for i, lay in enumerate(self.var_lay):
+            lo = lay.leaves[0][0] if lay.shape is None else 0
+            lines.append(f"        x = v[{i}] - {lo}; if (x < 0 || x >= {lay.size}) return -1;")
+            lines.append(f"        bk = bk * {lay.size} + x;")
+        lines += [
+            "        int fresh;",
+            f"        int64_t be = g_be(c, {self.t.index}, bk, &fresh);",
+            "        if (c->err) return c->err == 2 ? -2 : -1;",
+            f"        if (c->rcp[be] < 0 && rcp{self.k}(c, v, be)) return c->err == 2 ? -2 : -1;",
+            f"        int32_t *e = c->out + b * {width};",
+            "        e[0] = (int32_t)be;",
+        ]
+        for i, p in enumerate(self.read):
+            lines += [
+                "        {",
+                f"            const int32_t *r = c->pool + c->rcp[be] + {3 * i};",
+                f"            int64_t nid = r[2] ? 0 : key[{i}];",
+                f"            if (r[0] >= 0 && !r[2]) nid = g_apply(c, {p}, nid, r[0], -1);",
+                f"            if (!c->err && r[1] >= 0) nid = g_apply(c, {p}, nid, r[1], 1);",
+                "            if (c->err) return c->err == 2 ? -2 : -1;",
+                f"            e[{1 + i}] = (int32_t)nid;",
+                "        }"]
+        for w in range(nw):
+            lines.append(f"        e[{1 + nr + w}] = c->pool[c->rcp[be] + {3 * nr + w}];")
+        lines += ["    }",
+                  f"    return nd_put_group(d, {self.k}, key, nb, c->out) ? -2 : 0;",
+                  "}"]
+        return "\n".join(lines)
+
+
+# ---------------------------------------------------------------------------- the net
+CDEF = """
+void *gen_new(void);
+void gen_free(void *g);
+void nd_set_gen(nd_search *d, void *g);
+int64_t gen_count(void *g, int what, int p);
+int32_t gen_ms_len(void *g, int what, int p, int64_t id);
+int32_t *gen_ms_pairs(void *g, int what, int p, int64_t id);
+int64_t gen_ms_put(void *g, int what, int p, const int32_t *pr, int32_t n);
+int64_t gen_be_key(void *g, int64_t be, int32_t *t);
+int64_t gen_be_put(void *g, int t, int64_t key);
+"""
+
+
+@dataclass
+class NativeCode:
+    """The C of a net's transitions (`source`, to be compiled after the native search's C with
+    ``ND_GENERATED`` defined) and the exchange of tables with the Python engine."""
+
+    source: str
+    native: list[int]  # transitions compiled to C
+    left: dict[int, str]  # transitions left to the Python engine: why
+    layouts: list[Layout]  # per place
+    var_layouts: dict[int, list[Layout]]  # per native transition
+    cdef: str = ""
+
+    def to_c(self, engine, lib, ctx) -> None:
+        """Copy the engine's markings, deltas and binding elements that the C tables do not have yet."""
+        ffi, lib = lib.ffi, lib.lib
+        P = len(engine.places)
+        for what, tables in ((0, engine.store.dicts), (1, engine._deltas)):
+            for p in range(P):
+                index = self.layouts[p].index
+                have = lib.gen_count(ctx, what, p)
+                for i in range(have, len(tables[p])):
+                    d = tables[p][i]
+                    flat = []
+                    for v, n in d.items():
+                        flat += (index[v], n)
+                    got = lib.gen_ms_put(ctx, what, p, ffi.new("int32_t[]", flat or [0]), len(d))
+                    if got != i:
+                        raise RuntimeError(f"native tables out of step with the engine (place {p}, {got} != {i})")
+        have = lib.gen_count(ctx, 2, 0)
+        for i in range(have, len(engine._be)):
+            t, vals = engine._be[i]
+            got = lib.gen_be_put(ctx, t, self._be_key(t, vals))
+            if got != i:
+                raise RuntimeError(f"native binding elements out of step with the engine ({got} != {i})")
+
+    def _be_key(self, t: int, vals: tuple) -> int:
+        lays = self.var_layouts.get(t)
+        if lays is None:
+            return -1
+        key = 0
+        for lay, v in zip(lays, vals):
+            cid = lay.index.get(v)
+            if cid is None:
+                return -1
+            key = key * lay.size + cid
+        return key
+
+    def to_python(self, engine, lib, ctx) -> None:
+        """Copy the markings, deltas and binding elements C made into the engine's tables (same ids)."""
+        ffi, lib = lib.ffi, lib.lib
+        P = len(engine.places)
+        store = engine.store
+        for what in (0, 1):
+            for p in range(P):
+                vals = self.layouts[p].values
+                have = len(store.dicts[p]) if what == 0 else len(engine._deltas[p])
+                total = lib.gen_count(ctx, what, p)
+                for i in range(have, total):
+                    n = lib.gen_ms_len(ctx, what, p, i)
+                    flat = ffi.unpack(lib.gen_ms_pairs(ctx, what, p, i), 2 * n)
+                    d = {vals[flat[j]]: flat[j + 1] for j in range(0, 2 * n, 2)}
+                    got = store.intern(p, d) if what == 0 else engine._delta(p, d)
+                    if got != i:
+                        raise RuntimeError(f"native tables out of step with the engine (place {p}, {got} != {i})")
+        total = lib.gen_count(ctx, 2, 0)
+        tp = ffi.new("int32_t *")
+        for i in range(len(engine._be), total):
+            key = lib.gen_be_key(ctx, i, tp)
+            t = tp[0]
+            vals = []
+            for lay in reversed(self.var_layouts[t]):
+                key, cid = divmod(key, lay.size)
+                vals.append(lay.values[cid])
+            if engine._intern_be(t, tuple(reversed(vals))) != i:
+                raise RuntimeError("native binding elements out of step with the engine")
+
+
+def _runtime() -> str:
+    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "_cnet.c")) as f:
+        return f.read()
+
+
+def native_code(engine) -> NativeCode:
+    """The C of an untimed net's transitions (NotNative if no place marking can be held in C)."""
+    net = engine.net
+    if net.is_timed:
+        raise NotNative("the net is timed")
+    layouts = []
+    for p in net.places:
+        try:
+            layouts.append(layout(p.colour_set))
+        except NotNative as exc:
+            raise NotNative(f"place '{p.name}': {exc}") from None
+    mod = Module(net, engine.ev)
+    bodies: dict[int, str] = {}
+    left: dict[int, str] = {}
+    var_layouts: dict[int, list[Layout]] = {}
+    for k, info in enumerate(engine._plan):
+        t = info.t
+        saved = (len(mod.parts), len(mod.protos), dict(mod.functions), dict(mod.encoders))
+        try:
+            tc = TransitionC(mod, t, k, list(info.read), list(info.writes), layouts)
+            bodies[k] = tc.generate()
+            var_layouts[t.index] = tc.var_lay
+        except (NotNative, plan.Unbindable) as exc:
+            left[t.index] = str(exc) or type(exc).__name__
+            del mod.parts[saved[0]:]
+            del mod.protos[saved[1]:]
+            mod.functions, mod.encoders = saved[2], saved[3]
+    sizes = ", ".join(str(1 if k not in bodies else _size(var_layouts[engine._plan[k].t.index]))
+                      for k in range(len(engine._plan)))
+    dispatch = "\n".join(f"    case {k}: return grp{k}(c, d, key);" for k in bodies)
+    src = "\n".join([
+        "#define FAIL do { c->err = 1; goto done; } while (0)",
+        _runtime(),
+        "static int64_t g_rng(gctx *c, int64_t x, int64_t lo, int64_t hi) { if (x < lo || x > hi) c->err = 1; return x; }",
+        *mod.protos,
+        *mod.parts,
+        *bodies.values(),
+        "static int gen_group(void *g, nd_search *d, int k, const uint32_t *key) {",
+        "    gctx *c = (gctx *)g;",
+        "    (void)c; (void)d; (void)key;",
+        "    switch (k) {",
+        dispatch,
+        "    default: return -1;",
+        "    }",
+        "}",
+        "static int64_t gen_add(void *g, uint32_t p, uint32_t did, uint32_t old) {",
+        "    gctx *c = (gctx *)g;",
+        "    c->err = 0;",
+        "    int64_t r = g_apply(c, (int)p, old, did, 1);",
+        "    return c->err ? -1 : r;",
+        "}",
+        "void *gen_new(void) {",
+        f"    static const int64_t sizes[] = {{{sizes or '0'}}};",
+        f"    return g_new({len(net.places)}, {len(engine._plan)}, sizes);",
+        "}",
+    ])
+    return NativeCode(src, sorted(engine._plan[k].t.index for k in bodies), left, layouts, var_layouts, CDEF)
+
+
+def _size(lays) -> int:
+    n = 1
+    for lay in lays:
+        n *= lay.size
+    return n
