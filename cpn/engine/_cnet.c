@@ -269,6 +269,14 @@ int32_t *gen_ms_pairs(void *g, int what, int p, int64_t id) {
     return t->pairs + t->off[id];
 }
 
+/* The table's arrays: where each multiset starts in `pairs`, its length, and the pairs themselves. */
+int64_t gen_ms_table(void *g, int what, int p, int64_t **off, int32_t **len, int32_t **pairs) {
+    gctx *c = (gctx *)g;
+    mstab *t = &(what ? c->dl : c->mk)[p];
+    *off = t->off; *len = t->len; *pairs = t->pairs;
+    return t->n;
+}
+
 int64_t gen_ms_put(void *g, int what, int p, const int32_t *pr, int32_t n) {
     gctx *c = (gctx *)g;
     return ms_intern(&(what ? c->dl : c->mk)[p], pr, n);

@@ -44,8 +44,9 @@ from cpn.values.colours import AliasCS, BoolCS, EnumCS, IndexCS, IntCS, ProductC
 MAX_COLOURS: int = 1 << 20
 #: a transition whose variables have more bindings than this is left to Python (one slot each)
 MAX_BINDINGS: int = 1 << 22
-#: user functions nested deeper than this at run time are left to Python (its recursion limit decides)
-MAX_DEPTH: int = 200
+#: calls of model functions nested deeper than this are left to the Python engine (which computes them or
+#: reports its own recursion limit, reached at 120 to 150 levels of a simple recursion)
+MAX_DEPTH: int = 64
 _I64 = 1 << 62
 
 
@@ -835,6 +836,7 @@ void nd_set_gen(nd_search *d, void *g);
 int64_t gen_count(void *g, int what, int p);
 int32_t gen_ms_len(void *g, int what, int p, int64_t id);
 int32_t *gen_ms_pairs(void *g, int what, int p, int64_t id);
+int64_t gen_ms_table(void *g, int what, int p, int64_t **off, int32_t **len, int32_t **pairs);
 int64_t gen_ms_put(void *g, int what, int p, const int32_t *pr, int32_t n);
 int64_t gen_be_key(void *g, int64_t be, int32_t *t);
 int64_t gen_be_put(void *g, int t, int64_t key);
@@ -893,18 +895,24 @@ class NativeCode:
         ffi, lib = lib.ffi, lib.lib
         P = len(engine.places)
         store = engine.store
+        offp, lenp, pairp = ffi.new("int64_t **"), ffi.new("int32_t **"), ffi.new("int32_t **")
         for what in (0, 1):
             for p in range(P):
                 vals = self.layouts[p].values
                 have = len(store.dicts[p]) if what == 0 else len(engine._deltas[p])
-                total = lib.gen_count(ctx, what, p)
-                for i in range(have, total):
-                    n = lib.gen_ms_len(ctx, what, p, i)
-                    flat = ffi.unpack(lib.gen_ms_pairs(ctx, what, p, i), 2 * n)
-                    d = {vals[flat[j]]: flat[j + 1] for j in range(0, 2 * n, 2)}
-                    got = store.intern(p, d) if what == 0 else engine._delta(p, d)
-                    if got != i:
-                        raise RuntimeError(f"native tables out of step with the engine (place {p}, {got} != {i})")
+                total = lib.gen_ms_table(ctx, what, p, offp, lenp, pairp)
+                if total == have:
+                    continue
+                offs = ffi.unpack(offp[0] + have, total - have)
+                lens = ffi.unpack(lenp[0] + have, total - have)
+                start = offs[0]
+                pairs = ffi.unpack(pairp[0] + start, offs[-1] + 2 * lens[-1] - start)
+                put = store.intern if what == 0 else engine._delta
+                for i, o, n in zip(range(have, total), offs, lens):
+                    o -= start
+                    d = dict(zip([vals[c] for c in pairs[o:o + 2 * n:2]], pairs[o + 1:o + 2 * n:2]))
+                    if put(p, d) != i:
+                        raise RuntimeError(f"native tables out of step with the engine (place {p}, id {i})")
         total = lib.gen_count(ctx, 2, 0)
         tp = ffi.new("int32_t *")
         for i in range(len(engine._be), total):

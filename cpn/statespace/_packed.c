@@ -3,6 +3,8 @@
  * A state is a record of `nf` unsigned fields; field f is w[f] bytes wide (1, 2, 4 or 8, little-endian
  * as the caller packs it). Record i lives at arena + i * W. The table holds id + 1 per slot (0: empty),
  * linear probing, at most three quarters full; it is rebuilt from the arena when it grows or the widths change.
+ * Below 2^24 - 1 records a slot keeps the top 8 bits of the record's hash above its 24-bit id + 1, so that
+ * a probe compares a record (a likely cache miss in the arena) only when those bits agree.
  */
 #include <stdint.h>
 #include <stdlib.h>
@@ -16,7 +18,14 @@ typedef struct {
     int64_t n, cap;
     uint32_t *table;
     uint64_t mask;
+    int tagged;              /* slots carry 8 bits of hash (fewer than CS_TAG_LIMIT records) */
 } cs_store;
+
+#define CS_TAG_LIMIT ((int64_t)0xFFFFFE)
+
+static inline uint32_t cs_slot(const cs_store *s, int64_t id, uint64_t h) {
+    return s->tagged ? (uint32_t)(id + 1) | ((uint32_t)(h >> 56) << 24) : (uint32_t)(id + 1);
+}
 
 static uint64_t cs_hash(const uint8_t *r, int W) {
     uint64_t h = 0x9E3779B97F4A7C15ULL ^ (uint64_t)W;
@@ -41,10 +50,11 @@ static int cs_rehash(cs_store *s, uint64_t size) {
     uint32_t *t = (uint32_t *)calloc(size, sizeof(uint32_t));
     if (!t) return -1;
     uint64_t mask = size - 1;
+    s->tagged = s->n < CS_TAG_LIMIT;
     for (int64_t i = 0; i < s->n; i++) {
-        uint64_t h = cs_hash(s->arena + i * s->W, s->W) & mask;
+        uint64_t hh = cs_hash(s->arena + i * s->W, s->W), h = hh & mask;
         while (t[h]) h = (h + 1) & mask;
-        t[h] = (uint32_t)(i + 1);
+        t[h] = cs_slot(s, i, hh);
     }
     free(s->table);
     s->table = t;
@@ -70,9 +80,22 @@ void cs_free(cs_store *s) {
     free(s->w); free(s->arena); free(s->table); free(s);
 }
 
-static int64_t cs_lookup(cs_store *s, const uint8_t *r, uint64_t *slot) {
-    uint64_t h = cs_hash(r, s->W) & s->mask;
+static int64_t cs_lookup(cs_store *s, const uint8_t *r, uint64_t *slot, uint64_t *hash) {
+    uint64_t hh = cs_hash(r, s->W), h = hh & s->mask;
     int W = s->W;
+    *hash = hh;
+    if (s->tagged) {
+        uint32_t tag = (uint32_t)(hh >> 56);
+        for (;;) {
+            uint32_t e = s->table[h];
+            if (!e) { *slot = h; return -1; }
+            if ((e >> 24) == tag) {
+                int64_t id = (int64_t)(e & 0xFFFFFF) - 1;
+                if (memcmp(s->arena + id * W, r, (size_t)W) == 0) return id;
+            }
+            h = (h + 1) & s->mask;
+        }
+    }
     for (;;) {
         uint32_t e = s->table[h];
         if (!e) { *slot = h; return -1; }
@@ -82,8 +105,8 @@ static int64_t cs_lookup(cs_store *s, const uint8_t *r, uint64_t *slot) {
 }
 
 int64_t cs_find(cs_store *s, const uint8_t *r) {
-    uint64_t slot;
-    return cs_lookup(s, r, &slot);
+    uint64_t slot, hash;
+    return cs_lookup(s, r, &slot, &hash);
 }
 
 /* Insert n records (packed one after the other); ids[k] receives record k's id. The positions k of the
@@ -94,8 +117,8 @@ int64_t cs_add_many(cs_store *s, const uint8_t *recs, int64_t n, int32_t *ids, i
     int W = s->W;
     for (int64_t k = 0; k < n; k++) {
         const uint8_t *r = recs + k * W;
-        uint64_t slot;
-        int64_t id = cs_lookup(s, r, &slot);
+        uint64_t slot, hash;
+        int64_t id = cs_lookup(s, r, &slot, &hash);
         if (id < 0) {
             if (s->n >= 0x7FFFFFFE) return -1;
             if (s->n == s->cap) {
@@ -106,7 +129,10 @@ int64_t cs_add_many(cs_store *s, const uint8_t *recs, int64_t n, int32_t *ids, i
             }
             memcpy(s->arena + s->n * W, r, (size_t)W);
             id = s->n++;
-            s->table[slot] = (uint32_t)(id + 1);
+            s->table[slot] = cs_slot(s, id, hash);
+            if (s->tagged && s->n >= CS_TAG_LIMIT) {  /* ids outgrow 24 bits: plain slots from now on */
+                if (cs_rehash(s, s->mask + 1) != 0) return -1;
+            }
             if ((uint64_t)s->n * 4 > (s->mask + 1) * 3) {
                 if (cs_rehash(s, (s->mask + 1) * 2) != 0) return -1;
             }

@@ -308,6 +308,10 @@ int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs) {
 void nd_clear_batch(nd_search *d) { d->narcs = 0; d->noff = 0; d->nnew = 0; }
 void nd_set_be32(nd_search *d) { d->be32 = 1; }
 void nd_set_gen(nd_search *d, void *g) { d->gen = g; }
+/* Go on from where another search over the same states stopped (its store copied into this one's). */
+void nd_resume(nd_search *d, int64_t head, int64_t level_end, int64_t levels, int64_t total_arcs, int be32) {
+    d->head = head; d->level_end = level_end; d->levels = levels; d->total_arcs = total_arcs; d->be32 = be32;
+}
 int64_t nd_head(nd_search *d) { return d->head; }
 int64_t nd_levels(nd_search *d) { return d->levels; }
 int64_t nd_level_end(nd_search *d) { return d->level_end; }

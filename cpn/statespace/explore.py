@@ -196,8 +196,7 @@ class Explorer:
         """The same search as `_search`, its loop in C (`cpn.statespace.native`)."""
         opts = self.options
         self._queue = None
-        search = native.NativeSearch(self.engine, g, s0, opts)
-        self._notes.extend(search.notes)
+        search = native.NativeSearch(self.engine, g, s0, opts, self._notes)
         max_states = opts.max_states if opts.max_states is not None else 1 << 62
         max_arcs = opts.max_arcs if opts.max_arcs is not None else 1 << 62
         until = CHECK_EVERY

@@ -21,6 +21,7 @@ uses the Python loop.
 
 from __future__ import annotations
 
+import gc
 import os
 from array import array
 
@@ -38,6 +39,7 @@ int nd_put_add(nd_search *d, uint32_t p, uint32_t delta, uint32_t old, uint32_t 
 int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs);
 void nd_clear_batch(nd_search *d);
 void nd_set_be32(nd_search *d);
+void nd_resume(nd_search *d, int64_t head, int64_t level_end, int64_t levels, int64_t total_arcs, int be32);
 int64_t nd_head(nd_search *d);
 int64_t nd_levels(nd_search *d);
 int64_t nd_level_end(nd_search *d);
@@ -54,6 +56,12 @@ int64_t nd_nrequests(nd_search *d);
 uint32_t *nd_requests(nd_search *d);
 int64_t nd_cache_bytes(nd_search *d);
 """
+
+#: `auto` builds the net's C once the search has expanded this many states, or GENERATE_PER_LINE times the
+#: lines of C if that is more (a large net's C takes seconds to compile), or once each state needs the
+#: engine more than once on average (its results rarely recur: DP)
+GENERATE_AFTER: int = 16_384
+GENERATE_PER_LINE: int = 4
 
 ND_DONE, ND_CHECK, ND_MAX_STATES, ND_MAX_ARCS, ND_NEED, _, ND_WIDE_BE = range(7)
 _U32 = 1 << 32
@@ -108,44 +116,96 @@ def unavailable(engine, options, s0) -> str | None:
     return None
 
 
+class _Snapshot:
+    """What a search being replaced leaves to its successor: its store and where it stands."""
+
+    def __init__(self, search):
+        self.lib, self.ffi, self.store = search.lib, search.ffi, search.store
+        self.handle = search.handle  # kept alive while the states are copied
+        self.head, self.level_end, self.levels, self.n_arcs = (search.head, search.level_end, search.levels,
+                                                               search.n_arcs)
+
+
 class NativeSearch:
     """One native breadth-first search filling a `StateGraph` (see the module's docstring)."""
 
-    def __init__(self, engine, graph, s0, options=None):
-        self.code, self.notes = generated(engine, options) if options is not None else (None, [])
-        lib = library(self.code) if self.code is not None else None
-        if self.code is not None and lib is None:
-            self.notes = [f"the C of the net's transitions could not be built ({why_unavailable()}): the Python "
-                          "engine computes every transition's bindings"]
-            self.code = None
-        if lib is None:
-            lib = library()
-        self.native_lib = lib
-        self.ffi, self.lib = lib.ffi, lib.lib
+    def __init__(self, engine, graph, s0, options=None, notes: list[str] | None = None):
         self.engine = engine
+        self.graph = graph
+        self.notes = notes if notes is not None else []
         self.tg = engine.successor_groups()
         self.tg.caller_caches()
         self.round_trips = 0  # returns to Python for what the caches miss
-        self.graph = graph
-        graph.store = self.store = PackedStore(lib, s0, widths=[4] * len(s0))
+        self.code, self._code_notes = generated(engine, options) if options is not None else (None, [])
+        self.gen = None
+        if self.code is None:
+            self.notes.extend(self._code_notes)
+        # `--backend c` builds the net's C at once; `auto` once the search is large enough to repay it
+        self.generate_after = 0 if options is not None and options.backend == "c" else \
+            max(GENERATE_AFTER, GENERATE_PER_LINE * (self.code.source.count("\n") if self.code else 0))
+        if self.code is not None and self.generate_after == 0:
+            lib = self._generated_library()
+            if lib is not None:
+                self._attach(lib, s0)
+                return
+        self._attach(library(), s0)
+
+    def _generated_library(self):
+        """The library with the net's C, or None (then the code is dropped, with a note)."""
+        lib = library(self.code)
+        if lib is None:
+            self.notes.append(f"the C of the net's transitions could not be built ({why_unavailable()}): the "
+                              "Python engine computes every transition's bindings")
+            self.code = None
+        else:
+            self.notes.extend(self._code_notes)
+        return lib
+
+    def _attach(self, lib, s0, old=None) -> None:
+        """Set up the store and the search in library `lib`; with `old` (the search so far, in another
+        library), its states are copied over in their order and the search goes on from its head."""
+        self.native_lib = lib
+        self.ffi, self.lib = ffi, clib = lib.ffi, lib.lib
+        store = PackedStore(lib, s0, widths=[4] * len(s0))
+        if old is not None:
+            n = len(old.store)
+            if n > 1:  # the records are laid out alike (4 bytes a field): copy them as they are
+                arena = old.lib.cs_arena(old.store.handle)
+                W = old.lib.cs_width(old.store.handle)
+                src = ffi.cast("uint8_t *", int(old.ffi.cast("uintptr_t", arena))) + W
+                ids, fresh = ffi.new("int32_t[]", n), ffi.new("int32_t[]", n)
+                if clib.cs_add_many(store.handle, src, n - 1, ids, fresh) != n - 1:
+                    raise RuntimeError("the native search's states could not be copied")
+        self.graph.store = self.store = store
         groups = self.tg.groups
         fields = [p for read, writes in groups for p in (*read, *writes)]
-        ffi = self.ffi
-        handle = self.lib.nd_new(self.store.handle, len(s0), len(groups),
-                                 ffi.new("int32_t[]", [len(r) for r, _ in groups] or [0]),
-                                 ffi.new("int32_t[]", [len(w) for _, w in groups] or [0]),
-                                 ffi.new("int32_t[]", fields or [0]))
+        handle = clib.nd_new(store.handle, len(s0), len(groups),
+                             ffi.new("int32_t[]", [len(r) for r, _ in groups] or [0]),
+                             ffi.new("int32_t[]", [len(w) for _, w in groups] or [0]),
+                             ffi.new("int32_t[]", fields or [0]))
         if handle == ffi.NULL:
             raise MemoryError("cannot allocate the native search")
-        self.handle = ffi.gc(handle, self.lib.nd_free)
+        self.handle = ffi.gc(handle, clib.nd_free)
+        if old is not None:
+            clib.nd_resume(self.handle, old.head, old.level_end, old.levels, old.n_arcs,
+                           1 if self.graph.bes.itemsize == 4 else 0)
         self.gen = None
-        if self.code is not None:
-            gen = self.lib.gen_new()
+        if lib is not None and self.code is not None and hasattr(clib, "gen_new"):
+            gen = clib.gen_new()
             if gen == ffi.NULL:
                 raise MemoryError("cannot allocate the native transitions' tables")
-            self.gen = ffi.gc(gen, self.lib.gen_free)
-            self.code.to_c(engine, lib, self.gen)
-            self.lib.nd_set_gen(self.handle, self.gen)
+            self.gen = ffi.gc(gen, clib.gen_free)
+            self.code.to_c(self.engine, lib, self.gen)
+            clib.nd_set_gen(self.handle, self.gen)
+
+    def _upgrade(self) -> None:
+        """Go on with the net's C compiled in (the states so far copied; the caches are filled anew)."""
+        lib = self._generated_library()
+        if lib is None:
+            return
+        old = _Snapshot(self)
+        self._attach(lib, self.graph.states[0], old)
+        self.round_trips = 0
 
     @property
     def head(self) -> int:
@@ -165,6 +225,15 @@ class NativeSearch:
 
     def run(self, until: int, max_states: int, max_arcs: int) -> StopReason | None:
         """Expand states up to state `until` (None: there, the caller looks at its limits) or to a stop."""
+        gc_was_enabled = gc.isenabled()
+        gc.disable()  # the engine's tables grow by many small dicts, none of them in a cycle
+        try:
+            return self._run(until, max_states, max_arcs)
+        finally:
+            if gc_was_enabled:
+                gc.enable()
+
+    def _run(self, until: int, max_states: int, max_arcs: int) -> StopReason | None:
         lib, h = self.lib, self.handle
         while True:
             status = lib.nd_run(h, until, max_states, max_arcs)
@@ -181,6 +250,9 @@ class NativeSearch:
                 raise MemoryError("the native search cannot grow any more")
             else:
                 self.flush()
+                if status == ND_CHECK and self.code is not None and self.gen is None \
+                        and (self.head >= self.generate_after or self.round_trips > self.head):
+                    self._upgrade()
                 return {ND_CHECK: None, ND_DONE: StopReason.COMPLETE, ND_MAX_STATES: StopReason.MAX_STATES,
                         ND_MAX_ARCS: StopReason.MAX_ARCS}[status]
 
