@@ -7,7 +7,10 @@ Usage:
 Every measurement runs in a fresh subprocess, so peak memory (ru_maxrss) is that run's alone. Per size
 it prints states, arcs, generation seconds, whole-report seconds (generation plus the analysis of the
 standard report), states per second, peak memory after generation and after the report, and bytes per
-state (peak RSS growth during generation divided by the states). Medians over --repeat runs.
+state (peak RSS growth during generation divided by the states), generation CPU seconds (`gen cpu`, less
+sensitive to a shared machine's load than wall seconds) and, for `c`, the seconds to generate and
+compile the net's C (`build s`, before the clock starts; a few milliseconds once it is in the cache).
+Medians over --repeat runs.
 --backends picks the searches to compare: `c` (the native search, `--backend c`), `python` (the Python
 search, `--backend python`: the engine's tuples in a dict below a million states) and `packed` (the Python
 search with the packed state store from the first state). With several, their runs alternate, so that they share the machine's load,
@@ -51,6 +54,16 @@ def child(net: str, n: int, backend: str = "c") -> dict:
     model = cpn.load(os.path.join(HERE, "nets", f"{net}.cpnet"), set={"N": str(n)})
     engine = model.engine(time_condensation=False)
     load_s = time.perf_counter() - t_start
+    build_s = 0.0
+    if backend == "c":  # the net's C is built (or found in the cache) before the clock starts
+        from cpn.statespace import native
+
+        t_build = time.perf_counter()
+        native.library()
+        code, _why = engine.native_code()
+        if code is not None:
+            native.library(code)
+        build_s = time.perf_counter() - t_build
     rss0 = current_rss_mb()
     cpu0 = time.process_time()
     x = Explorer(engine, ExploreOptions(pack_from=0 if backend == "packed" else 1_000_000,
@@ -65,7 +78,7 @@ def child(net: str, n: int, backend: str = "c") -> dict:
     return {
         "net": net, "n": n, # the search asked for, and the one that finished it where that differs ("c>python": handed over)
         "backend": backend if x.backend == ("c" if backend == "c" else "python") else f"{backend}>{x.backend}", "states": x.n_states, "arcs": x.n_arcs, "dead": dead, "complete": x.complete,
-        "load_s": load_s, "gen_s": x.seconds, "report_s": report.seconds, "analysis_s": report.analysis_seconds,
+        "load_s": load_s, "build_s": build_s, "gen_s": x.seconds, "report_s": report.seconds, "analysis_s": report.analysis_seconds,
         "peak_gen_mb": peak_gen, "peak_report_mb": peak_all, "rss_before_mb": rss0,
         "gen_cpu_s": cpu_gen, "report_cpu_s": cpu_all,
         "bytes_per_state": max(0.0, rss_gen - rss0) * 1048576 / max(1, x.n_states),
@@ -155,7 +168,7 @@ def main(argv=None) -> int:
         subprocess.run([sys.executable, os.path.join(SHARED_BENCH, "make_cpn_nets.py"), cpn_dir], check=True)
     results = []
     head = (f"{'net':<6}{'backend':>10}{'states':>10}{'arcs':>11}{'gen s':>8}{'report s':>9}{'states/s':>10}"
-            f"{'peak MiB':>9}{'rep MiB':>8}{'B/state':>8}{'wall s':>8}")
+            f"{'peak MiB':>9}{'rep MiB':>8}{'B/state':>8}{'wall s':>8}{'gen cpu':>8}{'build s':>8}")
     if args.cpncheck:
         head += f" | {'cpncheck gen s':>14}{'report s':>9}{'peak MiB':>9}{'x gen':>7}{'x rep':>7}{'mem':>6}"
     print(head)
@@ -173,12 +186,13 @@ def main(argv=None) -> int:
                        "arcs": runs[0]["arcs"], "gen_s": median(runs, "gen_s"), "report_s": median(runs, "report_s"),
                        "process_wall_s": median(runs, "process_wall_s"),
                        "peak_gen_mb": median(runs, "peak_gen_mb"), "peak_report_mb": median(runs, "peak_report_mb"),
-                       "bytes_per_state": median(runs, "bytes_per_state"), "runs": runs}
+                       "bytes_per_state": median(runs, "bytes_per_state"), "gen_cpu_s": median(runs, "gen_cpu_s"),
+                       "build_s": median(runs, "build_s"), "runs": runs}
                 row["states_per_s"] = row["states"] / row["gen_s"] if row["gen_s"] else 0.0
                 line = (f"{net}({n})".ljust(6) + f"{row['backend']:>10}{row['states']:>10,}{row['arcs']:>11,}"
                         f"{row['gen_s']:>8.2f}{row['report_s']:>9.2f}{row['states_per_s']:>10,.0f}"
                         f"{row['peak_gen_mb']:>9.0f}{row['peak_report_mb']:>8.0f}{row['bytes_per_state']:>8.0f}"
-                        f"{row['process_wall_s']:>8.2f}")
+                        f"{row['process_wall_s']:>8.2f}{row['gen_cpu_s']:>8.2f}{row['build_s']:>8.2f}")
                 if st != backends[-1]:
                     print(line, flush=True)
                     results.append(row)

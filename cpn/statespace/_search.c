@@ -24,7 +24,17 @@ typedef struct {
 } vmap;
 
 static uint64_t vm_hash(const uint32_t *k, int len) {
-    return cs_hash((const uint8_t *)k, len * 4);
+    uint64_t h = 0x9E3779B97F4A7C15ULL ^ (uint64_t)len;
+    for (int i = 0; i < len; i++) {
+        h = (h ^ k[i]) * 0xBF58476D1CE4E5B9ULL;
+        h ^= h >> 29;
+    }
+    return h ^ (h >> 32);
+}
+
+static int vm_same(const uint32_t *a, const uint32_t *b, int len) {
+    for (int i = 0; i < len; i++) if (a[i] != b[i]) return 0;
+    return 1;
 }
 
 static int vm_init(vmap *m, int len) {
@@ -43,7 +53,7 @@ static int64_t vm_get(const vmap *m, const uint32_t *k) {
     for (;;) {
         uint32_t e = m->table[h];
         if (!e) return -1;
-        if (memcmp(m->keys + (int64_t)(e - 1) * m->len, k, (size_t)m->len * 4) == 0) return m->vals[e - 1];
+        if (vm_same(m->keys + (int64_t)(e - 1) * m->len, k, m->len)) return m->vals[e - 1];
         h = (h + 1) & m->mask;
     }
 }
