@@ -73,9 +73,10 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    "scenario's properties (implies --sweep-line); an arc that decreases it is handled "
                    "and reported, and the counts are then upper bounds")
     p.add_argument("--backend", choices=("auto", "python", "c"), default="auto",
-                   help="the search: 'c' runs its loop, caches and graph in native code (built with the "
-                   "system C compiler on first use), 'python' in Python; 'auto' (the default) is 'c' "
-                   "where it can run and says why not elsewhere; the state space is the same")
+                   help="the search: 'c' runs its loop, caches and graph in native code and the transitions "
+                   "in C generated from the net (built with the system C compiler, cached), 'python' in "
+                   "Python; 'auto' (the default) is 'c' where it can run, generating the C once the search "
+                   "is large, and says why not elsewhere; the state space is the same")
     add_parallel_options(p)
     add_output_option(p, "--json", "the result as JSON")
     add_output_option(p, "--dot", "the state space and SCC graph as DOT (small nets)")

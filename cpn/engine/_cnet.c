@@ -149,12 +149,7 @@ static gctx *g_new(int P, int T, const int64_t *be_size) {
     c->be_size = (int64_t *)calloc((size_t)T + 1, sizeof(int64_t));
     if (!c->mk || !c->dl || !c->be_of || !c->be_size) return NULL;
     for (int p = 0; p < P; p++) if (ms_init(&c->mk[p]) || ms_init(&c->dl[p])) return NULL;
-    for (int t = 0; t < T; t++) {
-        c->be_size[t] = be_size[t];
-        c->be_of[t] = (int32_t *)malloc(4 * (size_t)(be_size[t] ? be_size[t] : 1));
-        if (!c->be_of[t]) return NULL;
-        for (int64_t k = 0; k < be_size[t]; k++) c->be_of[t][k] = -1;
-    }
+    for (int t = 0; t < T; t++) c->be_size[t] = be_size[t];  /* be_of[t]: allocated when first used */
     return c;
 }
 
@@ -171,6 +166,11 @@ void gen_free(void *g) {
 static int64_t g_be(gctx *c, int t, int64_t key, int *fresh) {
     *fresh = 0;
     if (key < 0 || key >= c->be_size[t]) { c->err = 1; return -1; }
+    if (!c->be_of[t]) {
+        c->be_of[t] = (int32_t *)malloc(4 * (size_t)c->be_size[t]);
+        if (!c->be_of[t]) { c->err = 2; return -1; }
+        memset(c->be_of[t], 0xFF, 4 * (size_t)c->be_size[t]);  /* -1: no binding element yet */
+    }
     int32_t be = c->be_of[t][key];
     if (be >= 0) return be;
     if (c->nbe == c->be_cap) {
