@@ -1,0 +1,251 @@
+"""The tables the generated C and the Python engine share: colour ids of colour sets (`layout`), and the
+copying of interned markings, deltas and binding elements between the C tables (`_cnet.c`) and the
+compiled engine's (`NativeCode.to_c`, `NativeCode.to_python`), with the same ids on both sides.
+
+Examples
+--------
+>>> from cpn.values.colours import IntCS, ProductCS, BoolCS
+>>> lay = layout(ProductCS("P", [IntCS("A", 2, 4), BoolCS("B")]))
+>>> lay.leaves, lay.size, lay.index[(3, True)]
+([(2, 3), (0, 2)], 6, 3)
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+from itertools import product as _cartesian
+
+from cpn.values.colours import AliasCS, BoolCS, EnumCS, IndexCS, IntCS, ProductCS, RecordCS, UnitCS
+
+#: colour sets with more values than this are not laid out as colour ids
+MAX_COLOURS: int = 1 << 20
+_I64 = 1 << 62
+
+
+class NotNative(Exception):
+    """An inscription, colour set or net outside what the C code generator handles (the reason)."""
+
+
+# ---------------------------------------------------------------------------- values in C
+@dataclass
+class S:
+    """A scalar: a C expression of type int64_t (bool 0/1, unit 0, an enumeration's position, an int)."""
+
+    code: str
+
+
+@dataclass
+class Tp:
+    """A product or record: its components (records in the order of their labels)."""
+
+    items: list
+
+
+@dataclass
+class Layout:
+    """How the values of a colour set are colour ids: leaves (low, count) in mixed radix, the first most
+    significant (the order of `itertools.product`, hence of `CS.all()`)."""
+
+    leaves: list[tuple[int, int]]
+    shape: object
+    values: list
+    index: dict = field(default_factory=dict)
+
+    @property
+    def size(self) -> int:
+        return len(self.values)
+
+    def strides(self) -> list[int]:
+        out, s = [], 1
+        for _lo, n in reversed(self.leaves):
+            out.append(s)
+            s *= n
+        return list(reversed(out))
+
+    def decode(self, code: str):
+        """The value (as a C value) of colour id `code`."""
+        strides = self.strides()
+        it = iter(range(len(self.leaves)))
+
+        def build(sh):
+            if sh is None:
+                i = next(it)
+                lo, n = self.leaves[i]
+                x = code if strides[i] == 1 else f"({code} / {strides[i]})"
+                if i > 0:
+                    x = f"({x} % {n})"
+                return S(x if lo == 0 else f"({lo} + {x})")
+            return Tp([build(s) for s in sh])
+        return build(self.shape)
+
+
+def _base(cs):
+    while isinstance(cs, AliasCS):
+        cs = cs.base
+    return cs
+
+
+def _layout_parts(cs):
+    cs = _base(cs)
+    if isinstance(cs, UnitCS):
+        return [(0, 1)], None
+    if isinstance(cs, BoolCS):
+        return [(0, 2)], None
+    if isinstance(cs, IntCS):
+        if cs.low is None or cs.high < cs.low:
+            raise NotNative(f"colour set {cs.name} is not a finite int range")
+        return [(cs.low, cs.high - cs.low + 1)], None
+    if isinstance(cs, EnumCS):
+        return [(0, len(cs.constants))], None
+    if isinstance(cs, IndexCS):
+        return [(cs.low, cs.high - cs.low + 1)], None
+    if isinstance(cs, (ProductCS, RecordCS)):
+        comps = cs.components if isinstance(cs, ProductCS) else [c for _, c in cs.fields]
+        out, shapes = [], []
+        for c in comps:
+            lv, sh = _layout_parts(c)
+            out.extend(lv)
+            shapes.append(sh)
+        return out, tuple(shapes)
+    raise NotNative(f"colour set {cs.name} ({cs.kind}) has no C layout")
+
+
+def layout(cs) -> Layout:
+    """The layout of a colour set, checked against its values (NotNative if it has none)."""
+    lv, sh = _layout_parts(cs)
+    total = 1
+    for lo, n in lv:
+        if abs(lo) + n >= _I64 >> 20:
+            raise NotNative(f"colour set {cs.name} has values too large for C")
+        total *= n
+        if total > MAX_COLOURS:
+            raise NotNative(f"colour set {cs.name} has more than {MAX_COLOURS:,} values")
+    vals = cs.values()
+    if vals is None or len(vals) != total:
+        raise NotNative(f"colour set {cs.name} is not enumerable")
+    lay = Layout(lv, sh, vals)
+    # the colour ids must be the positions in CS.all(): check the mixed radix against the values
+    ranges = [range(lo, lo + n) for lo, n in lv]
+    for cid, flat in enumerate(_cartesian(*ranges)):
+        if _flatten(vals[cid]) != list(flat):
+            raise NotNative(f"colour set {cs.name}: its values are not in mixed-radix order")
+    lay.index = {v: i for i, v in enumerate(vals)}
+    return lay
+
+
+def _flatten(v) -> list:
+    if v == ():
+        return [0]
+    if isinstance(v, tuple):
+        out = []
+        for x in v:
+            out.extend(_flatten(x))
+        return out
+    return [int(v)]
+
+
+# ---------------------------------------------------------------------------- the net
+CDEF = """
+void *gen_new(void);
+void gen_free(void *g);
+void nd_set_gen(nd_search *d, void *g);
+int64_t gen_count(void *g, int what, int p);
+int32_t gen_ms_len(void *g, int what, int p, int64_t id);
+int32_t *gen_ms_pairs(void *g, int what, int p, int64_t id);
+int64_t gen_ms_table(void *g, int what, int p, int64_t **off, int32_t **len, int32_t **pairs);
+int64_t gen_ms_put(void *g, int what, int p, const int32_t *pr, int32_t n);
+int64_t gen_be_key(void *g, int64_t be, int32_t *t);
+int64_t gen_be_put(void *g, int t, int64_t key);
+"""
+
+
+@dataclass
+class NativeCode:
+    """The C of a net's transitions (`source`, to be compiled after the native search's C with
+    ``ND_GENERATED`` defined) and the exchange of tables with the Python engine."""
+
+    source: str
+    native: list[int]  # transitions compiled to C
+    left: dict[int, str]  # transitions left to the Python engine: why
+    layouts: list[Layout]  # per place
+    var_layouts: dict[int, list[Layout]]  # per native transition
+    cdef: str = ""
+
+    def to_c(self, engine, lib, ctx) -> None:
+        """Copy the engine's markings, deltas and binding elements that the C tables do not have yet."""
+        ffi, lib = lib.ffi, lib.lib
+        P = len(engine.places)
+        for what, tables in ((0, engine.store.dicts), (1, engine._deltas)):
+            for p in range(P):
+                index = self.layouts[p].index
+                have = lib.gen_count(ctx, what, p)
+                for i in range(have, len(tables[p])):
+                    d = tables[p][i]
+                    flat = []
+                    for v, n in d.items():
+                        flat += (index[v], n)
+                    got = lib.gen_ms_put(ctx, what, p, ffi.new("int32_t[]", flat or [0]), len(d))
+                    if got != i:
+                        raise RuntimeError(f"native tables out of step with the engine (place {p}, {got} != {i})")
+        have = lib.gen_count(ctx, 2, 0)
+        for i in range(have, len(engine._be)):
+            t, vals = engine._be[i]
+            got = lib.gen_be_put(ctx, t, self._be_key(t, vals))
+            if got != i:
+                raise RuntimeError(f"native binding elements out of step with the engine ({got} != {i})")
+
+    def _be_key(self, t: int, vals: tuple) -> int:
+        lays = self.var_layouts.get(t)
+        if lays is None:
+            return -1
+        key = 0
+        for lay, v in zip(lays, vals):
+            cid = lay.index.get(v)
+            if cid is None:
+                return -1
+            key = key * lay.size + cid
+        return key
+
+    def to_python(self, engine, lib, ctx) -> None:
+        """Copy the markings, deltas and binding elements C made into the engine's tables (same ids)."""
+        ffi, lib = lib.ffi, lib.lib
+        P = len(engine.places)
+        store = engine.store
+        offp, lenp, pairp = ffi.new("int64_t **"), ffi.new("int32_t **"), ffi.new("int32_t **")
+        for what in (0, 1):
+            for p in range(P):
+                vals = self.layouts[p].values
+                have = len(store.dicts[p]) if what == 0 else len(engine._deltas[p])
+                total = lib.gen_ms_table(ctx, what, p, offp, lenp, pairp)
+                if total == have:
+                    continue
+                offs = ffi.unpack(offp[0] + have, total - have)
+                lens = ffi.unpack(lenp[0] + have, total - have)
+                start = offs[0]
+                pairs = ffi.unpack(pairp[0] + start, offs[-1] + 2 * lens[-1] - start)
+                put = store.intern if what == 0 else engine._delta
+                for i, o, n in zip(range(have, total), offs, lens):
+                    o -= start
+                    d = dict(zip([vals[c] for c in pairs[o:o + 2 * n:2]], pairs[o + 1:o + 2 * n:2]))
+                    if put(p, d) != i:
+                        raise RuntimeError(f"native tables out of step with the engine (place {p}, id {i})")
+        total = lib.gen_count(ctx, 2, 0)
+        tp = ffi.new("int32_t *")
+        for i in range(len(engine._be), total):
+            key = lib.gen_be_key(ctx, i, tp)
+            t = tp[0]
+            vals = []
+            for lay in reversed(self.var_layouts[t]):
+                key, cid = divmod(key, lay.size)
+                vals.append(lay.values[cid])
+            if engine._intern_be(t, tuple(reversed(vals))) != i:
+                raise RuntimeError("native binding elements out of step with the engine")
+
+
+def runtime() -> str:
+    """The C run-time of the generated code (`_cnet.c`)."""
+    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "_cnet.c")) as f:
+        return f.read()
+
+
