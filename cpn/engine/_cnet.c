@@ -238,8 +238,33 @@ static int g_enough(const int32_t *pr, int32_t np, const int32_t *need, int32_t 
     return 1;
 }
 
+/* Integer arithmetic: the Python engine's integers are unbounded, so a result that does not fit 64 bits
+   is handed back to Python (c->err) instead of wrapping around. */
+static int64_t g_add(gctx *c, int64_t a, int64_t b) {
+    int64_t r;
+    if (__builtin_add_overflow(a, b, &r)) { c->err = 1; return 0; }
+    return r;
+}
+
+static int64_t g_sub(gctx *c, int64_t a, int64_t b) {
+    int64_t r;
+    if (__builtin_sub_overflow(a, b, &r)) { c->err = 1; return 0; }
+    return r;
+}
+
+static int64_t g_mul(gctx *c, int64_t a, int64_t b) {
+    int64_t r;
+    if (__builtin_mul_overflow(a, b, &r)) { c->err = 1; return 0; }
+    return r;
+}
+
+static int64_t g_neg(gctx *c, int64_t a) {
+    if (a == INT64_MIN) { c->err = 1; return 0; }
+    return -a;
+}
+
 static int64_t g_div(gctx *c, int64_t a, int64_t b) {
-    if (b == 0) { c->err = 1; return 0; }
+    if (b == 0 || (a == INT64_MIN && b == -1)) { c->err = 1; return 0; }
     int64_t q = a / b;
     if ((a % b != 0) && ((a < 0) != (b < 0))) q--;
     return q;
@@ -247,6 +272,7 @@ static int64_t g_div(gctx *c, int64_t a, int64_t b) {
 
 static int64_t g_mod(gctx *c, int64_t a, int64_t b) {
     if (b == 0) { c->err = 1; return 0; }
+    if (b == -1) return 0;
     int64_t r = a % b;
     if (r != 0 && ((r < 0) != (b < 0))) r += b;
     return r;

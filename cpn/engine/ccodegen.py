@@ -15,8 +15,9 @@ exactly as `TransitionCodegen` does: the same loops over the same tokens in the 
 tests, so it finds the same bindings in the same order; then, as `CompiledEngine._miss` does, it numbers
 each binding element and interns the markings and deltas its occurrence makes, in the same order, into
 tables (`_cnet.c`) that the Python engine's tables mirror (`NativeCode.to_python`, `NativeCode.to_c`):
-the ids agree on both sides. What C cannot evaluate at run time (a division by zero, a value outside its
-colour set, a pattern that does not match, deep recursion) is left to the Python engine for that key,
+the ids agree on both sides. What C cannot evaluate at run time (a division by zero, a result that does
+not fit 64 bits (Python's integers are unbounded), a value outside its colour set, a pattern that does not
+match, deep recursion) is left to the Python engine for that key,
 which computes it or reports the error with its position.
 
 Examples
@@ -42,6 +43,7 @@ MAX_BINDINGS: int = 1 << 22
 #: reports its own recursion limit, reached at 120 to 150 levels of a simple recursion)
 MAX_DEPTH: int = 64
 _I64 = 1 << 62
+_CHECKED = {"+": "g_add", "-": "g_sub", "*": "g_mul"}
 
 
 # ---------------------------------------------------------------------------- values in C
@@ -230,7 +232,7 @@ class ExprC:
         raise NotNative("an application of something other than a function of the model, not or a constructor")
 
     def _c_Neg(self, e):
-        return S(f"(-{self.scalar(e.operand)})")
+        return S(f"g_neg(c, {self.scalar(e.operand)})")
 
     def _c_If(self, e):
         cond = self.scalar(e.cond)
@@ -255,6 +257,8 @@ class ExprC:
                 return S(f"g_div(c, {a}, {b})")
             if op == "mod":
                 return S(f"g_mod(c, {a}, {b})")
+            if op in _CHECKED:  # overflow is handed back to Python, whose integers are unbounded
+                return S(f"{_CHECKED[op]}(c, {a}, {b})")
             cop = {"andalso": "&&", "orelse": "||"}.get(op, op)
             return S(f"({a} {cop} {b})")
         raise NotNative(f"the operator {op}")

@@ -247,3 +247,25 @@ def test_generated_c_gives_the_python_graph_on_the_validation_corpus(inst):
         assert code is None or code.left
         assert any("handed over to the Python search" in n for n in c.notes)
     assert c.n_states == inst["states"]
+
+
+# 3 * 2e9 * 2e9 * 4 = 4.8e19 does not fit 64 bits: wrapped around it would be negative and `t` dead in C.
+OVERFLOW = """
+colset N = int with 0..3;
+var x : N;
+place P : N = 1`3;
+trans t [x * 2000000000 * 2000000000 * 4 > 0 andalso ~(x * 2000000000 * 2000000000 * 4) < 0
+         andalso (x - 4000000000000000000 - 4000000000000000000 - 4000000000000000000) < 0];
+arc P -> t : x;
+arc t -> P : x - 1;
+"""
+
+
+@needs_native
+def test_integer_overflow_in_generated_c_is_computed_by_python(returns):
+    model = cpn.loads(OVERFLOW, "overflow.cpnet")
+    code, _ = model.engine().native_code()
+    assert code.left == {}, "the guard should be generated in C"
+    c = _both(model)
+    # x = 3, 2, 1 each satisfy the guard (the products exceed 2^63, the difference goes below -2^63)
+    assert c.n_states == 4 and c.n_arcs == 3 and returns[0] > 0
