@@ -168,8 +168,13 @@ class Explorer:
         self._reduction_notes = []
         if self.options.reduction is None:
             return None
+        if self.options.reduction == "symmetry":
+            from cpn.statespace.symmetry import SymmetricSuccessors
+
+            g.symmetry = SymmetricSuccessors(self.engine, self.options.symmetry)
+            return g.symmetry
         if self.options.reduction != "stubborn":
-            raise ValueError(f"unknown reduction {self.options.reduction!r} (known: 'stubborn')")
+            raise ValueError(f"unknown reduction {self.options.reduction!r} (known: 'stubborn', 'symmetry')")
         from cpn.engine.stubborn import StubbornSets
         from cpn.statespace.reduction import ReducedSuccessors
 
@@ -450,8 +455,8 @@ class Explorer:
             untimed_states=len(watcher.untimed) if watcher is not None else None,
             time_growth=watcher.evidence() if stop is StopReason.TIME_GROWS else None,
             levels=levels, notes=self._notes + notes, backend=self._backend,
-            reduction="stubborn" if self._reduced is not None else None,
-            reduction_stats=None if self._reduced is None else {
+            reduction=self.options.reduction if self._reduced is not None else None,
+            reduction_stats=None if self._reduced is None else g.symmetry.stats(g) if g.symmetry is not None else {
                 "reduced_states": self._reduced.reduced, "fully_expanded_states": self._reduced.full_expansions,
                 "visible_places": None if self.options.visible_places is None
                 else sorted(self.options.visible_places)},

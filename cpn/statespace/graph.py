@@ -31,6 +31,8 @@ class StateGraph:
     bes: array = field(default_factory=lambda: array("H"))
     parent: array = field(default_factory=lambda: array("i"))
     parent_be: array = field(default_factory=lambda: array("i"))
+    #: the successor step of a quotient graph (`cpn.statespace.symmetry`), None for the full graph
+    symmetry: object = None
 
     @property
     def states(self) -> Sequence:

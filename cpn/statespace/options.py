@@ -103,6 +103,9 @@ class ExploreOptions:
     # the invariants over those places (visibility condition and cycle proviso)
     reduction: str | None = None
     visible_places: frozenset | None = None
+    # "symmetry": the symmetric colour sets (`cpn.net.symmetry.Scalar`), checked beforehand with
+    # `cpn.net.symmetry.symmetry_problems`; the graph is the quotient (one state per orbit)
+    symmetry: tuple = ()
     packed_states: bool = True
     pack_from: int = 1_000_000
     backend: str = "auto"

@@ -40,7 +40,12 @@ class Trace:
 
 
 def shortest_trace(graph: StateGraph, target: int, engine=None) -> Trace:
-    """The BFS-tree path to `target`; with an engine, each step carries its text and marking changes."""
+    """The BFS-tree path to `target`; with an engine, each step carries its text and marking changes.
+    On a quotient graph (symmetry reduction) the path is lifted to the full graph (`symmetry.lifted_trace`)."""
+    if graph.symmetry is not None:
+        from cpn.statespace.symmetry import lifted_trace
+
+        return lifted_trace(graph, target, engine)
     path = []
     v = target
     parent, parent_be = graph.parent, graph.parent_be
@@ -78,10 +83,19 @@ def replay(engine, graph: StateGraph, trace: Trace) -> bool:
     state = engine.initial_state()
     if graph.states[0] != state:
         return False
+    canonical = graph.symmetry.canonical if graph.symmetry is not None else None
     for step in trace.steps:
         nxt = [t for be, t in engine.successors(state) if be == step.be]
         want = graph.states[step.target]
+        if canonical is not None:  # a lifted trace reaches the orbit of the quotient's state
+            lifted = [t for t in nxt if canonical(t) == want]
+            if not lifted:
+                return False
+            state = lifted[0]
+            continue
         if want not in nxt:
             return False
         state = want
+    if canonical is not None:
+        return canonical(state) == graph.states[trace.target]
     return state == graph.states[trace.target]

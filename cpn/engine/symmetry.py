@@ -1,0 +1,321 @@
+"""Symmetry reduction: a group of colour permutations acting on states, and canonical representatives.
+
+A symmetry specification names *scalar* colour sets (enumerations and index colour sets) and, for each,
+its group: all permutations of its values, or the rotations of its values in their declared order (for
+cyclic colour sets, whose successor wraps around). The group G is the product of these groups; g in G acts
+on a value of any colour set by renaming the scalar values inside it (products, records, lists and unions
+included), on a marking token by token, and on a state place by place (the clock is unchanged). That G
+really is a symmetry of the net, so that g maps the enabled binding elements of a marking onto those of its
+image, is checked before it is used (`cpn.net.symmetry`).
+
+`Canonicaliser.canonical(state) -> (representative, stabiliser size)` gives an exact canonical form: the
+smallest state of the orbit under a fixed total order. That order compares first the *signatures* of the
+values of the permuted colour sets (what the tokens holding a value look like when that value and every
+other scalar value are blanked out: a property invariant under G), value by value, then the place markings
+(their sorted tokens). The minimum is therefore reached only by relabellings that sort the values by
+signature, so only those are enumerated (with every rotation of the rotated colour sets); values that a
+transposition leaves the state unchanged under (*twins*) are never permuted among themselves, their
+orders giving the same state. The number of relabellings reaching the minimum, times the twins'
+permutations, is the size of the state's stabiliser, so the orbit has |G| / |stabiliser| states (the
+full state space's count is the sum over the representatives; Jensen, "Coloured Petri Nets", vol. 2,
+ch. 3 on symmetry specifications and the occurrence graph with symmetries; Ip and Dill's scalarsets in
+Murphi for the canonical form by sorting).
+
+Examples
+--------
+>>> import cpn
+>>> m = cpn.loads("colset P = with a | b | c; var x : P; place Idle : P = P.all(); place Busy : P;"
+...               " trans go; arc Idle -> go : x; arc go -> Busy : x;")
+>>> e = m.engine()
+>>> c = Canonicaliser(e, [Scalar("P", "permutations")])
+>>> reps = {c.canonical(t)[0] for _, t in e.successors(e.initial_state())}
+>>> len(reps), c.group_order, c.canonical(next(iter(reps)))[1]
+(1, 6, 2)
+"""
+
+from __future__ import annotations
+
+import math
+from itertools import permutations
+
+from cpn.net.symmetry import (
+    KINDS,
+    PERMUTATIONS,
+    ROTATIONS,
+    Scalar,
+    generators,
+    root,
+    scalar_values,
+    value_mapper,
+)
+
+
+def _total(v):
+    """A sort key ordering values of mixed types (a union's constants and values with data)."""
+    if isinstance(v, tuple):
+        return (3, tuple(_total(x) for x in v))
+    if isinstance(v, bool):
+        return (0, int(v))
+    if isinstance(v, (int, float)):
+        return (1, v)
+    return (2, str(v))
+
+
+def sorted_items(d: dict) -> tuple:
+    """A multiset's (token, count) pairs in a fixed order: its key in the order of states."""
+    try:
+        return tuple(sorted(d.items()))
+    except TypeError:
+        return tuple(sorted(d.items(), key=_total))
+
+
+class Canonicaliser:
+    """Canonical representatives of an engine's states under the group of a symmetry specification.
+
+    Parameters
+    ----------
+    engine : a compiled or reference engine (`cpn.engine.compile_net`).
+    scalars : the symmetric colour sets (`Scalar`), checked beforehand by `cpn.net.symmetry`.
+    """
+
+    def __init__(self, engine, scalars: list[Scalar]):
+        self.engine = engine
+        self.scalars = list(scalars)
+        net = engine.net
+        self.values: list[list] = []
+        ids: dict = {}
+        for k, s in enumerate(self.scalars):
+            cs = net.colsets[s.name]
+            vals = scalar_values(cs)
+            if vals is None:
+                raise ValueError(f"colour set '{s.name}' is not an enumeration or an index colour set")
+            self.values.append(vals)
+            ids[id(root(cs))] = k
+        self.position = [{v: i for i, v in enumerate(vals)} for vals in self.values]
+        self.group_order = 1
+        for s, vals in zip(self.scalars, self.values):
+            self.group_order *= math.factorial(len(vals)) if s.kind == PERMUTATIONS else len(vals)
+        n = len(engine.places)
+        self.n_places = n
+        self.mappers: list = []
+        for p in engine.places:
+            m = value_mapper(net.places[len(self.mappers)].colour_set, ids)
+            if m is not None and p.timed:
+                m = (lambda mm: lambda key, image: (mm(key[0], image), key[1]))(m)
+            self.mappers.append(m)
+        self.sym_places = [p for p in range(n) if self.mappers[p] is not None]
+        self.permuted = [k for k, s in enumerate(self.scalars) if s.kind == PERMUTATIONS]
+        self.rotated = [k for k, s in enumerate(self.scalars) if s.kind == ROTATIONS]
+        self.reference = bool(getattr(engine, "reference", False))
+        if not self.reference:
+            self._dicts = engine.store.dicts
+            self._intern = engine.store.intern
+        self.canonicalised = 0
+        self.relabellings = 0
+
+    # ------------------------------------------------------------------ places
+    def _dict(self, state, p: int) -> dict:
+        return dict(state[p]) if self.reference else self._dicts[p][state[p]]
+
+    def _make(self, p: int, d: dict):
+        return frozenset(d.items()) if self.reference else self._intern(p, d)
+
+    # ------------------------------------------------------------------ the action of G
+    def apply(self, state, images: list[dict]):
+        """The image of `state` under the renaming `images` (one dict value -> value per scalar)."""
+        image = lambda k, x: images[k][x]  # noqa: E731
+        out = list(state)
+        for p in self.sym_places:
+            d = self._dict(state, p)
+            if d:
+                m = self.mappers[p]
+                nd: dict = {}
+                for key, c in d.items():
+                    nk = m(key, image)
+                    nd[nk] = nd.get(nk, 0) + c
+                out[p] = self._make(p, nd)
+        return tuple(out)
+
+    def generators(self) -> list[list[dict]]:
+        """Renamings generating G (`cpn.net.symmetry.generators`)."""
+        return generators(self.scalars, self.values)
+
+    def group(self):
+        """Every renaming of G (|G| of them: for tests and small groups)."""
+        per = []
+        for s, vals in zip(self.scalars, self.values):
+            if s.kind == PERMUTATIONS:
+                per.append([dict(zip(vals, perm)) for perm in permutations(vals)])
+            else:
+                n = len(vals)
+                per.append([{v: vals[(i + r) % n] for i, v in enumerate(vals)} for r in range(n)])
+
+        def rec(k):
+            if k == len(per):
+                yield []
+                return
+            for g in per[k]:
+                for rest in rec(k + 1):
+                    yield [g] + rest
+        return rec(0)
+
+    # ------------------------------------------------------------------ canonical form
+    def signatures(self, state) -> list[dict]:
+        """Per permuted scalar k: value -> its signature, the sorted (place, blanked token, count) of the
+        tokens holding it, every scalar value blanked (-1 for this one, -2 for the others)."""
+        sig = [dict() if k in self.permuted else None for k in range(len(self.scalars))]
+        for k in self.permuted:
+            for v in self.values[k]:
+                sig[k][v] = []
+        for p in self.sym_places:
+            d = self._dict(state, p)
+            if not d:
+                continue
+            m = self.mappers[p]
+            for key, c in d.items():
+                held: list = []
+                m(key, lambda k, x, held=held: held.append((k, x)) or x)
+                seen = set()
+                for k, x in held:
+                    if sig[k] is None or (k, x) in seen:
+                        continue
+                    seen.add((k, x))
+                    blank = m(key, lambda k2, y, k=k, x=x: -1 if (k2 == k and y == x) else -2)
+                    sig[k][x].append((p, blank, c))
+        for k in self.permuted:
+            for v, items in sig[k].items():
+                try:
+                    items.sort()
+                except TypeError:
+                    items.sort(key=_total)
+                sig[k][v] = tuple(items)
+        return sig
+
+    def _key(self, state) -> tuple:
+        return tuple(sorted_items(self._dict(state, p)) for p in self.sym_places)
+
+    def _relabellings(self, state):
+        """(per permuted scalar: the renamings to try, the product of its twin classes' factorials)."""
+        sig = self.signatures(state)
+        options = {}
+        twins_factor = 1
+        for k in self.permuted:
+            vals = self.values[k]
+            s = sig[k]
+            try:
+                order = sorted(vals, key=lambda v: s[v])
+            except TypeError:
+                order = sorted(vals, key=lambda v: _total(s[v]))
+            # classes of equal signature, in signature order; inside, classes of twins
+            classes: list[list[list]] = []
+            prev = object()
+            for v in order:
+                if not classes or s[v] != prev:
+                    classes.append([])
+                    prev = s[v]
+                cls = classes[-1]
+                for twins in cls:
+                    if self._swaps_to_itself(state, k, twins[0], v):
+                        twins.append(v)
+                        break
+                else:
+                    cls.append([v])
+            for cls in classes:
+                for twins in cls:
+                    twins_factor *= math.factorial(len(twins))
+            options[k] = self._label_choices(classes, vals)
+        return options, twins_factor
+
+    def _swaps_to_itself(self, state, k: int, a, b) -> bool:
+        sw: list = [_Identity()] * len(self.scalars)
+        sw[k] = _Swap(a, b)
+        return self.apply(state, sw) == state
+
+    @staticmethod
+    def _label_choices(classes, vals) -> list[dict]:
+        """Every renaming that gives the values of each signature class the class's labels, twins in a
+        fixed order (one per arrangement of the twin classes)."""
+        per_class = []
+        start = 0
+        for cls in classes:
+            size = sum(len(t) for t in cls)
+            labels = vals[start:start + size]
+            start += size
+            arrangements = []
+            for arrangement in _distinct_arrangements([i for i, t in enumerate(cls) for _ in t]):
+                counters = [0] * len(cls)
+                m = {}
+                for label, i in zip(labels, arrangement):
+                    m[cls[i][counters[i]]] = label
+                    counters[i] += 1
+                arrangements.append(m)
+            per_class.append(arrangements)
+        out = [{}]
+        for arrangements in per_class:
+            out = [{**a, **b} for a in out for b in arrangements]
+        return out
+
+    def canonical(self, state):
+        """(the orbit's representative, the size of its stabiliser in G)."""
+        self.canonicalised += 1
+        rot_choices = []
+        for k in self.rotated:
+            vals = self.values[k]
+            n = len(vals)
+            rot_choices.append([{v: vals[(i + r) % n] for i, v in enumerate(vals)} for r in range(n)])
+        if self.permuted:
+            perm_options, factor = self._relabellings(state)
+        else:
+            perm_options, factor = {}, 1
+        combos = [[None] * len(self.scalars)]
+        for j, k in enumerate(self.rotated):
+            combos = [c[:k] + [g] + c[k + 1:] for c in combos for g in rot_choices[j]]
+        for k in self.permuted:
+            combos = [c[:k] + [g] + c[k + 1:] for c in combos for g in perm_options[k]]
+        best = best_key = None
+        ties = 0
+        for images in combos:
+            self.relabellings += 1
+            t = self.apply(state, images) if len(combos) > 1 or any(images) else state
+            key = self._key(t)
+            if best_key is None or key < best_key:
+                best, best_key, ties = t, key, 1
+            elif key == best_key:
+                ties += 1
+        return best, ties * factor
+
+
+class _Identity:
+    def __getitem__(self, x):
+        return x
+
+
+class _Swap:
+    def __init__(self, a, b):
+        self.a, self.b = a, b
+
+    def __getitem__(self, x):
+        return self.b if x == self.a else self.a if x == self.b else x
+
+
+def _distinct_arrangements(items: list):
+    """The distinct orderings of a list with repeated items (lexicographic, without duplicates)."""
+    items = sorted(items)
+    n = len(items)
+    yield tuple(items)
+    while True:
+        i = n - 2
+        while i >= 0 and items[i] >= items[i + 1]:
+            i -= 1
+        if i < 0:
+            return
+        j = n - 1
+        while items[j] <= items[i]:
+            j -= 1
+        items[i], items[j] = items[j], items[i]
+        items[i + 1:] = reversed(items[i + 1:])
+        yield tuple(items)
+
+
+__all__ = ["KINDS", "PERMUTATIONS", "ROTATIONS", "Canonicaliser", "Scalar", "root", "scalar_values",
+           "sorted_items", "value_mapper"]

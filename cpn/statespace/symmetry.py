@@ -1,0 +1,132 @@
+"""The explorer's successor step under symmetry reduction, orbit counts and traces in the full graph.
+
+`SymmetricSuccessors` wraps the engine's successor function: every successor is replaced by the canonical
+representative of its orbit (`cpn.engine.symmetry.Canonicaliser`), so the explorer stores one state per
+orbit and builds the quotient graph (an arc per enabled binding element of a representative, as in the
+full graph). Because G maps the enabled binding elements of a marking onto those of its image, every state
+of an orbit has as many successors as its representative: the full graph has sum |orbit(r)| states and sum
+|orbit(r)| * outdegree(r) arcs over the representatives r, where |orbit(r)| = |G| / |stabiliser(r)|
+(`full_counts`).
+
+A path of the quotient graph is not a path of the full graph (each step lands on a representative, not on
+the successor itself); `lifted_trace` rebuilds, step by step from the initial marking, a path of the full
+graph through the same orbits: the same length, so still a shortest one, and it replays.
+"""
+
+from __future__ import annotations
+
+from cpn.engine.symmetry import Canonicaliser
+from cpn.statespace.trace import Step, Trace
+
+
+class SymmetricSuccessors:
+    """`successors(state)` of the quotient graph; records the orbit size of each state it expands."""
+
+    def __init__(self, engine, scalars):
+        self.engine = engine
+        self.canon = Canonicaliser(engine, scalars)
+        s0 = engine.initial_state()
+        if any(self.canon.apply(s0, g) != s0 for g in self.canon.generators()):
+            raise ValueError("the initial marking is not symmetric under "
+                             + ", ".join(str(s) for s in scalars) + " (cpn.net.symmetry.symmetry_problems says where)")
+        self.group_order = self.canon.group_order
+        self.orbit: list[int] = []  # orbit size of state i, in expansion (= id) order
+        self._pending: dict = {}  # canonical state -> stabiliser size, until expanded
+        self._memo: dict = {}  # successor state -> its representative (bounded, see MEMO_MAX)
+
+    def initial(self, state):
+        """The representative of the initial state's orbit (the initial state itself when it is
+        symmetric, as `cpn.net.symmetry` requires)."""
+        rep, stab = self.canon.canonical(state)
+        self._pending[rep] = stab
+        return rep
+
+    def __call__(self, state):
+        stab = self._pending.pop(state, None)
+        if stab is None:
+            stab = self.canon.canonical(state)[1]
+        self.orbit.append(self.group_order // stab)
+        out = []
+        memo = self._memo
+        pending = self._pending
+        canonical = self.canon.canonical
+        for be, t in self.engine.successors(state):
+            rep = memo.get(t)
+            if rep is None:
+                rep, stab = canonical(t)
+                if rep not in pending:
+                    pending[rep] = stab
+                if len(memo) >= MEMO_MAX:
+                    memo.clear()
+                memo[t] = rep
+            out.append((be, rep))
+        return out
+
+    def full_counts(self, graph) -> tuple[int, int] | None:
+        """(states, arcs) of the full graph, from the orbit sizes; None unless every state was expanded."""
+        if graph.expanded != graph.n_states or len(self.orbit) != graph.n_states:
+            return None
+        off = graph.offsets
+        states = sum(self.orbit)
+        arcs = sum(k * (off[i + 1] - off[i]) for i, k in enumerate(self.orbit))
+        return states, arcs
+
+    def stats(self, graph) -> dict:
+        """The figures of the reduction for the report: the group, the full graph's counts (None when
+        the search was stopped), how many canonical forms and relabellings were computed."""
+        full = self.full_counts(graph)
+        return {"symmetry": [str(s) for s in self.canon.scalars], "group_order": self.group_order,
+                "full_states": None if full is None else full[0], "full_arcs": None if full is None else full[1],
+                "canonical_forms": self.canon.canonicalised, "relabellings": self.canon.relabellings}
+
+    def orbit_size(self, i: int, graph=None) -> int:
+        """The number of states of the full graph in the orbit of state i."""
+        if i < len(self.orbit):
+            return self.orbit[i]
+        return self.group_order // self.canon.canonical(graph.states[i])[1]
+
+    def canonical(self, state):
+        return self.canon.canonical(state)[0]
+
+
+#: at most this many successor states are remembered with their representative (a state reached again
+#: from another representative is not canonicalised twice); past it the memo starts again
+MEMO_MAX: int = 1 << 16
+
+
+def lifted_trace(graph, target: int, engine=None) -> Trace:
+    """A shortest path of the full graph from the initial marking to a marking in the orbit of state
+    `target` of the quotient graph (its steps name the quotient's states as source and target)."""
+    sym = graph.symmetry
+    path = []
+    v = target
+    while v > 0:
+        path.append((graph.parent_be[v], graph.parent[v], v))
+        v = graph.parent[v]
+    path.reverse()
+    eng = engine if engine is not None else sym.engine
+    state = eng.initial_state()
+    steps = []
+    for be0, a, b in path:
+        want = graph.states[b]
+        succ = eng.successors(state)
+        chosen = next(((be, t) for be, t in succ if be == be0 and sym.canonical(t) == want), None)
+        if chosen is None:
+            chosen = next(((be, t) for be, t in succ if sym.canonical(t) == want), None)
+        if chosen is None:
+            raise RuntimeError(f"no successor of the lifted trace reaches the orbit of state {b}")
+        be, t = chosen
+        if engine is None:
+            steps.append(Step(be, a, b))
+        else:
+            changes = []
+            for p, place in enumerate(engine.places):
+                before, after = engine.format_marking(state, p), engine.format_marking(t, p)
+                if before != after:
+                    changes.append((place.name, before, after))
+            steps.append(Step(be, a, b, engine.format_binding_element(be), tuple(changes)))
+        state = t
+    return Trace(target, tuple(steps))
+
+
+__all__ = ["MEMO_MAX", "SymmetricSuccessors", "lifted_trace"]
