@@ -62,6 +62,73 @@ class Model:
     def name(self) -> str:
         return self.net.name
 
+    def symmetry(self, spec: str | None = None) -> tuple:
+        """The symmetric colour sets for symmetry reduction, checked against the net (`cpn.net.symmetry`).
+
+        `spec` is None (the model's `symmetry` declarations), "auto" (every enumeration and index colour
+        set of a place that the check accepts: all permutations, else rotations) or a list such as
+        ``"PH,Ring:rotations"``. Raises ModelError (E0602, at the inscription or initial marking that
+        tells the values apart) or ConfigurationError (a bad `spec`, or nothing declared).
+
+        >>> import cpn
+        >>> m = cpn.loads("colset P = with a | b; var x : P; place I : P = P.all(); trans t; arc I -> t : x;")
+        >>> [str(s) for s in m.symmetry("auto")]
+        ['P']
+        """
+        from cpn.net.symmetry import parse_scalars, root, scalar_values, symmetry_problems
+
+        if spec is None:
+            scalars = list(getattr(self.net, "symmetries", ()))
+            if not scalars:
+                raise ConfigurationError("the model declares no symmetry", hint="Declare one in the model "
+                                         "('symmetry PH = permutations;') or name the colour sets with "
+                                         "--symmetry PH[,Ring:rotations] (or --symmetry auto).")
+        elif spec.strip() == "auto":
+            scalars = []
+            used = {id(root(c)) for c in _components(self.net.places)}
+            for name, cs in self.net.colsets.items():
+                values = scalar_values(cs)
+                if values is None or len(values) < 2 or name != root(cs).name or id(root(cs)) not in used:
+                    continue
+                for kind in ("permutations", "rotations"):
+                    s = parse_scalars(f"{name}:{kind}")
+                    if not symmetry_problems(self.net, s):
+                        scalars += s
+                        break
+            if not scalars:
+                raise ConfigurationError("no enumeration or index colour set of the model is symmetric",
+                                         hint="Explore without symmetry reduction, or name a colour set with "
+                                         "--symmetry to see what tells its values apart.")
+        else:
+            try:
+                scalars = parse_scalars(spec)
+            except ValueError as exc:
+                raise ConfigurationError(f"--symmetry {spec}: {exc}", hint="Give colour sets as NAME "
+                                         "(all permutations) or NAME:rotations, separated by commas.") from None
+        problems = symmetry_problems(self.net, scalars)
+        if problems:
+            files = {d.span.file for d in problems if d.span is not None} or {self.path}
+            error = ModelError(problems, {f: self.source for f in files})
+            if self.translation is not None:
+                importer = importer_for(self.path)
+                error = importer.remap_error(error, self.translation, f"{self.path} (as .cpnet)")
+            raise error
+        return tuple(scalars)
+
+
+def _components(places):
+    """The colour sets of the places and every colour set inside them (products, records, ...)."""
+    stack = [p.colour_set for p in places]
+    while stack:
+        cs = stack.pop()
+        yield cs
+        for attr in ("base", "elem"):
+            if getattr(cs, attr, None) is not None:
+                stack.append(getattr(cs, attr))
+        stack.extend(getattr(cs, "components", ()) or ())
+        stack.extend(c for _, c in (getattr(cs, "fields", ()) or ()))
+        stack.extend(c for _, c in (getattr(cs, "constructors", ()) or ()) if c is not None)
+
 
 def _normalise_overrides(values) -> dict[str, str]:
     out = {}

@@ -14,6 +14,7 @@ from cpn.checks._common import TransitionIndex
 from cpn.checks.predicates import PredicateError, PropertyLanguage
 from cpn.checks.properties import Check, DeadlockFree, GraphView, Reachable, build_checks
 from cpn.checks.reduction import stubborn_plan
+from cpn.checks.symmetry import symmetry_plan
 from cpn.checks.scenario import PropertySpec, Run, Scenario
 from cpn.checks.verdict import Status, Verdict, evidence_to
 from cpn.diagnostics import Diagnostic
@@ -156,12 +157,20 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     monitor = _Monitor(fly, watch, stop_first, only_witnesses) if (fly or watch is not None) else None
     reduction = opts.get("reduction")
     visible, refused = stubborn_plan(checks) if reduction == "stubborn" else (None, {})
+    scalars = ()
+    if reduction == "symmetry" or opts.get("symmetry") is not None:
+        if reduction == "stubborn":
+            raise ConfigurationError("'reduction = \"stubborn\"' and 'symmetry' cannot be combined",
+                                     hint="Choose one reduction.")
+        reduction = "symmetry"
+        scalars = symmetric_colour_sets(model, opts.get("symmetry") or None, scenario)
+        refused = symmetry_plan(checks, model.net, scalars)
     options = ExploreOptions(max_states=opts.get("max_states"), max_arcs=opts.get("max_arcs"),
                              max_seconds=opts.get("max_seconds"), max_memory_mb=opts.get("max_memory_mb"),
                              stop_predicate=monitor, time_condensation=bool(opts.get("time_condensation", False)),
                              detect_time_growth=bool(opts.get("detect_time_growth", True)),
                              until_time=opts.get("until_time"),
-                             reduction=reduction, visible_places=visible,
+                             reduction=reduction, visible_places=visible, symmetry=scalars,
                              workers=opts.get("workers"), ray=opts.get("ray"))
     t0 = time.perf_counter()
     x = Explorer(watch if watch is not None else engine, options, progress=progress).run()
@@ -187,12 +196,23 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
             if x.reduction is not None and c in refused:
                 verdict = Verdict.unknown(refused[c])
             elif x.reduction is not None and verdict.status is not Status.UNKNOWN:
-                verdict.message += f" (graph reduced by stubborn sets, {x.n_states:,} states: this property is preserved)"
+                how = "stubborn sets" if x.reduction == "stubborn" else "symmetry, one state per orbit"
+                verdict.message += f" (graph reduced by {how}, {x.n_states:,} states: this property is preserved)"
         except PredicateError as exc:
             ev = evidence_to(x.graph, exc.state_id) if exc.state_id is not None else None
             verdict = Verdict(Status.ERROR, str(exc), ev)
         results.append(PropertyResult(c.spec, verdict, time.perf_counter() - t))
     return RunResult(scenario, run, x, engine, results, explore_seconds, time.perf_counter() - t1, opts)
+
+
+def symmetric_colour_sets(model, spec: str | None, scenario: Scenario) -> tuple:
+    """`model.symmetry(spec)`; a bad spec or a model without declarations is an error of the scenario."""
+    try:
+        return model.symmetry(spec)
+    except ConfigurationError as exc:
+        raise ModelError([Diagnostic("E0702", str(exc), scenario.explore_spans.get("symmetry")
+                                     if hasattr(scenario, "explore_spans") else None, hint=exc.hint)],
+                         {scenario.path: scenario.source}) from None
 
 
 def _at_scenario(exc: ModelError, scenario: Scenario) -> ModelError:

@@ -21,9 +21,9 @@ TOP_KEYS = {"name", "model", "description", "set", "explore", "parameters", "pro
 EXPLORE_KEYS = {"max_states": int, "max_arcs": int, "max_seconds": (int, float), "max_memory_mb": (int, float),
                 "time_condensation": bool, "stop_at_first_violation": bool, "detect_time_growth": bool,
                 "until_time": int, "workers": int,
-                "reduction": str, "sweep_line": bool, "progress": str}
-# the partial-order reductions `reduction` may name (docs/specs.md)
-REDUCTIONS: tuple = ("stubborn",)
+                "reduction": str, "sweep_line": bool, "progress": str, "symmetry": list}
+# the reductions `reduction` may name (docs/specs.md)
+REDUCTIONS: tuple = ("stubborn", "symmetry")
 # kind -> (required fields, optional fields); every kind also takes name and description
 KINDS: dict[str, tuple[set, set]] = {
     "invariant": ({"expr"}, set()),
@@ -359,10 +359,25 @@ def _explore(r: _Reader, table) -> dict:
                 continue
             out[k] = v
             continue
+        if want is list:  # symmetry: true (the model's declarations), "auto", or colour sets
+            if v is True:
+                out[k] = ""
+            elif isinstance(v, str) and v.strip():
+                out[k] = v.strip()
+            elif isinstance(v, list) and v and all(isinstance(x, str) and x.strip() for x in v):
+                out[k] = ",".join(x.strip() for x in v)
+            else:
+                r.error("E0702", "'symmetry' must be true, \"auto\" or a list of colour sets",
+                        r.value_span(("explore",), k), hint='Write symmetry = ["PH", "Ring:rotations"] (all '
+                        "permutations of PH, rotations of Ring), symmetry = \"auto\", or symmetry = true for the "
+                        "model's own declarations.")
+            continue
         if want is str:
             if v not in REDUCTIONS:
                 r.error("E0702", f"'{k}' must be one of {', '.join(repr(x) for x in REDUCTIONS)}",
-                        r.value_span(("explore",), k), hint="'stubborn': stubborn sets (partial-order reduction).")
+                        r.value_span(("explore",), k), hint="'stubborn': stubborn sets (partial-order "
+                        "reduction); 'symmetry': symmetry reduction (with the 'symmetry' option or the model's "
+                        "declarations).")
                 continue
             out[k] = v
             continue

@@ -48,10 +48,18 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     add_limit_options(p)
     p.add_argument("--time-condensation", action="store_true",
                    help="identify states that differ only by a uniform time shift (CPN Tools' CreationTime)")
-    p.add_argument("--reduction", choices=["stubborn"], default=None,
+    p.add_argument("--reduction", choices=["stubborn", "symmetry"], default=None,
                    help="explore a reduced graph: 'stubborn' follows only a stubborn set of transition instances "
                    "in each state (partial-order reduction; untimed nets without priorities); it preserves the "
-                   "dead markings only, so the report gives them and says which sections are not preserved")
+                   "dead markings only, so the report gives them and says which sections are not preserved; "
+                   "'symmetry' stores one marking per orbit of the model's declared symmetry (see --symmetry)")
+    p.add_argument("--symmetry", metavar="CS[,CS...]", default=None,
+                   help="symmetry reduction over these enumeration or index colour sets: NAME for all "
+                   "permutations of its values, NAME:rotations for rotations (cyclic colour sets); 'auto' "
+                   "takes every one the net does not tell apart (e.g. a PNML symmetric net's enumerations). "
+                   "Refused, with the inscription at fault, when the net tells the values apart. The report "
+                   "gives the quotient graph's counts, the full counts from the orbit sizes, and says which "
+                   "sections are not preserved")
     p.add_argument("--no-time-growth-check", action="store_true",
                    help="do not stop a timed search whose markings modulo time no longer change")
     p.add_argument("--branch-transitions", metavar="NAMES", default=None,
@@ -117,9 +125,13 @@ def run(args) -> int:
         raise UsageError(f"--max-successors must be positive, got {args.max_successors}")
     if getattr(args, "until_time", None) is not None and args.until_time < 0:
         raise UsageError(f"--until-time must not be negative, got {args.until_time}")
+    if getattr(args, "symmetry", None) is not None:
+        if getattr(args, "reduction", None) == "stubborn":
+            raise UsageError("--symmetry and --reduction stubborn cannot be combined; choose one reduction")
+        args.reduction = "symmetry"
     if getattr(args, "reduction", None) and (args.dot or args.graphml):
-        raise UsageError("--dot and --graphml draw the state space and its SCC graph, which a graph reduced by "
-                         "stubborn sets does not preserve; drop --reduction to draw the full graph")
+        raise UsageError("--dot and --graphml draw the state space and its SCC graph, which a reduced graph "
+                         "does not preserve; drop --reduction/--symmetry to draw the full graph")
     _outputs(args)  # before the model is even loaded: a long run must never be lost to a bad path
     if not os.path.exists(args.model):
         raise UsageError(f"no such model file: '{args.model}'")
@@ -127,7 +139,14 @@ def run(args) -> int:
         from cpn.cli._sweep import run_sweep
 
         return run_sweep(args, sets)
-    engine = load_engine(args.model, sets, args.time_condensation)
+    if getattr(args, "reduction", None) == "symmetry":
+        from cpn.cli._common import load_model
+
+        model = load_model(args.model, sets)
+        args.symmetric_colour_sets = model.symmetry(getattr(args, "symmetry", None))
+        engine = model.engine(time_condensation=args.time_condensation)
+    else:
+        engine = load_engine(args.model, sets, args.time_condensation)
     return explore_engine(engine, args, sets)
 
 
@@ -139,6 +158,7 @@ def _options(args):
                           detect_time_growth=not args.no_time_growth_check,
                           until_time=getattr(args, "until_time", None),
                           reduction=getattr(args, "reduction", None),
+                          symmetry=tuple(getattr(args, "symmetric_colour_sets", ()) or ()),
                           backend=getattr(args, "backend", "auto"),
                           workers=getattr(args, "workers", None), ray=getattr(args, "ray", None))
 
@@ -204,7 +224,8 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
             "until_time": getattr(args, "until_time", None),
             "branch_transitions": getattr(args, "branch_transitions", None),
             "max_successors": getattr(args, "max_successors", None),
-            "reduction": getattr(args, "reduction", None)}
+            "reduction": getattr(args, "reduction", None),
+            "symmetry": [str(s) for s in getattr(args, "symmetric_colour_sets", ()) or ()] or None}
     # --max-listed N: every text cap and the number of dead markings listed become N (0: no cap)
     max_listed = getattr(args, "max_listed", None)
     caps = {} if max_listed is None else {"max_listed": max_listed if max_listed > 0 else None}

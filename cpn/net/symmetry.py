@@ -333,6 +333,35 @@ def check_symmetry(net, scalars) -> list[Diagnostic]:
     return unique
 
 
+def expression_problems(net, scalars, exprs) -> list[Diagnostic]:
+    """What tells the values of `scalars` apart in other expressions over the net (property texts, in the
+    net's expression form): the rules of `check_symmetry`, and a string naming binding values (an
+    `enabled "T: {x=a}"` pattern)."""
+    out: list[Diagnostic] = []
+    for s in scalars:
+        c = _Checker(net, s.name, s.kind)
+        for e in exprs:
+            c.expr(e)
+            for node in _strings(e):
+                if "{" in node.value:
+                    c.refuse(node, f"the binding pattern \"{node.value}\"",
+                             "Name the transition only, or leave the colour set out of the symmetry.")
+        out.extend(c.problems)
+    return out
+
+
+def _strings(e):
+    stack = [e]
+    while stack:
+        x = stack.pop()
+        if isinstance(x, E.Const) and x.kind == "string":
+            yield x
+        elif isinstance(x, (E.Expr, E.Pat)):
+            stack.extend(getattr(x, f.name) for f in dataclasses.fields(x) if f.name != "span")
+        elif isinstance(x, (list, tuple)):
+            stack.extend(x)
+
+
 def symmetry_problems(net, scalars) -> list[Diagnostic]:
     """Everything that stops `scalars` from being a symmetry of the net: `check_symmetry`, then (when the
     inscriptions are fine) the initial marking."""
@@ -371,5 +400,5 @@ def initial_marking_problems(net, scalars, generators) -> list[Diagnostic]:
     return out
 
 
-__all__ = ["CODE", "KINDS", "PERMUTATIONS", "ROTATIONS", "SYMMETRIC_CSOPS", "Scalar", "check_symmetry", "generators",
+__all__ = ["CODE", "KINDS", "PERMUTATIONS", "ROTATIONS", "SYMMETRIC_CSOPS", "Scalar", "check_symmetry", "expression_problems", "generators",
            "initial_marking_problems", "parse_scalars", "root", "scalar_values", "symmetry_problems", "value_mapper"]

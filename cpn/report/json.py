@@ -94,6 +94,17 @@ def to_json(r: Report) -> dict:
                                               if (x.reduction_stats or {}).get("visible_places") is not None else []),
             "not_preserved": list(REDUCED_SECTIONS), "why": NOT_PRESERVED},
     }
+    if r.symmetric:
+        from cpn.checks.symmetry import NOT_PRESERVED as SYM_NOT_PRESERVED
+        from cpn.checks.symmetry import NOT_PRESERVED_SECTIONS, PRESERVED
+
+        st = x.reduction_stats or {}
+        out["reduction"] = {"name": "symmetry", **st, "preserves": list(PRESERVED),
+                            "not_preserved": list(NOT_PRESERVED_SECTIONS), "why": SYM_NOT_PRESERVED}
+        for key in NOT_PRESERVED_SECTIONS:
+            out[key] = None
+        out["statespace"].update(quotient=True, full_states=st.get("full_states"), full_arcs=st.get("full_arcs"))
+        out["dead_markings"]["full_count"] = r.full_dead_count
     if r.reduced:
         # a reduced graph says nothing about these: null, never the reduced graph's figures
         for key in ("scc", "bounds", "multiset_bounds", "dead_transitions", "live_transitions", "home_markings",

@@ -28,6 +28,7 @@ from cpn.statespace import Exploration, Trace, shortest_trace
 
 # What a reduced state space (stubborn sets) does and does not preserve, as the report says it.
 NOT_PRESERVED: str = "not preserved by stubborn sets"
+SYM_NOT_PRESERVED: str = "not preserved by symmetry reduction"
 REDUCED_SECTIONS: tuple = ("scc", "bounds", "home_markings", "dead_transitions", "live_transitions", "fairness")
 
 
@@ -35,6 +36,8 @@ def reduction_text(x: Exploration) -> str | None:
     """One sentence naming the reduction that ran and what it preserves (None: the full graph)."""
     if x.reduction is None:
         return None
+    if x.reduction == "symmetry":
+        return symmetry_text(x)
     visible = (x.reduction_stats or {}).get("visible_places")
     kept = "the dead markings (their existence and their set)"
     if visible is not None:
@@ -43,6 +46,19 @@ def reduction_text(x: Exploration) -> str | None:
     return (f"reduction: stubborn sets (partial-order reduction); the node and arc counts are those of the "
             f"reduced graph; it preserves {kept}; the SCC graph, bounds, home markings, dead and live "
             f"transition instances and fairness are {NOT_PRESERVED} and not reported")
+
+
+def symmetry_text(x: Exploration) -> str:
+    """The sentence of `reduction_text` for symmetry reduction."""
+    st = x.reduction_stats or {}
+    full = ("" if st.get("full_states") is None else
+            f" (the full state space: {st['full_states']:,} nodes and {st['full_arcs']:,} arcs, the sums of the "
+            "orbit sizes)")
+    return (f"reduction: symmetry ({', '.join(st.get('symmetry') or [])}; a group of {st.get('group_order', 0):,} "
+            f"renamings); the node and arc counts are those of the quotient graph, one node per orbit{full}; it "
+            "preserves the dead markings up to symmetry, the integer bounds and token maxima, the dead and live "
+            "transition instances and fairness; the SCC graph is the quotient's; the multi-set bounds and home "
+            f"markings are {SYM_NOT_PRESERVED} and not reported; traces are paths of the full graph")
 
 
 # How many dead markings the report lists with their marking and a shortest trace (text and JSON).
@@ -99,7 +115,20 @@ class Report:
     @property
     def reduced(self) -> bool:
         """The state space is reduced (stubborn sets): only the dead markings are reported."""
-        return self.exploration.reduction is not None
+        return self.exploration.reduction is not None and self.exploration.reduction != "symmetry"
+
+    @property
+    def symmetric(self) -> bool:
+        """The state space is the quotient by a symmetry: some sections are not preserved."""
+        return self.exploration.reduction == "symmetry"
+
+    @property
+    def full_dead_count(self) -> int | None:
+        """Under symmetry: the number of dead markings of the full state space (sum of the orbit sizes)."""
+        sym = self.exploration.graph.symmetry
+        if sym is None or not self.exploration.complete:
+            return None
+        return sum(sym.orbit_size(i, self.exploration.graph) for i in self.dead.states)
 
 
 # the parts of the analysis, in the order build_report computes them (keys of Report.part_seconds)
@@ -216,4 +245,4 @@ def dead_marking(x: Exploration, state: int) -> DeadMarking:
                        shortest_trace(x.graph, state, engine))
 
 
-__all__ = ["DEAD_LISTED", "NOT_PRESERVED", "REDUCED_SECTIONS", "reduction_text", "REPORT_PARTS", "DeadMarking", "Fairness", "Report", "build_report", "dead_marking"]
+__all__ = ["DEAD_LISTED", "NOT_PRESERVED", "SYM_NOT_PRESERVED", "symmetry_text", "REDUCED_SECTIONS", "reduction_text", "REPORT_PARTS", "DeadMarking", "Fairness", "Report", "build_report", "dead_marking"]

@@ -9,7 +9,7 @@ many entries were left out; the JSON result keeps everything. Imports `cpn.repor
 from __future__ import annotations
 
 from cpn.report._words import noun
-from cpn.report.model import NOT_PRESERVED, Report
+from cpn.report.model import NOT_PRESERVED, SYM_NOT_PRESERVED, Report
 
 RULE = "-" * 72
 NAME_WIDTH = 24  # CPN Tools wraps place and transition names of 24 or more characters
@@ -123,6 +123,14 @@ def _dead_markings(r: Report, marking_changes: bool, steps_cap: int | None, term
     return out
 
 
+def _full_counts(r: Report) -> list[str]:
+    st = r.exploration.reduction_stats or {}
+    if st.get("full_states") is None:
+        return ["  Full State Space", "     Unknown (the quotient graph is partial)", ""]
+    return ["  Full State Space (sums of the orbit sizes)", f"     Nodes:  {st['full_states']}",
+            f"     Arcs:   {st['full_arcs']}", ""]
+
+
 def _reduced(r: Report, marking_changes: bool, steps_cap: int | None, terms_cap: int | None) -> list[str]:
     """The sections of a report on a state space reduced by stubborn sets: the dead markings only."""
     out = []
@@ -168,8 +176,12 @@ def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | No
         f"{noun(x.unexpanded, 'node')})")
     if x.restricted:
         status += f"; a restricted state space (branching options: {x.options.restriction()})"
-    out += ["  State Space" + (" (reduced by stubborn sets)" if r.reduced else ""), f"     Nodes:  {x.n_states}",
-            f"     Arcs:   {x.n_arcs}", f"     Secs:   {int(x.seconds)}", f"     Status: {status}", ""]
+    out += ["  State Space" + (" (reduced by stubborn sets)" if r.reduced else
+                               " (quotient by symmetry: one node per orbit)" if r.symmetric else ""),
+            f"     Nodes:  {x.n_states}", f"     Arcs:   {x.n_arcs}", f"     Secs:   {int(x.seconds)}",
+            f"     Status: {status}", ""]
+    if r.symmetric:
+        out += _full_counts(r)
     out += (["  Scc Graph", f"     {NOT_PRESERVED}"] if r.reduced else
             ["  Scc Graph", f"     Nodes:  {r.scc.nodes}", f"     Arcs:   {r.scc.arcs}",
              f"     Secs:   {int(r.scc.seconds)}"])
@@ -186,12 +198,16 @@ def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | No
         out += ["  (bounds of the explored part of a partial state space)", ""]
     out += ["  Best Integer Bounds"]
     out += _table([(b.place, (str(b.upper), str(b.lower))) for b in r.bounds.places], ("Upper", "Lower"))
-    out += ["", "  Best Upper Multi-set Bounds"]
-    for b in r.bounds.places:
-        out += _multiset(b.place, b.upper_text, terms_cap)
-    out += ["", "  Best Lower Multi-set Bounds"]
-    for b in r.bounds.places:
-        out += _multiset(b.place, b.lower_text, terms_cap)
+    if r.symmetric:
+        out += ["", "  Best Upper Multi-set Bounds", f"     {SYM_NOT_PRESERVED}",
+                "", "  Best Lower Multi-set Bounds", f"     {SYM_NOT_PRESERVED}"]
+    else:
+        out += ["", "  Best Upper Multi-set Bounds"]
+        for b in r.bounds.places:
+            out += _multiset(b.place, b.upper_text, terms_cap)
+        out += ["", "  Best Lower Multi-set Bounds"]
+        for b in r.bounds.places:
+            out += _multiset(b.place, b.lower_text, terms_cap)
     out += ["", "  Token maxima",
             f"     Tokens in one marking:          {r.bounds.max_tokens_per_marking}",
             f"     Tokens in one place:            {r.bounds.max_tokens_in_place}",
@@ -199,7 +215,9 @@ def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | No
 
     out += _heading("Home Properties")
     out += ["  Home Markings"]
-    if r.home.states is None:
+    if r.symmetric:
+        out.append(f"     {SYM_NOT_PRESERVED}")
+    elif r.home.states is None:
         out.append("     Unknown (the state space is partial)")
     elif r.timed:
         out.append("     Initial Marking is " + ("a home marking" if r.home.initial_is_home
@@ -209,6 +227,10 @@ def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | No
 
     out += _heading("Liveness Properties")
     out += ["  Dead Markings", "     " + _node_list(r.dead.states, g.n_states)]
+    if r.symmetric:
+        full = r.full_dead_count
+        out.append("     (orbits of the quotient graph" + ("" if full is None else
+                   f"; {full} dead {noun(full, 'marking')} in the full state space") + ")")
     if r.dead.untimed_count is not None:
         out.append(f"     {r.dead.untimed_count} after removing time stamps")
     if r.dead.unexpanded:

@@ -27,6 +27,12 @@ def trace_steps(engine, graph, evidence: Evidence | None) -> dict:
         pairs.append((prev, v, be))
         prev = v
     states = [graph.states[evidence.path[0]]] + [graph.states[v] for _, v, _ in pairs]
+    if getattr(graph, "symmetry", None) is not None:
+        # a path of the quotient graph (symmetry reduction): the same orbits, in the full graph
+        from cpn.statespace.symmetry import lift_path
+
+        states, bes = lift_path(graph, pairs, engine)
+        pairs = [(u, v, be) for (u, v, _), be in zip(pairs, bes)]
     shown, texts = engine, None
     if getattr(engine, "time_condensation", False):
         # condensed states keep timestamps relative to their clock: replay the trace on the same net
@@ -203,6 +209,9 @@ def run_report(result, timings: bool = True) -> dict:
     if x.reduction is not None:
         # the counts are the reduced graph's; bounds are not preserved by the reduction
         stats["reduction"] = x.reduction
+    if x.reduction == "symmetry":
+        st = x.reduction_stats or {}
+        stats.update(symmetry=st.get("symmetry"), full_states=st.get("full_states"), full_arcs=st.get("full_arcs"))
     if timings:
         stats["seconds"] = round(result.explore_seconds, 4)
         stats["check_seconds"] = round(result.check_seconds, 4)
@@ -218,7 +227,7 @@ def run_report(result, timings: bool = True) -> dict:
         "verdict": result.status.value,
         "statespace": stats,
         "dead_markings": {"count": len(dead)},
-        "bounds": x.integer_bounds() if sweep else _integer_bounds(result) if x.reduction is None else None,
+        "bounds": x.integer_bounds() if sweep else _integer_bounds(result) if x.reduction in (None, "symmetry") else None,
         "properties": props,
     }
 
@@ -254,6 +263,17 @@ def _where(doc: dict, p: dict) -> str:
     return f"{os.path.relpath(doc['file'])}:{p['line']}:{p['column']}"
 
 
+def _reduced_words(st: dict) -> str:
+    """' (reduced by stubborn sets)', or for symmetry the quotient and the full graph's counts."""
+    if not st.get("reduction"):
+        return ""
+    if st["reduction"] != "symmetry":
+        return f" (reduced by {st['reduction']} sets)"
+    full = (f"; {st['full_states']:,} states, {st['full_arcs']:,} arcs in the full graph"
+            if st.get("full_states") is not None else "")
+    return f" (one per orbit under the symmetry {', '.join(st.get('symmetry') or [])}{full})"
+
+
 def render_text(doc: dict) -> str:
     st = doc["statespace"]
     out = [f"Scenario {doc['run']}  ({os.path.relpath(doc['file'])})",
@@ -262,7 +282,7 @@ def render_text(doc: dict) -> str:
         out.append("  values      " + ", ".join(f"{k}={v}" for k, v in doc["values"].items()))
     status = "complete" if st["complete"] else f"partial ({st['stop_reason']}, {st['unexpanded']:,} unexpanded)"
     secs = f", {st['seconds']:.2f} s" if "seconds" in st else ""
-    reduced = f" (reduced by {st['reduction']} sets)" if st.get("reduction") else ""
+    reduced = _reduced_words(st)
     reduced += _sweep_text(st)
     out.append(f"  state space {st['states']:,} states, {st['arcs']:,} arcs{reduced}, {status}{secs}")
     out.append(f"  verdict     {doc['verdict']}")
@@ -303,7 +323,7 @@ def render_markdown(doc: dict) -> str:
     out = [f"# Scenario `{doc['run']}`", "",
            f"- model: `{os.path.relpath(doc['model'])}`",
            f"- state space: {st['states']:,} states, {st['arcs']:,} arcs"
-           + (f" (reduced by {st['reduction']} sets)" if st.get("reduction") else "") + _sweep_text(st) + ", "
+           + _reduced_words(st) + _sweep_text(st) + ", "
            + ("complete" if st["complete"] else f"**partial** ({st['stop_reason']})"),
            f"- verdict: **{doc['verdict']}**", "",
            "| property | kind | verdict | detail |", "|---|---|---|---|"]

@@ -94,6 +94,28 @@ class SymmetricSuccessors:
 MEMO_MAX: int = 1 << 16
 
 
+def lift_path(graph, steps, engine=None) -> tuple[list, list[int]]:
+    """A path of the full graph through the orbits of the quotient's path `steps` ((source, target,
+    binding element) triples from the initial state): (its states, its binding elements). Each step takes
+    the quotient's binding element when it leads into the orbit, else the first that does."""
+    sym = graph.symmetry
+    eng = engine if engine is not None else sym.engine
+    state = eng.initial_state()
+    states, bes = [state], []
+    for _a, b, be0 in steps:
+        want = graph.states[b]
+        succ = eng.successors(state)
+        chosen = next(((be, t) for be, t in succ if be == be0 and sym.canonical(t) == want), None)
+        if chosen is None:
+            chosen = next(((be, t) for be, t in succ if sym.canonical(t) == want), None)
+        if chosen is None:
+            raise RuntimeError(f"no successor of the lifted path reaches the orbit of state {b}")
+        bes.append(chosen[0])
+        state = chosen[1]
+        states.append(state)
+    return states, bes
+
+
 def lifted_trace(graph, target: int, engine=None) -> Trace:
     """A shortest path of the full graph from the initial marking to a marking in the orbit of state
     `target` of the quotient graph (its steps name the quotient's states as source and target)."""
@@ -104,29 +126,19 @@ def lifted_trace(graph, target: int, engine=None) -> Trace:
         path.append((graph.parent_be[v], graph.parent[v], v))
         v = graph.parent[v]
     path.reverse()
-    eng = engine if engine is not None else sym.engine
-    state = eng.initial_state()
+    states, bes = lift_path(graph, [(a, b, be) for be, a, b in path], engine)
     steps = []
-    for be0, a, b in path:
-        want = graph.states[b]
-        succ = eng.successors(state)
-        chosen = next(((be, t) for be, t in succ if be == be0 and sym.canonical(t) == want), None)
-        if chosen is None:
-            chosen = next(((be, t) for be, t in succ if sym.canonical(t) == want), None)
-        if chosen is None:
-            raise RuntimeError(f"no successor of the lifted trace reaches the orbit of state {b}")
-        be, t = chosen
+    for k, (be, (_be0, a, b)) in enumerate(zip(bes, path)):
         if engine is None:
             steps.append(Step(be, a, b))
-        else:
-            changes = []
-            for p, place in enumerate(engine.places):
-                before, after = engine.format_marking(state, p), engine.format_marking(t, p)
-                if before != after:
-                    changes.append((place.name, before, after))
-            steps.append(Step(be, a, b, engine.format_binding_element(be), tuple(changes)))
-        state = t
+            continue
+        changes = []
+        for p, place in enumerate(engine.places):
+            before, after = engine.format_marking(states[k], p), engine.format_marking(states[k + 1], p)
+            if before != after:
+                changes.append((place.name, before, after))
+        steps.append(Step(be, a, b, engine.format_binding_element(be), tuple(changes)))
     return Trace(target, tuple(steps))
 
 
-__all__ = ["MEMO_MAX", "SymmetricSuccessors", "lifted_trace"]
+__all__ = ["MEMO_MAX", "SymmetricSuccessors", "lift_path", "lifted_trace"]
