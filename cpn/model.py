@@ -75,10 +75,10 @@ class Model:
         >>> [str(s) for s in m.symmetry("auto")]
         ['P']
         """
-        from cpn.net.symmetry import parse_scalars, root, scalar_values, symmetry_problems
+        from cpn.net.symmetry import Scalar, parse_scalars, root, scalar_values, symmetry_problems
 
         if spec is None:
-            scalars = list(getattr(self.net, "symmetries", ()))
+            scalars = [Scalar(n, k) for n, k in getattr(self.net.checked, "symmetries", ())]
             if not scalars:
                 raise ConfigurationError("the model declares no symmetry", hint="Declare one in the model "
                                          "('symmetry PH = permutations;') or name the colour sets with "

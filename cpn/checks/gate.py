@@ -14,8 +14,8 @@ from cpn.checks._common import TransitionIndex
 from cpn.checks.predicates import PredicateError, PropertyLanguage
 from cpn.checks.properties import Check, DeadlockFree, GraphView, Reachable, build_checks
 from cpn.checks.reduction import stubborn_plan
-from cpn.checks.symmetry import symmetry_plan
 from cpn.checks.scenario import PropertySpec, Run, Scenario
+from cpn.checks.symmetry import symmetry_plan
 from cpn.checks.verdict import Status, Verdict, evidence_to
 from cpn.diagnostics import Diagnostic
 from cpn.errors import ConfigurationError, ModelError

@@ -130,8 +130,9 @@ def run(args) -> int:
             raise UsageError("--symmetry and --reduction stubborn cannot be combined; choose one reduction")
         args.reduction = "symmetry"
     if getattr(args, "reduction", None) and (args.dot or args.graphml):
-        raise UsageError("--dot and --graphml draw the state space and its SCC graph, which a reduced graph "
-                         "does not preserve; drop --reduction/--symmetry to draw the full graph")
+        how = "stubborn sets" if args.reduction == "stubborn" else "symmetry (one node per orbit)"
+        raise UsageError("--dot and --graphml draw the state space and its SCC graph, which a graph reduced by "
+                         f"{how} does not preserve; drop --reduction/--symmetry to draw the full graph")
     _outputs(args)  # before the model is even loaded: a long run must never be lost to a bad path
     if not os.path.exists(args.model):
         raise UsageError(f"no such model file: '{args.model}'")

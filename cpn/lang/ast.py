@@ -340,6 +340,15 @@ class FunDecl(Decl):
 
 
 @dataclass(slots=True, eq=False)
+class SymmetryDecl(Decl):
+    """`symmetry PH, Q = permutations;`: colour sets whose values the net does not tell apart."""
+
+    names: list[tuple[str, Span]]
+    kind: str
+    kind_span: Span
+
+
+@dataclass(slots=True, eq=False)
 class ExceptionDecl(Decl):
     """`exception E` or `exception E of T`: a new exception constructor."""
 

@@ -60,6 +60,7 @@ class CheckedModel:
     top: PageInfo
     modules: dict[str, PageInfo]
     warnings: list[Diagnostic]
+    symmetries: list = field(default_factory=list)  # `symmetry` declarations: (colour set, kind)
 
 
 class Env:

@@ -63,7 +63,7 @@ class PageChecks:
                            hint="Declare every module at the top level of the file.")
             elif isinstance(d, A.NetHeader):
                 self.error("E0206", "'net' is only allowed at the top level", d.span)
-            elif isinstance(d, (A.ColsetDecl, A.VarDecl, A.ValDecl, A.FunDecl)):
+            elif isinstance(d, (A.ColsetDecl, A.VarDecl, A.ValDecl, A.FunDecl, A.SymmetryDecl)):
                 self.error("E0206", "declarations inside a module are not supported; declare them at the top "
                            "level", d.span, hint="CPN ML declarations are global, as in CPN Tools.")
         for d in decls:

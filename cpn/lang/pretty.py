@@ -182,6 +182,8 @@ def decl(d: A.Decl, indent: str = "") -> str:
         return indent + _clauses(d) + ";"
     if isinstance(d, A.ExceptionDecl):
         return indent + _exception(d)
+    if isinstance(d, A.SymmetryDecl):
+        return f"{indent}symmetry {', '.join(n for n, _ in d.names)} = {d.kind};"
     if isinstance(d, A.LocalDecl):
         private = " ".join(_decl_in_let(x) for x in d.private)
         public = " ".join(_decl_in_let(x) for x in d.public)

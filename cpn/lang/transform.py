@@ -251,6 +251,11 @@ class ToAst(Transformer_NonRecursive):
         return A.VarDecl(self.span(meta), names, str(cs), self.tspan(cs))
 
     @v_args(meta=True)
+    def symmetry_decl(self, meta, items):
+        names = [(str(t), self.tspan(t)) for t in items[:-1]]
+        return A.SymmetryDecl(self.span(meta), names, str(items[-1]), self.tspan(items[-1]))
+
+    @v_args(meta=True)
     def val_decl(self, meta, items):
         name, ty, expr = items
         return A.ValDecl(self.span(meta), A.PVar(self.tspan(name), str(name)), expr, ty)

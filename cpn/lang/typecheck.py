@@ -41,6 +41,7 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
         self.overrides = parse_overrides(overrides)
         self.init_resolution()
         self.override_problems: list = []
+        self.symmetries: list[tuple[str, str]] = []  # `symmetry` declarations: (colour set, kind)
         self.used_overrides: set[str] = set()
         self.pending: list[tuple] = []
         self.net_name = "Top"
@@ -92,8 +93,11 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
         if errors:
             self.note_overrides(errors)
             raise ModelError(self.diags, {self.file: self.model.source})
-        return CheckedModel(self.model, self.net_name, self.colsets, self.cstypes, self.variables, self.globals,
-                            self.ev, top, pages, [d for d in self.diags if d.severity is Severity.WARNING])
+        checked = CheckedModel(self.model, self.net_name, self.colsets, self.cstypes, self.variables,
+                               self.globals, self.ev, top, pages,
+                               [d for d in self.diags if d.severity is Severity.WARNING])
+        checked.symmetries = list(self.symmetries)
+        return checked
 
     def top_decl(self, d: A.Decl, top_decls: list, modules: dict) -> None:
         if isinstance(d, A.NetHeader):
@@ -115,6 +119,8 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
                 self.failed_names.add(d.name)
         elif isinstance(d, A.ExceptionDecl):
             self.exception_decl(d)
+        elif isinstance(d, A.SymmetryDecl):
+            self.symmetry_decl(d)
         elif isinstance(d, A.LocalDecl):
             self.local_decl(d, top_decls, modules)
         elif isinstance(d, A.FunDecl):
@@ -146,6 +152,31 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
                     self.globals[name] = before[name]
                 else:
                     del self.globals[name]
+
+    def symmetry_decl(self, d: A.SymmetryDecl) -> None:
+        """Record `symmetry CS = permutations | rotations;` (checked against the net when a symmetry
+        reduction uses it: `cpn.net.symmetry`)."""
+        if d.kind not in ("permutations", "rotations"):
+            self.error("E0304", f"unknown kind of symmetry '{d.kind}'", d.kind_span,
+                       hint="Write 'permutations' (every renaming of the values) or 'rotations' (for a cyclic "
+                            "colour set, whose successor wraps around).")
+            return
+        for name, span in d.names:
+            cs = self.lookup_colset(name, span)
+            if cs is None:
+                continue
+            base = cs
+            while isinstance(base, C.AliasCS):
+                base = base.base
+            if not isinstance(base, (C.EnumCS, C.IndexCS)):
+                self.error("E0304", f"colour set '{name}' cannot be declared symmetric: it is of kind '{base.kind}'",
+                           span, hint="Only enumerations ('with a | b | c') and index colour sets ('index i with "
+                           "1..n') are sets of interchangeable values.")
+                continue
+            if any(n == name for n, _ in self.symmetries):
+                self.error("E0202", f"colour set '{name}' is declared symmetric twice", span)
+                continue
+            self.symmetries.append((name, d.kind))
 
     def exception_decl(self, d: A.ExceptionDecl) -> None:
         arg = None

@@ -119,7 +119,6 @@ def lift_path(graph, steps, engine=None) -> tuple[list, list[int]]:
 def lifted_trace(graph, target: int, engine=None) -> Trace:
     """A shortest path of the full graph from the initial marking to a marking in the orbit of state
     `target` of the quotient graph (its steps name the quotient's states as source and target)."""
-    sym = graph.symmetry
     path = []
     v = target
     while v > 0:

@@ -78,10 +78,10 @@ def test_check_with_reduction_keeps_invariants_and_refuses_the_rest(tmp_path, ca
 def test_a_bad_reduction_is_a_positioned_error(tmp_path, capsys):
     (tmp_path / "n.cpnet").write_text(NET, encoding="utf-8")
     spec = tmp_path / "s.toml"
-    spec.write_text('model = "n.cpnet"\n[explore]\nreduction = "symmetry"\n', encoding="utf-8")
+    spec.write_text('model = "n.cpnet"\n[explore]\nreduction = "sweep"\n', encoding="utf-8")
     assert main(["check", str(spec), "--no-reports"]) == 65
     err = capsys.readouterr().err
-    assert "s.toml:3:" in err and "error[E0702]" in err and "'reduction' must be one of 'stubborn'" in err
+    assert "s.toml:3:" in err and "error[E0702]" in err and "'reduction' must be one of 'stubborn', 'symmetry'" in err
 
 
 def test_html_page_and_drawings_under_the_reduction(tmp_path, capsys):
