@@ -112,6 +112,17 @@ class Canonicaliser:
             self._intern = engine.store.intern
         self.canonicalised = 0
         self.relabellings = 0
+        self._keys: list[dict] = [{} for _ in range(n)]  # place -> marking -> its sorted tokens
+        self._images: list[dict] = [{} for _ in range(n)]  # place -> (rotation, marking) -> image
+        self._rotations_of = []
+        for k in self.rotated:
+            vals = self.values[k]
+            self._rotations_of.append([{v: vals[(i + r) % len(vals)] for i, v in enumerate(vals)}
+                                       for r in range(len(vals))])
+        ident = [{v: v for v in vals} for vals in self.values]
+        self._rotations = [ident]
+        for j, k in enumerate(self.rotated):
+            self._rotations = [c[:k] + [g] + c[k + 1:] for c in self._rotations for g in self._rotations_of[j]]
 
     # ------------------------------------------------------------------ places
     def _dict(self, state, p: int) -> dict:
@@ -192,7 +203,7 @@ class Canonicaliser:
         return sig
 
     def _key(self, state) -> tuple:
-        return tuple(sorted_items(self._dict(state, p)) for p in self.sym_places)
+        return tuple(self._place_key(p, state[p]) for p in self.sym_places)
 
     def _relabellings(self, state):
         """(per permuted scalar: the renamings to try, the product of its twin classes' factorials)."""
@@ -258,31 +269,73 @@ class Canonicaliser:
     def canonical(self, state):
         """(the orbit's representative, the size of its stabiliser in G)."""
         self.canonicalised += 1
-        rot_choices = []
-        for k in self.rotated:
-            vals = self.values[k]
-            n = len(vals)
-            rot_choices.append([{v: vals[(i + r) % n] for i, v in enumerate(vals)} for r in range(n)])
-        if self.permuted:
-            perm_options, factor = self._relabellings(state)
-        else:
-            perm_options, factor = {}, 1
-        combos = [[None] * len(self.scalars)]
+        if not self.permuted:
+            return self._canonical_rotations(state)
+        perm_options, factor = self._relabellings(state)
+        combos = [list(self._rotations[0])] if self.rotated else [[None] * len(self.scalars)]
         for j, k in enumerate(self.rotated):
-            combos = [c[:k] + [g] + c[k + 1:] for c in combos for g in rot_choices[j]]
+            combos = [c[:k] + [g] + c[k + 1:] for c in combos for g in self._rotations_of[j]]
         for k in self.permuted:
             combos = [c[:k] + [g] + c[k + 1:] for c in combos for g in perm_options[k]]
         best = best_key = None
         ties = 0
         for images in combos:
             self.relabellings += 1
-            t = self.apply(state, images) if len(combos) > 1 or any(images) else state
+            t = self.apply(state, images)
             key = self._key(t)
             if best_key is None or key < best_key:
                 best, best_key, ties = t, key, 1
             elif key == best_key:
                 ties += 1
         return best, ties * factor
+
+    def _canonical_rotations(self, state):
+        """`canonical` for a group of rotations only: the renamings are fixed, so the image of each place
+        marking under each of them is remembered (a place marking recurs in many states)."""
+        places = self.sym_places
+        images = self._images
+        place_key = self._place_key
+        best = best_key = None
+        ties = 0
+        for ci, combo in enumerate(self._rotations):
+            self.relabellings += 1
+            row = []
+            for p in places:
+                x = state[p]
+                memo = images[p]
+                y = memo.get((ci, x))
+                if y is None:
+                    y = memo[(ci, x)] = self._image(p, x, combo)
+                row.append(y)
+            key = tuple(place_key(p, y) for p, y in zip(places, row))
+            if best_key is None or key < best_key:
+                best, best_key, ties = row, key, 1
+            elif key == best_key:
+                ties += 1
+        out = list(state)
+        for p, y in zip(places, best):
+            out[p] = y
+        return tuple(out), ties
+
+    def _image(self, p: int, x, images):
+        """The image of place p's marking `x` (an id, or a frozenset for the reference engine)."""
+        d = dict(x) if self.reference else self._dicts[p][x]
+        if not d:
+            return x
+        m = self.mappers[p]
+        image = lambda k, v: images[k][v]  # noqa: E731
+        nd: dict = {}
+        for key, c in d.items():
+            nk = m(key, image)
+            nd[nk] = nd.get(nk, 0) + c
+        return self._make(p, nd)
+
+    def _place_key(self, p: int, x) -> tuple:
+        memo = self._keys[p]
+        k = memo.get(x)
+        if k is None:
+            k = memo[x] = sorted_items(dict(x) if self.reference else self._dicts[p][x])
+        return k
 
 
 class _Identity:
