@@ -262,8 +262,9 @@ def _content(r: Report, verdicts: list, heading: str | None = None) -> str:
         parts.append(_verdicts(r, verdicts, failed))
         nav.append(("verdicts", "Verdicts"))
     levels = bfs_levels(x.graph)
-    if r.reduced:
-        # a graph reduced by stubborn sets keeps the dead markings only: no figure of the rest is shown
+    if r.reduced or r.symmetric:
+        # a graph reduced by stubborn sets keeps the dead markings only: no figure of the rest is shown;
+        # a quotient by symmetry shows its sentence (what it preserves, the full counts) and the dead markings
         parts.append(_section("statistics", "Statistics", f"<p>{S.esc(reduction_text(x))}.</p>"))
         nav.append(("statistics", "Statistics"))
         parts.append(_dead_markings(r, dead_marking_traces(r), levels))
@@ -294,7 +295,8 @@ def _header(r: Report, status: str, heading: str | None = None) -> str:
     x = r.exploration
     dead = r.dead.count
     facts = [f"{x.n_states:,} states", f"{x.n_arcs:,} arcs"] + (
-        ["reduced by stubborn sets"] if r.reduced else [f"{r.scc.nodes:,} SCCs"]) + [
+        ["reduced by stubborn sets"] if r.reduced else ["quotient by symmetry"] if r.symmetric
+        else [f"{r.scc.nodes:,} SCCs"]) + [
              f"{dead:,} dead marking{'s' if dead != 1 else ''}", f"{r.seconds:.2f} s"]
     if heading:
         facts.insert(0, os.path.basename(r.model))
