@@ -145,6 +145,14 @@ class _Checker:
         self.subsets = {n for n, c in net.colsets.items()
                         if isinstance(_root(c), C.SubsetCS) and _root(_root(c).base) is self.cs}
         self.size = len(self.cs.values())
+        # colour sets whose values hold values of this one (products, records, lists, unions of it)
+        self.holding = set()
+        for n, c in net.colsets.items():
+            try:
+                if value_mapper(c, {id(self.cs): 0}) is not None:
+                    self.holding.add(n)
+            except ValueError:
+                self.holding.add(n)
         self.problems: list[Diagnostic] = []
         self.funs = {d.ref.uid: d for d in net.globals.decls if isinstance(d, E.FunDecl)}
         self.seen_funs: set[int] = set()
@@ -229,6 +237,9 @@ class _Checker:
                          " If the net only uses successors and predecessors, declare rotations instead.")
                 self.refuse(e, f"'{e.name}' (the order of the values)",
                             f"Compare values with '=' and '<>' only.{extra}")
+            elif cs in self.holding and op not in SYMMETRIC_CSOPS:
+                self.refuse(e, f"'{e.name}' (the order of the values of '{cs}', which hold values of "
+                            f"'{self.name}')", "Compare values with '=' and '<>' only.")
         elif ref.kind == "var" and ref.data in self.subsets:
             self.refuse(e, f"the variable '{e.name}' of a subset of '{self.name}'",
                         f"A subset picks out some values of '{self.name}'; leave '{self.name}' out of the "

@@ -169,3 +169,21 @@ def test_a_violation_found_on_the_quotient_has_a_trace_of_the_full_graph(tmp_pat
     assert p["verdict"] == "violated" and len(steps) == 2
     # two different clients ask: the lifted trace names two different values (the quotient's would not)
     assert steps[0]["binding_element"] != steps[1]["binding_element"]
+
+
+def test_the_order_of_a_product_holding_the_colour_set_is_refused():
+    m = cpn.loads("colset C = with a | b; colset P = product C * C; var x : P; place I : P = P.all();"
+                  " place O : P; trans t [P.ord x = 0]; arc I -> t : x; arc t -> O : x;", "p.cpnet")
+    with pytest.raises(ModelError) as exc:
+        m.symmetry("C")
+    assert "'P.ord' (the order of the values of 'P'" in exc.value.diagnostics[0].message
+    assert [str(s) for s in cpn.loads("colset C = with a | b; colset P = product C * C; var x : P;"
+                                      " place I : P = P.all(); trans t; arc I -> t : x;").symmetry("C")] == ["C"]
+
+
+def test_the_declaration_prints_back():
+    from cpn.lang.parser import parse
+    from cpn.lang.pretty import decl
+
+    m = parse("colset E = with a | b; symmetry E = rotations;", "s.cpnet")
+    assert decl(m.decls[1]) == "symmetry E = rotations;"
