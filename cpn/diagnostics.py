@@ -54,6 +54,7 @@ CODES: dict[str, str] = {
     "E0502": "unsupported element",
     # options that do not apply to the model
     "E0601": "option not applicable to the model",
+    "E0602": "declared symmetry is not a symmetry of the net",
     # scenario files (docs/specs.md)
     "E0701": "scenario file is not valid TOML",
     "E0702": "bad scenario key or value",
