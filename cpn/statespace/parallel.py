@@ -65,7 +65,8 @@ def why_not_partitioned(engine, options: ExploreOptions) -> str | None:
         return ("timed nets are searched in one process: the time-growth watch and the model-time bound "
                 "look at every state of a level in order")
     if options.reduction is not None:
-        return "stubborn sets (--reduction) are computed in one process"
+        return ("stubborn sets (--reduction) are computed in one process" if options.reduction == "stubborn"
+                else "the quotient by symmetry (--symmetry) is computed in one process")
     if options.restricted:
         return "branching options restrict the search in one process"
     if options.stop_predicate is not None and getattr(options.stop_predicate, "may_stop", True):
