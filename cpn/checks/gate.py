@@ -210,8 +210,19 @@ def symmetric_colour_sets(model, spec: str | None, scenario: Scenario) -> tuple:
     try:
         return model.symmetry(spec)
     except ConfigurationError as exc:
-        raise ModelError([Diagnostic("E0702", str(exc), scenario.explore_spans.get("symmetry")
-                                     if hasattr(scenario, "explore_spans") else None, hint=exc.hint)],
+        import re
+
+        from cpn.diagnostics import Span
+
+        span = None
+        for n, line in enumerate(scenario.source.splitlines(), 1):
+            m = re.match(r"\s*(symmetry|reduction)\s*=", line)
+            if m:
+                span = Span(scenario.path, n, m.start(1) + 1, n, m.end(1))
+                if m.group(1) == "symmetry":
+                    break
+        message = str(exc).replace("--symmetry ", "symmetry = ")
+        raise ModelError([Diagnostic("E0702", message, span, hint=exc.hint)],
                          {scenario.path: scenario.source}) from None
 
 

@@ -187,3 +187,12 @@ def test_the_declaration_prints_back():
 
     m = parse("colset E = with a | b; symmetry E = rotations;", "s.cpnet")
     assert decl(m.decls[1]) == "symmetry E = rotations;"
+
+
+def test_a_bad_symmetry_in_a_scenario_is_a_positioned_error(tmp_path, capsys):
+    _write(tmp_path, "c.cpnet", CLIENTS.format(guard=""))
+    spec = _write(tmp_path, "s.toml", 'model = "c.cpnet"\n[explore]\nsymmetry = ["C:mirror"]\n'
+                  '[[property]]\nname = "d"\nkind = "deadlock_free"\n')
+    assert main(["check", spec, "--no-reports"]) == 65
+    err = capsys.readouterr().err
+    assert "s.toml:3:1: error[E0702]" in err and "'mirror' is not a kind of symmetry" in err
