@@ -226,7 +226,7 @@ class Canonicaliser:
                     prev = s[v]
                 cls = classes[-1]
                 for twins in cls:
-                    if self._swaps_to_itself(state, k, twins[0], v):
+                    if self._swaps_to_itself(state, k, twins[0], v, s[v]):
                         twins.append(v)
                         break
                 else:
@@ -237,10 +237,23 @@ class Canonicaliser:
             options[k] = self._label_choices(classes, vals)
         return options, twins_factor
 
-    def _swaps_to_itself(self, state, k: int, a, b) -> bool:
+    def _swaps_to_itself(self, state, k: int, a, b, signature) -> bool:
+        """Whether exchanging values a and b of scalar k leaves the state unchanged. Only the places
+        holding b (its signature names them; a's is the same) can change; their multisets are compared
+        without interning the exchanged ones."""
         sw: list = [_Identity()] * len(self.scalars)
         sw[k] = _Swap(a, b)
-        return self.apply(state, sw) == state
+        image = lambda j, x: sw[j][x]  # noqa: E731
+        for p in {p for p, _blank, _c in signature}:
+            d = self._dict(state, p)
+            m = self.mappers[p]
+            nd: dict = {}
+            for key, c in d.items():
+                nk = m(key, image)
+                nd[nk] = nd.get(nk, 0) + c
+            if nd != d:
+                return False
+        return True
 
     @staticmethod
     def _label_choices(classes, vals) -> list[dict]:

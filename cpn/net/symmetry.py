@@ -78,6 +78,30 @@ def generators(scalars, values) -> list[list[dict]]:
     return out
 
 
+def _tuple_mapper(maps: list, direct: list):
+    """The mapper of a tuple whose component i has mapper maps[i] (None: unchanged); `direct[i]` is the
+    scalar's number when the component is a scalar itself (its value is renamed in place, one call less:
+    this is the explorer's innermost loop under symmetry reduction)."""
+    moved = [i for i, m in enumerate(maps) if m is not None]
+    if len(maps) == 2 and moved == [0] and direct[0] is not None:
+        k = direct[0]
+        return lambda v, image: (image(k, v[0]), v[1])
+    if len(maps) == 2 and moved == [1] and direct[1] is not None:
+        k = direct[1]
+        return lambda v, image: (v[0], image(k, v[1]))
+    if len(maps) == 3 and moved == [0] and direct[0] is not None:
+        k = direct[0]
+        return lambda v, image: (image(k, v[0]), v[1], v[2])
+    pairs = [(i, maps[i]) for i in moved]
+
+    def f(v, image):
+        out = list(v)
+        for i, m in pairs:
+            out[i] = m(out[i], image)
+        return tuple(out)
+    return f
+
+
 #: the colour-set functions that do not tell the values of the colour set apart
 SYMMETRIC_CSOPS: frozenset = frozenset({"all", "size", "ran", "legal", "mult"})
 CODE: str = "E0602"
@@ -116,8 +140,7 @@ def value_mapper(cs, scalars: dict):
         maps = [value_mapper(c, scalars) for c in comps]
         if all(m is None for m in maps):
             return None
-        maps = [m if m is not None else (lambda v, image: v) for m in maps]
-        return lambda v, image: tuple(m(x, image) for m, x in zip(maps, v))
+        return _tuple_mapper(maps, [scalars.get(id(root(c))) for c in comps])
     if isinstance(cs0, C.ListCS):
         m = value_mapper(cs0.elem, scalars)
         if m is None:
