@@ -12,7 +12,7 @@ from itertools import chain
 
 from cpn.engine import codegen
 from cpn.engine.api import EngineAPI
-from cpn.engine.evaluate import FUNCTION_FILE, run_deep
+from cpn.engine.evaluate import FUNCTION_FILE, run_deep_again
 from cpn.engine.runtime import RUNTIME
 from cpn.errors import EvaluationError
 from cpn.net import expr as E
@@ -22,6 +22,8 @@ from cpn.values.multiset import MultisetError
 
 NEG_INF = float("-inf")
 INF = float("inf")
+# what a function of the model may raise while it is evaluated: reported with the binding (`_blame`)
+_EVALUATION_ERRORS = (MLError, MultisetError, ArithmeticError, IndexError, TypeError, ValueError, KeyError)
 #: the priority of a transition without one (CPN Tools' P_NORMAL)
 P_NORMAL: int = 1000
 #: after this many lookups, a transition whose results were reused less than MEMO_MISS_RATE of the time
@@ -340,10 +342,15 @@ class CompiledEngine(EngineAPI):
 
     def _call(self, info, views):
         try:
-            # a function of the model may recurse deeper than Python's limit: then again on a deep stack
-            return run_deep(info.fn, *views)
-        except (MLError, MultisetError, ArithmeticError, IndexError, TypeError, ValueError, KeyError,
-                RecursionError) as exc:
+            return info.fn(*views)
+        except RecursionError:
+            pass  # retried below, outside this handler, so that the first attempt's frames are freed
+        except _EVALUATION_ERRORS as exc:
+            raise self._blame(info, exc) from None
+        try:
+            # a function of the model recursed deeper than Python's limit: again on a deep stack
+            return run_deep_again(info.fn, *views)
+        except (*_EVALUATION_ERRORS, RecursionError) as exc:
             raise self._blame(info, exc) from None
 
     def _blame(self, info, exc) -> EvaluationError:
