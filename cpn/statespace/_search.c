@@ -1,6 +1,8 @@
 /* The native breadth-first search over transition groups (compiled after _packed.c, whose store it uses).
  *
- * A state is K uint32 fields (the engine's place ids). Transition group g reads the fields read[g] and
+ * A state is K fields (the engine's place ids, uint32 while a state is expanded; in the store each field
+ * is as narrow as its largest id so far allows, 1, 2 or 4 bytes, widened by the search when an id needs
+ * it: cs_widen_field). Transition group g reads the fields read[g] and
  * writes the fields write[g]; its enabled binding elements depend on the read fields only, so its result
  * is cached per tuple of those values: a list of entries (binding element, new value of each read
  * field, delta id of each written field). A written field's new value is add(p, delta, old value),
@@ -8,6 +10,9 @@
  * search returns ND_NEED with what the state being expanded misses first (nd_requests: 0, g, the
  * key's values for a group, or the written places of one group's bindings: 1, p, delta, old each) and
  * is called again once it is filled. A state is expanded only once everything it needs is cached, so nothing is stored twice.
+ *
+ * A state's successors are packed as records and hashed first, their table slots prefetched, then
+ * looked up and stored in order (a probe is the search's likeliest cache miss).
  *
  * The search expands states in id order (BFS); arcs, per-state arc offsets and the BFS parents of new
  * states go to batch buffers that the caller empties (nd_clear_batch) between calls.
@@ -109,6 +114,9 @@ typedef struct {
     uint32_t *req; int64_t nreq, req_cap;
     uint32_t *req_key, *s, *t;
     uint32_t *addv; int64_t addv_cap;  /* the written fields' new values found in phase 1, in order */
+    uint8_t *rs;             /* the record of the state being expanded (K x 4 bytes of room) */
+    uint8_t *recs; int64_t recs_cap;   /* its successors' records, one after the other */
+    uint64_t *hs; int64_t hs_cap;      /* and their hashes */
     void *gen;               /* the C generated from the net's inscriptions, if any (ND_GENERATED) */
 } nd_search;
 
@@ -148,6 +156,9 @@ nd_search *nd_new(cs_store *st, int K, int G, const int32_t *nread, const int32_
     d->s = (uint32_t *)malloc(4 * (size_t)(K + 1));
     d->t = (uint32_t *)malloc(4 * (size_t)(K + 1));
     d->addv_cap = 1024; d->addv = (uint32_t *)malloc((size_t)d->addv_cap * 4);
+    d->rs = (uint8_t *)malloc(4 * (size_t)(K + 1));
+    d->recs_cap = 4096; d->recs = (uint8_t *)malloc((size_t)d->recs_cap);
+    d->hs_cap = 256; d->hs = (uint64_t *)malloc((size_t)d->hs_cap * 8);
     d->level_end = 1;
     return d;
 }
@@ -158,7 +169,8 @@ void nd_free(nd_search *d) {
     vm_free(&d->adds);
     free(d->nread); free(d->nwrite); free(d->read); free(d->write); free(d->groups); free(d->res);
     free(d->dst); free(d->bes); free(d->offsets); free(d->parent); free(d->parent_be);
-    free(d->req_key); free(d->s); free(d->t); free(d->addv); free(d->req); free(d);
+    free(d->req_key); free(d->s); free(d->t); free(d->addv); free(d->req);
+    free(d->rs); free(d->recs); free(d->hs); free(d);
 }
 
 /* The result of group g for the read values `key`: n entries of 1 + nread + nwrite values. */
@@ -211,8 +223,9 @@ int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs) {
         if (d->head == until) { status = ND_CHECK; break; }
         if (n >= max_states) { status = ND_MAX_STATES; break; }
         if (d->total_arcs >= max_arcs) { status = ND_MAX_ARCS; break; }
-        memcpy(d->s, st->arena + d->head * st->W, (size_t)K * 4);
         uint32_t *s = d->s;
+        memcpy(d->rs, st->arena + d->head * st->W, (size_t)st->W);
+        for (int f = 0; f < K; f++) s[f] = (uint32_t)cs_get(d->rs + st->off[f], st->w[f]);
         /* phase 1: everything this state needs is cached */
         int64_t narcs = 0, nadd = 0;
         status = -2;
@@ -274,28 +287,56 @@ int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs) {
         }
         if (status == -2 && d->nreq) status = ND_NEED;
         if (status != -2) break;
-        /* phase 2: the successors, in group order and each group's binding order */
+        /* phase 2: the successors' records, in group order and each group's binding order; a value too
+         * wide for its field widens the store's records and the records of this state are made anew */
         if (grow((void **)&d->dst, &d->arcs_cap, d->narcs + narcs, 4) != 0
             || grow(&d->bes, &d->bes_cap, d->narcs + narcs, 4) != 0
             || grow((void **)&d->offsets, &d->off_cap, d->noff + 1, 8) != 0
             || grow((void **)&d->parent, &d->new_cap, d->nnew + narcs, 4) != 0
-            || grow((void **)&d->parent_be, &d->pbe_cap, d->nnew + narcs, 4) != 0) { status = ND_NO_MEMORY; break; }
-        uint32_t *t = d->t;
-        const uint32_t *addv = d->addv;
+            || grow((void **)&d->parent_be, &d->pbe_cap, d->nnew + narcs, 4) != 0
+            || grow((void **)&d->hs, &d->hs_cap, narcs, 8) != 0) { status = ND_NO_MEMORY; break; }
         int failed = 0;
+        for (;;) {
+            int W = st->W, wf = -1;
+            uint32_t wv = 0;
+            if (grow((void **)&d->recs, &d->recs_cap, narcs * W, 1) != 0) { failed = 1; break; }
+            const uint32_t *addv = d->addv;
+            uint8_t *r = d->recs;
+            for (int g = 0; g < d->G && wf < 0; g++) {
+                int nr = d->nread[g], nw = d->nwrite[g];
+                const int *rd = d->read[g], *wr = d->write[g];
+                int64_t cnt = d->res[goff[g]];
+                const int32_t *e = d->res + goff[g] + 1;
+                for (int64_t j = 0; j < cnt && wf < 0; j++, e += 1 + nr + nw, r += W) {
+                    memcpy(r, d->rs, (size_t)W);
+                    for (int i = 0; i < nr; i++)
+                        if (!cs_put(r + st->off[rd[i]], st->w[rd[i]], (uint32_t)e[1 + i])) {
+                            wf = rd[i]; wv = (uint32_t)e[1 + i]; break;
+                        }
+                    for (int w = 0; w < nw && wf < 0; w++, addv++)
+                        if (!cs_put(r + st->off[wr[w]], st->w[wr[w]], *addv)) { wf = wr[w]; wv = *addv; }
+                }
+            }
+            if (wf < 0) break;
+            if (cs_widen_field(st, wf, wv > 0xFFFFu ? 4 : 2) != 0) { failed = 1; break; }
+            for (int f = 0; f < K; f++) cs_put(d->rs + st->off[f], st->w[f], s[f]);
+        }
+        if (failed) { status = ND_NO_MEMORY; break; }
+        int W = st->W;
+        for (int64_t k = 0; k < narcs; k++) {
+            d->hs[k] = cs_hash(d->recs + k * W, W);
+            __builtin_prefetch(cs_probe_start(st, d->hs[k]));
+        }
+        int64_t k = 0;
         for (int g = 0; g < d->G && !failed; g++) {
             int nr = d->nread[g], nw = d->nwrite[g];
-            int64_t o = goff[g];
-            int64_t cnt = d->res[o];
-            const int32_t *e = d->res + o + 1;
-            for (int64_t j = 0; j < cnt; j++, e += 1 + nr + nw) {
-                memcpy(t, s, (size_t)K * 4);
-                for (int i = 0; i < nr; i++) t[d->read[g][i]] = (uint32_t)e[1 + i];
-                for (int w = 0; w < nw; w++) t[d->write[g][w]] = *addv++;
-                int32_t id, fresh;
-                int64_t r = cs_add_many(st, (const uint8_t *)t, 1, &id, &fresh);
-                if (r < 0) { failed = 1; break; }
-                if (r == 1) {
+            int64_t cnt = d->res[goff[g]];
+            const int32_t *e = d->res + goff[g] + 1;
+            for (int64_t j = 0; j < cnt; j++, e += 1 + nr + nw, k++) {
+                int32_t id;
+                int rc = cs_add_hashed(st, d->recs + k * W, d->hs[k], &id);
+                if (rc < 0) { failed = 1; break; }
+                if (rc == 1) {
                     d->parent[d->nnew] = (int32_t)d->head;
                     d->parent_be[d->nnew] = e[0];
                     d->nnew++;

@@ -166,10 +166,11 @@ class NativeSearch:
         library), its states are copied over in their order and the search goes on from its head."""
         self.native_lib = lib
         self.ffi, self.lib = ffi, clib = lib.ffi, lib.lib
-        store = PackedStore(lib, s0, widths=[4] * len(s0))
+        # a field starts as narrow as the initial state allows; the search widens it when a value needs it
+        store = PackedStore(lib, s0, widths=old.store.widths if old is not None else None)
         if old is not None:
             n = len(old.store)
-            if n > 1:  # the records are laid out alike (4 bytes a field): copy them as they are
+            if n > 1:  # the records are laid out alike (the same widths): copy them as they are
                 arena = old.lib.cs_arena(old.store.handle)
                 W = old.lib.cs_width(old.store.handle)
                 src = ffi.cast("uint8_t *", int(old.ffi.cast("uintptr_t", arena))) + W
@@ -299,6 +300,7 @@ class NativeSearch:
     def flush(self) -> None:
         """Move the arcs, offsets and BFS parents of the states expanded since the last flush to the graph."""
         lib, h, ffi, g = self.lib, self.handle, self.ffi, self.graph
+        self.store.sync()  # the search may have widened the records' fields
         if self.gen is not None:  # the engine gets the markings and binding elements made in C
             self.code.to_python(self.engine, self.native_lib, self.gen)
         n = lib.nd_narcs(h)

@@ -38,6 +38,7 @@ int64_t cs_add_many(cs_store *s, const uint8_t *recs, int64_t n, int32_t *ids, i
 int cs_widen(cs_store *s, const uint8_t *w);
 int64_t cs_count(cs_store *s);
 int cs_width(cs_store *s);
+const uint8_t *cs_widths(cs_store *s);
 const uint8_t *cs_arena(cs_store *s);
 int64_t cs_nbytes(cs_store *s);
 void cs_trim(cs_store *s);
@@ -223,6 +224,14 @@ class PackedStore:
         else:
             dst.frombytes(self.ffi.buffer(self._ids, 4 * n))
         return self.ffi.unpack(self._fresh, nfresh) if nfresh else []
+
+    def sync(self) -> None:
+        """Take over the fields' widths from native code that widened them (the native search does)."""
+        if self._fallback is None:
+            widths = list(self.ffi.unpack(self.lib.cs_widths(self.handle), len(self.widths)))
+            if widths != self.widths:
+                self.widths = widths
+                self.struct = struct.Struct(_format(widths))
 
     def _widen(self, succ) -> bool:
         """Make every field wide enough for the states of `succ`; False if one cannot be packed."""

@@ -183,3 +183,32 @@ def test_native_search_hands_over_where_results_rarely_recur(monkeypatch):
     ms = cpn.load(os.path.join(ROOT, "bench", "nets", "ms.cpnet"), set={"N": 4})
     x = Explorer(ms.engine(), ExploreOptions(backend="c")).run()
     assert x.backend == "c" and x.notes == []
+
+
+COUNTER = """net Counter;
+colset C = int with 0..70000;
+colset S = int with 0..2;
+var x : C;
+var y : S;
+place P : C = 1`0;
+place Q : S = 1`0;
+trans Inc [x < 70000];
+arc P -> Inc : x;
+arc Inc -> P : x + 1;
+arc Q <-> Inc : y;
+"""
+
+
+@needs_native
+def test_native_search_widens_its_records_as_place_ids_grow():
+    """The native search keeps a field in the fewest bytes its ids so far need: P's 70,001 markings take it
+    from one byte to two and to four during the search, Q's one stays in one byte; the graph is the Python one."""
+    from tests.engine._explore import same_exploration
+
+    model = cpn.loads(COUNTER, "counter.cpnet")
+    c = Explorer(model.engine(), ExploreOptions(backend="c")).run()
+    py = Explorer(model.engine(), ExploreOptions(backend="python", packed_states=False)).run()
+    assert c.backend == "c" and c.n_states == py.n_states == 70_001
+    assert c.graph.store.widths == [4, 1]
+    same_exploration(c, py)
+    assert c.graph.state_id(c.graph.states[-1]) == c.n_states - 1
