@@ -176,8 +176,9 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     x = Explorer(watch if watch is not None else engine, options, progress=progress).run()
     explore_seconds = time.perf_counter() - t0
     x.engine = engine
-    if watch is not None and x.backend in ("workers", "ray"):
-        # the partitioned search expanded the states in other processes: the first dead state by number
+    if watch is not None and (x.backend != "python" or watch.expanded < x.graph.expanded):
+        # the partitioned search expanded the states in other processes, the native search in C (all of
+        # them, or the first ones before it handed over): the first dead state by number
         watch.first_dead = next(iter(x.graph.dead_states()), None)
     note = None
     if x.stop_reason.value == "predicate":

@@ -101,6 +101,16 @@ class Exploration:
         return self.graph.n_states - self.graph.expanded
 
 
+def _observe(observe, g: StateGraph, observed: int) -> int:
+    """Show an observing predicate the states stored from id `observed` on, in order; the next id to show."""
+    if observe is None:
+        return observed
+    n = len(g.store)
+    for t in g.states[observed:n]:
+        observe(t)
+    return n
+
+
 class Explorer:
     """A breadth-first search over an engine's states, recording why it stopped.
 
@@ -205,11 +215,15 @@ class Explorer:
         max_states = opts.max_states if opts.max_states is not None else 1 << 62
         max_arcs = opts.max_arcs if opts.max_arcs is not None else 1 << 62
         until = CHECK_EVERY
+        # a predicate that only observes (may_stop False: a check's monitor) sees every new state in id
+        # order, as the Python search shows it each state when it stores it, a batch at a time
+        observe, observed = opts.stop_predicate, 1
         try:
             while True:
                 # a stop at the arcs cap of this round is a look at the limits, as at `until`
                 round_arcs = min(max_arcs, search.n_arcs + CHECK_EVERY_ARCS)
                 stop = search.run(until, max_states, round_arcs)
+                observed = _observe(observe, g, observed)
                 if stop is StopReason.MAX_ARCS and round_arcs < max_arcs:
                     stop = None
                 if stop is not None:
@@ -228,6 +242,7 @@ class Explorer:
             raise
         except KeyboardInterrupt:
             search.flush()
+            _observe(observe, g, observed)
             stop = StopReason.INTERRUPTED
         g.store.finish()
         return stop, None, search.levels

@@ -101,8 +101,8 @@ def unavailable(engine, options, s0) -> str | None:
         return "the Python back end was asked for"
     if not options.packed_states:
         return "the states are to be kept as tuples (packed_states=False)"
-    if options.stop_predicate is not None:
-        return "a stop predicate is a Python function of each new state"
+    if options.stop_predicate is not None and getattr(options.stop_predicate, "may_stop", True):
+        return "a stop predicate that may end the search is a Python function of each new state"
     if engine.is_timed:
         return "timed nets are searched by the Python back end"
     # an optional capability of an engine (the Engine protocol's other members are required)
