@@ -167,6 +167,22 @@ int64_t gr_dead(int64_t nexp, const int64_t *off, int32_t *out) {
     return k;
 }
 
+/* Predecessors in CSR form: the sources of the arcs into v, in the order of the arcs, are
+ * pred[poff[v]..poff[v + 1]) (a counting sort of the arcs by target). 0, or -1 without memory. */
+int gr_reverse(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, int64_t *poff, int32_t *pred) {
+    int64_t m = off[nexp];
+    int64_t *next = (int64_t *)malloc((size_t)(n ? n : 1) * 8);
+    if (!next) return -1;
+    memset(poff, 0, (size_t)(n + 1) * 8);
+    for (int64_t i = 0; i < m; i++) poff[dst[i] + 1]++;
+    for (int64_t v = 0; v < n; v++) poff[v + 1] += poff[v];
+    memcpy(next, poff, (size_t)n * 8);
+    for (int64_t u = 0; u < nexp; u++)
+        for (int64_t i = off[u]; i < off[u + 1]; i++) pred[next[dst[i]]++] = (int32_t)u;
+    free(next);
+    return 0;
+}
+
 /* live[t] = 1 iff t labels an arc leaving a state of every terminal SCC (arcs of a terminal SCC stay in
  * it). The terminal SCCs of at least n / 8 states (at most 8) are read in one pass over the states in
  * increasing order (the order the arcs are stored in); the others state by state. */

@@ -32,6 +32,7 @@ int64_t gr_max_id(const void *ids, int bw, int64_t m);
 void gr_mark_ids(const void *ids, int bw, int64_t m, uint8_t *seen);
 void gr_map_ids(const void *ids, int bw, int64_t m, const int32_t *table, void *out, int ow);
 int64_t gr_dead(int64_t nexp, const int64_t *off, int32_t *out);
+int gr_reverse(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, int64_t *poff, int32_t *pred);
 int gr_live(int64_t n, int64_t nexp, const int64_t *off, const void *labels, int lw, int ntrans,
             const int32_t *comp, const int32_t *members, const int32_t *start, const uint8_t *terminal,
             int64_t count, uint8_t *live);
@@ -177,6 +178,21 @@ def dead_states(offsets: array) -> list[int] | None:
     out = array("i", bytes(4 * max(1, len(offsets) - 1)))
     k = lib.lib.gr_dead(len(offsets) - 1, _buf(ffi, "int64_t[]", offsets), _buf(ffi, "int32_t[]", out))
     return out[:k].tolist()
+
+
+def reverse(n: int, offsets: array, dst: array) -> tuple[array, array] | None:
+    """Predecessors in CSR form (pred_off, pred) as `cpn.checks.ctl.reverse_csr` gives them, or None."""
+    lib = library(len(dst))
+    if lib is None or not _csr_ok(offsets, dst):
+        return None
+    ffi = lib.ffi
+    nexp = len(offsets) - 1
+    pred_off = array("q", bytes(8 * (n + 1)))
+    pred = array("i", bytes(4 * offsets[nexp]))
+    if lib.lib.gr_reverse(n, nexp, _buf(ffi, "int64_t[]", offsets), _buf(ffi, "int32_t[]", dst),
+                          _buf(ffi, "int64_t[]", pred_off), _buf(ffi, "int32_t[]", pred)) != 0:
+        raise MemoryError("no memory for the predecessors")
+    return pred_off, pred
 
 
 def live(offsets: array, labels: array, ntrans: int, comp: array, members: array, start: array,

@@ -133,7 +133,15 @@ class _PackedStates(Sequence):
     def __getitem__(self, i):
         n = len(self)
         if isinstance(i, slice):
-            return [self[j] for j in range(*i.indices(n))]
+            start, stop, step = i.indices(n)
+            if step != 1:
+                return [self[j] for j in range(start, stop, step)]
+            if stop <= start:
+                return []
+            st = self._store  # a run of records: copied once, decoded at C speed
+            size = st.struct.size
+            return list(st.struct.iter_unpack(bytes(st.ffi.buffer(st.lib.cs_arena(st.handle) + start * size,
+                                                                  (stop - start) * size))))
         if i < 0:
             i += n
         if not 0 <= i < n:

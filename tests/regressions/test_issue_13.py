@@ -212,3 +212,14 @@ def test_native_search_widens_its_records_as_place_ids_grow():
     assert c.graph.store.widths == [4, 1]
     same_exploration(c, py)
     assert c.graph.state_id(c.graph.states[-1]) == c.n_states - 1
+
+
+@needs_native
+def test_a_slice_of_packed_states_decodes_as_its_states():
+    st = new_store((0, 0))
+    st.add_successors([(0, (i % 300, i)) for i in range(1, 1000)], [])
+    states = st.states
+    one_by_one = [states[j] for j in range(len(states))]
+    assert one_by_one[:3] == [(0, 0), (1, 1), (2, 2)] and one_by_one[-1] == (999 % 300, 999)
+    for sl in (slice(5, 17), slice(990, 2000), slice(10, 5), slice(None, None, 7), slice(-3, None), slice(0, 0)):
+        assert states[sl] == one_by_one[sl]
