@@ -18,7 +18,8 @@ and each gets its own row.
 
 With --cpncheck, the same nets as CPN Tools .cpn files (shared/bench/make_cpn_nets.py) are run with
 cpncheck from the virtual environment CPNCHECK_VENV (default ../cpncheck-venv; `pip install cpncheck` there): shared/bench/cpncheck_run.py for
-generation, `cpncheck check NET.cpn` for the full report, and the ratios are printed.
+generation, `cpncheck check NET.cpn` for the full report, and the ratios are printed (against the last
+back end of --backends; `--cpncheck-repeat K` runs cpncheck K times a size instead of --repeat).
 """
 
 from __future__ import annotations
@@ -148,6 +149,8 @@ def main(argv=None) -> int:
     ap.add_argument("--repeat", type=int, default=3)
     ap.add_argument("--backends", default="c,python", help="searches to compare: c,python,packed")
     ap.add_argument("--cpncheck", action="store_true")
+    ap.add_argument("--cpncheck-repeat", type=int, metavar="K",
+                    help="cpncheck's runs per size (default: --repeat; MS(8) takes it minutes a run)")
     ap.add_argument("--json", metavar="FILE")
     ap.add_argument("--child", nargs=3, metavar=("NET", "N", "BACKEND"), help=argparse.SUPPRESS)
     args = ap.parse_args(argv)
@@ -197,7 +200,7 @@ def main(argv=None) -> int:
                     print(line, flush=True)
                     results.append(row)
             if args.cpncheck:
-                cruns = [cpncheck(cpn_dir, net, n) for _ in range(args.repeat)]
+                cruns = [cpncheck(cpn_dir, net, n) for _ in range(args.cpncheck_repeat or args.repeat)]
                 c = {"gen_s": median(cruns, "gen_s"), "report_wall_s": median(cruns, "report_wall_s"),
                      "peak_report_mb": median(cruns, "peak_report_mb"), "peak_gen_mb": median(cruns, "peak_gen_mb"),
                      "states": cruns[0]["states"], "arcs": cruns[0]["arcs"], "runs": cruns}
