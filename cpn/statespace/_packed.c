@@ -74,10 +74,22 @@ static int cs_rehash(cs_store *s, uint64_t size) {
     if (!t) return -1;
     uint64_t mask = size - 1;
     s->tagged = s->n < CS_TAG_LIMIT;
-    for (int64_t i = 0; i < s->n; i++) {
-        uint64_t hh = cs_hash(s->arena + i * s->W, s->W), h = hh & mask;
-        while (t[h]) h = (h + 1) & mask;
-        t[h] = cs_slot(s, i, hh);
+    /* the records' slots are random places of a table larger than the caches: each is prefetched
+     * CS_AHEAD records before it is written */
+    enum { CS_AHEAD = 16 };
+    uint64_t ring[CS_AHEAD];
+    for (int64_t i = 0; i < s->n + CS_AHEAD; i++) {
+        if (i >= CS_AHEAD) {
+            int64_t j = i - CS_AHEAD;
+            uint64_t hh = ring[j % CS_AHEAD], h = hh & mask;
+            while (t[h]) h = (h + 1) & mask;
+            t[h] = cs_slot(s, j, hh);
+        }
+        if (i < s->n) {
+            uint64_t hh = cs_hash(s->arena + i * s->W, s->W);
+            ring[i % CS_AHEAD] = hh;
+            __builtin_prefetch(t + (hh & mask), 1);
+        }
     }
     free(s->table);
     s->table = t;
