@@ -117,6 +117,17 @@ typedef struct {
     uint8_t *rs;             /* the record of the state being expanded (K x 4 bytes of room) */
     uint8_t *recs; int64_t recs_cap;   /* its successors' records, one after the other */
     uint64_t *hs; int64_t hs_cap;      /* and their hashes */
+    /* Uncached results (with the generated C only): a group whose results are rarely reused (more than
+     * half of its first `uncache_after` lookups missed: DP's transitions see new markings in nearly every
+     * state) has them computed anew for each state into `tmp` instead of being stored; the same for the
+     * written places' new ids. The generated C gives the same ids for the same key every time. */
+    int32_t *tmp; int64_t ntmp, tmp_cap;
+    int scratch;             /* nd_put_group writes to tmp (set around gen_group for an uncached group) */
+    int64_t last_off;        /* where nd_put_group put (or found) the last result */
+    uint8_t *uncached, *in_tmp;        /* per group: uncached; its result for this state is in tmp */
+    int64_t *looks, *misses;           /* per group: cache lookups, and misses, while they are counted */
+    int adds_uncached; int64_t adds_looks, adds_misses;
+    int64_t uncache_after;
     void *gen;               /* the C generated from the net's inscriptions, if any (ND_GENERATED) */
 } nd_search;
 
@@ -159,6 +170,14 @@ nd_search *nd_new(cs_store *st, int K, int G, const int32_t *nread, const int32_
     d->rs = (uint8_t *)malloc(4 * (size_t)(K + 1));
     d->recs_cap = 4096; d->recs = (uint8_t *)malloc((size_t)d->recs_cap);
     d->hs_cap = 256; d->hs = (uint64_t *)malloc((size_t)d->hs_cap * 8);
+    d->tmp_cap = 1024; d->tmp = (int32_t *)malloc((size_t)d->tmp_cap * 4);
+    d->uncached = (uint8_t *)calloc((size_t)G + 1, 1);
+    d->in_tmp = (uint8_t *)calloc((size_t)G + 1, 1);
+    d->looks = (int64_t *)calloc((size_t)G + 1, 8);
+    d->misses = (int64_t *)calloc((size_t)G + 1, 8);
+    d->uncache_after = -1;
+    for (int g = 0; g < G; g++) d->looks[g] = -1;  /* not counted until nd_set_uncache_after */
+    d->adds_looks = -1;
     d->level_end = 1;
     return d;
 }
@@ -170,13 +189,25 @@ void nd_free(nd_search *d) {
     free(d->nread); free(d->nwrite); free(d->read); free(d->write); free(d->groups); free(d->res);
     free(d->dst); free(d->bes); free(d->offsets); free(d->parent); free(d->parent_be);
     free(d->req_key); free(d->s); free(d->t); free(d->addv); free(d->req);
-    free(d->rs); free(d->recs); free(d->hs); free(d);
+    free(d->rs); free(d->recs); free(d->hs);
+    free(d->tmp); free(d->uncached); free(d->in_tmp); free(d->looks); free(d->misses); free(d);
 }
 
 /* The result of group g for the read values `key`: n entries of 1 + nread + nwrite values. */
+static int grow(void **buf, int64_t *cap, int64_t need, size_t size);
+
 int nd_put_group(nd_search *d, int g, const uint32_t *key, int64_t n, const int32_t *entries) {
-    if (vm_get(&d->groups[g], key) >= 0) return 0;
     int64_t width = 1 + d->nread[g] + d->nwrite[g];
+    if (d->scratch) {
+        if (grow((void **)&d->tmp, &d->tmp_cap, d->ntmp + 1 + n * width, 4) != 0) return -1;
+        d->last_off = d->ntmp;
+        d->tmp[d->ntmp] = (int32_t)n;
+        memcpy(d->tmp + d->ntmp + 1, entries, (size_t)(n * width) * 4);
+        d->ntmp += 1 + n * width;
+        return 0;
+    }
+    int64_t had = vm_get(&d->groups[g], key);
+    if (had >= 0) { d->last_off = had; return 0; }
     int64_t need = d->nres + 1 + n * width;
     if (need > d->res_cap) {
         int64_t cap = d->res_cap;
@@ -189,6 +220,7 @@ int nd_put_group(nd_search *d, int g, const uint32_t *key, int64_t n, const int3
     d->res[off] = (int32_t)n;
     memcpy(d->res + off + 1, entries, (size_t)(n * width) * 4);
     d->nres = need;
+    d->last_off = off;
     return vm_put(&d->groups[g], key, off);
 }
 
@@ -230,18 +262,42 @@ int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs) {
         int64_t narcs = 0, nadd = 0;
         status = -2;
         d->nreq = 0;
+        d->ntmp = 0;
         for (int g = 0; g < d->G && status == -2; g++) {
             int nr = d->nread[g], nw = d->nwrite[g];
             uint32_t *key = d->req_key;
             for (int i = 0; i < nr; i++) key[i] = s[d->read[g][i]];
-            int64_t o = vm_get(&d->groups[g], key);
+            int64_t o = -1;
+            int tried = 0;
+            d->in_tmp[g] = 0;
 #ifdef ND_GENERATED
-            if (o < 0 && d->gen) {
+            if (d->uncached[g]) {
+                d->scratch = 1;
                 int rc = gen_group(d->gen, d, g, key);
+                d->scratch = 0;
+                tried = 1;
                 if (rc == -2) { status = ND_NO_MEMORY; break; }
-                if (rc == 0) o = vm_get(&d->groups[g], key);
+                if (rc == 0) { o = d->last_off; d->in_tmp[g] = 1; }
             }
 #endif
+            if (o < 0) {
+                o = vm_get(&d->groups[g], key);
+#ifdef ND_GENERATED
+                if (d->gen && d->looks[g] >= 0) {  /* the hit rate is judged once, after uncache_after lookups */
+                    d->looks[g]++;
+                    d->misses[g] += o < 0;
+                    if (d->looks[g] == d->uncache_after) {
+                        if (2 * d->misses[g] > d->looks[g]) d->uncached[g] = 1;
+                        d->looks[g] = -1;
+                    }
+                }
+                if (o < 0 && d->gen && !tried) {
+                    int rc = gen_group(d->gen, d, g, key);
+                    if (rc == -2) { status = ND_NO_MEMORY; break; }
+                    if (rc == 0) o = d->last_off;
+                }
+#endif
+            }
             if (o < 0) {
                 if (grow((void **)&d->req, &d->req_cap, d->nreq + 2 + nr, 4) != 0) { status = ND_NO_MEMORY; break; }
                 d->req[d->nreq++] = 0;
@@ -251,22 +307,38 @@ int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs) {
                 break;
             }
             goff[g] = o;
-            int64_t cnt = d->res[o];
-            const int32_t *e = d->res + o + 1;
+            const int32_t *base = d->in_tmp[g] ? d->tmp : d->res;
+            int64_t cnt = base[o];
+            const int32_t *e = base + o + 1;
             for (int64_t j = 0; j < cnt; j++, e += 1 + nr + nw) {
                 if (!d->be32 && e[0] > 65535) { status = ND_WIDE_BE; break; }
                 if (nw && grow((void **)&d->addv, &d->addv_cap, nadd + nw, 4) != 0) { status = ND_NO_MEMORY; break; }
                 for (int w = 0; w < nw; w++) {
                     uint32_t k[3] = {(uint32_t)d->write[g][w], (uint32_t)e[1 + nr + w], s[d->write[g][w]]};
-                    int64_t v = vm_get(&d->adds, k);
+                    int64_t v = -1;
 #ifdef ND_GENERATED
-                    if (v < 0 && d->gen) {
+                    int tried_add = 0;
+                    if (d->adds_uncached) { v = gen_add(d->gen, k[0], k[1], k[2]); tried_add = 1; }
+                    if (v < 0) {
+                        v = vm_get(&d->adds, k);
+                        if (d->gen && d->adds_looks >= 0) {
+                            d->adds_looks++;
+                            d->adds_misses += v < 0;
+                            if (d->adds_looks == d->uncache_after) {
+                                if (2 * d->adds_misses > d->adds_looks) d->adds_uncached = 1;
+                                d->adds_looks = -1;
+                            }
+                        }
+                    }
+                    if (v < 0 && d->gen && !tried_add) {
                         int64_t nid = gen_add(d->gen, k[0], k[1], k[2]);
                         if (nid >= 0) {
                             if (vm_put(&d->adds, k, nid) != 0) { status = ND_NO_MEMORY; break; }
                             v = nid;
                         }
                     }
+#else
+                    v = vm_get(&d->adds, k);
 #endif
                     if (v < 0) {
                         if (grow((void **)&d->req, &d->req_cap, d->nreq + 4, 4) != 0) { status = ND_NO_MEMORY; break; }
@@ -305,8 +377,9 @@ int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs) {
             for (int g = 0; g < d->G && wf < 0; g++) {
                 int nr = d->nread[g], nw = d->nwrite[g];
                 const int *rd = d->read[g], *wr = d->write[g];
-                int64_t cnt = d->res[goff[g]];
-                const int32_t *e = d->res + goff[g] + 1;
+                const int32_t *base = d->in_tmp[g] ? d->tmp : d->res;
+                int64_t cnt = base[goff[g]];
+                const int32_t *e = base + goff[g] + 1;
                 for (int64_t j = 0; j < cnt && wf < 0; j++, e += 1 + nr + nw, r += W) {
                     memcpy(r, d->rs, (size_t)W);
                     for (int i = 0; i < nr; i++)
@@ -330,8 +403,9 @@ int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs) {
         int64_t k = 0;
         for (int g = 0; g < d->G && !failed; g++) {
             int nr = d->nread[g], nw = d->nwrite[g];
-            int64_t cnt = d->res[goff[g]];
-            const int32_t *e = d->res + goff[g] + 1;
+            const int32_t *base = d->in_tmp[g] ? d->tmp : d->res;
+            int64_t cnt = base[goff[g]];
+            const int32_t *e = base + goff[g] + 1;
             for (int64_t j = 0; j < cnt; j++, e += 1 + nr + nw, k++) {
                 int32_t id;
                 int rc = cs_add_hashed(st, d->recs + k * W, d->hs[k], &id);
@@ -359,6 +433,13 @@ int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs) {
 void nd_clear_batch(nd_search *d) { d->narcs = 0; d->noff = 0; d->nnew = 0; }
 void nd_set_be32(nd_search *d) { d->be32 = 1; }
 void nd_set_gen(nd_search *d, void *g) { d->gen = g; }
+/* Judge each cache's hit rate after n lookups (n <= 0: never; every result is then cached). */
+void nd_set_uncache_after(nd_search *d, int64_t n) {
+    d->uncache_after = n > 0 ? n : -1;
+    if (n <= 0) return;
+    for (int g = 0; g < d->G; g++) { d->looks[g] = 0; d->misses[g] = 0; }
+    d->adds_looks = 0; d->adds_misses = 0;
+}
 /* Go on from where another search over the same states stopped (its store copied into this one's). */
 void nd_resume(nd_search *d, int64_t head, int64_t level_end, int64_t levels, int64_t total_arcs, int be32) {
     d->head = head; d->level_end = level_end; d->levels = levels; d->total_arcs = total_arcs; d->be32 = be32;
@@ -377,8 +458,14 @@ int32_t *nd_parent(nd_search *d) { return d->parent; }
 int32_t *nd_parent_be(nd_search *d) { return d->parent_be; }
 int64_t nd_nrequests(nd_search *d) { return d->nreq; }
 uint32_t *nd_requests(nd_search *d) { return d->req; }
+/* How many of the caches are judged rarely reused (the groups', then the written places' as one). */
+int nd_uncached(nd_search *d) {
+    int k = d->adds_uncached;
+    for (int g = 0; g < d->G; g++) k += d->uncached[g];
+    return k;
+}
 int64_t nd_cache_bytes(nd_search *d) {
-    int64_t b = d->res_cap * 4 + d->adds.cap * (12 + 8) + (int64_t)(d->adds.mask + 1) * 4;
+    int64_t b = d->res_cap * 4 + d->tmp_cap * 4 + d->adds.cap * (12 + 8) + (int64_t)(d->adds.mask + 1) * 4;
     for (int g = 0; g < d->G; g++)
         b += d->groups[g].cap * (d->groups[g].len * 4 + 8) + (int64_t)(d->groups[g].mask + 1) * 4;
     return b;

@@ -39,6 +39,7 @@ int nd_put_add(nd_search *d, uint32_t p, uint32_t delta, uint32_t old, uint32_t 
 int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs);
 void nd_clear_batch(nd_search *d);
 void nd_set_be32(nd_search *d);
+void nd_set_uncache_after(nd_search *d, int64_t n);
 void nd_resume(nd_search *d, int64_t head, int64_t level_end, int64_t levels, int64_t total_arcs, int be32);
 int64_t nd_head(nd_search *d);
 int64_t nd_levels(nd_search *d);
@@ -55,6 +56,7 @@ int32_t *nd_parent_be(nd_search *d);
 int64_t nd_nrequests(nd_search *d);
 uint32_t *nd_requests(nd_search *d);
 int64_t nd_cache_bytes(nd_search *d);
+int nd_uncached(nd_search *d);
 """
 
 #: `auto` builds the net's C once the search has expanded this many states, or GENERATE_PER_LINE times the
@@ -62,6 +64,10 @@ int64_t nd_cache_bytes(nd_search *d);
 #: engine more than once on average (its results rarely recur: DP)
 GENERATE_AFTER: int = 16_384
 GENERATE_PER_LINE: int = 4
+#: with the net's C, a transition whose cached results missed more than half of its first this many
+#: lookups (its input places' markings rarely recur: DP) has them computed anew each time, not stored;
+#: the same for the written places' new ids (0: every result is cached)
+UNCACHED_AFTER: int = 4096
 
 ND_DONE, ND_CHECK, ND_MAX_STATES, ND_MAX_ARCS, ND_NEED, _, ND_WIDE_BE = range(7)
 _U32 = 1 << 32
@@ -198,6 +204,7 @@ class NativeSearch:
             self.gen = ffi.gc(gen, clib.gen_free)
             self.code.to_c(self.engine, lib, self.gen)
             clib.nd_set_gen(self.handle, self.gen)
+            clib.nd_set_uncache_after(self.handle, UNCACHED_AFTER)
 
     def _upgrade(self) -> None:
         """Go on with the net's C compiled in (the states so far copied; the caches are filled anew)."""
@@ -318,3 +325,7 @@ class NativeSearch:
 
     def cache_bytes(self) -> int:
         return self.lib.nd_cache_bytes(self.handle)
+
+    def uncached(self) -> int:
+        """How many caches compute their results anew each time (UNCACHED_AFTER)."""
+        return self.lib.nd_uncached(self.handle)

@@ -269,3 +269,35 @@ def test_integer_overflow_in_generated_c_is_computed_by_python(returns):
     c = _both(model)
     # x = 3, 2, 1 each satisfy the guard (the products exceed 2^63, the difference goes below -2^63)
     assert c.n_states == 4 and c.n_arcs == 3 and returns[0] > 0
+
+
+@needs_native
+def test_results_computed_anew_instead_of_cached_give_the_same_graph(monkeypatch, returns):
+    """With the C of the net, a cache whose first lookups mostly miss stops storing results: they are
+    computed for each state again. Judged after one lookup here, so that every cache of these nets
+    turns so at once; the graphs are still the Python engine's."""
+    searches = []
+    flush = native.NativeSearch.flush
+
+    def spy(self):
+        searches.append(self)
+        return flush(self)
+
+    monkeypatch.setattr(native.NativeSearch, "flush", spy)
+    monkeypatch.setattr(native, "UNCACHED_AFTER", 1)
+    nets = [cpn.load(os.path.join(ROOT, "bench", "nets", "dp.cpnet"), set={"N": 7}),
+            cpn.load(os.path.join(ROOT, "bench", "nets", "ms.cpnet"), set={"N": 4})]
+    nets += [cpn.loads(random_net(seed), f"random{seed}.cpnet") for seed in range(3, 1000, 23)[:12]]
+    turned = 0
+    for model in nets:
+        if model.net.is_timed:
+            continue
+        del searches[:]
+        c = _both(model, limit=10**6 if model.net.name in ("DP", "MS") else 300)
+        assert c.backend == "c"
+        turned += searches[-1].uncached() > 0
+    assert turned >= 8
+    monkeypatch.setattr(native, "UNCACHED_AFTER", 0)  # every result cached: nothing turns
+    del searches[:]
+    _both(nets[0], limit=10**6)
+    assert searches[-1].uncached() == 0
