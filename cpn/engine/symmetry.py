@@ -103,7 +103,17 @@ class Canonicaliser:
             if m is not None and p.timed:
                 m = (lambda mm: lambda key, image: (mm(key[0], image), key[1]))(m)
             self.mappers.append(m)
-        self.sym_places = [p for p in range(n) if self.mappers[p] is not None]
+        # module instances permuted with the values (`cpn.net.instance_symmetry`): a place of instance v is
+        # moved to the same place of instance g(v)
+        from cpn.net.symmetry import families_of
+
+        self.families = families_of(net, self.scalars)[0]
+        self.owner: dict[int, tuple] = {}  # moved place -> (scalar, the value naming its instance, position)
+        for f in self.families:
+            for v, ps in f.places.items():
+                for j, p in enumerate(ps):
+                    self.owner[p] = (f.scalar, v, (f.module, j))
+        self.sym_places = [p for p in range(n) if self.mappers[p] is not None or p in self.owner]
         self.permuted = [k for k, s in enumerate(self.scalars) if s.kind == PERMUTATIONS]
         self.rotated = [k for k, s in enumerate(self.scalars) if s.kind == ROTATIONS]
         self.reference = bool(getattr(engine, "reference", False))
@@ -123,6 +133,7 @@ class Canonicaliser:
         self._rotations = [ident]
         for j, k in enumerate(self.rotated):
             self._rotations = [c[:k] + [g] + c[k + 1:] for c in self._rotations for g in self._rotations_of[j]]
+        self._sigmas = [self.sigma(c) for c in self._rotations]
 
     # ------------------------------------------------------------------ places
     def _dict(self, state, p: int) -> dict:
@@ -132,19 +143,36 @@ class Canonicaliser:
         return frozenset(d.items()) if self.reference else self._intern(p, d)
 
     # ------------------------------------------------------------------ the action of G
+    def sigma(self, images: list[dict]) -> list[int] | None:
+        """The places' images under the renaming `images` (None when no module instance moves)."""
+        if not self.families:
+            return None
+        from cpn.net.instance_symmetry import place_images
+
+        return place_images(self.families, images, self.n_places)
+
     def apply(self, state, images: list[dict]):
-        """The image of `state` under the renaming `images` (one dict value -> value per scalar)."""
+        """The image of `state` under the renaming `images` (one dict value -> value per scalar): the
+        values renamed in every token, the markings of the module instances moved to their images."""
         image = lambda k, x: images[k][x]  # noqa: E731
+        sigma = self.sigma(images)
         out = list(state)
         for p in self.sym_places:
+            q = p if sigma is None else sigma[p]
+            m = self.mappers[p]
+            if m is None:
+                if q != p:
+                    out[q] = state[p] if self.reference else self._make(q, self._dict(state, p))
+                continue
             d = self._dict(state, p)
             if d:
-                m = self.mappers[p]
                 nd: dict = {}
                 for key, c in d.items():
                     nk = m(key, image)
                     nd[nk] = nd.get(nk, 0) + c
-                out[p] = self._make(p, nd)
+                out[q] = self._make(q, nd)
+            elif q != p:
+                out[q] = state[p] if self.reference else self._make(q, d)
         return tuple(out)
 
     def generators(self) -> list[list[dict]]:
@@ -178,21 +206,28 @@ class Canonicaliser:
         for k in self.permuted:
             for v in self.values[k]:
                 sig[k][v] = []
+        owner = self.owner
         for p in self.sym_places:
             d = self._dict(state, p)
             if not d:
                 continue
             m = self.mappers[p]
+            own = owner.get(p)
             for key, c in d.items():
                 held: list = []
-                m(key, lambda k, x, held=held: held.append((k, x)) or x)
+                if m is not None:
+                    m(key, lambda k, x, held=held: held.append((k, x)) or x)
+                if own is not None:
+                    held.append(own[:2])
                 seen = set()
                 for k, x in held:
                     if sig[k] is None or (k, x) in seen:
                         continue
                     seen.add((k, x))
-                    blank = m(key, lambda k2, y, k=k, x=x: -1 if (k2 == k and y == x) else -2)
-                    sig[k][x].append((p, blank, c))
+                    blank = key if m is None else m(key, lambda k2, y, k=k, x=x: -1 if (k2 == k and y == x) else -2)
+                    # a moved place is named by its position in the module and whether its instance is x's
+                    where = (0, p) if own is None else (1, own[2], -1 if own[:2] == (k, x) else -2)
+                    sig[k][x].append((where, blank, c))
         for k in self.permuted:
             for v, items in sig[k].items():
                 try:
@@ -243,8 +278,10 @@ class Canonicaliser:
         without interning the exchanged ones."""
         sw: list = [_Identity()] * len(self.scalars)
         sw[k] = _Swap(a, b)
+        if self.families:
+            return self._swaps_moved(state, sw)
         image = lambda j, x: sw[j][x]  # noqa: E731
-        for p in {p for p, _blank, _c in signature}:
+        for p in {where[1] for where, _blank, _c in signature}:
             d = self._dict(state, p)
             m = self.mappers[p]
             nd: dict = {}
@@ -252,6 +289,28 @@ class Canonicaliser:
                 nk = m(key, image)
                 nd[nk] = nd.get(nk, 0) + c
             if nd != d:
+                return False
+        return True
+
+    def _swaps_moved(self, state, sw) -> bool:
+        """`_swaps_to_itself` when module instances move: every place's image compared with its target."""
+        images = [{v: g[v] for v in vals} for g, vals in zip(sw, self.values)]
+        sigma = self.sigma(images)
+        image = lambda j, x: sw[j][x]  # noqa: E731
+        for p in self.sym_places:
+            q = sigma[p]
+            m = self.mappers[p]
+            if m is None and q == p:
+                continue
+            d = self._dict(state, p)
+            if m is None:
+                nd = d
+            else:
+                nd = {}
+                for key, c in d.items():
+                    nk = m(key, image)
+                    nd[nk] = nd.get(nk, 0) + c
+            if nd != (d if q == p else self._dict(state, q)):
                 return False
         return True
 
@@ -312,14 +371,26 @@ class Canonicaliser:
         ties = 0
         for ci, combo in enumerate(self._rotations):
             self.relabellings += 1
-            row = []
-            for p in places:
-                x = state[p]
-                memo = images[p]
-                y = memo.get((ci, x))
-                if y is None:
-                    y = memo[(ci, x)] = self._image(p, x, combo)
-                row.append(y)
+            sigma = self._sigmas[ci]
+            if sigma is None:
+                row = []
+                for p in places:
+                    x = state[p]
+                    memo = images[p]
+                    y = memo.get((ci, x))
+                    if y is None:
+                        y = memo[(ci, x)] = self._image(p, x, combo)
+                    row.append(y)
+            else:
+                moved = {}
+                for p in places:
+                    x = state[p]
+                    memo = images[p]
+                    y = memo.get((ci, x))
+                    if y is None:
+                        y = memo[(ci, x)] = self._image(p, x, combo, sigma[p])
+                    moved[sigma[p]] = y
+                row = [moved[p] for p in places]
             key = tuple(place_key(p, y) for p, y in zip(places, row))
             if best_key is None or key < best_key:
                 best, best_key, ties = row, key, 1
@@ -330,18 +401,20 @@ class Canonicaliser:
             out[p] = y
         return tuple(out), ties
 
-    def _image(self, p: int, x, images):
-        """The image of place p's marking `x` (an id, or a frozenset for the reference engine)."""
+    def _image(self, p: int, x, images, q: int | None = None):
+        """The image of place p's marking `x` (an id, or a frozenset for the reference engine), as a
+        marking of place q (p unless a module instance moves it)."""
         d = dict(x) if self.reference else self._dicts[p][x]
-        if not d:
-            return x
+        q = p if q is None else q
         m = self.mappers[p]
+        if m is None or not d:
+            return x if q == p or self.reference else self._make(q, d)
         image = lambda k, v: images[k][v]  # noqa: E731
         nd: dict = {}
         for key, c in d.items():
             nk = m(key, image)
             nd[nk] = nd.get(nk, 0) + c
-        return self._make(p, nd)
+        return self._make(q, nd)
 
     def _place_key(self, p: int, x) -> tuple:
         memo = self._keys[p]

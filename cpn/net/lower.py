@@ -14,7 +14,7 @@ from cpn.lang import ast as A
 from cpn.lang.builtins import MLError
 from cpn.lang.evaluate import run_deep
 from cpn.lang.typecheck import CheckedModel, PageInfo
-from cpn.net.model import ArcInstance, Net, PlaceInstance, TransitionInstance
+from cpn.net.model import ArcInstance, Net, PageInstance, PlaceInstance, TransitionInstance
 from cpn.net.translate import Translator
 from cpn.values.multiset import TimedMultiset
 
@@ -30,19 +30,20 @@ class _Lowerer:
         self.fusion: dict[str, int] = {}
         self.diags: list[Diagnostic] = []
         self.tr = Translator()
+        self.instances: list[PageInstance] = []
 
     def error(self, code, msg, span, hint=None):
         self.diags.append(Diagnostic(code, msg, span, hint=hint))
 
     def run(self) -> Net:
-        self.instantiate(self.cm.top, {}, {}, [self.cm.top.name])
+        self.instantiate(self.cm.top, {}, {}, [self.cm.top.name], None, None)
         if self.diags:
             raise ModelError(self.diags, {self.cm.model.file: self.cm.model.source})
         cm = self.cm
         variables = {name: self.tr.ref(sym) for name, sym in cm.variables.items()}
         globals_ = self.tr.globals(cm.model, cm.evaluator.globals)
         return Net(cm.net_name, self.places, self.transitions, cm.colsets, variables, globals_, cm.model.source,
-                   cm.model.file, cm)
+                   cm.model.file, cm, self.instances)
 
     def initial(self, d: A.PlaceDecl, cs, env) -> dict:
         if d.init is None:
@@ -69,10 +70,14 @@ class _Lowerer:
             out[key] = out.get(key, 0) + n
         return out
 
-    def instantiate(self, page: PageInfo, params: dict, binds: dict[str, int], path: list[str]) -> None:
+    def instantiate(self, page: PageInfo, params: dict, binds: dict[str, int], path: list[str], parent, decl) -> None:
         self.counter[page.name] += 1
         k = self.counter[page.name]
         local: dict[str, int] = {}
+        me = PageInstance(len(self.instances), page.name, k, dict(params), local, {}, parent, [], decl)
+        self.instances.append(me)
+        if parent is not None:
+            self.instances[parent].children.append(me.index)
         for name, d in page.places.items():
             iname = f"{page.name}'{name} {k}"
             cs = self.cm.colsets.get(d.colset)
@@ -109,6 +114,7 @@ class _Lowerer:
                     for a in info.arcs]
             variables = sorted(set(info.variables) | {v for v, _ in info.ran})
             free = sorted(set(info.free) | {v for v, _ in info.ran})
+            me.transitions[tname] = len(self.transitions)
             self.transitions.append(TransitionInstance(
                 len(self.transitions), f"{page.name}'{tname} {k}", page.name, tname, k, tr.exprs(d.guards),
                 tr.expr(d.delay), tr.expr(d.priority), arcs, variables, free, dict(params), d.span))
@@ -134,7 +140,7 @@ class _Lowerer:
                     self.error("E0303", f"parameter '{aname}' of instance '{inst.name}' is "
                                f"{_fmt(cs, cparams[psym.uid])}, outside colour set {cs.name}", expr.span)
             cbinds = {port: local[sock] for port, _, sock, _ in inst.binds if sock in local}
-            self.instantiate(child, cparams, cbinds, path + [inst.module])
+            self.instantiate(child, cparams, cbinds, path + [inst.module], me.index, inst)
 
 
 def _fmt(cs, v) -> str:

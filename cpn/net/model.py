@@ -74,6 +74,26 @@ class TransitionInstance:
 
 
 @dataclass(eq=False)
+class PageInstance:
+    """One instance of a page in the flattened net: its place and transition instances by local name.
+
+    `places` maps each place of the page to its place instance (a port bound to a socket and a fused place
+    map to the shared one); `children` are the indices (into `Net.instances`) of the instances it declares,
+    in declaration order; `decl` is the instance declaration (None for the top page).
+    """
+
+    index: int
+    page: str
+    number: int  # the n of "Page'Place n"
+    params: dict[int, Any]  # module parameter symbol uid -> value
+    places: dict[str, int]
+    transitions: dict[str, int]
+    parent: int | None = None
+    children: list[int] = field(default_factory=list)
+    decl: Any = None  # cpn.lang.ast.InstanceDecl
+
+
+@dataclass(eq=False)
 class Net:
     """A flattened net: place and transition instances, and the declarations their inscriptions use.
 
@@ -97,6 +117,7 @@ class Net:
     source: str = ""  # the model's text, quoted by error messages
     source_file: str = ""
     checked: Any = None  # the front end's checked model, for writers that print the model back (PNML)
+    instances: list[PageInstance] = field(default_factory=list)  # page instances, the top page first
 
     @property
     def is_timed(self) -> bool:

@@ -181,6 +181,7 @@ class _Checker:
         self.seen_funs: set[int] = set()
         self.where = ""
         self.val_types: dict = {}
+        self.allowed_params: set = set()  # parameters of the instance families (`cpn.net.instance_symmetry`)
         checked = getattr(net, "checked", None)
         if checked is not None:
             self.val_types = {s.uid: s.type for s in checked.globals.values() if s.kind == "val"}
@@ -271,7 +272,8 @@ class _Checker:
             self.refuse(e, f"the constant '{e.name}'",
                         f"A global constant holding values of '{self.name}' names particular values; use "
                         f"'{self.name}.all()' or a variable instead.")
-        elif ref.kind == "param" and self._type_holds(self.val_types.get(ref.uid)):
+        elif (ref.kind == "param" and ref.uid not in self.allowed_params
+              and self._type_holds(self.val_types.get(ref.uid))):
             self.refuse(e, f"the module parameter '{e.name}'",
                         "Module instances given different values of the colour set are told apart; leave "
                         f"'{self.name}' out of the symmetry.")
@@ -333,6 +335,7 @@ def check_symmetry(net, scalars) -> list[Diagnostic]:
     an index colour set is reported too.
     """
     out: list[Diagnostic] = []
+    bad = False
     for s in scalars:
         name, kind = s.name, s.kind
         cs = net.colsets.get(name)
@@ -344,8 +347,15 @@ def check_symmetry(net, scalars) -> list[Diagnostic]:
                 None, hint=("Its enumeration and index colour sets are " + ", ".join(f"'{n}'" for n in known) + "."
                             if known else "The net has no enumeration or index colour set."),
                 params={"colour_set": name, "kind": kind}))
-            continue
+            bad = True
+    if bad:
+        return out
+    families, out = families_of(net, scalars)
+    allowed = _family_params(net, families)
+    for s in scalars:
+        name, kind = s.name, s.kind
         c = _Checker(net, name, kind)
+        c.allowed_params = allowed
         for t in net.transitions:
             c.seen_funs = set()
             c.where = ""
@@ -396,13 +406,41 @@ def _strings(e):
             stack.extend(x)
 
 
+def families_of(net, scalars) -> tuple[list, list[Diagnostic]]:
+    """The module instances that the scalars permute (`cpn.net.instance_symmetry.instance_families`)."""
+    from cpn.net.instance_symmetry import instance_families
+
+    values = [scalar_values(net.colsets[s.name]) for s in scalars]
+    return instance_families(net, scalars, values)
+
+
+def _family_params(net, families) -> set:
+    """The uids of the parameters of the families' pages: allowed in their inscriptions like variables."""
+    checked = getattr(net, "checked", None)
+    out = set()
+    for f in families:
+        for page in f.pages:
+            info = checked.modules.get(page) if checked is not None else None
+            out.update(p.uid for p in (info.params if info is not None else ()))
+    return out
+
+
 def symmetry_problems(net, scalars) -> list[Diagnostic]:
-    """Everything that stops `scalars` from being a symmetry of the net: `check_symmetry`, then (when the
-    inscriptions are fine) the initial marking."""
+    """Everything that stops `scalars` from being a symmetry of the net: `check_symmetry` (with the module
+    instances the scalars permute), then (when the inscriptions are fine) the instances' parameters and
+    the initial marking."""
     out = check_symmetry(net, scalars)
     if not out:
         values = [scalar_values(net.colsets[s.name]) for s in scalars]
-        out = initial_marking_problems(net, scalars, generators(scalars, values))
+        gens = generators(scalars, values)
+        families, _ = families_of(net, scalars)
+        if families:
+            from cpn.net.instance_symmetry import moved_initial_problems, parameter_problems
+
+            out = parameter_problems(net, scalars, families, gens) or moved_initial_problems(net, scalars, families,
+                                                                                             gens)
+        else:
+            out = initial_marking_problems(net, scalars, gens)
     return out
 
 
@@ -434,5 +472,5 @@ def initial_marking_problems(net, scalars, generators) -> list[Diagnostic]:
     return out
 
 
-__all__ = ["CODE", "KINDS", "PERMUTATIONS", "ROTATIONS", "SYMMETRIC_CSOPS", "Scalar", "check_symmetry", "expression_problems", "generators",
+__all__ = ["CODE", "KINDS", "families_of", "PERMUTATIONS", "ROTATIONS", "SYMMETRIC_CSOPS", "Scalar", "check_symmetry", "expression_problems", "generators",
            "initial_marking_problems", "parse_scalars", "root", "scalar_values", "symmetry_problems", "value_mapper"]
