@@ -6,7 +6,7 @@ markings each place takes (the engine interns them), not over states, so it cost
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from operator import itemgetter
 
 from cpn.checks._common import has_place_columns, place_markings, state_chunks
@@ -74,6 +74,14 @@ def boundedness(x: Exploration) -> Boundedness:
             lower_text=engine.format_multiset(p, lower_ms),
             max_of_one_colour=hi_colour,
         ))
+    sym = getattr(x.graph, "symmetry", None)
+    if sym is not None and sym.moves_instances:
+        # a quotient whose group moves module instances: place p of one instance has, in the full graph,
+        # the markings that the same place of every instance has in the quotient
+        for orbit in sym.place_orbits():
+            hi, lo = max(out[p].upper for p in orbit), min(out[p].lower for p in orbit)
+            for p in orbit:
+                out[p] = replace(out[p], upper=hi, lower=lo)
     return Boundedness(
         places=out,
         max_tokens_per_marking=_max_tokens_per_marking(engine, states, markings, x.graph.store),

@@ -63,12 +63,21 @@ def dead_transitions(x: Exploration, tindex: TransitionIndex | None = None) -> l
     """Transition instances (indices) that label no arc; on a partial space: none seen so far."""
     tindex = tindex or TransitionIndex(x.engine)
     seen = {tindex(be) for be in tindex.distinct(x.graph.bes)}
+    sym = getattr(x.graph, "symmetry", None)
+    if sym is not None and sym.moves_instances:
+        seen = sym.close_transitions(seen)
     return [t for t in range(len(x.engine.transitions)) if t not in seen]
 
 
+def _moves_instances(x: Exploration) -> bool:
+    sym = getattr(x.graph, "symmetry", None)
+    return sym is not None and sym.moves_instances
+
+
 def live_transitions(x: Exploration, scc: SccSummary, arc_transitions, native: bool = True) -> list[int] | None:
-    """Transition instances that label an arc inside every terminal SCC (None if partial)."""
-    if not x.complete:
+    """Transition instances that label an arc inside every terminal SCC (None if partial, or on a quotient
+    whose group moves module instances: not preserved there, `cpn.checks.symmetry`)."""
+    if not x.complete or _moves_instances(x):
         return None
     g = x.graph
     dec = scc.decomposition

@@ -319,13 +319,19 @@ class DeadTransitions(Check):
     def decide(self, view):
         labels = view.labels()
         occurring = set(labels)
+        sym = getattr(view.g, "symmetry", None)
+        if sym is not None and sym.moves_instances:
+            occurring = sym.close_transitions(occurring)  # the same transition of another instance occurs
         all_t = {t.index for t in view.engine.transitions}
         dead = all_t - occurring
         names = view.engine.transitions
         alive_but_expected = sorted(self.expected & occurring)
         if alive_but_expected:
             t = alive_but_expected[0]
-            arc = next(a for a in range(len(labels)) if labels[a] == t)
+            same = {t}
+            if sym is not None and sym.moves_instances:  # an arc of the same transition of any instance
+                same = next((set(o) for o in sym.transition_orbits() if t in o), same)
+            arc = next(a for a in range(len(labels)) if labels[a] in same)
             src = _arc_source(view.g, arc)
             ev = evidence_to(view.g, src, then=[src, view.g.dst[arc]])
             return Verdict.violated(f"{', '.join(names[i].name for i in alive_but_expected)} can occur "

@@ -24,18 +24,26 @@ PRESERVED: tuple = ("dead_markings (up to symmetry, with their count in the full
                     "dead_transitions", "live_transitions", "fairness")
 #: sections it does not give (null in the JSON result, "not preserved" in the text)
 NOT_PRESERVED_SECTIONS: tuple = ("multiset_bounds", "home_markings")
+#: and those it does not give either when the group moves module instances
+INSTANCE_NOT_PRESERVED: tuple = ("live_transitions", "fairness")
 
 
 def symmetry_plan(checks: list, net, scalars) -> dict:
     """check -> why its verdict is not preserved: a home-marking property, a multi-set bound, and a
-    property whose text tells apart the values of a symmetric colour set; the others are decided on the
-    quotient graph."""
+    property whose text tells apart the values of a symmetric colour set; when the group moves module
+    instances, a property that names one instance's place or transition (`Slave'Idle 2`: `sum`, `forall`
+    and `exists` over all of them are allowed), a bound of such a place, and live transitions among
+    them; the others are decided on the quotient graph."""
     from cpn.checks.properties import Bound, Home
     from cpn.net.symmetry import expression_problems
-    from cpn.net.translate import Translator
 
     refused = {}
+    instances = _Instances(net, scalars)
     for c in checks:
+        why = instances.refusal(c)
+        if why is not None:
+            refused[c] = f"{NOT_PRESERVED}: {why}"
+            continue
         if isinstance(c, Home):
             refused[c] = (f"{NOT_PRESERVED}: two symmetric terminal components of the full graph are one in the "
                           "quotient, so its home markings are not those of the full graph")
@@ -45,6 +53,8 @@ def symmetry_plan(checks: list, net, scalars) -> dict:
                           "orbit, not the representative's")
             continue
         texts = [p for p in _compiled(c)]
+        from cpn.net.translate import Translator
+
         tr = Translator()
         exprs = []
         for p in texts:
@@ -63,6 +73,85 @@ def symmetry_plan(checks: list, net, scalars) -> dict:
     return refused
 
 
+class _Instances:
+    """The place and transition instances that the group moves (module instances permuted with the
+    values), and the properties that name one of them."""
+
+    def __init__(self, net, scalars):
+        from cpn.net.instance_symmetry import moved_places
+        from cpn.net.symmetry import families_of
+
+        self.families = families_of(net, scalars)[0] if scalars else []
+        moved = moved_places(self.families)
+        self.places = moved
+        self.transitions = {t for f in self.families for ts in f.transitions.values() for t in ts}
+        self.pages = {p for f in self.families for p in f.pages}
+        self.accessors = {f"{net.places[p].page}'{net.places[p].place}" for p in moved}
+        self.net = net
+
+    def refusal(self, check) -> str | None:
+        if not self.families:
+            return None
+        from cpn.checks.properties import Bound, LiveTransitions
+
+        t_names = [t.name for t in self.net.transitions]
+        if isinstance(check, LiveTransitions):
+            wanted = check.transitions if check.transitions is not None else range(len(t_names))
+            bad = [t_names[t] for t in wanted if t in self.transitions]
+            if bad:
+                return (f"whether {bad[0]} is live (a transition of one of the module instances the symmetry "
+                        "permutes)")
+        if isinstance(check, Bound) and check.places is not None:
+            bad = [self.net.places[p].name for p in check.places if p in self.places]
+            if bad:
+                return f"the bound of {bad[0]}, a place of one of the module instances the symmetry permutes"
+        for name in check.spec.fields.get("fairness", []) or []:
+            if self._names_moved_transition(str(name)):
+                return f"the fairness set \"{name}\" names a transition of one module instance"
+        for text in _compiled(check):
+            why = self._text(text.expr)
+            if why is not None:
+                return why
+        return None
+
+    def _names_moved_transition(self, s: str) -> bool:
+        return any(s.startswith(f"{page}'") for page in self.pages)
+
+    def _text(self, expr) -> str | None:
+        """What in a property text names one module instance: a place accessor applied to an instance
+        number (not the argument of `sum`, `forall` or `exists`), or a string naming a transition."""
+        import dataclasses
+
+        from cpn.lang import ast as A
+
+        allowed = set()
+        stack = [expr]
+        while stack:
+            e = stack.pop()
+            if isinstance(e, A.App) and isinstance(e.fn, A.Name) and e.fn.name in ("sum", "forall", "exists"):
+                allowed.add(id(e.arg))
+            if isinstance(e, A.Name):
+                name = e.name[5:] if e.name.startswith("Mark.") else e.name
+                if name in self.accessors and id(e) not in allowed:
+                    return (f"'{e.name}' names the place of one module instance the symmetry permutes (use sum, "
+                            "forall or exists over all of them)")
+            if isinstance(e, A.Const) and e.kind == "string" and self._names_moved_transition(str(e.value)):
+                return f"\"{e.value}\" names a transition of one module instance the symmetry permutes"
+            if dataclasses.is_dataclass(e):
+                for f in dataclasses.fields(e):
+                    if f.name in ("span", "ref", "ty"):
+                        continue
+                    v = getattr(e, f.name)
+                    if isinstance(v, (list, tuple)):
+                        stack.extend(x for x in v if dataclasses.is_dataclass(x) or isinstance(x, (list, tuple)))
+                        for x in v:
+                            if isinstance(x, (list, tuple)):
+                                stack.extend(y for y in x if dataclasses.is_dataclass(y))
+                    elif dataclasses.is_dataclass(v):
+                        stack.append(v)
+        return None
+
+
 def _compiled(check) -> list:
     """The compiled property texts of a check (`cpn.checks.predicates.Compiled`)."""
     out = []
@@ -74,4 +163,4 @@ def _compiled(check) -> list:
     return out
 
 
-__all__ = ["NOT_PRESERVED", "NOT_PRESERVED_SECTIONS", "PRESERVED", "symmetry_plan"]
+__all__ = ["INSTANCE_NOT_PRESERVED", "NOT_PRESERVED", "NOT_PRESERVED_SECTIONS", "PRESERVED", "symmetry_plan"]

@@ -86,7 +86,7 @@ def instance_families(net, scalars, values) -> tuple[list[Family], list[Diagnost
     families = []
     for (k, module), members in groups.items():
         s = scalars[k]
-        fam, why = _family(net, k, module, members, values[k], creator)
+        fam, why = _family(net, k, module, members, values[k], creator, _formatter(net.colsets[s.name]))
         if why is not None:
             decl = net.instances[why[0]].decl
             problems.append(Diagnostic(
@@ -99,18 +99,27 @@ def instance_families(net, scalars, values) -> tuple[list[Family], list[Diagnost
     return families, problems
 
 
-def _family(net, k, module, members, vals, creator):
+def _formatter(cs):
+    def fmt(v):
+        try:
+            return cs.format(v)
+        except Exception:  # noqa: BLE001 - a value outside the colour set may not format
+            return repr(v)
+    return fmt
+
+
+def _family(net, k, module, members, vals, creator, fmt):
     """(the Family, None) or (None, (page instance to blame, what, hint))."""
     by_value: dict = {}
     for v, i, pname in members:
         if v in by_value:
-            return None, (i, f"two instances of module '{module}' have {pname} = {v}",
+            return None, (i, f"two instances of module '{module}' have {pname} = {fmt(v)}",
                           "Give every instance its own value of the parameter.")
         by_value[v] = i
     missing = [v for v in vals if v not in by_value]
     if missing:
         return None, (members[0][1], f"module '{module}' has no instance with {members[0][2]} = "
-                      f"{', '.join(map(str, missing[:4]))}{' ...' if len(missing) > 4 else ''}",
+                      f"{', '.join(map(fmt, missing[:4]))}{' ...' if len(missing) > 4 else ''}",
                       f"Declare one instance of '{module}' per value of the parameter's colour set, or leave "
                       "the colour set out of the symmetry.")
     parents = {net.instances[i].parent for i in by_value.values()}

@@ -351,6 +351,8 @@ def check_symmetry(net, scalars) -> list[Diagnostic]:
     if bad:
         return out
     families, out = families_of(net, scalars)
+    if out:
+        return out  # instances that cannot be permuted: their parameter's uses would only repeat it
     allowed = _family_params(net, families)
     for s in scalars:
         name, kind = s.name, s.kind

@@ -96,12 +96,15 @@ def to_json(r: Report) -> dict:
     }
     if r.symmetric:
         from cpn.checks.symmetry import NOT_PRESERVED as SYM_NOT_PRESERVED
-        from cpn.checks.symmetry import NOT_PRESERVED_SECTIONS, PRESERVED
+        from cpn.checks.symmetry import INSTANCE_NOT_PRESERVED, NOT_PRESERVED_SECTIONS, PRESERVED
 
         st = x.reduction_stats or {}
-        out["reduction"] = {"name": "symmetry", **st, "preserves": list(PRESERVED),
-                            "not_preserved": list(NOT_PRESERVED_SECTIONS), "why": SYM_NOT_PRESERVED}
-        for key in NOT_PRESERVED_SECTIONS:
+        moved = r.moves_instances
+        lost = list(NOT_PRESERVED_SECTIONS) + (list(INSTANCE_NOT_PRESERVED) if moved else [])
+        out["reduction"] = {"name": "symmetry", **st,
+                            "preserves": [p for p in PRESERVED if not (moved and p in INSTANCE_NOT_PRESERVED)],
+                            "not_preserved": lost, "why": SYM_NOT_PRESERVED}
+        for key in lost:
             out[key] = None
         out["statespace"].update(quotient=True, full_states=st.get("full_states"), full_arcs=st.get("full_arcs"))
         out["dead_markings"]["full_count"] = r.full_dead_count

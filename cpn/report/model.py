@@ -54,6 +54,15 @@ def symmetry_text(x: Exploration) -> str:
     full = ("" if st.get("full_states") is None else
             f" (the full state space: {st['full_states']:,} nodes and {st['full_arcs']:,} arcs, the sums of the "
             "orbit sizes)")
+    families = st.get("instances") or []
+    if families:
+        return (f"reduction: symmetry ({', '.join(st.get('symmetry') or [])}, moving the instances of "
+                f"{', '.join(families)}; a group of {st.get('group_order', 0):,} renamings); the node and arc counts "
+                f"are those of the quotient graph, one node per orbit{full}; it preserves the dead markings up to "
+                "symmetry, the integer bounds (of every instance, from the same place of each) and token maxima "
+                "and the dead transition instances; the SCC graph is the quotient's; the multi-set bounds, home "
+                f"markings, live transition instances and fairness are {SYM_NOT_PRESERVED} and not reported; "
+                "traces are paths of the full graph")
     return (f"reduction: symmetry ({', '.join(st.get('symmetry') or [])}; a group of {st.get('group_order', 0):,} "
             f"renamings); the node and arc counts are those of the quotient graph, one node per orbit{full}; it "
             "preserves the dead markings up to symmetry, the integer bounds and token maxima, the dead and live "
@@ -121,6 +130,12 @@ class Report:
     def symmetric(self) -> bool:
         """The state space is the quotient by a symmetry: some sections are not preserved."""
         return self.exploration.reduction == "symmetry"
+
+    @property
+    def moves_instances(self) -> bool:
+        """The quotient's group moves module instances: live transitions and fairness are not preserved."""
+        sym = self.exploration.graph.symmetry
+        return sym is not None and sym.moves_instances
 
     @property
     def full_dead_count(self) -> int | None:
@@ -199,7 +214,8 @@ def build_report(x: Exploration, model: str = "<unsaved net>", options: dict | N
     done("home_markings")
     start("fairness")
     fair: dict | None = None
-    if x.complete:
+    moves = x.graph.symmetry is not None and x.graph.symmetry.moves_instances
+    if x.complete and not moves:
         step = None if progress is None else (lambda k, total: progress("fairness", k, total))
         f = fairness(x, scc.decomposition, arc_t, progress=step)
         fair = None if f is None else {names[t]: cls for t, cls in f.items()}

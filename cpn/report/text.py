@@ -242,11 +242,14 @@ def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | No
     out += (["     None seen in the explored part"] if not x.complete and not r.dead_transitions
             else _name_list(r.dead_transitions, ntrans, names_cap))
     out += ["", "  Live Transition Instances"]
-    out += (["     Unknown (the state space is partial)"] if r.live_transitions is None
+    out += ([f"     {SYM_NOT_PRESERVED}"] if r.moves_instances else
+            ["     Unknown (the state space is partial)"] if r.live_transitions is None
             else _name_list(r.live_transitions, ntrans, names_cap))
 
     out += _heading("Fairness Properties")
-    if not r.fairness_known:
+    if r.moves_instances:
+        out.append(f"     {SYM_NOT_PRESERVED}")
+    elif not r.fairness_known:
         out.append("     Unknown (the state space is partial)")
     elif r.fairness is None:
         out.append("     No infinite occurrence sequences.")

@@ -76,6 +76,7 @@ class SymmetricSuccessors:
         the search was stopped), how many canonical forms and relabellings were computed."""
         full = self.full_counts(graph)
         return {"symmetry": [str(s) for s in self.canon.scalars], "group_order": self.group_order,
+                "instances": [f"module '{f.module}' ({len(f.roots)} instances)" for f in self.canon.families],
                 "full_states": None if full is None else full[0], "full_arcs": None if full is None else full[1],
                 "canonical_forms": self.canon.canonicalised, "relabellings": self.canon.relabellings}
 
@@ -87,6 +88,31 @@ class SymmetricSuccessors:
 
     def canonical(self, state):
         return self.canon.canonical(state)[0]
+
+    @property
+    def moves_instances(self) -> bool:
+        """Whether the group moves module instances (`cpn.net.instance_symmetry`), not only values."""
+        return bool(self.canon.families)
+
+    def place_orbits(self) -> list[tuple[int, ...]]:
+        """The orbits of the places that module instances move: the same place of every instance."""
+        return [tuple(f.places[v][j] for v in f.places) for f in self.canon.families
+                for j in range(len(next(iter(f.places.values()))))]
+
+    def transition_orbits(self) -> list[tuple[int, ...]]:
+        """The orbits of the transition instances of the module instances that the group moves."""
+        return [tuple(f.transitions[v][j] for v in f.transitions) for f in self.canon.families
+                for j in range(len(next(iter(f.transitions.values()))))]
+
+    def close_transitions(self, occurring: set) -> set:
+        """The transition instances that occur in the full graph, from those occurring in the quotient: a
+        transition instance occurs when the same transition of another instance of its family does (the
+        group maps its occurrence onto one of each instance)."""
+        out = set(occurring)
+        for orbit in self.transition_orbits():
+            if any(t in occurring for t in orbit):
+                out.update(orbit)
+        return out
 
 
 #: at most this many successor states are remembered with their representative (a state reached again
