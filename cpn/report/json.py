@@ -95,8 +95,8 @@ def to_json(r: Report) -> dict:
             "not_preserved": list(REDUCED_SECTIONS), "why": NOT_PRESERVED},
     }
     if r.symmetric:
-        from cpn.checks.symmetry import NOT_PRESERVED as SYM_NOT_PRESERVED
         from cpn.checks.symmetry import INSTANCE_NOT_PRESERVED, NOT_PRESERVED_SECTIONS, PRESERVED
+        from cpn.checks.symmetry import NOT_PRESERVED as SYM_NOT_PRESERVED
 
         st = x.reduction_stats or {}
         moved = r.moves_instances
