@@ -105,6 +105,9 @@ def _tuple_mapper(maps: list, direct: list):
 #: the colour-set functions that do not tell the values of the colour set apart
 SYMMETRIC_CSOPS: frozenset = frozenset({"all", "size", "ran", "legal", "mult"})
 CODE: str = "E0602"
+#: library functions whose result depends on the order of the values (a multi-set's values listed in order;
+#: without the types, every use is refused: the multi-set may hold values of the symmetric colour set)
+ORDERED_BUILTINS: frozenset = frozenset({"ms_to_list"})
 
 
 def root(cs):
@@ -276,6 +279,10 @@ class _Checker:
               and self._type_holds(self.val_types.get(ref.uid))):
             self.refuse(e, f"the module parameter '{e.name}'",
                         "Module instances given different values of the colour set are told apart; leave "
+                        f"'{self.name}' out of the symmetry.")
+        elif ref.kind == "builtin" and e.name in ORDERED_BUILTINS:
+            self.refuse(e, f"'{e.name}' (it lists a multi-set in the order of its values)",
+                        "Keep the multi-set (use 'cf', 'size' or the arc itself), or leave "
                         f"'{self.name}' out of the symmetry.")
         elif ref.kind == "fun" and ref.uid in self.funs and ref.uid not in self.seen_funs:
             self.seen_funs.add(ref.uid)

@@ -176,3 +176,14 @@ def test_dead_transitions_of_the_full_graph_from_the_quotient(tmp_path):
                     'kind = "dead_transitions"\nexpected = ["Client\'never 1", "Client\'never 2", '
                     '"Client\'never 3"]\n', encoding="utf-8")
     assert main(["check", str(spec), "--reports", str(tmp_path / "rep"), "--no-timings"]) == 0
+
+
+def test_a_multiset_listed_in_order_is_refused():
+    """`ms_to_list (C.all())` lists the values in their declared order, so `hd` of it names the first one:
+    accepted before, the quotient then claimed 8 states for a net of 2."""
+    m = cpn.loads("colset C = with a | b | c; var x : C; place I : C = C.all(); place O : C;\n"
+                  "trans t [x = hd (ms_to_list (C.all()))]; arc I -> t : x; arc t -> O : x;", "h.cpnet")
+    with pytest.raises(ModelError) as exc:
+        m.symmetry("C")
+    d = exc.value.diagnostics[0]
+    assert d.code == "E0602" and "'ms_to_list'" in d.message and (d.span.line, d.span.col) == (2, 18)
