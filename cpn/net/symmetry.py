@@ -160,6 +160,24 @@ def value_mapper(cs, scalars: dict):
 _root = root
 
 
+def _builtin(e, *names) -> bool:
+    return isinstance(e, E.Name) and e.ref is not None and e.ref.kind == "builtin" and e.name in names
+
+
+def _listed_and_gathered(e):
+    """(F, M) when `e` is `list_to_ms (List.map F (ms_to_list M))`, whose value does not depend on the
+    order `ms_to_list` lists M in; else None."""
+    if not (isinstance(e, E.App) and _builtin(e.fn, "list_to_ms")):
+        return None
+    m = e.arg
+    if not (isinstance(m, E.App) and isinstance(m.fn, E.App) and _builtin(m.fn.fn, "List.map", "map")):
+        return None
+    inner = m.arg
+    if isinstance(inner, E.App) and _builtin(inner.fn, "ms_to_list"):
+        return m.fn.arg, inner.arg
+    return None
+
+
 class _Checker:
     def __init__(self, net, name: str, kind: str):
         self.net = net
@@ -211,6 +229,12 @@ class _Checker:
             return
         if isinstance(e, E.Name):
             self.name_ref(e)
+            return
+        inner = _listed_and_gathered(e)
+        if inner is not None:  # list_to_ms (List.map F (ms_to_list M)): the order is forgotten again
+            fn, ms = inner
+            self.expr(fn)
+            self.expr(ms)
             return
         for f in dataclasses.fields(e):
             if f.name == "span":
