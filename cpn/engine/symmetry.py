@@ -109,10 +109,13 @@ class Canonicaliser:
 
         self.families = families_of(net, self.scalars)[0]
         self.owner: dict[int, tuple] = {}  # moved place -> (scalar, the value naming its instance, position)
+        self._owned: dict[tuple, list] = {}  # (scalar, value) -> the places of its instances, aligned
         for f in self.families:
             for v, ps in f.places.items():
+                self._owned.setdefault((f.scalar, v), []).extend(ps)
                 for j, p in enumerate(ps):
                     self.owner[p] = (f.scalar, v, (f.module, j))
+        self._held: dict[tuple, set] = {}  # (scalar, value) -> places holding it, in the last signed state
         self.sym_places = [p for p in range(n) if self.mappers[p] is not None or p in self.owner]
         self.permuted = [k for k, s in enumerate(self.scalars) if s.kind == PERMUTATIONS]
         self.rotated = [k for k, s in enumerate(self.scalars) if s.kind == ROTATIONS]
@@ -207,6 +210,7 @@ class Canonicaliser:
             for v in self.values[k]:
                 sig[k][v] = []
         owner = self.owner
+        held_at = self._held = {}
         for p in self.sym_places:
             d = self._dict(state, p)
             if not d:
@@ -224,6 +228,7 @@ class Canonicaliser:
                     if sig[k] is None or (k, x) in seen:
                         continue
                     seen.add((k, x))
+                    held_at.setdefault((k, x), set()).add(p)
                     blank = key if m is None else m(key, lambda k2, y, k=k, x=x: -1 if (k2 == k and y == x) else -2)
                     # a moved place is named by its position in the module and whether its instance is x's
                     where = (0, p) if own is None else (1, own[2], -1 if own[:2] == (k, x) else -2)
@@ -279,7 +284,7 @@ class Canonicaliser:
         sw: list = [_Identity()] * len(self.scalars)
         sw[k] = _Swap(a, b)
         if self.families:
-            return self._swaps_moved(state, sw)
+            return self._swaps_moved(state, k, a, b, sw)
         image = lambda j, x: sw[j][x]  # noqa: E731
         for p in {where[1] for where, _blank, _c in signature}:
             d = self._dict(state, p)
@@ -292,16 +297,18 @@ class Canonicaliser:
                 return False
         return True
 
-    def _swaps_moved(self, state, sw) -> bool:
-        """`_swaps_to_itself` when module instances move: every place's image compared with its target."""
-        images = [{v: g[v] for v in vals} for g, vals in zip(sw, self.values)]
-        sigma = self.sigma(images)
+    def _swaps_moved(self, state, k: int, a, b, sw) -> bool:
+        """`_swaps_to_itself` when module instances move: only the places holding a or b (recorded by
+        `signatures` for this state) and those of their instances can change; each one's image under the
+        exchange is compared with the marking of the place it moves to."""
+        oa, ob = self._owned.get((k, a), ()), self._owned.get((k, b), ())
+        target = dict(zip(oa, ob))
+        target.update(zip(ob, oa))
         image = lambda j, x: sw[j][x]  # noqa: E731
-        for p in self.sym_places:
-            q = sigma[p]
+        held = self._held
+        for p in held.get((k, a), set()) | held.get((k, b), set()) | set(target):
+            q = target.get(p, p)
             m = self.mappers[p]
-            if m is None and q == p:
-                continue
             d = self._dict(state, p)
             if m is None:
                 nd = d
