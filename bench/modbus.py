@@ -8,6 +8,9 @@ Usage:
                                                   # the sweep-line against the full search (scenario B)
   python bench/modbus.py --sweep-thesis           # the same on the thesis's scenarios A.1-D.4 and the fault variants
   python bench/modbus.py --sweep-memo 16          # the sweep-line with the engine's memo tables emptied, then kept
+  python bench/modbus.py --symmetry [--budget 300] [--sym-ns 4,8,...] [--sym-ks 1,4,...]
+                                                  # broadcasts to NS slaves: the full model against the
+                                                  # quotient of bench/nets/modbus_bcast_sym.cpnet
 
 The first form times, as a user would, `python -m cpn check FILES --no-reports -q` (a fresh process: start-up,
 loading and compiling the model, exploring, deciding every property) over --repeat runs and prints the
@@ -250,6 +253,139 @@ def sweep_scaling(budget: float, ns_list: list[int], ks: list[int], full_memory:
             break
 
 
+SYM_MODEL = os.path.join(HERE, "nets", "modbus_bcast_sym.cpnet")
+
+
+def symmetric_model(ns: int) -> str:
+    """bench/nets/modbus_bcast_sym.cpnet for NS slaves: one Slave instance per value of SIX."""
+    import re
+
+    with open(SYM_MODEL, encoding="utf-8") as f:
+        s = f.read()
+    s = re.sub(r"val NS = \d+;", f"val NS = {ns};", s)
+    s = re.sub(r"instance Slave\d+ = .*\n", "", s)
+    return s + "".join(f"instance Slave{k} = Slave(me = sl({k})) {{ B2S = b2s }};\n" for k in range(1, ns + 1))
+
+
+def _explore_json(path: str, values: dict, budget: float, extra: list, max_memory: float) -> dict:
+    """`python -m cpn explore PATH --time-condensation -q --json - ...` in a fresh process: the statistics."""
+    import json
+
+    cmd = [sys.executable, "-m", "cpn", "explore", path, "--time-condensation", "-q", "--json", "-",
+           "--max-seconds", str(budget), "--max-memory", str(max_memory)] + extra
+    for k, v in values.items():
+        cmd += ["--set", f"{k}={v}"]
+    r = subprocess.run(cmd, cwd=ROOT, capture_output=True, text=True)
+    if r.returncode not in (0, 2):
+        sys.exit(f"explore failed ({r.returncode}):\n{r.stderr}")
+    d = json.loads(r.stdout)
+    st = d["statespace"]
+    st["dead"] = d["dead_markings"]["count"]
+    st["full_dead"] = d["dead_markings"].get("full_count")
+    return st
+
+
+def _check_symmetric(path: str, values: dict, budget: float, max_memory: float, tmp: str) -> str:
+    """`python -m cpn check` of bench/nets/modbus_bcast_sym.toml on the model at `path` with `values`: the
+    verdicts on the quotient and the seconds of the whole run."""
+    import json
+    import shutil
+
+    with open(SYM_MODEL.replace(".cpnet", ".toml"), encoding="utf-8") as f:
+        spec = f.read()
+    spec = spec.replace('model = "modbus_bcast_sym.cpnet"', f'model = "{os.path.basename(path)}"')
+    head, _, rest = spec.partition("[set]\n")
+    _, _, rest = rest.partition("\n\n")
+    sets = "".join(f"{k} = {json.dumps(v)}\n" for k, v in values.items())
+    spec_path = os.path.join(tmp, "check.toml")
+    with open(spec_path, "w", encoding="utf-8") as f:
+        f.write(f"{head}[set]\n{sets}\n{rest}")
+    reports = os.path.join(tmp, "reports")
+    shutil.rmtree(reports, ignore_errors=True)
+    t0 = time.perf_counter()
+    r = subprocess.run([sys.executable, "-m", "cpn", "check", spec_path, "--reports", reports, "--no-timings", "-q",
+                        "--max-seconds", str(budget), "--max-memory", str(max_memory)],
+                       cwd=ROOT, capture_output=True, text=True)
+    wall = time.perf_counter() - t0
+    runs = [os.path.join(reports, n) for n in os.listdir(reports) if n.endswith(".json")] if os.path.isdir(reports) else []
+    if not runs:
+        sys.exit(f"check failed ({r.returncode}):\n{r.stderr}")
+    with open(runs[0], encoding="utf-8") as f:
+        run = json.load(f)
+    counts: dict = {}
+    for p in run["properties"]:
+        counts[p["verdict"]] = counts.get(p["verdict"], 0) + 1
+    return ", ".join(f"{n} {v}" for v, n in sorted(counts.items())) + f" ({wall:.1f} s)"
+
+
+def symmetry_scaling(budget: float, ns_list: list[int], ks: list[int], max_memory: float) -> None:
+    """Broadcasts to NS slaves: models/modbus/modbus.cpnet's full graph (scenario B, at most its 16 slave
+    instances) against the quotient of bench/nets/modbus_bcast_sym.cpnet (the slaves as module instances
+    permuted by symmetry), and the verdicts of bench/nets/modbus_bcast_sym.toml checked on the quotient;
+    the run stops if the full counts computed from the quotient's orbits (states, arcs, dead markings)
+    differ from modbus.cpnet's."""
+    import tempfile
+
+    tmp = tempfile.mkdtemp(prefix="modbus-sym-")
+
+    def row(ns, values, full_model: bool, label):
+        path = os.path.join(tmp, f"modbus_bcast_sym_{ns}.cpnet")
+        with open(path, "w", encoding="utf-8") as f:
+            f.write(symmetric_model(ns))
+        full = None
+        if full_model and ns <= 16:
+            full = _explore_json(os.path.join("models", "modbus", "modbus.cpnet"),
+                                 {"CONFIG": '"B"', "NS": str(ns), **values}, budget, [], max_memory)
+        q = _explore_json(path, values, budget, ["--reduction", "symmetry"], max_memory)
+        verdicts = _check_symmetric(path, values, budget, max_memory, tmp) if q["complete"] else None
+        if full is not None and full["complete"] and q["complete"]:
+            same = (q["full_states"], q["full_arcs"], q["full_dead"]) == (full["states"], full["arcs"], full["dead"])
+            if not same:
+                sys.exit(f"the quotient's orbit sums differ from modbus.cpnet at {label}: {q} {full}")
+        cells = [label]
+        if full is None:
+            cells += ["", "", "", ""]
+        elif full["complete"]:
+            cells += [f"{full['states']:,}", f"{full['arcs']:,}", f"{full['seconds']:.2f}",
+                      f"{full['peak_memory_mb']:.0f}"]
+        else:
+            cells += [f"stopped ({full['stop_reason']})", "", f"{full['seconds']:.2f}", f"{full['peak_memory_mb']:.0f}"]
+        if q["complete"]:
+            cells += [f"{q['states']:,}", f"{q['arcs']:,}", f"{q['full_states']:,}", f"{q['full_arcs']:,}",
+                      f"{q['seconds']:.2f}", f"{q['peak_memory_mb']:.0f}"]
+        else:
+            cells += [f"stopped ({q['stop_reason']}) after {q['states']:,}", "", "", "", f"{q['seconds']:.2f}",
+                      f"{q['peak_memory_mb']:.0f}"]
+        cells.append("" if verdicts is None else verdicts)
+        print("| " + " | ".join(cells) + " |", flush=True)
+        return q["complete"]
+
+    header = ("| {} | modbus.cpnet: states | arcs | s | peak MiB | quotient: orbits | arcs | full states (orbit sums) "
+              "| full arcs | s | peak MiB | check on the quotient |\n|---|---|---|---|---|---|---|---|---|---|---|---|")
+    print("one broadcast (ADRS [0], FCS [1], PO 1; every slave drops the code), --time-condensation")
+    print(header.format("NS"))
+    for ns in ns_list:
+        if not row(ns, {"ADRS": "[0]", "FCS": "[1]", "PO": "1"}, True, str(ns)):
+            print("    (stopped by the budget)")
+            break
+    print()
+    print("the same with BCAST_ANY = true: every slave processes the broadcast (1 or 50 ms); no modbus.cpnet "
+          "column (its scenario-B slaves 2 and 3 drop the code)")
+    print(header.format("NS"))
+    for ns in ns_list:
+        if not row(ns, {"ADRS": "[0]", "FCS": "[1]", "PO": "1", "BCAST_ANY": "true"}, False, str(ns)):
+            print("    (stopped by the budget)")
+            break
+    print()
+    print("NS 16, k broadcasts (ADRS [0,...,0])")
+    print(header.format("k"))
+    for k in ks:
+        adrs = str([0] * k).replace(" ", "")
+        if not row(16, {"ADRS": adrs, "FCS": "[1]", "PO": "1"}, k == 1, str(k)):
+            print("    (stopped by the budget)")
+            break
+
+
 THESIS_MEASURE = "ms_to_col (Master'LastClosed 1)"
 
 
@@ -334,6 +470,11 @@ def main(argv=None) -> int:
                     help="--sweep: the numbers of broadcasts at NS 10 (default 1,4,16,64,128)")
     ap.add_argument("--full-max-memory", type=float, default=4096,
                     help="--sweep: the full search's --max-memory in MiB (default 4096, on a shared machine)")
+    ap.add_argument("--symmetry", action="store_true",
+                    help="broadcasts to NS slaves: modbus.cpnet against the symmetry-reduced module-instance variant")
+    ap.add_argument("--sym-ns", default="4,8,12,16,24,32,48,64,96,128",
+                    help="--symmetry: the numbers of slaves (modbus.cpnet up to its 16 instances)")
+    ap.add_argument("--sym-ks", default="1,4,16,64", help="--symmetry: the numbers of broadcasts at NS 16")
     ap.add_argument("--budget", type=float, default=600.0, help="seconds of generation per run (default 600)")
     a = ap.parse_args(argv)
     if a.table:
@@ -349,6 +490,10 @@ def main(argv=None) -> int:
         for how in ("emptied", "kept"):  # each in a fresh process: its peak memory is its own
             subprocess.run([sys.executable, __file__, "--sweep-memo", str(a.sweep_memo), "--memo-child", how],
                            check=True)
+        return 0
+    if a.symmetry:
+        symmetry_scaling(a.budget, [int(n) for n in a.sym_ns.split(",") if n],
+                         [int(k) for k in a.sym_ks.split(",") if k], a.full_max_memory)
         return 0
     if a.sweep:
         sweep_scaling(a.budget, [int(n) for n in a.ns.split(",") if n], [int(k) for k in a.ks.split(",") if k],
