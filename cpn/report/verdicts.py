@@ -247,6 +247,15 @@ def _integer_bounds(result) -> dict:
         else:
             sizes = [sum(engine.marking(s)[p].values()) for s in states]
         out[place.name] = {"upper": max(sizes), "lower": min(sizes)}
+    sym = result.exploration.graph.symmetry
+    if sym is not None and sym.moves_instances:
+        # the same place of every module instance the symmetry permutes has the bounds of all of them
+        names = [p.name for p in engine.places]
+        for orbit in sym.place_orbits():
+            hi = max(out[names[p]]["upper"] for p in orbit)
+            lo = min(out[names[p]]["lower"] for p in orbit)
+            for p in orbit:
+                out[names[p]] = {"upper": hi, "lower": lo}
     return out
 
 

@@ -167,6 +167,8 @@ def test_check_decides_what_names_no_instance_and_refuses_the_rest(tmp_path):
     assert v["dead"][0] == "holds"  # every transition of every client occurs (closed over the instances)
     for name in ("one client, by its number", "client 2's entry is live", "bound of one instance's place"):
         assert v[name][0] == "unknown" and "not preserved by symmetry" in v[name][1], (name, v[name])
+    # the quotient's representatives put the critical client last; every client's bound is that of all
+    assert [run["bounds"][f"Client'Crit {k}"] for k in (1, 2, 3)] == [{"upper": 1, "lower": 0}] * 3
 
 
 def test_dead_transitions_of_the_full_graph_from_the_quotient(tmp_path):
@@ -262,11 +264,13 @@ def test_the_modbus_broadcast_scenario_gives_the_same_verdicts_on_the_quotient(t
         shutil.copy(os.path.join(ROOT, "bench", "nets", name), tmp_path / name)
     spec = tmp_path / "modbus_bcast_sym.toml"
     text = spec.read_text(encoding="utf-8")
-    verdicts = []
+    verdicts, bounds = [], []
     for variant in (text, text.replace("symmetry = true\n", "")):
         spec.write_text(variant, encoding="utf-8")
         reports = tmp_path / f"rep{len(verdicts)}"
         assert main(["check", str(spec), "--reports", str(reports), "--no-timings", "-q"]) == 0
         run = json.loads(next(reports.glob("*.json")).read_text(encoding="utf-8"))
         verdicts.append([(p["name"], p["verdict"]) for p in run["properties"]])
+        bounds.append(run["bounds"])
+    assert bounds[0] == bounds[1]  # the slaves' places: closed over the instances
     assert verdicts[0] == verdicts[1] and {v for _, v in verdicts[0]} == {"holds"} and len(verdicts[0]) == 9
