@@ -465,7 +465,7 @@ def main(argv=None) -> int:
                     help="one sweep-line run (NS 10, K broadcasts) with the engine's memo tables emptied, then kept")
     ap.add_argument("--memo-child", choices=("emptied", "kept"), default=None, help=argparse.SUPPRESS)
     ap.add_argument("--ns", default="4,6,8,10,12,14,16", help="--sweep: the numbers of slaves (default 4,6,...,16)")
-    # past about 150 frames the model's initial FRAMES (a recursive CPN ML function) exceeds the recursion depth
+    # the initial FRAMES (recursive CPN ML functions) loads with 1,034 frames too (k = 1024, measured)
     ap.add_argument("--ks", default="1,4,16,64,128",
                     help="--sweep: the numbers of broadcasts at NS 10 (default 1,4,16,64,128)")
     ap.add_argument("--full-max-memory", type=float, default=4096,

@@ -152,6 +152,16 @@ name = "bound of one instance's place"
 kind = "bound"
 place = "Client'Wait 2"
 upper = 1
+
+[[property]]
+name = "ASK-CTL's name of one instance's place"
+kind = "invariant"
+expr = "size (Mark.Client'Crit 1) <= 1"
+
+[[property]]
+name = "one instance's transition in CTL"
+kind = "ctl"
+formula = "AG (EF (enabled \\"Client'enter 1\\"))"
 """
 
 
@@ -165,7 +175,8 @@ def test_check_decides_what_names_no_instance_and_refuses_the_rest(tmp_path):
     assert v["mutual exclusion"][0] == "holds"
     assert v["every client idle or busy"][0] == "holds"
     assert v["dead"][0] == "holds"  # every transition of every client occurs (closed over the instances)
-    for name in ("one client, by its number", "client 2's entry is live", "bound of one instance's place"):
+    for name in ("one client, by its number", "client 2's entry is live", "bound of one instance's place",
+                 "ASK-CTL's name of one instance's place", "one instance's transition in CTL"):
         assert v[name][0] == "unknown" and "not preserved by symmetry" in v[name][1], (name, v[name])
     # the quotient's representatives put the critical client last; every client's bound is that of all
     assert [run["bounds"][f"Client'Crit {k}"] for k in (1, 2, 3)] == [{"upper": 1, "lower": 0}] * 3
