@@ -210,7 +210,7 @@ class Canonicaliser:
             for v in self.values[k]:
                 sig[k][v] = []
         owner = self.owner
-        held_at = self._held = {}
+        held_at = self._held = {} if self.families else None  # only `_swaps_moved` reads it
         for p in self.sym_places:
             d = self._dict(state, p)
             if not d:
@@ -228,7 +228,8 @@ class Canonicaliser:
                     if sig[k] is None or (k, x) in seen:
                         continue
                     seen.add((k, x))
-                    held_at.setdefault((k, x), set()).add(p)
+                    if held_at is not None:
+                        held_at.setdefault((k, x), set()).add(p)
                     blank = key if m is None else m(key, lambda k2, y, k=k, x=x: -1 if (k2 == k and y == x) else -2)
                     # a moved place is named by its position in the module and whether its instance is x's
                     where = (0, p) if own is None else (1, own[2], -1 if own[:2] == (k, x) else -2)
