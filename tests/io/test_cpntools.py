@@ -432,3 +432,23 @@ def test_convert_reads_pnml_too(tmp_path):
     import cpn
 
     assert len(cpn.load(str(out)).net.places) >= 1
+
+
+def test_an_error_after_entities_is_placed_at_its_column_in_the_file(tmp_path):
+    """`&gt;` is one character of an inscription and four of the file: columns count the file's."""
+    import cpn
+
+    body = (place("P1", "A", "S", "1`0")
+            + trans("T1", "t", cond="[x &gt; 0 andalso x &lt;&gt; 2 andalso zz]")
+            + arc("A1", "PtoT", "T1", "P1", "if x &gt; 1\nthen 1`x else if x &lt; 1 then 1`x else 1`qq"))
+    path = tmp_path / "e.cpn"
+    path.write_text(cpn_xml(DECLS, page("PG1", "Top", body)), encoding="iso-8859-1")
+    with pytest.raises(ModelError) as info:
+        cpn.load(str(path))
+    raw = path.read_text(encoding="iso-8859-1").split("\n")
+    expected = {}
+    for name, marker in (("zz", "zz]"), ("qq", "`qq")):
+        line = next(i for i, text in enumerate(raw, 1) if marker in text)
+        expected[name] = (line, raw[line - 1].index(marker) + 1 + marker.index(name))
+    got = {d.message.split("'")[1]: (d.span.line, d.span.col) for d in info.value.diagnostics if d.code == "E0201"}
+    assert got == expected

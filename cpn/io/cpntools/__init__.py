@@ -138,7 +138,7 @@ class _Translator(_Declarations):
             self.error(self.root, "the net has no page", hint="Add a page with places and transitions.")
         if self.errors:
             raise ModelError(self.errors)
-        return Translation(self.path, "\n".join(self.out.lines) + "\n", self.out.pieces, self.notes)
+        return Translation(self.path, "\n".join(self.out.lines) + "\n", self.out.pieces, self.notes, self.raw_lines)
 
     # -- options ---------------------------------------------------------------------------------
 

@@ -46,6 +46,7 @@ class Translation:
     text: str
     pieces: list[_Piece] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
+    raw_lines: list[str] = field(default_factory=list)  # the `.cpn` file's lines, entities not decoded
 
     def origin(self, line: int, col: int = 1) -> Span | None:
         """The span in the `.cpn` file that position (line, col) of the text translates (`cpn.io.Translation`)."""
@@ -66,9 +67,23 @@ class Translation:
         o = best.origin
         if best.exact:
             dl = line - best.gen_line
-            c = o.col + max(col - best.gen_col, 0) if dl == 0 else col
-            return Span(self.path, o.line + dl, c), o
+            if dl == 0:
+                return Span(self.path, o.line, self._raw_col(o.line, o.col, max(col - best.gen_col, 0))), o
+            return Span(self.path, o.line + dl, self._raw_col(o.line + dl, 1, col - 1)), o
         return Span(self.path, o.line, o.col), o
+
+    def _raw_col(self, line: int, col: int, chars: int) -> int:
+        """The column `chars` characters of element text after (line, col) of the file: an entity or
+        character reference (`&gt;`, `&#60;`) is one character of the text and several of the file."""
+        if not 0 < line <= len(self.raw_lines):
+            return col + chars
+        raw = self.raw_lines[line - 1]
+        i = col - 1
+        while chars > 0 and i < len(raw):
+            end = raw.find(";", i) if raw[i] == "&" else -1
+            i = end + 1 if end != -1 else i + 1
+            chars -= 1
+        return i + 1 + chars
 
 
 class _Out:
