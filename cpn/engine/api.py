@@ -72,6 +72,11 @@ class EngineAPI:
         None where the engine cannot give them (the reference interpreter; timed nets; priorities)."""
         return None
 
+    def timed_groups(self):
+        """A timed net's or a net with priorities' successor function as groups for a native search
+        (`cpn.engine.timedgroups.TimedGroups`), or None where the engine cannot give them."""
+        return None
+
     def enabled(self, state) -> list:
         """The enabled binding elements of `state`, in the engine's fixed order."""
         return [self.binding_element(be) for be, _ in self.successors(state)]

@@ -260,6 +260,16 @@ class CompiledEngine(EngineAPI):
         transition, with the places it reads and those it only writes (None for other nets)."""
         return TransitionGroups(self) if self._flat else None
 
+    def timed_groups(self):
+        """A timed net's or a net with priorities' successor function as groups whose binding elements are
+        then selected at once (`cpn.engine.timedgroups`); None for other nets and where a transition
+        reads the clock (it is examined at more times than the clock and the occurrence time)."""
+        if self._flat or self.reads_clock:
+            return None
+        from cpn.engine.timedgroups import TimedGroups
+
+        return TimedGroups(self)
+
     def native_code(self):
         """(the C of this net's transitions, None) for the native search (`cpn.engine.ccodegen`), or
         (None, why) where no place marking can be held in C; computed once."""
@@ -268,7 +278,8 @@ class CompiledEngine(EngineAPI):
             from cpn.engine import ccodegen
 
             try:
-                got = (ccodegen.native_code(self), None) if self._flat else (None, "the net has priorities")
+                got = (ccodegen.native_code(self), None) if self._flat else \
+                    (None, "the net is timed" if self.is_timed else "the net has priorities")
             except ccodegen.NotNative as exc:
                 got = (None, str(exc))
             self._native_code = got

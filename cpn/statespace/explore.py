@@ -211,7 +211,7 @@ class Explorer:
         """The same search as `_search`, its loop in C (`cpn.statespace.native`)."""
         opts = self.options
         self._queue = None
-        search = native.NativeSearch(self.engine, g, s0, opts, self._notes)
+        search = native.new_search(self.engine, g, s0, opts, self._notes, self._level_hook(g))
         max_states = opts.max_states if opts.max_states is not None else 1 << 62
         max_arcs = opts.max_arcs if opts.max_arcs is not None else 1 << 62
         until = CHECK_EVERY
@@ -236,6 +236,8 @@ class Explorer:
                     return self._hand_over(g, search)
                 if search.head >= until:
                     until += CHECK_EVERY
+        except native.HandOver as why:
+            return self._hand_over(g, search, str(why))
         except EvaluationError as err:
             if not err.trace:
                 err.trace = [step.text for step in shortest_trace(g, search.head, self.engine).steps]
@@ -247,12 +249,29 @@ class Explorer:
         g.store.finish()
         return stop, None, search.levels
 
-    def _hand_over(self, g: StateGraph, search) -> tuple[StopReason, int | None, int]:
-        """Go on in Python from where the native search is: its caches are rarely reused on this net."""
+    def _level_hook(self, g: StateGraph):
+        """What the native search calls at each new BFS level of a timed net: the time-growth watch, as
+        `_search` does it (None for an untimed net)."""
+        watcher = self._watcher
+        if watcher is None:
+            return None
+        timed_check = self.options.detect_time_growth and not self._reads_clock
+
+        def on_level(start: int, end: int) -> StopReason | None:
+            watcher.level(g.states, start, end)
+            if timed_check and watcher.grows_only_by_time():
+                return StopReason.TIME_GROWS
+            return None
+        return on_level
+
+    def _hand_over(self, g: StateGraph, search, why: str | None = None) -> tuple[StopReason, int | None, int]:
+        """Go on in Python from where the native search is: its caches are rarely reused on this net (or
+        `why`: it cannot go on)."""
         head = search.head
         self._notes.append(
-            f"the native search handed over to the Python search after {head:,} states: each state needed "
-            f"the engine {search.round_trips / head:.1f} times on average (transitions' results rarely recur)")
+            f"the native search handed over to the Python search after {head:,} states: " + (why or
+            f"each state needed the engine {search.round_trips / head:.1f} times on average (transitions' "
+            "results rarely recur)"))
         self._backend = "python"
         search.tg.engine_caches()
         self._queue = deque(g.states[head:])

@@ -59,6 +59,20 @@ int64_t nd_cache_bytes(nd_search *d);
 int nd_uncached(nd_search *d);
 """
 
+_TIMED_CDEF = """
+typedef struct nt_search nt_search;
+nt_search *nt_new(nd_search *d, int clock, int condense, int prio, const int32_t *timed_g, int ntp,
+                  const int32_t *tplaces);
+void nt_free(nt_search *t);
+void nt_set_watch(nt_search *t, int watch);
+int64_t nt_level_start(nt_search *t);
+int nt_put_ready(nt_search *t, int g, const uint32_t *key, int64_t n, const int64_t *pairs);
+int nt_put_effect(nt_search *t, int g, const uint32_t *key, int64_t n, const int32_t *entries);
+int nt_put_shift(nt_search *t, uint32_t p, uint32_t id, uint32_t f, uint32_t nid);
+int nt_run(nt_search *t, int64_t until, int64_t max_states, int64_t max_arcs);
+int64_t nt_cache_bytes(nt_search *t);
+"""
+
 #: `auto` builds the net's C once the search has expanded this many states, or GENERATE_PER_LINE times the
 #: lines of C if that is more (a large net's C takes seconds to compile), or once each state needs the
 #: engine more than once on average (its results rarely recur: DP)
@@ -73,15 +87,16 @@ ND_DONE, ND_CHECK, ND_MAX_STATES, ND_MAX_ARCS, ND_NEED, _, ND_WIDE_BE = range(7)
 _U32 = 1 << 32
 
 
-def library(code=None):
-    """The native search's library; with `code` (a `NativeCode`), the net's generated C compiled in."""
+def library(code=None, timed: bool = False):
+    """The native search's library; with `code` (a `NativeCode`), the net's generated C compiled in; with
+    `timed`, the search of timed nets and nets with priorities (`_timed.c`, `cpn.statespace.nativetimed`)."""
     here = os.path.dirname(os.path.abspath(__file__))
     parts = ["#define ND_GENERATED"] if code is not None else []
-    for name in ("_packed.c", "_search.c"):
+    for name in ("_packed.c", "_search.c") + (("_timed.c",) if timed else ()):
         with open(os.path.join(here, name)) as f:
             parts.append(f.read())
     if code is None:
-        return load_library("\n".join(parts), _CDEF)
+        return load_library("\n".join(parts), _CDEF + (_TIMED_CDEF if timed else ""))
     return load_library("\n".join(parts + [code.source]), _CDEF + code.cdef)
 
 
@@ -109,17 +124,37 @@ def unavailable(engine, options, s0) -> str | None:
         return "the states are to be kept as tuples (packed_states=False)"
     if options.stop_predicate is not None and getattr(options.stop_predicate, "may_stop", True):
         return "a stop predicate that may end the search is a Python function of each new state"
-    if engine.is_timed:
-        return "timed nets are searched by the Python back end"
-    # an optional capability of an engine (the Engine protocol's other members are required)
+    # optional capabilities of an engine (the Engine protocol's other members are required)
     groups = getattr(engine, "successor_groups", None)
+    timed = None
     if groups is None or groups() is None:
-        return "this engine gives no transition groups (priorities, or the reference interpreter)"
+        timed = getattr(engine, "timed_groups", None)
+        if timed is None or timed() is None:
+            if getattr(engine, "reads_clock", False):
+                read = engine.clock_reads[min(engine.clock_reads)]
+                return (f"{read.element} of transition '{read.transition}' reads the model clock, and the "
+                        "native search examines transitions at the clock and the occurrence time only")
+            return "this engine gives no transition groups (the reference interpreter)"
     if not (isinstance(s0, tuple) and s0 and all(type(v) is int and 0 <= v < _U32 for v in s0)):
         return "the states are not tuples of small non-negative integers"
-    if library() is None:
+    if library(timed=timed is not None) is None:
         return f"no native code: {why_unavailable()}"
     return None
+
+
+def new_search(engine, graph, s0, options=None, notes: list[str] | None = None, on_level=None):
+    """The native search for this engine: over its transition groups (`NativeSearch`), or over the groups
+    of a timed net or a net with priorities (`cpn.statespace.nativetimed.TimedNativeSearch`, which calls
+    `on_level(start, end)` at each new BFS level)."""
+    if engine.successor_groups() is not None:
+        return NativeSearch(engine, graph, s0, options, notes)
+    from cpn.statespace.nativetimed import TimedNativeSearch
+
+    return TimedNativeSearch(engine, graph, s0, options, notes, on_level)
+
+
+class HandOver(Exception):  # noqa: N818 - a request, not an error
+    """The native search cannot go on with this net: the Python search goes on from its head."""
 
 
 class _Snapshot:

@@ -1,0 +1,171 @@
+"""The successor function of a timed net, or of a net with priorities, as transition groups whose enabled
+binding elements are then selected over all transitions at once (for the native search,
+`cpn.statespace.nativetimed`).
+
+In such a net a transition's enabled binding elements still depend only on the markings of the places it
+reads, but which of them occur depends on the others: in a timed net those ready at the occurrence time
+(the clock if any binding element is ready then, else the earliest time one is), with priorities those of
+the smallest priority. So a group gives, per tuple of its read place ids, its binding elements with their
+ready time and priority (`ready`), and per (read ids, occurrence time) the effects of those ready then
+(`effects`: the time matters only where the transition touches a timed place: its tokens' timestamps).
+
+`expand(s)` computes state s as the compiled engine's own successor function does, in the same order (so
+the place markings and binding elements it interns get the ids the Python search gives them) and returns
+every value a search needs to expand s from its caches: the groups' ready lists and effects, the written
+places' new ids and, under time condensation, the shifted markings' ids. A state whose values are all
+cached is expanded without the engine: the engine would compute nothing new for it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from cpn.engine.compiled import NEG_INF, P_NORMAL
+
+#: a written place the binding element puts no token on
+NO_DELTA: int = -1
+
+
+@dataclass
+class Expansion:
+    """What expanding one state needed (see `TimedGroups.expand`); the successors themselves in `succ`."""
+
+    ready: list = field(default_factory=list)  # (group, read ids, [(ready time, priority), ...])
+    effects: list = field(default_factory=list)  # (group, read ids, occurrence time, [entry, ...])
+    adds: list = field(default_factory=list)  # (place, delta id, old id, new id)
+    shifts: list = field(default_factory=list)  # (place, id, occurrence time, new id)
+    time: int | None = None  # the occurrence time (None: nothing enabled, or no clock)
+    succ: list = field(default_factory=list)  # (binding element, state), as `engine.successors(s)`
+
+
+class TimedGroups:
+    """The groups of a compiled engine whose net is timed or has priorities, without clock readers."""
+
+    def __init__(self, engine):
+        self._engine = engine
+        plan = engine._plan
+        self.groups = [(tuple(i.read), tuple(i.writes)) for i in plan]
+        self.clock = engine.is_timed  # the state's last field is the clock
+        self.condensation = engine.time_condensation
+        self.priorities = engine._has_priorities
+        # a group whose effects depend on the occurrence time: it touches a timed place
+        self.timed = [bool(engine.is_timed and i.timed) for i in plan]
+        self.timed_places = [p for p in range(len(engine.places)) if engine.store.timed[p]] \
+            if engine.is_timed else []
+
+    def caller_caches(self) -> None:
+        """The engine keeps its own memos (a state's expansion reuses them)."""
+
+    def engine_caches(self) -> None:
+        """Nothing to restore: the engine's memos were kept."""
+
+    def expand(self, s: tuple) -> Expansion:
+        return self._timed(s) if self.clock else self._untimed(s)
+
+    def _timed(self, s: tuple) -> Expansion:
+        """`CompiledEngine._timed_successors` (no transition reads the clock), recording its values."""
+        e = self._engine
+        x = Expansion()
+        clock = s[-1]
+        prio = e._prio
+        fixed = []  # per group: (info, key, entries)
+        for k, info in enumerate(e._plan):
+            key = info.getter(s)
+            res = info.memo.get(key)
+            if res is None:
+                res = e._timed_miss(info, key, clock)
+            fixed.append((info, key, res))
+            x.ready.append((k, _ids(key, info), [(entry[0], prio.get(entry[1], P_NORMAL)) for entry in res]))
+        readies = [entry[0] for _i, _k, res in fixed for entry in res]
+        if not readies:
+            return x
+        f = clock if any(r <= clock for r in readies) else min(readies)
+        x.time = f
+        condense = self.condensation
+        timed_places = self.timed_places
+        for k, (info, key, res) in enumerate(fixed):
+            keys = _ids(key, info)
+            entries = []
+            for entry in res:
+                if entry[0] > f:
+                    continue
+                if info.timed:
+                    be = entry[1]
+                    fk = (be, key, f)
+                    w = e._fire_memo.get(fk)
+                    if w is None:
+                        _, _, ekeys, consumed, produced, td, _pr = entry
+                        w = e._writes(info, ekeys, consumed, produced, f, td)
+                        e._fire_memo[fk] = w
+                    sets, adds = w
+                else:
+                    be, sets, adds = entry[1], entry[2], entry[3]
+                lst = list(s)
+                for pos, nid in sets:
+                    lst[pos] = nid
+                deltas = dict.fromkeys(info.writes, NO_DELTA)
+                for pos, did, _memo in adds:
+                    old = lst[pos]
+                    lst[pos] = e._add(pos, old, did)
+                    deltas[pos] = did
+                    x.adds.append((pos, did, old, lst[pos]))
+                entries.append([be, *(lst[p] for p in info.read), *deltas.values()])
+                if condense:
+                    if f:
+                        for p in timed_places:
+                            old = lst[p]
+                            lst[p] = e._shift(p, old, f)
+                            x.shifts.append((p, old, f, lst[p]))
+                    lst[-1] = 0
+                else:
+                    lst[-1] = f
+                x.succ.append((be, tuple(lst), prio.get(be, P_NORMAL)))
+            if entries:
+                x.effects.append((k, keys, f if self.timed[k] else 0, entries))
+        self._select(x)
+        return x
+
+    def _untimed(self, s: tuple) -> Expansion:
+        """`CompiledEngine.successors` of an untimed net with priorities, recording its values."""
+        e = self._engine
+        x = Expansion()
+        prio = e._prio
+        for k, (getter, memo_get, info) in enumerate(e._fast):
+            key = getter(s)
+            res = memo_get(key)
+            if res is None:
+                res = e._miss(info, key)
+            keys = _ids(key, info)
+            x.ready.append((k, keys, [(NEG_INF, prio.get(be, P_NORMAL)) for be, _sets, _adds in res]))
+            entries = []
+            for be, sets, adds in res:
+                lst = list(s)
+                for pos, nid in sets:
+                    lst[pos] = nid
+                deltas = dict.fromkeys(info.writes, NO_DELTA)
+                for pos, did, memo in adds:
+                    nid = memo.get(s[pos])
+                    lst[pos] = nid if nid is not None else e._add(pos, s[pos], did)
+                    deltas[pos] = did
+                    x.adds.append((pos, did, s[pos], lst[pos]))
+                entries.append([be, *(lst[p] for p in info.read), *deltas.values()])
+                x.succ.append((be, tuple(lst), prio.get(be, P_NORMAL)))
+            if entries:
+                x.effects.append((k, keys, 0, entries))
+        x.time = 0
+        self._select(x)
+        return x
+
+    def _select(self, x: Expansion) -> None:
+        """Keep the successors of the smallest priority (with priorities), as the engine does."""
+        if self.priorities and len(x.succ) > 1:
+            best = min(p for _be, _t, p in x.succ)
+            x.succ = [(be, t) for be, t, p in x.succ if p == best]
+        else:
+            x.succ = [(be, t) for be, t, _p in x.succ]
+
+
+def _ids(key, info) -> tuple:
+    """The read places' ids as a tuple, from a memo key (a bare id for one read place)."""
+    n = len(info.read)
+    return key if n > 1 else ((key,) if n == 1 else ())

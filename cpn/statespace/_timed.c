@@ -1,0 +1,276 @@
+/* The native search of nets whose enabled binding elements are selected over all transitions at once:
+ * timed nets (a binding element occurs at the earliest time any is enabled, at or after the clock) and
+ * nets with priorities (only the smallest priority among the enabled ones occurs). Compiled after
+ * _search.c, whose search (store, BFS position, batch buffers, transition groups, adds cache) it drives.
+ *
+ * Per transition group g, two caches:
+ *  - ready[g]: read values -> the group's enabled binding elements in the engine's order, each as (ready
+ *    time, priority): the earliest model time its tokens are all ready (INT64_MIN: no timed token), and
+ *    its priority;
+ *  - eff[g]: read values + occurrence time f (0 for a group whose effects do not depend on it) -> the
+ *    entries of the binding elements ready at f, in nd_put_group's format (binding element, new value of
+ *    each read field, delta id of each written field or ND_NONE for no token).
+ * and shifts: (place, id, f) -> the id of the place's marking with every timestamp moved back by f (time
+ * condensation). A state of a timed net has the clock as its last field.
+ *
+ * A state is expanded as the engine's timed successor function does: f is the clock if a binding element
+ * is ready then, else the earliest ready time; the binding elements ready at f occur (in group order),
+ * written places get add(p, delta, old), the timed places are shifted by f under time condensation, and
+ * the clock becomes f (0 under condensation); with priorities only the smallest priority is kept. Where a
+ * value is missing from a cache, nt_run returns ND_NEED with the state (request 2, the K fields): the
+ * engine computes the whole state in its own order, fills every cache it touched, and the state is
+ * expanded again. */
+
+#define ND_LEVEL 7
+#define ND_NONE 0xFFFFFFFFu
+
+typedef struct {
+    nd_search *d;
+    int G;                   /* d's groups (d may be freed first) */
+    int clock, condense, prio, watch;
+    int *timed_g;
+    int ntp;
+    int *tplaces;
+    vmap *ready, *eff;
+    int64_t *rdy; int64_t nrdy, rdy_cap;
+    vmap shifts;
+    uint32_t *succ; int64_t succ_cap;
+    int32_t *sbe; int64_t sbe_cap;
+    int64_t *sprio; int64_t sprio_cap;
+    int64_t *roff;
+    uint32_t *ekey;
+    int64_t level_start;
+} nt_search;
+
+nt_search *nt_new(nd_search *d, int clock, int condense, int prio, const int32_t *timed_g, int ntp,
+                  const int32_t *tplaces) {
+    nt_search *t = (nt_search *)calloc(1, sizeof(nt_search));
+    if (!t) return NULL;
+    int G = d->G;
+    t->d = d; t->G = G; t->clock = clock; t->condense = condense; t->prio = prio;
+    t->timed_g = (int *)calloc((size_t)G + 1, sizeof(int));
+    t->tplaces = (int *)calloc((size_t)ntp + 1, sizeof(int));
+    t->ready = (vmap *)calloc((size_t)G + 1, sizeof(vmap));
+    t->eff = (vmap *)calloc((size_t)G + 1, sizeof(vmap));
+    t->roff = (int64_t *)calloc((size_t)G + 1, sizeof(int64_t));
+    t->ekey = (uint32_t *)calloc((size_t)d->K + 2, 4);
+    t->rdy_cap = 1024; t->rdy = (int64_t *)malloc((size_t)t->rdy_cap * 8);
+    t->succ_cap = 1024; t->succ = (uint32_t *)malloc((size_t)t->succ_cap * 4);
+    t->sbe_cap = 64; t->sbe = (int32_t *)malloc((size_t)t->sbe_cap * 4);
+    t->sprio_cap = 64; t->sprio = (int64_t *)malloc((size_t)t->sprio_cap * 8);
+    if (!t->timed_g || !t->tplaces || !t->ready || !t->eff || !t->roff || !t->ekey || !t->rdy || !t->succ
+        || !t->sbe || !t->sprio) return NULL;
+    t->ntp = ntp;
+    for (int i = 0; i < ntp; i++) t->tplaces[i] = tplaces[i];
+    for (int g = 0; g < G; g++) {
+        t->timed_g[g] = timed_g[g];
+        if (vm_init(&t->ready[g], d->nread[g]) != 0 || vm_init(&t->eff[g], d->nread[g] + 1) != 0) return NULL;
+    }
+    if (vm_init(&t->shifts, 3) != 0) return NULL;
+    return t;
+}
+
+void nt_free(nt_search *t) {
+    if (!t) return;
+    for (int g = 0; g < t->G; g++) { vm_free(&t->ready[g]); vm_free(&t->eff[g]); }
+    vm_free(&t->shifts);
+    free(t->timed_g); free(t->tplaces); free(t->ready); free(t->eff); free(t->roff); free(t->ekey);
+    free(t->rdy); free(t->succ); free(t->sbe); free(t->sprio); free(t);
+}
+
+void nt_set_watch(nt_search *t, int watch) { t->watch = watch; }
+int64_t nt_level_start(nt_search *t) { return t->level_start; }
+
+/* Group g's binding elements for the read values `key`: n pairs (ready time, priority). */
+int nt_put_ready(nt_search *t, int g, const uint32_t *key, int64_t n, const int64_t *pairs) {
+    if (vm_get(&t->ready[g], key) >= 0) return 0;
+    if (grow((void **)&t->rdy, &t->rdy_cap, t->nrdy + 1 + 2 * n, 8) != 0) return -1;
+    int64_t off = t->nrdy;
+    t->rdy[off] = n;
+    memcpy(t->rdy + off + 1, pairs, (size_t)(2 * n) * 8);
+    t->nrdy += 1 + 2 * n;
+    return vm_put(&t->ready[g], key, off);
+}
+
+/* Group g's entries for the read values and occurrence time `key` (nread + 1 values). */
+int nt_put_effect(nt_search *t, int g, const uint32_t *key, int64_t n, const int32_t *entries) {
+    nd_search *d = t->d;
+    if (vm_get(&t->eff[g], key) >= 0) return 0;
+    int64_t width = 1 + d->nread[g] + d->nwrite[g];
+    if (grow((void **)&d->res, &d->res_cap, d->nres + 1 + n * width, 4) != 0) return -1;
+    int64_t off = d->nres;
+    d->res[off] = (int32_t)n;
+    memcpy(d->res + off + 1, entries, (size_t)(n * width) * 4);
+    d->nres += 1 + n * width;
+    return vm_put(&t->eff[g], key, off);
+}
+
+int nt_put_shift(nt_search *t, uint32_t p, uint32_t id, uint32_t f, uint32_t nid) {
+    uint32_t k[3] = {p, id, f};
+    if (vm_get(&t->shifts, k) >= 0) return 0;
+    return vm_put(&t->shifts, k, nid);
+}
+
+/* The successors of state s into t->succ (K fields each), t->sbe and t->sprio: their number, -1 if a
+ * cache misses a value, -2 if memory runs out. */
+static int64_t nt_expand(nt_search *t, const uint32_t *s) {
+    nd_search *d = t->d;
+    int K = d->K, G = d->G;
+    int64_t clock = t->clock ? (int64_t)s[K - 1] : 0;
+    int any = 0, now = 0;
+    int64_t minr = INT64_MAX;
+    for (int g = 0; g < G; g++) {
+        int nr = d->nread[g];
+        for (int i = 0; i < nr; i++) t->ekey[i] = s[d->read[g][i]];
+        int64_t o = vm_get(&t->ready[g], t->ekey);
+        if (o < 0) return -1;
+        t->roff[g] = o;
+        int64_t cnt = t->rdy[o];
+        for (int64_t j = 0; j < cnt; j++) {
+            int64_t r = t->rdy[o + 1 + 2 * j];
+            any = 1;
+            if (r <= clock) now = 1;
+            if (r < minr) minr = r;
+        }
+    }
+    if (!any) return 0;
+    int64_t f = now ? clock : minr;
+    if (f < 0 || f > (int64_t)0xFFFFFFFFu) return -1;  /* the engine says whether it fits */
+    int64_t m = 0;
+    for (int g = 0; g < G; g++) {
+        int nr = d->nread[g], nw = d->nwrite[g];
+        int64_t o = t->roff[g];
+        int64_t cnt = t->rdy[o];
+        const int64_t *rp = t->rdy + o + 1;
+        int64_t c = 0;
+        for (int64_t j = 0; j < cnt; j++) c += rp[2 * j] <= f;
+        if (!c) continue;
+        for (int i = 0; i < nr; i++) t->ekey[i] = s[d->read[g][i]];
+        t->ekey[nr] = t->timed_g[g] ? (uint32_t)f : 0;
+        int64_t eo = vm_get(&t->eff[g], t->ekey);
+        if (eo < 0) return -1;
+        int64_t ec = d->res[eo];
+        const int32_t *e = d->res + eo + 1;
+        int64_t j = 0;
+        for (int64_t k = 0; k < ec; k++, e += 1 + nr + nw) {
+            while (j < cnt && rp[2 * j] > f) j++;
+            int64_t prio = j < cnt ? rp[2 * j + 1] : 0;
+            j++;
+            if (grow((void **)&t->succ, &t->succ_cap, (m + 1) * K, 4) != 0
+                || grow((void **)&t->sbe, &t->sbe_cap, m + 1, 4) != 0
+                || grow((void **)&t->sprio, &t->sprio_cap, m + 1, 8) != 0) return -2;
+            uint32_t *u = t->succ + m * K;
+            memcpy(u, s, (size_t)K * 4);
+            for (int i = 0; i < nr; i++) u[d->read[g][i]] = (uint32_t)e[1 + i];
+            for (int w = 0; w < nw; w++) {
+                uint32_t delta = (uint32_t)e[1 + nr + w];
+                if (delta == ND_NONE) continue;
+                int p = d->write[g][w];
+                uint32_t k3[3] = {(uint32_t)p, delta, u[p]};
+                int64_t v = vm_get(&d->adds, k3);
+                if (v < 0) return -1;
+                u[p] = (uint32_t)v;
+            }
+            if (t->condense && f) {
+                for (int i = 0; i < t->ntp; i++) {
+                    int p = t->tplaces[i];
+                    uint32_t k3[3] = {(uint32_t)p, u[p], (uint32_t)f};
+                    int64_t v = vm_get(&t->shifts, k3);
+                    if (v < 0) return -1;
+                    u[p] = (uint32_t)v;
+                }
+            }
+            if (t->clock) u[K - 1] = t->condense ? 0 : (uint32_t)f;
+            t->sbe[m] = e[0];
+            t->sprio[m] = prio;
+            m++;
+        }
+    }
+    if (t->prio && m > 1) {
+        int64_t best = t->sprio[0];
+        for (int64_t i = 1; i < m; i++) if (t->sprio[i] < best) best = t->sprio[i];
+        int64_t k = 0;
+        for (int64_t i = 0; i < m; i++) {
+            if (t->sprio[i] != best) continue;
+            if (k != i) {
+                memcpy(t->succ + k * K, t->succ + i * K, (size_t)K * 4);
+                t->sbe[k] = t->sbe[i];
+            }
+            k++;
+        }
+        m = k;
+    }
+    return m;
+}
+
+/* nd_run for these nets: expand states from `head` on; return at `until` (ND_CHECK), at a limit, when the
+ * queue is empty, at each new BFS level if asked to (ND_LEVEL: the level is nt_level_start .. the level's
+ * end), or when a cache misses a value (ND_NEED: call again once the engine has filled them). */
+int nt_run(nt_search *t, int64_t until, int64_t max_states, int64_t max_arcs) {
+    nd_search *d = t->d;
+    cs_store *st = d->st;
+    int K = d->K;
+    int status;
+    for (;;) {
+        int64_t n = st->n;
+        if (d->head >= n) { status = ND_DONE; break; }
+        if (d->head == d->level_end) {
+            d->levels++;
+            t->level_start = d->level_end;
+            d->level_end = n;
+            if (t->watch) { status = ND_LEVEL; break; }
+        }
+        if (d->head == until) { status = ND_CHECK; break; }
+        if (n >= max_states) { status = ND_MAX_STATES; break; }
+        if (d->total_arcs >= max_arcs) { status = ND_MAX_ARCS; break; }
+        memcpy(d->s, st->arena + d->head * st->W, (size_t)K * 4);
+        int64_t m = nt_expand(t, d->s);
+        if (m == -2) { status = ND_NO_MEMORY; break; }
+        if (m == -1) {
+            if (grow((void **)&d->req, &d->req_cap, 1 + K, 4) != 0) { status = ND_NO_MEMORY; break; }
+            d->req[0] = 2;
+            memcpy(d->req + 1, d->s, (size_t)K * 4);
+            d->nreq = 1 + K;
+            status = ND_NEED;
+            break;
+        }
+        if (!d->be32) {
+            int wide = 0;
+            for (int64_t i = 0; i < m; i++) if (t->sbe[i] > 65535) wide = 1;
+            if (wide) { status = ND_WIDE_BE; break; }
+        }
+        if (grow((void **)&d->dst, &d->arcs_cap, d->narcs + m, 4) != 0
+            || grow(&d->bes, &d->bes_cap, d->narcs + m, 4) != 0
+            || grow((void **)&d->offsets, &d->off_cap, d->noff + 1, 8) != 0
+            || grow((void **)&d->parent, &d->new_cap, d->nnew + m, 4) != 0
+            || grow((void **)&d->parent_be, &d->pbe_cap, d->nnew + m, 4) != 0) { status = ND_NO_MEMORY; break; }
+        int failed = 0;
+        for (int64_t i = 0; i < m; i++) {
+            int32_t id, fresh;
+            int64_t r = cs_add_many(st, (const uint8_t *)(t->succ + i * K), 1, &id, &fresh);
+            if (r < 0) { failed = 1; break; }
+            if (r == 1) {
+                d->parent[d->nnew] = (int32_t)d->head;
+                d->parent_be[d->nnew] = t->sbe[i];
+                d->nnew++;
+            }
+            d->dst[d->narcs] = id;
+            if (d->be32) ((int32_t *)d->bes)[d->narcs] = t->sbe[i];
+            else ((uint16_t *)d->bes)[d->narcs] = (uint16_t)t->sbe[i];
+            d->narcs++;
+        }
+        if (failed) { status = ND_NO_MEMORY; break; }
+        d->total_arcs += m;
+        d->offsets[d->noff++] = d->total_arcs;
+        d->head++;
+    }
+    return status;
+}
+
+int64_t nt_cache_bytes(nt_search *t) {
+    int64_t b = t->rdy_cap * 8 + t->shifts.cap * 20 + (int64_t)(t->shifts.mask + 1) * 4;
+    for (int g = 0; g < t->d->G; g++)
+        b += t->ready[g].cap * (t->ready[g].len * 4 + 8) + (int64_t)(t->ready[g].mask + 1) * 4
+             + t->eff[g].cap * (t->eff[g].len * 4 + 8) + (int64_t)(t->eff[g].mask + 1) * 4;
+    return b;
+}
