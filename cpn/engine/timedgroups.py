@@ -30,7 +30,8 @@ NO_DELTA: int = -1
 class Expansion:
     """What expanding one state needed (see `TimedGroups.expand`); the successors themselves in `succ`."""
 
-    ready: list = field(default_factory=list)  # (group, read ids, [(ready time, priority), ...])
+    # the read ids as the engine's memo key (`TimedGroups.ids` gives them as a tuple)
+    ready: list = field(default_factory=list)  # (group, read ids, its result: `TimedGroups.pairs`)
     effects: list = field(default_factory=list)  # (group, read ids, occurrence time, [entry, ...])
     adds: list = field(default_factory=list)  # (place, delta id, old id, new id)
     shifts: list = field(default_factory=list)  # (place, id, occurrence time, new id)
@@ -59,6 +60,18 @@ class TimedGroups:
     def engine_caches(self) -> None:
         """Nothing to restore: the engine's memos were kept."""
 
+    def pairs(self, res) -> list[tuple]:
+        """(ready time, priority) of each binding element of a group's result (an `Expansion.ready` item)."""
+        prio = self._engine._prio
+        if self.clock:
+            return [(entry[0], prio.get(entry[1], P_NORMAL)) for entry in res]
+        return [(NEG_INF, prio.get(entry[0], P_NORMAL)) for entry in res]
+
+    def ids(self, g: int, key) -> tuple:
+        """Group g's read place ids as a tuple, from the engine's memo key (a bare id for one read place)."""
+        n = len(self.groups[g][0])
+        return key if n > 1 else ((key,) if n == 1 else ())
+
     def expand(self, s: tuple) -> Expansion:
         return self._timed(s) if self.clock else self._untimed(s)
 
@@ -69,34 +82,38 @@ class TimedGroups:
         clock = s[-1]
         prio = e._prio
         fixed = []  # per group: (info, key, entries)
+        ready = x.ready
         for k, info in enumerate(e._plan):
             key = info.getter(s)
             res = info.memo.get(key)
             if res is None:
                 res = e._timed_miss(info, key, clock)
-            fixed.append((info, key, res))
-            x.ready.append((k, _ids(key, info), [(entry[0], prio.get(entry[1], P_NORMAL)) for entry in res]))
-        readies = [entry[0] for _i, _k, res in fixed for entry in res]
-        if not readies:
+            ready.append((k, key, res))
+            if res:
+                fixed.append((k, info, key, res))
+        if not fixed:
             return x
+        readies = [entry[0] for _k, _i, _key, res in fixed for entry in res]
         f = clock if any(r <= clock for r in readies) else min(readies)
         x.time = f
-        condense = self.condensation
+        condense = self.condensation and f
         timed_places = self.timed_places
-        for k, (info, key, res) in enumerate(fixed):
-            keys = _ids(key, info)
+        fire_memo, add, shift = e._fire_memo, e._add, e._shift
+        adds_out, shifts_out, succ = x.adds, x.shifts, x.succ
+        for k, info, key, res in fixed:
             entries = []
+            read = info.read
             for entry in res:
                 if entry[0] > f:
                     continue
                 if info.timed:
                     be = entry[1]
                     fk = (be, key, f)
-                    w = e._fire_memo.get(fk)
+                    w = fire_memo.get(fk)
                     if w is None:
                         _, _, ekeys, consumed, produced, td, _pr = entry
                         w = e._writes(info, ekeys, consumed, produced, f, td)
-                        e._fire_memo[fk] = w
+                        fire_memo[fk] = w
                     sets, adds = w
                 else:
                     be, sets, adds = entry[1], entry[2], entry[3]
@@ -106,22 +123,19 @@ class TimedGroups:
                 deltas = dict.fromkeys(info.writes, NO_DELTA)
                 for pos, did, _memo in adds:
                     old = lst[pos]
-                    lst[pos] = e._add(pos, old, did)
+                    lst[pos] = nid = add(pos, old, did)
                     deltas[pos] = did
-                    x.adds.append((pos, did, old, lst[pos]))
-                entries.append([be, *(lst[p] for p in info.read), *deltas.values()])
+                    adds_out.append((pos, did, old, nid))
+                entries.append([be, *[lst[p] for p in read], *deltas.values()])
                 if condense:
-                    if f:
-                        for p in timed_places:
-                            old = lst[p]
-                            lst[p] = e._shift(p, old, f)
-                            x.shifts.append((p, old, f, lst[p]))
-                    lst[-1] = 0
-                else:
-                    lst[-1] = f
-                x.succ.append((be, tuple(lst), prio.get(be, P_NORMAL)))
+                    for p in timed_places:
+                        old = lst[p]
+                        lst[p] = nid = shift(p, old, f)
+                        shifts_out.append((p, old, f, nid))
+                lst[-1] = 0 if self.condensation else f
+                succ.append((be, tuple(lst), prio.get(be, P_NORMAL)))
             if entries:
-                x.effects.append((k, keys, f if self.timed[k] else 0, entries))
+                x.effects.append((k, key, f if self.timed[k] else 0, entries))
         self._select(x)
         return x
 
@@ -135,8 +149,7 @@ class TimedGroups:
             res = memo_get(key)
             if res is None:
                 res = e._miss(info, key)
-            keys = _ids(key, info)
-            x.ready.append((k, keys, [(NEG_INF, prio.get(be, P_NORMAL)) for be, _sets, _adds in res]))
+            x.ready.append((k, key, res))
             entries = []
             for be, sets, adds in res:
                 lst = list(s)
@@ -151,7 +164,7 @@ class TimedGroups:
                 entries.append([be, *(lst[p] for p in info.read), *deltas.values()])
                 x.succ.append((be, tuple(lst), prio.get(be, P_NORMAL)))
             if entries:
-                x.effects.append((k, keys, 0, entries))
+                x.effects.append((k, key, 0, entries))
         x.time = 0
         self._select(x)
         return x
@@ -163,9 +176,3 @@ class TimedGroups:
             x.succ = [(be, t) for be, t, p in x.succ if p == best]
         else:
             x.succ = [(be, t) for be, t, _p in x.succ]
-
-
-def _ids(key, info) -> tuple:
-    """The read places' ids as a tuple, from a memo key (a bare id for one read place)."""
-    n = len(info.read)
-    return key if n > 1 else ((key,) if n == 1 else ())

@@ -111,6 +111,49 @@ int nt_put_shift(nt_search *t, uint32_t p, uint32_t id, uint32_t f, uint32_t nid
     return vm_put(&t->shifts, k, nid);
 }
 
+/* Many values at once, as the engine sends them after expanding a state (0, or -1: no memory):
+ * readies: n records (g, count, the group's read values, count x (ready, priority));
+ * effects: n records (g, time, count, the group's read values, count entries);
+ * adds: n quadruples (p, delta, old, new); shifts: n quadruples (p, id, time, new). */
+int nt_put_readies(nt_search *t, const int64_t *buf, int64_t n) {
+    uint32_t *key = t->ekey;
+    for (int64_t i = 0; i < n; i++) {
+        int g = (int)buf[0];
+        int64_t cnt = buf[1];
+        int nr = t->d->nread[g];
+        for (int k = 0; k < nr; k++) key[k] = (uint32_t)buf[2 + k];
+        if (nt_put_ready(t, g, key, cnt, buf + 2 + nr) != 0) return -1;
+        buf += 2 + nr + 2 * cnt;
+    }
+    return 0;
+}
+
+int nt_put_effects(nt_search *t, const int32_t *buf, int64_t n) {
+    uint32_t *key = t->ekey;
+    for (int64_t i = 0; i < n; i++) {
+        int g = buf[0];
+        int64_t cnt = buf[2];
+        int nr = t->d->nread[g], nw = t->d->nwrite[g];
+        for (int k = 0; k < nr; k++) key[k] = (uint32_t)buf[3 + k];
+        key[nr] = (uint32_t)buf[1];
+        if (nt_put_effect(t, g, key, cnt, buf + 3 + nr) != 0) return -1;
+        buf += 3 + nr + cnt * (1 + nr + nw);
+    }
+    return 0;
+}
+
+int nt_put_adds(nt_search *t, const uint32_t *buf, int64_t n) {
+    for (int64_t i = 0; i < n; i++, buf += 4)
+        if (nd_put_add(t->d, buf[0], buf[1], buf[2], buf[3]) != 0) return -1;
+    return 0;
+}
+
+int nt_put_shifts(nt_search *t, const uint32_t *buf, int64_t n) {
+    for (int64_t i = 0; i < n; i++, buf += 4)
+        if (nt_put_shift(t, buf[0], buf[1], buf[2], buf[3]) != 0) return -1;
+    return 0;
+}
+
 /* The successors of state s into t->succ (K fields each), t->sbe and t->sprio: their number, -1 if a
  * cache misses a value, -2 if memory runs out. */
 static int64_t nt_expand(nt_search *t, const uint32_t *s) {

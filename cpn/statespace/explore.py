@@ -232,7 +232,7 @@ class Explorer:
                 stop = self._check_limits(n, search.n_arcs, n - search.head)
                 if stop is not StopReason.COMPLETE:
                     break
-                if search.head <= HAND_OVER_BY and search.round_trips > HAND_OVER_RATE * search.head:
+                if search.head <= HAND_OVER_BY and search.round_trips > search.hand_over_rate() * search.head:
                     return self._hand_over(g, search)
                 if search.head >= until:
                     until += CHECK_EVERY

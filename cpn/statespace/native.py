@@ -69,6 +69,10 @@ int64_t nt_level_start(nt_search *t);
 int nt_put_ready(nt_search *t, int g, const uint32_t *key, int64_t n, const int64_t *pairs);
 int nt_put_effect(nt_search *t, int g, const uint32_t *key, int64_t n, const int32_t *entries);
 int nt_put_shift(nt_search *t, uint32_t p, uint32_t id, uint32_t f, uint32_t nid);
+int nt_put_readies(nt_search *t, const int64_t *buf, int64_t n);
+int nt_put_effects(nt_search *t, const int32_t *buf, int64_t n);
+int nt_put_adds(nt_search *t, const uint32_t *buf, int64_t n);
+int nt_put_shifts(nt_search *t, const uint32_t *buf, int64_t n);
 int nt_run(nt_search *t, int64_t until, int64_t max_states, int64_t max_arcs);
 int64_t nt_cache_bytes(nt_search *t);
 """
@@ -249,6 +253,12 @@ class NativeSearch:
         old = _Snapshot(self)
         self._attach(lib, self.graph.states[0], old)
         self.round_trips = 0
+
+    def hand_over_rate(self) -> float:
+        """Returns to the engine per state past which the explorer hands over to the Python search."""
+        from cpn.statespace.explore import HAND_OVER_RATE
+
+        return HAND_OVER_RATE
 
     @property
     def head(self) -> int:

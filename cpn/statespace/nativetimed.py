@@ -34,6 +34,10 @@ from cpn.statespace.native import (
 from cpn.statespace.options import StopReason
 
 ND_LEVEL = 7
+#: the explorer hands over to the Python search past this many returns to the engine per state (it
+#: expands a state at most once; where nearly every state needs it, the C search only adds copying:
+#: the markings of timed places rarely recur, their timestamps change with the clock)
+HAND_OVER_RATE: float = 0.9
 _U32 = 1 << 32
 _I64_MIN = -(1 << 63)
 
@@ -54,6 +58,9 @@ class TimedNativeSearch(NativeSearch):
             _, code_notes = generated(engine, options)
             self.notes.extend(code_notes)
         self.on_level = on_level
+        # what was copied to the C caches: per group the ready lists' keys and the effects' (keys, time);
+        # the adds and the shifts
+        self._sent = ([set() for _ in self.tg.groups], [set() for _ in self.tg.groups], set(), set())
         self._attach(library(timed=True), s0)
         tg = self.tg
         ffi, lib = self.ffi, self.lib
@@ -64,6 +71,9 @@ class TimedNativeSearch(NativeSearch):
             raise MemoryError("cannot allocate the native search")
         self.timed_handle = ffi.gc(handle, lib.nt_free)
         lib.nt_set_watch(self.timed_handle, 1 if on_level is not None else 0)
+
+    def hand_over_rate(self) -> float:
+        return HAND_OVER_RATE
 
     def _run(self, until: int, max_states: int, max_arcs: int) -> StopReason | None:
         lib, h = self.lib, self.timed_handle
@@ -92,7 +102,7 @@ class TimedNativeSearch(NativeSearch):
 
     def _fill(self) -> None:
         """The engine expands the state the C search misses values of; every value it used is cached."""
-        lib, ffi, h = self.lib, self.ffi, self.timed_handle
+        lib, ffi = self.lib, self.ffi
         req = ffi.unpack(lib.nd_requests(self.handle), lib.nd_nrequests(self.handle))
         s = tuple(req[1:])
         if self.head == getattr(self, "_last_fill", -1):
@@ -109,38 +119,58 @@ class TimedNativeSearch(NativeSearch):
             self.flush()
             raise HandOver(f"the model time {x.time} does not fit the native search's 32 bits")
         try:
-            for g, key, pairs in x.ready:
-                flat = array("q")
-                for r, p in pairs:
-                    flat.append(_I64_MIN if r == NEG_INF else r)
-                    flat.append(p)
-                _check(lib.nt_put_ready(h, g, _u32(ffi, key), len(pairs), ffi.from_buffer("int64_t[]", flat or
-                                                                                          array("q", [0]))))
-            for g, key, f, entries in x.effects:
-                flat = array("i", [v for entry in entries for v in entry])
-                if min(flat) < -1:
-                    raise HandOver("a negative id cannot be stored by the native search")
-                _check(lib.nt_put_effect(h, g, _u32(ffi, (*key, f)), len(entries), ffi.from_buffer("int32_t[]", flat)))
-            for p, did, old, nid in x.adds:
-                _check(lib.nd_put_add(self.handle, p, did, old, _fit(nid)))
-            for p, old, f, nid in x.shifts:
-                _check(lib.nt_put_shift(h, p, old, f, _fit(nid)))
+            self._send(x)
         except (OverflowError, TypeError) as exc:
             self.flush()
             raise HandOver(f"a value does not fit the native search's 32 bits ({exc})") from None
 
+    def _send(self, x) -> None:
+        """Copy the values of expansion `x` the C caches do not hold yet (four calls)."""
+        lib, ffi, h = self.lib, self.ffi, self.timed_handle
+        sent_ready, sent_effects, sent_adds, sent_shifts = self._sent
+        buf = array("q")
+        n = 0
+        pairs_of, ids = self.tg.pairs, self.tg.ids
+        for g, key, res in x.ready:
+            seen = sent_ready[g]
+            if key in seen:
+                continue
+            seen.add(key)
+            pairs = pairs_of(res)
+            buf.extend((g, len(pairs), *ids(g, key)))
+            for r, p in pairs:
+                buf.append(_I64_MIN if r == NEG_INF else r)
+                buf.append(p)
+            n += 1
+        if n:
+            _check(lib.nt_put_readies(h, ffi.from_buffer("int64_t[]", buf), n))
+        buf = array("i")
+        n = 0
+        for g, key, f, entries in x.effects:
+            seen = sent_effects[g]
+            if (key, f) in seen:
+                continue
+            seen.add((key, f))
+            buf.extend((g, f if f < 1 << 31 else f - _U32, len(entries), *ids(g, key)))
+            for entry in entries:
+                buf.extend(entry)
+            n += 1
+        if n:
+            _check(lib.nt_put_effects(h, ffi.from_buffer("int32_t[]", buf), n))
+        for items, seen, put in ((x.adds, sent_adds, lib.nt_put_adds), (x.shifts, sent_shifts, lib.nt_put_shifts)):
+            buf = array("I")
+            n = 0
+            for quad in items:
+                if quad in seen:
+                    continue
+                seen.add(quad)
+                buf.extend(quad)
+                n += 1
+            if n:
+                _check(put(h, ffi.from_buffer("uint32_t[]", buf), n))
+
     def cache_bytes(self) -> int:
         return self.lib.nd_cache_bytes(self.handle) + self.lib.nt_cache_bytes(self.timed_handle)
-
-
-def _u32(ffi, values):
-    return ffi.from_buffer("uint32_t[]", array("I", values or (0,)))
-
-
-def _fit(v: int) -> int:
-    if not 0 <= v < _U32:
-        raise OverflowError(f"id {v}")
-    return v
 
 
 def _check(rc: int) -> None:
