@@ -11,6 +11,7 @@ Usage:
   python bench/modbus.py --symmetry [--budget 300] [--sym-ns 4,8,...] [--sym-ks 1,4,...]
                                                   # broadcasts to NS slaves: the full model against the
                                                   # quotient of bench/nets/modbus_bcast_sym.cpnet
+  python bench/modbus.py --native [--repeat 3]    # timed nets: the native search against the Python search
 
 The first form times, as a user would, `python -m cpn check FILES --no-reports -q` (a fresh process: start-up,
 loading and compiling the model, exploring, deciding every property) over --repeat runs and prints the
@@ -35,6 +36,14 @@ The second form measures growing numbers of slaves, each run bounded by --budget
   N beyond the file's 1..8 (MAXN raised with N); N stops at 96: from N = 98 on the ID counter skips the
   reserved IDs 98 and 99 (MODBUS.md 4.5 E4), so the k-th slave no longer gets ID k and MA2 is violated
   by design.
+
+The --native form explores timed nets (the scenarios B_1-B_6 and D_1-D_4 of specs/modbus, each as its file
+says and then without time condensation; scenario B with NS 10 and 12 slaves and a broadcast, condensed;
+models/examples/stop_and_wait.cpnet with and without condensation) with `--backend python`, `--backend c`
+(which hands over to the Python search where nearly every state needs the engine) and `--backend c`
+without that hand-over (`c-only`), in this process, the three alternating, a fresh engine per run:
+medians of --repeat runs of the generation's seconds (the net's library already built), states per
+second, and for c-only the share of states the engine expanded for the C search.
 """
 
 from __future__ import annotations
@@ -453,6 +462,84 @@ def sweep_memo(k: int, forget: bool) -> None:
           f"{entries:,} memo entries left, peak {peak_rss_mb():.0f} MiB, {secs:.2f} s")
 
 
+def _native_nets() -> list[tuple[str, list[tuple[str, dict | None, bool]]]]:
+    """(label, [(model path, constants, time condensation), ...]) of the --native rows."""
+    import tomllib
+
+    def scenarios(names, condensed):
+        out = []
+        for name in names:
+            path = os.path.join(ROOT, "specs", "modbus", f"{name}.toml")
+            with open(path, "rb") as f:
+                spec = tomllib.load(f)
+            tc = spec.get("explore", {}).get("time_condensation", False) if condensed else False
+            out.append((os.path.join(os.path.dirname(path), spec["model"]), spec.get("set"), tc))
+        return out
+    modbus = os.path.join(ROOT, "models", "modbus", "modbus.cpnet")
+    stop = os.path.join(ROOT, "models", "examples", "stop_and_wait.cpnet")
+    bs, ds = [f"B_{i}" for i in range(1, 7)], [f"D_{i}" for i in range(1, 5)]
+    rows = [("B_1-B_6 (as the files say)", scenarios(bs, True)), ("B_1-B_6 timed", scenarios(bs, False)),
+            ("D_1-D_4 (as the files say)", scenarios(ds, True)), ("D_1-D_4 timed", scenarios(ds, False))]
+    for ns in (10, 12):
+        values = {"CONFIG": '"B"', "NS": str(ns), "ADRS": str([0] + list(range(1, ns + 1))).replace(" ", ""),
+                  "FCS": "[1]", "PO": "1"}
+        rows.append((f"B NS {ns} + broadcast, condensed", [(modbus, values, True)]))
+    rows += [("stop_and_wait condensed", [(stop, None, True)]), ("stop_and_wait timed", [(stop, None, False)])]
+    return rows
+
+
+def native_timed(repeat: int) -> None:
+    """The --native table (see the module's docstring)."""
+    from cpn import load
+    from cpn.statespace import ExploreOptions, Explorer, nativetimed
+
+    fills = [0]
+    fill = nativetimed.TimedNativeSearch._fill
+
+    def counted(self):
+        fills[0] += 1
+        return fill(self)
+    nativetimed.TimedNativeSearch._fill = counted
+    rate = nativetimed.HAND_OVER_RATE
+    try:
+        load_avg = os.getloadavg()
+    except OSError:
+        load_avg = (float("nan"),) * 3
+    print(f"load average at start: {load_avg[0]:.1f} {load_avg[1]:.1f} {load_avg[2]:.1f}; {os.cpu_count()} CPUs")
+    print(f"{'net':34} {'backend':>8} {'states':>8} {'arcs':>8} {'gen s':>7} {'states/s':>9} {'engine':>7}  ran")
+    for label, runs in _native_nets():
+        models = [(load(path, set=values), tc) for path, values, tc in runs]
+        for backend in ("python", "c", "c-only"):  # built (or found in the cache) before the clock starts
+            if backend != "python":
+                nativetimed.HAND_OVER_RATE = 1e9
+                for model, tc in models:
+                    Explorer(model.engine(time_condensation=tc), ExploreOptions(backend="c", max_states=2)).run()
+        times: dict[str, list[float]] = {"python": [], "c": [], "c-only": []}
+        facts: dict[str, tuple] = {}
+        for _ in range(repeat):
+            for backend in ("python", "c", "c-only"):
+                nativetimed.HAND_OVER_RATE = 1e9 if backend == "c-only" else rate
+                fills[0] = 0
+                seconds = states = arcs = expanded = 0
+                ran = set()
+                for model, tc in models:
+                    x = Explorer(model.engine(time_condensation=tc),
+                                 ExploreOptions(backend="python" if backend == "python" else "c")).run()
+                    seconds += x.seconds
+                    states, arcs, expanded = states + x.n_states, arcs + x.n_arcs, expanded + x.graph.expanded
+                    ran.add(x.backend)
+                times[backend].append(seconds)
+                facts[backend] = (states, arcs, fills[0] / expanded if backend == "c-only" else None,
+                                  ",".join(sorted(ran)))
+        nativetimed.HAND_OVER_RATE = rate
+        for backend in ("python", "c", "c-only"):
+            states, arcs, share, ran = facts[backend]
+            med = statistics.median(times[backend])
+            engine = f"{share:.0%}" if share is not None else ""
+            print(f"{label:34} {backend:>8} {states:>8,} {arcs:>8,} {med:>7.2f} {states / med:>9,.0f} {engine:>7}  {ran}")
+    nativetimed.TimedNativeSearch._fill = fill
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--repeat", type=int, default=3)
@@ -476,7 +563,11 @@ def main(argv=None) -> int:
                     help="--symmetry: the numbers of slaves (modbus.cpnet up to its 16 instances)")
     ap.add_argument("--sym-ks", default="1,4,16,64", help="--symmetry: the numbers of broadcasts at NS 16")
     ap.add_argument("--budget", type=float, default=600.0, help="seconds of generation per run (default 600)")
+    ap.add_argument("--native", action="store_true", help="timed nets: the native search against the Python search")
     a = ap.parse_args(argv)
+    if a.native:
+        native_timed(a.repeat)
+        return 0
     if a.table:
         table(a.budget)
         return 0

@@ -82,7 +82,9 @@ class Engine(Protocol):
         """CPN ML text of an untimed multiset (value -> count) of place p's colour set."""
 
     # Optional: `successor_groups()`, the successor function as transition groups for the native search
-    # (`cpn.engine.compiled.TransitionGroups`, or None); an engine without it is searched in Python.
+    # (`cpn.engine.compiled.TransitionGroups`, or None), and `timed_groups()`, those of a timed net or a net
+    # with priorities (`cpn.engine.timedgroups.TimedGroups`, or None); an engine without them is searched in
+    # Python.
 
 
 __all__ = ["BindingElementLike", "Engine", "Place", "Transition"]

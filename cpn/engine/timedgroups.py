@@ -73,6 +73,7 @@ class TimedGroups:
         return key if n > 1 else ((key,) if n == 1 else ())
 
     def expand(self, s: tuple) -> Expansion:
+        self._engine._nstates += 1  # as `successors` counts: the engine judges its memos' reuse by it
         return self._timed(s) if self.clock else self._untimed(s)
 
     def _timed(self, s: tuple) -> Expansion:

@@ -1,0 +1,208 @@
+"""Issue 13: the native search of timed nets and of nets with priorities (`cpn.statespace.nativetimed`,
+`_timed.c`, `cpn.engine.timedgroups`). The graph must be the Python search's own (the same states under
+the same ids, arcs in the same order, the same binding elements, BFS parents and levels, the same stop and
+time-growth evidence), with and without time condensation; each test asserts that the C search ran."""
+
+import glob
+import os
+import random
+import tomllib
+
+import pytest
+
+import cpn
+from cpn.statespace import ExploreOptions, Explorer, nativetimed
+from cpn.statespace.store import packed_unavailable
+from tests.engine._explore import same_exploration
+from tests.engine.randomnets import random_net, random_timed_net
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(__file__)))
+NATIVE = packed_unavailable()
+needs_native = pytest.mark.skipif(NATIVE is not None, reason=f"native code unavailable: {NATIVE}")
+TIMED_MODELS = [p for p in sorted(glob.glob(os.path.join(ROOT, "models", "**", "*.cpnet"), recursive=True)
+                                  + glob.glob(os.path.join(ROOT, "tests", "statespace", "models", "*.cpnet")))
+                if "timed" in open(p).read()]
+TIMED_NOTE = "the Python engine computes every transition's bindings: the net is timed"
+
+
+@pytest.fixture
+def fills(monkeypatch):
+    """How many states the engine expanded for the C search; the C search never hands over here."""
+    monkeypatch.setattr(nativetimed, "HAND_OVER_RATE", 1e9)
+    count = [0]
+    fill = nativetimed.TimedNativeSearch._fill
+
+    def counted(self):
+        count[0] += 1
+        return fill(self)
+    monkeypatch.setattr(nativetimed.TimedNativeSearch, "_fill", counted)
+    return count
+
+
+def _both(model, condensation: bool, limit: int = 3000, **options):
+    """The C search and the Python search of `model`: the same graph; the C search ran to the end."""
+    c = Explorer(model.engine(time_condensation=condensation),
+                 ExploreOptions(backend="c", max_states=limit, **options)).run()
+    py = Explorer(model.engine(time_condensation=condensation),
+                  ExploreOptions(backend="python", max_states=limit, packed_states=False, **options)).run()
+    assert c.backend == "c" and py.backend == "python", c.notes
+    assert not any("handed over" in n for n in c.notes), c.notes
+    same_exploration(c, py)
+    assert c.untimed_states == py.untimed_states and c.time_growth == py.time_growth
+    return c
+
+
+@needs_native
+@pytest.mark.parametrize("path", TIMED_MODELS, ids=os.path.basename)
+@pytest.mark.parametrize("condensation", [False, True], ids=["timed", "condensed"])
+def test_the_repository_timed_models_run_in_c(path, condensation, fills):
+    model = cpn.load(path)
+    assert model.net.is_timed
+    c = _both(model, condensation)
+    assert c.notes == [TIMED_NOTE]
+    assert 0 < fills[0] <= c.graph.expanded
+
+
+SCENARIOS = ["A_1", "A_2_faults", "B_1", "B_5", "C_1", "D_1", "D_4_faults"]
+
+
+@needs_native
+@pytest.mark.parametrize("name", SCENARIOS)
+def test_the_modbus_scenarios_run_in_c(name, fills):
+    """The scenario files fix the model's constants (and say whether the time is condensed): both ways."""
+    path = os.path.join(ROOT, "specs", "modbus", f"{name}.toml")
+    with open(path, "rb") as f:
+        spec = tomllib.load(f)
+    model = cpn.load(os.path.join(os.path.dirname(path), spec["model"]), set=spec.get("set"))
+    for condensation in (True, False):
+        c = _both(model, condensation, limit=2000)
+        assert c.n_states > 50 and fills[0] > 0
+
+
+@needs_native
+def test_modbus_scenario_b_with_a_broadcast_in_c(fills):
+    """Scenario B with 8 slaves and a broadcast: the slaves take their copies in every order."""
+    values = {"CONFIG": '"B"', "NS": "8", "ADRS": "[0,1,2,3,4,5,6,7,8]", "FCS": "[1]", "PO": "1"}
+    model = cpn.load(os.path.join(ROOT, "models", "modbus", "modbus.cpnet"), set=values)
+    c = _both(model, True)
+    assert (c.n_states, c.n_arcs, c.complete) == (377, 1151, True)
+
+
+@needs_native
+def test_the_time_growth_watch_stops_the_c_search_where_it_stops_python(fills):
+    model = cpn.load(os.path.join(ROOT, "models", "examples", "stop_and_wait.cpnet"))
+    c = _both(model, False, limit=10**6)
+    assert c.stop_reason.value == "time_grows" and c.time_growth is not None
+    # the states C found without the engine: their values were all cached
+    assert fills[0] < c.graph.expanded
+
+
+@needs_native
+def test_random_timed_nets_run_in_c(fills):
+    """Every random timed net that does not read the clock, with and without time condensation: priorities,
+    delays on transitions and arcs, inhibitor and reset arcs on timed places."""
+    ran = 0
+    for seed in range(120):
+        text = random_timed_net(seed)
+        model = cpn.loads(text, f"timed{seed}.cpnet")
+        if model.engine().reads_clock:
+            continue
+        for condensation in (False, True):
+            try:
+                _both(model, condensation, limit=200)
+            except AssertionError:
+                raise AssertionError(f"C and Python differ on random timed net {seed} (condensation "
+                                     f"{condensation}):\n{text}") from None
+            ran += 1
+    assert ran >= 100
+
+
+def _with_priorities(text: str, seed: int) -> str:
+    """The random net with priorities on some of its transitions (500, 1000 or 2000)."""
+    rng = random.Random(seed)
+    lines = []
+    for line in text.splitlines():
+        if line.startswith("trans ") and rng.random() < 0.7:
+            line = line.rstrip(";") + f" priority {rng.choice([500, 1000, 2000])};"
+        lines.append(line)
+    return "\n".join(lines) + "\n"
+
+
+@needs_native
+def test_random_nets_with_priorities_run_in_c(fills):
+    ran = 0
+    for seed in range(200):
+        text = _with_priorities(random_net(seed), seed)
+        model = cpn.loads(text, f"random{seed}.cpnet")
+        if model.net.is_timed or all(t.priority is None for t in model.net.transitions):
+            continue
+        try:
+            _both(model, False, limit=200)
+        except AssertionError:
+            raise AssertionError(f"C and Python differ on random net {seed}:\n{text}") from None
+        ran += 1
+    assert ran >= 100
+
+
+PRIORITIES = """
+colset N = int with 0..3;
+var x : N;
+place P : N = 1`0 ++ 1`1 ++ 1`2;
+place Q : N;
+trans low priority 2000;
+trans high [x <> 1] priority 500;
+trans normal;
+arc P -> low : x;
+arc low -> Q : x;
+arc P -> high : x;
+arc high -> Q : x;
+arc Q -> normal : x;
+arc normal -> P : (x + 1) mod 4;
+"""
+
+
+@needs_native
+def test_priorities_select_in_c(fills):
+    """`high` (500) goes first wherever it is enabled; `low` (2000) only where nothing else is."""
+    model = cpn.loads(PRIORITIES, "priorities.cpnet")
+    assert model.engine().successor_groups() is None
+    c = _both(model, False)
+    assert c.notes == ["the Python engine computes every transition's bindings: the net has priorities"]
+    names = {c.engine.format_binding_element(be).split(":")[0] for be in c.graph.bes}
+    assert names == {"Top'high 1", "Top'normal 1", "Top'low 1"}
+    for i in range(c.graph.expanded):
+        fired = {c.engine.format_binding_element(be).split(":")[0] for be, _d in c.graph.out_arcs(i)}
+        assert not ({"Top'high 1"} < fired)  # nothing of a larger priority beside `high`
+
+
+@needs_native
+def test_a_model_time_past_32_bits_hands_over_to_python():
+    model = cpn.loads("colset T = unit timed; place P : T = 1`(); trans t @+ 3000000000; arc P -> t; arc t -> P;",
+                      "far.cpnet")
+    c = Explorer(model.engine(), ExploreOptions(backend="c", max_states=4)).run()
+    py = Explorer(model.engine(), ExploreOptions(backend="python", max_states=4, packed_states=False)).run()
+    same_exploration(c, py)
+    assert c.backend == "python"
+    assert any("handed over to the Python search after 2 states: the model time 6000000000 does not fit" in n
+               for n in c.notes), c.notes
+
+
+def test_the_engine_expands_a_state_as_its_successor_function_does():
+    """`TimedGroups.expand(s).succ` is `successors(s)` on the states of random timed nets."""
+    for seed in range(0, 60):
+        model = cpn.loads(random_timed_net(seed), f"timed{seed}.cpnet")
+        for condensation in (False, True):
+            engine = model.engine(time_condensation=condensation)
+            if engine.reads_clock:
+                assert engine.timed_groups() is None
+                break
+            twin = model.engine(time_condensation=condensation)
+            tg = twin.timed_groups()
+            states = [engine.initial_state()]
+            assert twin.initial_state() == states[0]
+            i = 0
+            while i < min(len(states), 40):
+                succ = engine.successors(states[i])
+                assert tg.expand(states[i]).succ == succ, seed
+                states.extend(t for _be, t in succ if t not in states)
+                i += 1
