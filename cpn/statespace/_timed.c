@@ -266,7 +266,8 @@ int nt_run(nt_search *t, int64_t until, int64_t max_states, int64_t max_arcs) {
         if (d->head == until) { status = ND_CHECK; break; }
         if (n >= max_states) { status = ND_MAX_STATES; break; }
         if (d->total_arcs >= max_arcs) { status = ND_MAX_ARCS; break; }
-        memcpy(d->s, st->arena + d->head * st->W, (size_t)K * 4);
+        memcpy(d->rs, st->arena + d->head * st->W, (size_t)st->W);
+        for (int f = 0; f < K; f++) d->s[f] = (uint32_t)cs_get(d->rs + st->off[f], st->w[f]);
         int64_t m = nt_expand(t, d->s);
         if (m == -2) { status = ND_NO_MEMORY; break; }
         if (m == -1) {
@@ -286,11 +287,33 @@ int nt_run(nt_search *t, int64_t until, int64_t max_states, int64_t max_arcs) {
             || grow(&d->bes, &d->bes_cap, d->narcs + m, 4) != 0
             || grow((void **)&d->offsets, &d->off_cap, d->noff + 1, 8) != 0
             || grow((void **)&d->parent, &d->new_cap, d->nnew + m, 4) != 0
-            || grow((void **)&d->parent_be, &d->pbe_cap, d->nnew + m, 4) != 0) { status = ND_NO_MEMORY; break; }
+            || grow((void **)&d->parent_be, &d->pbe_cap, d->nnew + m, 4) != 0
+            || grow((void **)&d->hs, &d->hs_cap, m, 8) != 0) { status = ND_NO_MEMORY; break; }
+        /* the successors' records (a value too wide for its field widens the store's records, and the
+         * records are made anew), hashed and their table slots prefetched, then stored in order */
         int failed = 0;
+        for (;;) {
+            int W = st->W, wf = -1;
+            uint32_t wv = 0;
+            if (grow((void **)&d->recs, &d->recs_cap, m * W, 1) != 0) { failed = 1; break; }
+            for (int64_t i = 0; i < m && wf < 0; i++) {
+                const uint32_t *u = t->succ + i * K;
+                uint8_t *r = d->recs + i * W;
+                for (int f = 0; f < K; f++)
+                    if (!cs_put(r + st->off[f], st->w[f], u[f])) { wf = f; wv = u[f]; break; }
+            }
+            if (wf < 0) break;
+            if (cs_widen_field(st, wf, wv > 0xFFFFu ? 4 : 2) != 0) { failed = 1; break; }
+        }
+        if (failed) { status = ND_NO_MEMORY; break; }
+        int W = st->W;
         for (int64_t i = 0; i < m; i++) {
-            int32_t id, fresh;
-            int64_t r = cs_add_many(st, (const uint8_t *)(t->succ + i * K), 1, &id, &fresh);
+            d->hs[i] = cs_hash(d->recs + i * W, W);
+            __builtin_prefetch(cs_probe_start(st, d->hs[i]));
+        }
+        for (int64_t i = 0; i < m; i++) {
+            int32_t id;
+            int r = cs_add_hashed(st, d->recs + i * W, d->hs[i], &id);
             if (r < 0) { failed = 1; break; }
             if (r == 1) {
                 d->parent[d->nnew] = (int32_t)d->head;

@@ -83,6 +83,7 @@ class TimedNativeSearch(NativeSearch):
                 self.round_trips += 1
                 self._fill()
             elif status == ND_LEVEL:
+                self.store.sync()  # the watch reads the states: the search may have widened their fields
                 stop = self.on_level(lib.nt_level_start(h), self.level_end)
                 if stop is not None:
                     self.flush()

@@ -206,3 +206,14 @@ def test_the_engine_expands_a_state_as_its_successor_function_does():
                 assert tg.expand(states[i]).succ == succ, seed
                 states.extend(t for _be, t in succ if t not in states)
                 i += 1
+
+
+@needs_native
+def test_the_clock_widens_the_records_of_the_c_search(fills):
+    """The clock outgrows 1 and then 2 bytes: the store's records widen during the search, and the
+    time-growth watch reads the states at their new width."""
+    model = cpn.loads("colset T = unit timed; place P : T = 1`(); trans t @+ 10000; arc P -> t; arc t -> P;",
+                      "slow.cpnet")
+    c = _both(model, False, limit=100)
+    assert c.stop_reason.value == "time_grows" and c.graph.store.widths[-1] == 4
+    assert max(c.engine.clock(s) for s in c.graph.states) > 65535
