@@ -17,9 +17,9 @@
  * is ready then, else the earliest ready time; the binding elements ready at f occur (in group order),
  * written places get add(p, delta, old), the timed places are shifted by f under time condensation, and
  * the clock becomes f (0 under condensation); with priorities only the smallest priority is kept. Where a
- * value is missing from a cache, nt_run returns ND_NEED with the state (request 2, the K fields): the
- * engine computes the whole state in its own order, fills every cache it touched, and the state is
- * expanded again. */
+ * value is missing from a cache, nt_run returns ND_NEED with the state (request 2, the K fields, then the
+ * number and the indexes of the groups whose ready list is missing): the engine computes the whole state in
+ * its own order, fills the caches with what it used, and the state is expanded again. */
 
 #define ND_LEVEL 7
 #define ND_NONE 0xFFFFFFFFu
@@ -39,6 +39,7 @@ typedef struct {
     int64_t *sprio; int64_t sprio_cap;
     int64_t *roff;
     uint32_t *ekey;
+    uint32_t *miss; int nmiss;   /* the groups whose ready list the state being expanded misses */
     int64_t level_start;
 } nt_search;
 
@@ -54,11 +55,12 @@ nt_search *nt_new(nd_search *d, int clock, int condense, int prio, const int32_t
     t->eff = (vmap *)calloc((size_t)G + 1, sizeof(vmap));
     t->roff = (int64_t *)calloc((size_t)G + 1, sizeof(int64_t));
     t->ekey = (uint32_t *)calloc((size_t)d->K + 2, 4);
+    t->miss = (uint32_t *)calloc((size_t)G + 1, 4);
     t->rdy_cap = 1024; t->rdy = (int64_t *)malloc((size_t)t->rdy_cap * 8);
     t->succ_cap = 1024; t->succ = (uint32_t *)malloc((size_t)t->succ_cap * 4);
     t->sbe_cap = 64; t->sbe = (int32_t *)malloc((size_t)t->sbe_cap * 4);
     t->sprio_cap = 64; t->sprio = (int64_t *)malloc((size_t)t->sprio_cap * 8);
-    if (!t->timed_g || !t->tplaces || !t->ready || !t->eff || !t->roff || !t->ekey || !t->rdy || !t->succ
+    if (!t->timed_g || !t->tplaces || !t->ready || !t->eff || !t->roff || !t->ekey || !t->miss || !t->rdy || !t->succ
         || !t->sbe || !t->sprio) return NULL;
     t->ntp = ntp;
     for (int i = 0; i < ntp; i++) t->tplaces[i] = tplaces[i];
@@ -74,7 +76,7 @@ void nt_free(nt_search *t) {
     if (!t) return;
     for (int g = 0; g < t->G; g++) { vm_free(&t->ready[g]); vm_free(&t->eff[g]); }
     vm_free(&t->shifts);
-    free(t->timed_g); free(t->tplaces); free(t->ready); free(t->eff); free(t->roff); free(t->ekey);
+    free(t->timed_g); free(t->tplaces); free(t->ready); free(t->eff); free(t->roff); free(t->ekey); free(t->miss);
     free(t->rdy); free(t->succ); free(t->sbe); free(t->sprio); free(t);
 }
 
@@ -162,11 +164,13 @@ static int64_t nt_expand(nt_search *t, const uint32_t *s) {
     int64_t clock = t->clock ? (int64_t)s[K - 1] : 0;
     int any = 0, now = 0;
     int64_t minr = INT64_MAX;
+    t->nmiss = 0;
     for (int g = 0; g < G; g++) {
         int nr = d->nread[g];
         for (int i = 0; i < nr; i++) t->ekey[i] = s[d->read[g][i]];
         int64_t o = vm_get(&t->ready[g], t->ekey);
-        if (o < 0) return -1;
+        if (o < 0) { t->miss[t->nmiss++] = (uint32_t)g; continue; }
+        if (t->nmiss) continue;
         t->roff[g] = o;
         int64_t cnt = t->rdy[o];
         for (int64_t j = 0; j < cnt; j++) {
@@ -176,6 +180,7 @@ static int64_t nt_expand(nt_search *t, const uint32_t *s) {
             if (r < minr) minr = r;
         }
     }
+    if (t->nmiss) return -1;
     if (!any) return 0;
     int64_t f = now ? clock : minr;
     if (f < 0 || f > (int64_t)0xFFFFFFFFu) return -1;  /* the engine says whether it fits */
@@ -271,10 +276,12 @@ int nt_run(nt_search *t, int64_t until, int64_t max_states, int64_t max_arcs) {
         int64_t m = nt_expand(t, d->s);
         if (m == -2) { status = ND_NO_MEMORY; break; }
         if (m == -1) {
-            if (grow((void **)&d->req, &d->req_cap, 1 + K, 4) != 0) { status = ND_NO_MEMORY; break; }
+            if (grow((void **)&d->req, &d->req_cap, 2 + K + t->nmiss, 4) != 0) { status = ND_NO_MEMORY; break; }
             d->req[0] = 2;
             memcpy(d->req + 1, d->s, (size_t)K * 4);
-            d->nreq = 1 + K;
+            d->req[1 + K] = (uint32_t)t->nmiss;
+            memcpy(d->req + 2 + K, t->miss, (size_t)t->nmiss * 4);
+            d->nreq = 2 + K + t->nmiss;
             status = ND_NEED;
             break;
         }

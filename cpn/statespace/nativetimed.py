@@ -58,9 +58,9 @@ class TimedNativeSearch(NativeSearch):
             _, code_notes = generated(engine, options)
             self.notes.extend(code_notes)
         self.on_level = on_level
-        # what was copied to the C caches: per group the ready lists' keys and the effects' (keys, time);
-        # the adds and the shifts
-        self._sent = ([set() for _ in self.tg.groups], [set() for _ in self.tg.groups], set(), set())
+        self._fields = len(s0)
+        # what was copied to the C caches: per group the effects' (keys, time); the adds and the shifts
+        self._sent = ([set() for _ in self.tg.groups], set(), set())
         self._attach(library(timed=True), s0)
         tg = self.tg
         ffi, lib = self.ffi, self.lib
@@ -105,7 +105,9 @@ class TimedNativeSearch(NativeSearch):
         """The engine expands the state the C search misses values of; every value it used is cached."""
         lib, ffi = self.lib, self.ffi
         req = ffi.unpack(lib.nd_requests(self.handle), lib.nd_nrequests(self.handle))
-        s = tuple(req[1:])
+        K = self._fields
+        s = tuple(req[1:1 + K])
+        missing = req[2 + K:2 + K + req[1 + K]]
         if self.head == getattr(self, "_last_fill", -1):
             self.flush()
             raise RuntimeError(f"the native search still misses values of state {self.head} once the engine "
@@ -120,23 +122,21 @@ class TimedNativeSearch(NativeSearch):
             self.flush()
             raise HandOver(f"the model time {x.time} does not fit the native search's 32 bits")
         try:
-            self._send(x)
+            self._send(x, missing)
         except (OverflowError, TypeError) as exc:
             self.flush()
             raise HandOver(f"a value does not fit the native search's 32 bits ({exc})") from None
 
-    def _send(self, x) -> None:
-        """Copy the values of expansion `x` the C caches do not hold yet (four calls)."""
+    def _send(self, x, missing) -> None:
+        """Copy the values of expansion `x` the C caches do not hold yet (four calls): the ready lists of
+        the groups `missing`, and the effects, adds and shifts not sent before."""
         lib, ffi, h = self.lib, self.ffi, self.timed_handle
-        sent_ready, sent_effects, sent_adds, sent_shifts = self._sent
+        sent_effects, sent_adds, sent_shifts = self._sent
         buf = array("q")
         n = 0
         pairs_of, ids = self.tg.pairs, self.tg.ids
-        for g, key, res in x.ready:
-            seen = sent_ready[g]
-            if key in seen:
-                continue
-            seen.add(key)
+        for g in missing:
+            _g, key, res = x.ready[g]
             pairs = pairs_of(res)
             buf.extend((g, len(pairs), *ids(g, key)))
             for r, p in pairs:
