@@ -30,8 +30,10 @@ NO_DELTA: int = -1
 class Expansion:
     """What expanding one state needed (see `TimedGroups.expand`); the successors themselves in `succ`."""
 
-    # the read ids as the engine's memo key (`TimedGroups.ids` gives them as a tuple)
-    ready: list = field(default_factory=list)  # (group, read ids, its result: `TimedGroups.pairs`)
+    # per group: its read ids as the engine's memo key (`TimedGroups.ids` gives them as a tuple), and its
+    # result for them (`TimedGroups.pairs` gives its ready times and priorities)
+    keys: list = field(default_factory=list)
+    results: list = field(default_factory=list)
     effects: list = field(default_factory=list)  # (group, read ids, occurrence time, [entry, ...])
     adds: list = field(default_factory=list)  # (place, delta id, old id, new id)
     shifts: list = field(default_factory=list)  # (place, id, occurrence time, new id)
@@ -61,7 +63,7 @@ class TimedGroups:
         """Nothing to restore: the engine's memos were kept."""
 
     def pairs(self, res) -> list[tuple]:
-        """(ready time, priority) of each binding element of a group's result (an `Expansion.ready` item)."""
+        """(ready time, priority) of each binding element of a group's result (in `Expansion.results`)."""
         prio = self._engine._prio
         if self.clock:
             return [(entry[0], prio.get(entry[1], P_NORMAL)) for entry in res]
@@ -82,20 +84,21 @@ class TimedGroups:
         x = Expansion()
         clock = s[-1]
         prio = e._prio
-        fixed = []  # per group: (info, key, entries)
-        ready = x.ready
-        for k, info in enumerate(e._plan):
-            key = info.getter(s)
-            res = info.memo.get(key)
+        keys, results = x.keys, x.results
+        miss = e._timed_miss
+        for getter, memo_get, info in e._fast:
+            key = getter(s)
+            res = memo_get(key)
             if res is None:
-                res = e._timed_miss(info, key, clock)
-            ready.append((k, key, res))
-            if res:
-                fixed.append((k, info, key, res))
+                res = miss(info, key, clock)
+            keys.append(key)
+            results.append(res)
+        plan = e._plan
+        fixed = [(k, plan[k], keys[k], res) for k, res in enumerate(results) if res]
         if not fixed:
             return x
-        readies = [entry[0] for _k, _i, _key, res in fixed for entry in res]
-        f = clock if any(r <= clock for r in readies) else min(readies)
+        first = min(entry[0] for _k, _i, _key, res in fixed for entry in res)
+        f = clock if first <= clock else first
         x.time = f
         condense = self.condensation and f
         timed_places = self.timed_places
@@ -150,7 +153,8 @@ class TimedGroups:
             res = memo_get(key)
             if res is None:
                 res = e._miss(info, key)
-            x.ready.append((k, key, res))
+            x.keys.append(key)
+            x.results.append(res)
             entries = []
             for be, sets, adds in res:
                 lst = list(s)

@@ -136,8 +136,7 @@ class TimedNativeSearch(NativeSearch):
         n = 0
         pairs_of, ids = self.tg.pairs, self.tg.ids
         for g in missing:
-            _g, key, res = x.ready[g]
-            pairs = pairs_of(res)
+            key, pairs = x.keys[g], pairs_of(x.results[g])
             buf.extend((g, len(pairs), *ids(g, key)))
             for r, p in pairs:
                 buf.append(_I64_MIN if r == NEG_INF else r)
