@@ -34,10 +34,15 @@ from cpn.statespace.native import (
 from cpn.statespace.options import StopReason
 
 ND_LEVEL = 7
-#: the explorer hands over to the Python search past this many returns to the engine per state (it
-#: expands a state at most once; where nearly every state needs it, the C search only adds copying:
-#: the markings of timed places rarely recur, their timestamps change with the clock)
-HAND_OVER_RATE: float = 0.9
+#: the search hands over to the Python search past this many returns to the engine per state (it expands
+#: a state at most once, at about the cost of the Python search's step and more): where most states need
+#: it, the C search only adds copying (the markings of timed places rarely recur, their timestamps move
+#: with the clock; `python bench/modbus.py --native`: 70% and more, slower than Python; 49%, as fast)
+HAND_OVER_RATE: float = 0.66
+#: looked at from HAND_OVER_FROM to HAND_OVER_BY expanded states (a timed net's search often has few
+#: states per level and returns to Python at each level, so it looks earlier than the explorer's 512)
+HAND_OVER_FROM: int = 64
+HAND_OVER_BY: int = 8192
 _U32 = 1 << 32
 _I64_MIN = -(1 << 63)
 
@@ -81,6 +86,11 @@ class TimedNativeSearch(NativeSearch):
             status = lib.nt_run(h, until, max_states, max_arcs)
             if status == ND_NEED:
                 self.round_trips += 1
+                head = self.head
+                if HAND_OVER_FROM <= head <= HAND_OVER_BY and self.round_trips > HAND_OVER_RATE * head:
+                    self.flush()
+                    raise HandOver(f"each state needed the engine {self.round_trips / head:.1f} times on average "
+                                   "(transitions' results rarely recur)")
                 self._fill()
             elif status == ND_LEVEL:
                 self.store.sync()  # the watch reads the states: the search may have widened their fields

@@ -37,7 +37,8 @@ def _same_graph(model, limit=3000):
     assert late.graph.store.kind == ("packed" if late.graph.expanded > 512 and len(late.graph.store) >= 600
                                      else "tuples")
     c = _explore(model, limit, backend="c")
-    assert c.backend == "c", c.notes  # timed nets too: cpn.statespace.nativetimed
+    # timed nets too (cpn.statespace.nativetimed), which may hand over where most states need the engine
+    assert c.backend == "c" or any("the native search handed over" in n for n in c.notes), c.notes
     _same_as(c, b)
     return ga
 

@@ -217,3 +217,18 @@ def test_the_clock_widens_the_records_of_the_c_search(fills):
     c = _both(model, False, limit=100)
     assert c.stop_reason.value == "time_grows" and c.graph.store.widths[-1] == 4
     assert max(c.engine.clock(s) for s in c.graph.states) > 65535
+
+
+@needs_native
+def test_the_c_search_hands_over_where_nearly_every_state_needs_the_engine():
+    """MODBUS scenario B: the slaves' transitions read the bus place, whose marking is new in nearly every
+    state; past 64 states the search goes on in Python, with the same graph."""
+    values = {"CONFIG": '"B"', "NS": "8", "ADRS": "[0,1,2,3,4,5,6,7,8]", "FCS": "[1]", "PO": "1"}
+    model = cpn.load(os.path.join(ROOT, "models", "modbus", "modbus.cpnet"), set=values)
+    c = Explorer(model.engine(time_condensation=True), ExploreOptions(backend="c")).run()
+    py = Explorer(model.engine(time_condensation=True), ExploreOptions(backend="python", packed_states=False)).run()
+    same_exploration(c, py)
+    assert c.backend == "python"
+    [note] = [n for n in c.notes if "handed over" in n]
+    assert note.startswith("the native search handed over to the Python search after 6")
+    assert "times on average (transitions' results rarely recur)" in note
