@@ -37,7 +37,8 @@ ND_LEVEL = 7
 #: the search hands over to the Python search past this many returns to the engine per state (it expands
 #: a state at most once, at about the cost of the Python search's step and more): where most states need
 #: it, the C search only adds copying (the markings of timed places rarely recur, their timestamps move
-#: with the clock; `python bench/modbus.py --native`: 70% and more, slower than Python; 49%, as fast)
+#: with the clock; `python bench/modbus.py --native`: slower than the Python search where 70% and more
+#: of the states need the engine)
 HAND_OVER_RATE: float = 0.66
 #: looked at from HAND_OVER_FROM to HAND_OVER_BY expanded states (a timed net's search often has few
 #: states per level and returns to Python at each level, so it looks earlier than the explorer's 512)
