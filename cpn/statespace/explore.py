@@ -237,6 +237,7 @@ class Explorer:
                 if search.head >= until:
                     until += CHECK_EVERY
         except native.HandOver as why:
+            _observe(observe, g, observed)  # the states the native search stored before it stopped
             return self._hand_over(g, search, str(why))
         except EvaluationError as err:
             if not err.trace:

@@ -4,6 +4,7 @@ the same ids, arcs in the same order, the same binding elements, BFS parents and
 time-growth evidence), with and without time condensation; each test asserts that the C search ran."""
 
 import glob
+import json
 import os
 import random
 import tomllib
@@ -11,7 +12,7 @@ import tomllib
 import pytest
 
 import cpn
-from cpn.statespace import ExploreOptions, Explorer, nativetimed
+from cpn.statespace import ExploreOptions, Explorer, native, nativetimed
 from cpn.statespace.store import packed_unavailable
 from tests.engine._explore import same_exploration
 from tests.engine.randomnets import random_net, random_timed_net
@@ -232,3 +233,70 @@ def test_the_c_search_hands_over_where_nearly_every_state_needs_the_engine():
     [note] = [n for n in c.notes if "handed over" in n]
     assert note.startswith("the native search handed over to the Python search after 6")
     assert "times on average (transitions' results rarely recur)" in note
+
+
+EARLY = """name = "early"
+model = "MODEL"
+
+[set]
+CONFIG = '"B"'
+NS = "6"
+ADRS = "[0,2,3,4]"
+FCS = "[1]"
+PO = "0"
+
+[explore]
+time_condensation = true
+
+[[property]]
+name = "never two copies of a frame on b2s (false early on: a broadcast)"
+kind = "invariant"
+expr = "size (Modbus'b2s 1) <= 1"
+"""
+
+
+def _check_reports(tmp_path, name, capsys, spec):
+    from cpn.cli.main import main
+
+    rep = tmp_path / name
+    code = main(["check", spec, "--reports", str(rep), "--no-timings"])
+    capsys.readouterr()
+    docs = {}
+    for path in sorted(rep.glob("*.json")):
+        doc = json.loads(path.read_text(encoding="utf-8"))
+        for p in doc["properties"]:
+            p.pop("seconds", None)
+        for key in ("seconds", "check_seconds"):
+            doc["statespace"].pop(key, None)
+        docs[path.name] = doc
+    return code, docs
+
+
+@needs_native
+@pytest.mark.parametrize("name,to_the_end", [("A_1", True), ("D_4_faults", True), ("D_4_faults", False), ("early", False)])
+def test_modbus_scenario_checks_search_natively_with_the_python_verdicts(name, to_the_end, tmp_path, capsys,
+                                                                          monkeypatch):
+    """`cpn-verify check` on a MODBUS scenario file (timed, condensed): the native timed search runs under
+    the check's monitor (to the end, or handing over to the Python search, which shows the monitor the
+    states from there on), and the reports are those of the Python search."""
+    if to_the_end:
+        monkeypatch.setattr(nativetimed, "HAND_OVER_RATE", 1e9)
+    spec = os.path.join(ROOT, "specs", "modbus", f"{name}.toml")
+    if name == "early":  # B.5's net hands over after 64 states; the monitor must see the states before
+        spec = str(tmp_path / "early.toml")
+        with open(spec, "w", encoding="utf-8") as f:
+            f.write(EARLY.replace("MODEL", os.path.join(ROOT, "models", "modbus", "modbus.cpnet").replace("\\", "/")))
+    backends = []
+    unavailable = native.unavailable
+
+    def spy(engine, options, s0):
+        why = unavailable(engine, options, s0)
+        backends.append(why)
+        return why
+
+    monkeypatch.setattr(native, "unavailable", spy)
+    code_c, docs_c = _check_reports(tmp_path, "c", capsys, spec)
+    assert backends and backends == [None] * len(backends)
+    monkeypatch.setattr(native, "unavailable", lambda *_: "the Python search, for comparison")
+    code_py, docs_py = _check_reports(tmp_path, "py", capsys, spec)
+    assert code_c == code_py and docs_c == docs_py and docs_c
