@@ -273,7 +273,7 @@ def _check_reports(tmp_path, name, capsys, spec):
 
 
 @needs_native
-@pytest.mark.parametrize("name,to_the_end", [("A_1", True), ("D_4_faults", True), ("D_4_faults", False), ("early", False)])
+@pytest.mark.parametrize("name,to_the_end", [("A_1", True), ("D_4_faults", True), ("early", False)])
 def test_modbus_scenario_checks_search_natively_with_the_python_verdicts(name, to_the_end, tmp_path, capsys,
                                                                           monkeypatch):
     """`cpn-verify check` on a MODBUS scenario file (timed, condensed): the native timed search runs under
