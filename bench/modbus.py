@@ -39,7 +39,9 @@ The second form measures growing numbers of slaves, each run bounded by --budget
 
 The --native form explores timed nets (the scenarios B_1-B_6 and D_1-D_4 of specs/modbus, each as its file
 says and then without time condensation; scenario B with NS 10 and 12 slaves and a broadcast, condensed;
-models/examples/stop_and_wait.cpnet with and without condensation) with `--backend python`, `--backend c`
+models/examples/stop_and_wait.cpnet with and without condensation; CPN Tools' samples TimedProtocol.cpn and
+TimedResourceAlloc.cpn of ../shared/cpntools-samples both ways; every search bounded at 20,000 states) with
+`--backend python`, `--backend c`
 (which hands over to the Python search where nearly every state needs the engine) and `--backend c`
 without that hand-over (`c-only`), in this process, the three alternating, a fresh engine per run:
 medians of --repeat runs of the generation's seconds (the net's library already built), states per
@@ -485,6 +487,12 @@ def _native_nets() -> list[tuple[str, list[tuple[str, dict | None, bool]]]]:
                   "FCS": "[1]", "PO": "1"}
         rows.append((f"B NS {ns} + broadcast, condensed", [(modbus, values, True)]))
     rows += [("stop_and_wait condensed", [(stop, None, True)]), ("stop_and_wait timed", [(stop, None, False)])]
+    samples = os.path.join(os.environ.get("CPN_SHARED_DIR") or os.path.join(ROOT, "..", "shared"), "cpntools-samples")
+    for name in ("TimedProtocol", "TimedResourceAlloc"):
+        path = os.path.join(samples, f"{name}.cpn")
+        if os.path.exists(path):
+            rows += [(f"{name} condensed, 20,000 states", [(path, None, True)]),
+                     (f"{name} timed, 20,000 states", [(path, None, False)])]
     return rows
 
 
@@ -524,7 +532,8 @@ def native_timed(repeat: int) -> None:
                 ran = set()
                 for model, tc in models:
                     x = Explorer(model.engine(time_condensation=tc),
-                                 ExploreOptions(backend="python" if backend == "python" else "c")).run()
+                                 ExploreOptions(backend="python" if backend == "python" else "c",
+                                                max_states=20_000)).run()
                     seconds += x.seconds
                     states, arcs, expanded = states + x.n_states, arcs + x.n_arcs, expanded + x.graph.expanded
                     ran.add(x.backend)

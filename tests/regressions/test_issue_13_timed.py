@@ -64,6 +64,24 @@ def test_the_repository_timed_models_run_in_c(path, condensation, fills):
     assert 0 < fills[0] <= c.graph.expanded
 
 
+SAMPLES = ["TimedProtocol.cpn", "TimedResourceAlloc.cpn", "priorities.cpn"]
+
+
+@needs_native
+@pytest.mark.parametrize("name", SAMPLES)
+def test_cpn_tools_timed_samples_run_in_c(name, fills):
+    """CPN Tools' timed samples (priorities.cpn: timed, with priorities), both ways, up to 3,000 states."""
+    from tests._shared import SHARED
+
+    path = os.path.join(SHARED, "cpntools-samples", name)
+    if not os.path.exists(path):
+        pytest.skip(f"{path} not found")
+    model = cpn.load(path)
+    for condensation in (False, True):
+        c = _both(model, condensation)
+        assert c.n_states >= 50 and fills[0] > 0
+
+
 SCENARIOS = ["A_1", "A_2_faults", "B_1", "B_5", "C_1", "D_1", "D_4_faults"]
 
 
