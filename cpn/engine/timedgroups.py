@@ -38,7 +38,8 @@ class Expansion:
     adds: list = field(default_factory=list)  # (place, delta id, old id, new id)
     shifts: list = field(default_factory=list)  # (place, id, occurrence time, new id)
     time: int | None = None  # the occurrence time (None: nothing enabled, or no clock)
-    succ: list = field(default_factory=list)  # (binding element, state), as `engine.successors(s)`
+    # with `expand(s, successors=True)`: (binding element, state), as `engine.successors(s)`
+    succ: list = field(default_factory=list)
 
 
 class TimedGroups:
@@ -55,6 +56,8 @@ class TimedGroups:
         self.timed = [bool(engine.is_timed and i.timed) for i in plan]
         self.timed_places = [p for p in range(len(engine.places)) if engine.store.timed[p]] \
             if engine.is_timed else []
+        # per group: a written place -> its position among the group's written places
+        self._wpos = [{p: i for i, p in enumerate(i.writes)} for i in plan]
 
     def caller_caches(self) -> None:
         """The engine keeps its own memos (a state's expansion reuses them)."""
@@ -74,14 +77,21 @@ class TimedGroups:
         n = len(self.groups[g][0])
         return key if n > 1 else ((key,) if n == 1 else ())
 
-    def expand(self, s: tuple) -> Expansion:
+    def expand(self, s: tuple, successors: bool = False) -> Expansion:
+        """What expanding state s needs (see the module's docstring); with `successors`, the successors too."""
         self._engine._nstates += 1  # as `successors` counts: the engine judges its memos' reuse by it
-        return self._timed(s) if self.clock else self._untimed(s)
+        x = Expansion()
+        if self.clock:
+            self._timed(s, x, successors)
+        else:
+            self._untimed(s, x, successors)
+        if successors:
+            self._select(x)
+        return x
 
-    def _timed(self, s: tuple) -> Expansion:
+    def _timed(self, s: tuple, x: Expansion, successors: bool) -> None:
         """`CompiledEngine._timed_successors` (no transition reads the clock), recording its values."""
         e = self._engine
-        x = Expansion()
         clock = s[-1]
         prio = e._prio
         keys, results = x.keys, x.results
@@ -96,7 +106,7 @@ class TimedGroups:
         plan = e._plan
         fixed = [(k, plan[k], keys[k], res) for k, res in enumerate(results) if res]
         if not fixed:
-            return x
+            return
         first = min(entry[0] for _k, _i, _key, res in fixed for entry in res)
         f = clock if first <= clock else first
         x.time = f
@@ -107,6 +117,7 @@ class TimedGroups:
         for k, info, key, res in fixed:
             entries = []
             read = info.read
+            wpos, nw = self._wpos[k], len(info.writes)
             for entry in res:
                 if entry[0] > f:
                     continue
@@ -124,29 +135,27 @@ class TimedGroups:
                 lst = list(s)
                 for pos, nid in sets:
                     lst[pos] = nid
-                deltas = dict.fromkeys(info.writes, NO_DELTA)
+                deltas = [NO_DELTA] * nw
                 for pos, did, _memo in adds:
                     old = lst[pos]
                     lst[pos] = nid = add(pos, old, did)
-                    deltas[pos] = did
+                    deltas[wpos[pos]] = did
                     adds_out.append((pos, did, old, nid))
-                entries.append([be, *[lst[p] for p in read], *deltas.values()])
+                entries.append([be, *[lst[p] for p in read], *deltas])
                 if condense:
                     for p in timed_places:
                         old = lst[p]
                         lst[p] = nid = shift(p, old, f)
                         shifts_out.append((p, old, f, nid))
-                lst[-1] = 0 if self.condensation else f
-                succ.append((be, tuple(lst), prio.get(be, P_NORMAL)))
+                if successors:
+                    lst[-1] = 0 if self.condensation else f
+                    succ.append((be, tuple(lst), prio.get(be, P_NORMAL)))
             if entries:
                 x.effects.append((k, key, f if self.timed[k] else 0, entries))
-        self._select(x)
-        return x
 
-    def _untimed(self, s: tuple) -> Expansion:
+    def _untimed(self, s: tuple, x: Expansion, successors: bool) -> None:
         """`CompiledEngine.successors` of an untimed net with priorities, recording its values."""
         e = self._engine
-        x = Expansion()
         prio = e._prio
         for k, (getter, memo_get, info) in enumerate(e._fast):
             key = getter(s)
@@ -156,23 +165,23 @@ class TimedGroups:
             x.keys.append(key)
             x.results.append(res)
             entries = []
+            wpos, nw = self._wpos[k], len(info.writes)
             for be, sets, adds in res:
                 lst = list(s)
                 for pos, nid in sets:
                     lst[pos] = nid
-                deltas = dict.fromkeys(info.writes, NO_DELTA)
+                deltas = [NO_DELTA] * nw
                 for pos, did, memo in adds:
                     nid = memo.get(s[pos])
                     lst[pos] = nid if nid is not None else e._add(pos, s[pos], did)
-                    deltas[pos] = did
+                    deltas[wpos[pos]] = did
                     x.adds.append((pos, did, s[pos], lst[pos]))
-                entries.append([be, *(lst[p] for p in info.read), *deltas.values()])
-                x.succ.append((be, tuple(lst), prio.get(be, P_NORMAL)))
+                entries.append([be, *[lst[p] for p in info.read], *deltas])
+                if successors:
+                    x.succ.append((be, tuple(lst), prio.get(be, P_NORMAL)))
             if entries:
                 x.effects.append((k, key, 0, entries))
         x.time = 0
-        self._select(x)
-        return x
 
     def _select(self, x: Expansion) -> None:
         """Keep the successors of the smallest priority (with priorities), as the engine does."""
