@@ -12,6 +12,7 @@ Usage:
                                                   # broadcasts to NS slaves: the full model against the
                                                   # quotient of bench/nets/modbus_bcast_sym.cpnet
   python bench/modbus.py --native [--repeat 3]    # timed nets: the native search against the Python search
+  python bench/modbus.py --native-check [--repeat 3]  # `check specs/modbus` with and without it
 
 The first form times, as a user would, `python -m cpn check FILES --no-reports -q` (a fresh process: start-up,
 loading and compiling the model, exploring, deciding every property) over --repeat runs and prints the
@@ -46,6 +47,10 @@ TimedResourceAlloc.cpn of ../shared/cpntools-samples both ways; every search bou
 without that hand-over (`c-only`), in this process, the three alternating, a fresh engine per run:
 medians of --repeat runs of the generation's seconds (the net's library already built), states per
 second, and for c-only the share of states the engine expanded for the C search.
+The --native-check form runs `cpn-verify check specs/modbus --no-reports` in this process, --repeat times
+each way, alternating: with the native search of timed nets (the default), and with timed nets left to
+the Python search (`CompiledEngine.timed_groups` returning None; everything else unchanged), and prints
+the medians of the wall seconds.
 """
 
 from __future__ import annotations
@@ -549,6 +554,34 @@ def native_timed(repeat: int) -> None:
     nativetimed.TimedNativeSearch._fill = fill
 
 
+def native_check(repeat: int) -> None:
+    """The --native-check figures (see the module's docstring)."""
+    import contextlib
+    import io
+
+    from cpn.cli.main import main as cli
+    from cpn.engine.compiled import CompiledEngine
+
+    timed_groups = CompiledEngine.timed_groups
+    print(f"load average at start: {os.getloadavg()[0]:.1f}; {os.cpu_count()} CPUs")
+    seconds: dict[str, list[float]] = {"c": [], "python": []}
+    try:
+        for _ in range(repeat):
+            for how in seconds:
+                CompiledEngine.timed_groups = timed_groups if how == "c" else (lambda _self: None)
+                t = time.perf_counter()
+                with contextlib.redirect_stdout(io.StringIO()), contextlib.redirect_stderr(io.StringIO()):
+                    cli(["check", os.path.join(ROOT, "specs", "modbus"), "--no-reports"])
+                seconds[how].append(time.perf_counter() - t)
+    finally:
+        CompiledEngine.timed_groups = timed_groups
+    for how, runs in seconds.items():
+        label = "native timed search" if how == "c" else "timed nets in Python"
+        print(f"check specs/modbus, {label}: median {statistics.median(runs):.1f} s "
+              f"(runs {', '.join(f'{r:.1f}' for r in runs)})")
+    print(f"load average at end: {os.getloadavg()[0]:.1f}")
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--repeat", type=int, default=3)
@@ -573,7 +606,12 @@ def main(argv=None) -> int:
     ap.add_argument("--sym-ks", default="1,4,16,64", help="--symmetry: the numbers of broadcasts at NS 16")
     ap.add_argument("--budget", type=float, default=600.0, help="seconds of generation per run (default 600)")
     ap.add_argument("--native", action="store_true", help="timed nets: the native search against the Python search")
+    ap.add_argument("--native-check", action="store_true",
+                    help="check specs/modbus with and without the native search of timed nets")
     a = ap.parse_args(argv)
+    if a.native_check:
+        native_check(a.repeat)
+        return 0
     if a.native:
         native_timed(a.repeat)
         return 0
