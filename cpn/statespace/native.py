@@ -120,6 +120,12 @@ def generated(engine, options) -> tuple[object | None, list[str]]:
     return code, notes
 
 
+#: whether `auto` searches timed nets and nets with priorities natively (`--backend c` always does): their
+#: bindings still come from the Python engine, and the native search of them measured 1.0 to 1.9 times the
+#: Python search's time (`python bench/modbus.py --native`, docs/performance.md)
+TIMED_AUTO: bool = False
+
+
 def unavailable(engine, options, s0) -> str | None:
     """Why the native search cannot run this exploration (None if it can)."""
     if options.backend == "python":
@@ -139,6 +145,10 @@ def unavailable(engine, options, s0) -> str | None:
                 return (f"{read.element} of transition '{read.transition}' reads the model clock, and the "
                         "native search examines transitions at the clock and the occurrence time only")
             return "this engine gives no transition groups (the reference interpreter)"
+    if timed is not None and options.backend != "c" and not TIMED_AUTO:
+        return ("timed nets and nets with priorities are searched natively only with --backend c: their "
+                "transitions have no generated C yet, and that search was measured slower than the Python "
+                "one (docs/performance.md)")
     if not (isinstance(s0, tuple) and s0 and all(type(v) is int and 0 <= v < _U32 for v in s0)):
         return "the states are not tuples of small non-negative integers"
     if library(timed=timed is not None) is None:

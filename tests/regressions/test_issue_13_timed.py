@@ -297,6 +297,7 @@ def test_modbus_scenario_checks_search_natively_with_the_python_verdicts(name, t
     """`cpn-verify check` on a MODBUS scenario file (timed, condensed): the native timed search runs under
     the check's monitor (to the end, or handing over to the Python search, which shows the monitor the
     states from there on), and the reports are those of the Python search."""
+    monkeypatch.setattr(native, "TIMED_AUTO", True)  # a check runs with `auto`
     if to_the_end:
         monkeypatch.setattr(nativetimed, "HAND_OVER_RATE", 1e9)
     spec = os.path.join(ROOT, "specs", "modbus", f"{name}.toml")
@@ -318,3 +319,14 @@ def test_modbus_scenario_checks_search_natively_with_the_python_verdicts(name, t
     monkeypatch.setattr(native, "unavailable", lambda *_: "the Python search, for comparison")
     code_py, docs_py = _check_reports(tmp_path, "py", capsys, spec)
     assert code_c == code_py and docs_c == docs_py and docs_c
+
+
+def test_auto_leaves_timed_nets_to_the_python_search_with_a_note():
+    """The native search of a timed net is slower than the Python one while its bindings come from the
+    engine: `auto` keeps the Python search and says why; `--backend c` asks for the native one."""
+    model = cpn.load(os.path.join(ROOT, "models", "examples", "stop_and_wait.cpnet"))
+    auto = Explorer(model.engine(time_condensation=True), ExploreOptions(max_states=200)).run()
+    assert auto.backend == "python"
+    assert any("searched natively only with --backend c" in n for n in auto.notes), auto.notes
+    c = Explorer(model.engine(time_condensation=True), ExploreOptions(backend="c", max_states=200)).run()
+    assert c.backend == "c"
