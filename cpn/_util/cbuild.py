@@ -75,8 +75,9 @@ def _unavailable(reason: str) -> None:
 _loaded: dict[str, Library] = {}
 
 
-def load_library(source: str, cdef: str) -> Library | None:
-    """The library built from C `source` whose functions `cdef` declares (built once, then cached)."""
+def load_library(source: str, cdef: str, flags: tuple[str, ...] = ()) -> Library | None:
+    """The library built from C `source` whose functions `cdef` declares (built once, then cached);
+    `flags`: more compiler flags than CFLAGS (part of the cache key, as the source is)."""
     if os.environ.get("CPN_NO_NATIVE"):
         return _unavailable("native code is switched off (CPN_NO_NATIVE is set)")
     try:
@@ -86,7 +87,8 @@ def load_library(source: str, cdef: str) -> Library | None:
     cc = compiler()
     if cc is None:
         return _unavailable("no C compiler found (set CC or install cc/gcc/clang)")
-    key = hashlib.sha256("\0".join([source, cdef, cc[1], " ".join(CFLAGS), cffi.__version__]).encode()).hexdigest()[:24]
+    key = hashlib.sha256("\0".join([source, cdef, cc[1], " ".join(CFLAGS + list(flags)), cffi.__version__])
+                         .encode()).hexdigest()[:24]
     if key in _loaded:
         return _loaded[key]
     directory = cache_dir()
@@ -99,7 +101,7 @@ def load_library(source: str, cdef: str) -> Library | None:
                 with open(src, "w") as f:
                     f.write(source)
                 out = os.path.join(tmp, "lib.so")
-                res = subprocess.run([cc[0], *CFLAGS, "-o", out, src], capture_output=True, text=True, timeout=300)
+                res = subprocess.run([cc[0], *CFLAGS, *flags, "-o", out, src], capture_output=True, text=True, timeout=300)
                 if res.returncode != 0:
                     first = (res.stderr.strip().splitlines() or ["no message"])[0]
                     return _unavailable(f"the C compiler failed: {first}")

@@ -177,8 +177,8 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     explore_seconds = time.perf_counter() - t0
     x.engine = engine
     if watch is not None and (x.backend != "python" or watch.expanded < x.graph.expanded):
-        # the partitioned search expanded the states in other processes, the native search in C (all of
-        # them, or the first ones before it handed over): the first dead state by number
+        # the partitioned search expanded the states in other processes or threads, the native search in C
+        # (all of them, or the first ones before it handed over): the first dead state by number
         watch.first_dead = next(iter(x.graph.dead_states()), None)
     note = None
     if x.stop_reason.value == "predicate":

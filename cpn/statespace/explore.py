@@ -71,7 +71,7 @@ class Exploration:
     levels: int = 0
     notes: list = field(default_factory=list)
     #: which search ran: "c" (cpn.statespace.native), "python", or the partitioned search
-    #: (cpn.statespace.parallel): "workers" (processes) or "ray"
+    #: (cpn.statespace.parallel): "threads" (cpn.statespace.threads), "workers" (processes) or "ray"
     backend: str = "python"
     # the partial-order reduction that ran ("stubborn"), None for the full graph; its figures
     reduction: str | None = None

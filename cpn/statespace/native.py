@@ -87,20 +87,42 @@ GENERATE_PER_LINE: int = 4
 #: the same for the written places' new ids (0: every result is cached)
 UNCACHED_AFTER: int = 4096
 
+#: the multi-threaded search (`_threads.c`, cpn.statespace.threads), compiled in with the net's C
+_THREADS_CDEF = """
+typedef struct th_search th_search;
+th_search *th_new(int n, int K, int G, const int32_t *nread, const int32_t *nwrite, const int32_t *fields,
+                  void *gen, const uint32_t *s0, int64_t max_states, int64_t max_arcs);
+int th_start(th_search *h);
+int th_wait(th_search *h, int ms);
+void th_request_stop(th_search *h);
+void th_progress(th_search *h, int64_t *out);
+void th_sizes(th_search *h, int64_t *out);
+int th_assemble(th_search *h, cs_store *store, int64_t *offsets, int32_t *dst, void *bes, int be16,
+                int32_t *parent, int32_t *parent_be);
+void th_free(th_search *h);
+"""
+
 ND_DONE, ND_CHECK, ND_MAX_STATES, ND_MAX_ARCS, ND_NEED, _, ND_WIDE_BE = range(7)
 _U32 = 1 << 32
 
 
 def library(code=None, timed: bool = False):
-    """The native search's library; with `code` (a `NativeCode`), the net's generated C compiled in; with
-    `timed`, the search of timed nets and nets with priorities (`_timed.c`, `cpn.statespace.nativetimed`)."""
+    """The native search's library; with `code` (a `NativeCode`), the net's generated C compiled in, and
+    the multi-threaded search (`_threads.c`, `cpn.statespace.threads`) with it; with `timed`, the search
+    of timed nets and nets with priorities (`_timed.c`, `cpn.statespace.nativetimed`)."""
     here = os.path.dirname(os.path.abspath(__file__))
-    parts = ["#define ND_GENERATED"] if code is not None else []
-    for name in ("_packed.c", "_search.c") + (("_timed.c",) if timed else ()):
+    threads = code is not None and not timed
+    names = ("_packed.c", "_search.c") + (("_timed.c",) if timed else ()) + (("_threads.c",) if threads else ())
+    # POSIX for the threads: their barriers and clock (-std=c99 alone declares neither)
+    parts = ["#define _POSIX_C_SOURCE 200809L"] if threads else []
+    parts += ["#define ND_GENERATED"] if code is not None else []
+    for name in names:
         with open(os.path.join(here, name)) as f:
             parts.append(f.read())
     if code is None:
         return load_library("\n".join(parts), _CDEF + (_TIMED_CDEF if timed else ""))
+    if threads:
+        return load_library("\n".join(parts + [code.source]), _CDEF + _THREADS_CDEF + code.cdef, ("-pthread",))
     return load_library("\n".join(parts + [code.source]), _CDEF + code.cdef)
 
 

@@ -113,6 +113,9 @@ class ExploreOptions:
     # the Ray cluster at `ray` ("auto": a local Ray instance) when that is set
     workers: int | None = None
     ray: str | None = None
+    # `workers` are threads of this process (cpn.statespace.threads) where the net is wholly in generated C
+    # and the options allow; False: always processes
+    threads: bool = True
 
 
 def machine_memory_mb() -> float | None:

@@ -426,6 +426,9 @@ def run_partitioned(engine, options: ExploreOptions, progress=None):
     n = options.workers
     if n is not None and n < 1:
         raise ValueError(f"workers must be at least 1, got {n}")
+    threaded, why_not = _threads(engine, options, progress)
+    if threaded is not None:
+        return threaded, None
     t0 = time.perf_counter()
     blob = net_blob(engine.net)
     cond = bool(getattr(engine, "time_condensation", False))
@@ -442,12 +445,23 @@ def run_partitioned(engine, options: ExploreOptions, progress=None):
         search = _Coordinator(engine, transfer_for(engine), options, progress, transport, t0)
         with _CtrlC() as ctrl_c:
             search.ctrl_c = ctrl_c
-            return search.run(), None
+            x = search.run()
+        if why_not is not None and options.ray is None:
+            x.notes.append(f"processes, not threads: {why_not}")
+        return x, None
     except WorkerFailed as exc:
         # the one-process search meets the same error and reports it with the trace to its state
         return None, f"the search was repeated in one process: {exc}"
     finally:
         transport.close()
+
+
+def _threads(engine, options: ExploreOptions, progress):
+    """The threaded search (`cpn.statespace.threads`) where it applies: (Exploration or None, why not)."""
+    from cpn.statespace.threads import run_threaded
+
+    with _CtrlC() as ctrl_c:
+        return run_threaded(engine, options, progress, lambda: ctrl_c.hit)
 
 
 class _Coordinator:
@@ -643,16 +657,21 @@ class _Coordinator:
         g.offsets, g.dst = offsets, dst
         g.bes = array("H", bes) if not bes or max(bes) < 1 << 16 else bes
         g.store.finish()
-        predicate_state = None
-        pred = self.options.stop_predicate
-        if pred is not None and stop is not StopReason.PREDICATE:
-            for j, s in enumerate(g.states):
-                if j and pred(s):
-                    predicate_state = j
-                    break
-        elif stop is StopReason.PREDICATE:
-            predicate_state = 0
-        return g, predicate_state
+        return g, observe(self.options, g, stop)
+
+
+def observe(options: ExploreOptions, g: StateGraph, stop: StopReason) -> int | None:
+    """Call the observing stop predicate on every state of an assembled graph but the initial one (the
+    search asked it about that one), in breadth-first order as the one-process search does: the first
+    state satisfying it (0: the initial state stopped the search), or None."""
+    pred = options.stop_predicate
+    if stop is StopReason.PREDICATE:
+        return 0
+    if pred is not None:
+        for j, s in enumerate(g.states):
+            if j and pred(s):
+                return j
+    return None
 
 
 def _budget(states_left: int, arcs_left: int, expanded: int, arcs: int, n: int) -> int:

@@ -59,7 +59,7 @@ def test_explore_with_workers_prints_the_same_report(tmp_path, capsys):
     one = capsys.readouterr()
     assert main(["explore", DP, "--set", "N=6", "--workers", "2", "--json", str(tmp_path / "two.json")]) == 0
     two = capsys.readouterr()
-    assert "the search ran in 2 worker processes" in two.err
+    assert "the search ran in 2 threads of this process" in two.err
     assert _figures(one.out) == _figures(two.out) and "Dead Markings" in one.out
     a = json.loads((tmp_path / "one.json").read_text(encoding="utf-8"))
     b = json.loads((tmp_path / "two.json").read_text(encoding="utf-8"))

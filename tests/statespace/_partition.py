@@ -62,14 +62,18 @@ def report_figures(x) -> dict:
     return r
 
 
-def compare(model, workers=(1, 2), ray=None, **opts) -> dict:
-    """The one-process search and the partitioned one with each number of workers: identical figures and
-    report. Returns the one-process summary."""
+def compare(model, workers=(1, 2), ray=None, threads=False, **opts) -> dict:
+    """The one-process search and the partitioned one with each number of workers (processes, or threads
+    where the net allows them if `threads`): identical figures and report. Returns the one-process
+    summary, with the backends that ran under "backends"."""
     base = Explorer(model.engine(), ExploreOptions(**opts)).run()
     want, want_report = summary(base), report_figures(base)
+    backends = []
     for n in workers:
-        x = Explorer(model.engine(), ExploreOptions(workers=n, ray=ray, **opts)).run()
-        assert x.backend == ("ray" if ray else "workers") or x.engine.is_timed, x.notes
+        x = Explorer(model.engine(), ExploreOptions(workers=n, ray=ray, threads=threads, **opts)).run()
+        backends.append(x.backend)
+        expected = ("ray",) if ray else ("threads", "workers") if threads else ("workers",)
+        assert x.backend in expected or x.engine.is_timed, x.notes
         got = summary(x)
         for key in want:
             assert got[key] == want[key], f"{key} differs with {n} workers"
@@ -77,4 +81,4 @@ def compare(model, workers=(1, 2), ray=None, **opts) -> dict:
         for i in x.graph.dead_states()[:3]:
             assert len(shortest_trace(x.graph, i, x.engine).steps) == want["depth"][canonical(x.engine,
                                                                                                 x.graph.states[i])]
-    return want
+    return {**want, "backends": backends}

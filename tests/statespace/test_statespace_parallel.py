@@ -91,10 +91,12 @@ def test_a_state_space_larger_than_a_step_and_a_union_colour_set():
     assert sum(got["states"].values()) == 41 * 41 * 4
 
 
+@pytest.mark.parametrize("threads", [False, True])
 @pytest.mark.parametrize("limit", ["max_states", "max_arcs"])
-def test_a_limit_stops_the_partitioned_search_and_the_graph_is_consistent(limit):
+def test_a_limit_stops_the_partitioned_search_and_the_graph_is_consistent(limit, threads):
     model = _load("bench/nets/ms.cpnet:4")
-    x = Explorer(model.engine(), ExploreOptions(workers=2, **{limit: 500})).run()
+    x = Explorer(model.engine(), ExploreOptions(workers=2, threads=threads, **{limit: 500})).run()
+    assert x.backend == ("threads" if threads else "workers")
     assert x.stop_reason.value == limit and not x.complete and x.unexpanded > 0
     g = x.graph
     assert (g.n_states if limit == "max_states" else g.n_arcs) >= 500
@@ -108,18 +110,23 @@ def test_a_limit_stops_the_partitioned_search_and_the_graph_is_consistent(limit)
     assert set(part["dead"]) <= set(full["dead"])
 
 
-def test_max_seconds_stops_the_partitioned_search():
-    x = Explorer(_load("bench/nets/dp.cpnet:14").engine(), ExploreOptions(workers=2, max_seconds=0.5)).run()
+@pytest.mark.parametrize("threads", [False, True])
+def test_max_seconds_stops_the_partitioned_search(threads):
+    x = Explorer(_load("bench/nets/dp.cpnet:14").engine(),
+                 ExploreOptions(workers=2, max_seconds=0.5, threads=threads)).run()
     assert x.stop_reason is StopReason.MAX_SECONDS and x.unexpanded > 0 and x.seconds < 30
 
 
-def test_max_memory_counts_the_workers_memory():
+@pytest.mark.parametrize("threads", [False, True])
+def test_max_memory_counts_the_workers_memory(threads):
     # every process uses tens of MiB: a limit of 1 MiB stops at the first look
-    x = Explorer(_load("bench/nets/dp.cpnet:8").engine(), ExploreOptions(workers=2, max_memory_mb=1)).run()
+    x = Explorer(_load("bench/nets/dp.cpnet:8").engine(),
+                 ExploreOptions(workers=2, max_memory_mb=1, threads=threads)).run()
     assert x.stop_reason is StopReason.MAX_MEMORY and x.n_states >= 1
 
 
-def test_an_observing_stop_predicate_sees_every_state_in_breadth_first_order():
+@pytest.mark.parametrize("threads", [False, True])
+def test_an_observing_stop_predicate_sees_every_state_in_breadth_first_order(threads):
     model = _load("bench/nets/dp.cpnet:5")
 
     class Observer:
@@ -134,8 +141,8 @@ def test_an_observing_stop_predicate_sees_every_state_in_breadth_first_order():
 
     one, two = Observer(), Observer()
     x = Explorer(model.engine(), ExploreOptions(stop_predicate=one)).run()
-    y = Explorer(model.engine(), ExploreOptions(workers=2, stop_predicate=two)).run()
-    assert y.backend == "workers" and x.complete and y.complete
+    y = Explorer(model.engine(), ExploreOptions(workers=2, stop_predicate=two, threads=threads)).run()
+    assert y.backend == ("threads" if threads else "workers") and x.complete and y.complete
     assert two.seen == list(y.graph.states)
     assert Counter(canonical(x.engine, s) for s in one.seen) == Counter(canonical(y.engine, s) for s in two.seen)
 
@@ -174,7 +181,8 @@ def test_an_error_in_a_worker_is_reported_by_the_one_process_search_with_its_tra
     assert err.value.trace
 
 
-def test_ctrl_c_stops_the_partitioned_search_with_a_consistent_partial_graph():
+@pytest.mark.parametrize("threads", [False, True])
+def test_ctrl_c_stops_the_partitioned_search_with_a_consistent_partial_graph(threads):
     import signal
 
     calls = []
@@ -185,7 +193,8 @@ def test_ctrl_c_stops_the_partitioned_search_with_a_consistent_partial_graph():
         calls.append(p)
 
     engine = _load("bench/nets/dp.cpnet:12").engine()
-    x = Explorer(engine, ExploreOptions(workers=2, progress_interval=0.0), progress=progress).run()
+    x = Explorer(engine, ExploreOptions(workers=2, progress_interval=0.0, threads=threads), progress=progress).run()
+    assert x.backend == ("threads" if threads else "workers")
     assert x.stop_reason is StopReason.INTERRUPTED and x.unexpanded > 0 and x.n_states < 39202
     g = x.graph
     assert len(g.offsets) == g.expanded + 1 and g.n_arcs == g.offsets[-1] and all(0 <= d < g.n_states for d in g.dst)

@@ -1,0 +1,538 @@
+/* The multi-threaded native search (`--workers N` on a net whose transitions are all in generated C).
+ *
+ * Compiled after _packed.c and _search.c (whose store, caches and nd_search it uses) and before the net's
+ * C (ND_GENERATED): gen_group and gen_add compute what a cache misses.
+ *
+ * N threads, each owning the part of the states whose hash (th_owner, independent of the store's own
+ * hash) falls to it: a part is a store (_packed.c) of its own, touched by its owner only, so the stores
+ * need no lock. The search is level-synchronous:
+ *   phase A: every thread expands the states of the current level it owns; a successor it owns is stored
+ *            at once, one another thread owns goes to that thread's inbox (the record, the source, the
+ *            binding element and the arc's position), its arc left open;
+ *   barrier; phase B: every thread stores the successors sent to it and closes the arcs that found them
+ *            (it writes the destination into the sender's arc: each position is written by one thread);
+ *   barrier: the next level is the states stored during this one; the search ends when no thread
+ *            stored a state (or a stop was asked for or met: every thread sees the same decision).
+ * So each state is stored first at its BFS depth, by an arc from the level above: its parent pointer
+ * gives a shortest path, as in the one-process search.
+ *
+ * Caches: every thread has its own (an nd_search: group results per key of read values, written places'
+ * new ids per (place, delta, old id)) and reads them without a lock. On a miss it takes the one lock
+ * over the net's C (its tables of markings, deltas and binding elements are shared: one numbering for
+ * all) and looks in a shared cache, which gen_group / gen_add fill on a miss there; the entry is then
+ * copied into the thread's own cache. A key the C cannot evaluate (gen_group or gen_add return -1: a
+ * division by zero, a value outside its colour set, deep recursion) stops the search (TH_FALLBACK):
+ * the caller repeats it another way.
+ *
+ * A state is referred to as local id * N + part while the search runs; th_assemble numbers them
+ * globally afterwards (expanded states first, by level, part and local id; then the unexpanded ones the
+ * same way) and writes the one store, the arcs grouped by source, the offsets and the BFS parents.
+ */
+
+#include <pthread.h>
+#include <time.h>
+
+enum { TH_RUNNING = -9, TH_STOPPED = 8, TH_FALLBACK = 7, TH_NO_MEMORY = 5, TH_COMPLETE = 9 };
+#define TH_OPEN 0xFFFFFFFFu       /* an arc whose destination another thread stores */
+#define TH_CHECK_EVERY 64         /* states expanded between looks at the limits and at a stop */
+
+typedef struct {
+    uint32_t *v; int64_t n, cap;
+} th_buf;
+
+static int th_push(th_buf *b, int64_t more) {
+    if (!b->v) {
+        b->cap = 256;
+        if (!(b->v = (uint32_t *)malloc(4 * (size_t)b->cap))) return -1;
+    }
+    return grow((void **)&b->v, &b->cap, b->n + more, 4);
+}
+
+typedef struct th_search th_search;
+
+typedef struct {
+    th_search *h;
+    int me;
+    cs_store *st;            /* the states this thread owns: local id -> record (K uint32 fields) */
+    nd_search *d;            /* its caches and scratch buffers */
+    th_buf parent;           /* per local state: its parent's reference (TH_OPEN: none) and binding element */
+    th_buf parent_be;
+    int64_t *lv; int64_t nlv, lv_cap;  /* lv[l]: the first local id of level l */
+    int64_t head, end;       /* local ids below head are expanded; the current level ends at end */
+    th_buf aend;             /* per expanded state: where its arcs end (two uint32: int64) */
+    th_buf dst, bes;         /* per arc: the destination's reference, the binding element */
+    th_buf *out;             /* per thread: the successors sent to it (K + 4 uint32 each) */
+    int64_t nnew;            /* states stored during the last level */
+    int saw_stop, level_done;
+    int64_t misses;          /* look-ups in the shared cache (under the lock) */
+    double wait;             /* seconds spent at the barriers */
+    /* published for the limits and the progress of the others (written by this thread only) */
+    int64_t pub_states, pub_arcs, pub_pending;
+    pthread_t tid;
+    char pad[64];
+} th_part;
+
+struct th_search {
+    int N, K;
+    th_part *parts;
+    nd_search *shared;       /* the cache behind the lock (filled by the net's C) */
+    void *gen;
+    pthread_mutex_t lock;    /* the net's C and the shared cache */
+    pthread_barrier_t bar;
+    int stop;                /* 0, or why the search stops (the first reason set wins) */
+    int64_t max_states, max_arcs, levels;
+    pthread_mutex_t done_lock;
+    pthread_cond_t done_cond;
+    int running, started, joined;
+    uint32_t *scratch;       /* th_assemble's ids */
+};
+
+static void th_set_stop(th_search *h, int why) { __sync_bool_compare_and_swap(&h->stop, 0, why); }
+
+/* Which thread owns the record of K fields (a hash other than the store's, so that a part's table
+ * uses all of its slots). */
+static int th_owner(const uint32_t *t, int K, int N) {
+    if (N == 1) return 0;
+    uint64_t x = vm_hash(t, K);
+    x ^= x >> 31; x *= 0x94D049BB133111EBULL; x ^= x >> 29;
+    return (int)(((x >> 32) * (uint64_t)N) >> 32);
+}
+
+/* The cache entry of group g for `key` in the thread's cache, taken from the shared one (filled by the
+ * net's C if need be); the offset of the entry in d->res, or -(TH_FALLBACK or TH_NO_MEMORY). */
+static int64_t th_group_miss(th_search *h, th_part *p, int g, const uint32_t *key) {
+    nd_search *sh = h->shared, *d = p->d;
+    p->misses++;
+    int64_t o;
+    pthread_mutex_lock(&h->lock);
+    o = vm_get(&sh->groups[g], key);
+    if (o < 0) {
+        int rc = gen_group(h->gen, sh, g, key);
+        o = rc == 0 ? vm_get(&sh->groups[g], key) : -1;
+        if (o < 0) { pthread_mutex_unlock(&h->lock); return rc == -2 ? -TH_NO_MEMORY : -TH_FALLBACK; }
+    }
+    int64_t n = sh->res[o];
+    int rc = nd_put_group(d, g, key, n, sh->res + o + 1);
+    pthread_mutex_unlock(&h->lock);
+    if (rc != 0) return -TH_NO_MEMORY;
+    return vm_get(&d->groups[g], key);
+}
+
+/* The new id of written place k[0] (delta k[1], old id k[2]), as th_group_miss; -(reason) on failure. */
+static int64_t th_add_miss(th_search *h, th_part *p, const uint32_t *k) {
+    nd_search *sh = h->shared, *d = p->d;
+    p->misses++;
+    pthread_mutex_lock(&h->lock);
+    int64_t v = vm_get(&sh->adds, k);
+    if (v < 0) {
+        v = gen_add(h->gen, k[0], k[1], k[2]);
+        if (v >= 0 && vm_put(&sh->adds, k, v) != 0) v = -2;
+    }
+    pthread_mutex_unlock(&h->lock);
+    if (v < 0) return v == -2 ? -TH_NO_MEMORY : -TH_FALLBACK;
+    if (vm_put(&d->adds, k, v) != 0) return -TH_NO_MEMORY;
+    return v;
+}
+
+/* Expand local state i of part p (phase A); 0, or why the search must stop. */
+static int th_expand(th_part *p, int64_t i, int64_t *goff) {
+    th_search *h = p->h;
+    nd_search *d = p->d;
+    int K = h->K, N = h->N, me = p->me;
+    memcpy(d->s, cs_arena(p->st) + i * cs_width(p->st), (size_t)K * 4);
+    const uint32_t *s = d->s;
+    int64_t nadd = 0, narcs = 0;
+    /* every group's entry for this state, and the new ids of the places its bindings write */
+    for (int g = 0; g < d->G; g++) {
+        int nr = d->nread[g], nw = d->nwrite[g];
+        uint32_t *key = d->req_key;
+        for (int r = 0; r < nr; r++) key[r] = s[d->read[g][r]];
+        int64_t o = vm_get(&d->groups[g], key);
+        if (o < 0 && (o = th_group_miss(h, p, g, key)) < 0) return (int)-o;
+        goff[g] = o;
+        int64_t cnt = d->res[o];
+        narcs += cnt;
+        if (!nw) continue;
+        if (grow((void **)&d->addv, &d->addv_cap, nadd + cnt * nw, 4) != 0) return TH_NO_MEMORY;
+        const int32_t *e = d->res + o + 1;
+        for (int64_t j = 0; j < cnt; j++, e += 1 + nr + nw)
+            for (int w = 0; w < nw; w++) {
+                uint32_t k[3] = {(uint32_t)d->write[g][w], (uint32_t)e[1 + nr + w], s[d->write[g][w]]};
+                int64_t v = vm_get(&d->adds, k);
+                if (v < 0 && (v = th_add_miss(h, p, k)) < 0) return (int)-v;
+                d->addv[nadd++] = (uint32_t)v;
+            }
+    }
+    /* the successors, in group order and each group's binding order */
+    if (th_push(&p->dst, narcs) || th_push(&p->bes, narcs) || th_push(&p->aend, 2)) return TH_NO_MEMORY;
+    uint32_t *t = d->t;
+    const uint32_t *addv = d->addv;
+    uint32_t src = (uint32_t)(i * N + me);
+    for (int g = 0; g < d->G; g++) {
+        int nr = d->nread[g], nw = d->nwrite[g];
+        int64_t cnt = d->res[goff[g]];
+        const int32_t *e = d->res + goff[g] + 1;
+        for (int64_t j = 0; j < cnt; j++, e += 1 + nr + nw) {
+            memcpy(t, s, (size_t)K * 4);
+            for (int r = 0; r < nr; r++) t[d->read[g][r]] = (uint32_t)e[1 + r];
+            for (int w = 0; w < nw; w++) t[d->write[g][w]] = *addv++;
+            int o = th_owner(t, K, N);
+            int64_t pos = p->dst.n++;
+            p->bes.v[p->bes.n++] = (uint32_t)e[0];
+            if (o != me) {
+                th_buf *b = &p->out[o];
+                if (th_push(b, K + 4)) return TH_NO_MEMORY;
+                memcpy(b->v + b->n, t, (size_t)K * 4);
+                b->v[b->n + K] = src;
+                b->v[b->n + K + 1] = (uint32_t)e[0];
+                b->v[b->n + K + 2] = (uint32_t)pos;
+                b->v[b->n + K + 3] = (uint32_t)(pos >> 32);
+                b->n += K + 4;
+                p->dst.v[pos] = TH_OPEN;
+                continue;
+            }
+            int32_t id, fresh;
+            int64_t r = cs_add_many(p->st, (const uint8_t *)t, 1, &id, &fresh);
+            if (r < 0 || (uint64_t)id * (uint64_t)N + (uint64_t)N > TH_OPEN) return TH_NO_MEMORY;
+            if (r == 1) {
+                if (th_push(&p->parent, 1) || th_push(&p->parent_be, 1)) return TH_NO_MEMORY;
+                p->parent.v[p->parent.n++] = src;
+                p->parent_be.v[p->parent_be.n++] = (uint32_t)e[0];
+            }
+            p->dst.v[pos] = (uint32_t)((int64_t)id * N + me);
+        }
+    }
+    int64_t end = p->dst.n;
+    memcpy(p->aend.v + p->aend.n, &end, 8);
+    p->aend.n += 2;
+    return 0;
+}
+
+/* Store the successors the other threads sent to part p (phase B); 0 or TH_NO_MEMORY. */
+static int th_receive(th_part *p) {
+    th_search *h = p->h;
+    int K = h->K, N = h->N, me = p->me;
+    for (int from = 0; from < N; from++) {
+        th_part *q = &h->parts[from];
+        th_buf *b = &q->out[me];
+        for (int64_t x = 0; x < b->n; x += K + 4) {
+            const uint32_t *m = b->v + x;
+            int32_t id, fresh;
+            int64_t r = cs_add_many(p->st, (const uint8_t *)m, 1, &id, &fresh);
+            if (r < 0 || (uint64_t)id * (uint64_t)N + (uint64_t)N > TH_OPEN) return TH_NO_MEMORY;
+            if (r == 1) {
+                if (th_push(&p->parent, 1) || th_push(&p->parent_be, 1)) return TH_NO_MEMORY;
+                p->parent.v[p->parent.n++] = m[K];
+                p->parent_be.v[p->parent_be.n++] = m[K + 1];
+            }
+            int64_t pos = (int64_t)m[K + 2] | ((int64_t)m[K + 3] << 32);
+            q->dst.v[pos] = (uint32_t)((int64_t)id * N + me);
+        }
+    }
+    return 0;
+}
+
+static void th_publish(th_part *p) {
+    int64_t pending = 0;
+    for (int o = 0; o < p->h->N; o++) pending += p->out[o].n / (p->h->K + 4);
+    __atomic_store_n(&p->pub_states, cs_count(p->st), __ATOMIC_RELAXED);
+    __atomic_store_n(&p->pub_arcs, p->dst.n, __ATOMIC_RELAXED);
+    __atomic_store_n(&p->pub_pending, pending, __ATOMIC_RELAXED);
+}
+
+/* The states (stored, and sent but not yet stored: at most that many new ones) and arcs of all parts. */
+static void th_totals(th_search *h, int64_t *states, int64_t *arcs) {
+    int64_t s = 0, a = 0;
+    for (int q = 0; q < h->N; q++) {
+        s += __atomic_load_n(&h->parts[q].pub_states, __ATOMIC_RELAXED)
+             + __atomic_load_n(&h->parts[q].pub_pending, __ATOMIC_RELAXED);
+        a += __atomic_load_n(&h->parts[q].pub_arcs, __ATOMIC_RELAXED);
+    }
+    *states = s; *arcs = a;
+}
+
+static int th_level_mark(th_part *p, int64_t at) {
+    if (!p->lv) {
+        p->lv_cap = 64;
+        if (!(p->lv = (int64_t *)malloc(8 * (size_t)p->lv_cap))) return -1;
+    }
+    if (grow((void **)&p->lv, &p->lv_cap, p->nlv + 1, 8)) return -1;
+    p->lv[p->nlv++] = at;
+    return 0;
+}
+
+static double th_now(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static void th_barrier(th_part *p) {
+    double t = th_now();
+    pthread_barrier_wait(&p->h->bar);
+    p->wait += th_now() - t;
+}
+
+static void *th_main(void *arg) {
+    th_part *p = (th_part *)arg;
+    th_search *h = p->h;
+    int N = h->N;
+    int64_t *goff = (int64_t *)malloc(sizeof(int64_t) * (size_t)(p->d->G + 1));
+    if (!goff) th_set_stop(h, TH_NO_MEMORY);
+    for (;;) {
+        for (int o = 0; o < N; o++) p->out[o].n = 0;
+        th_publish(p);
+        /* phase A: the states of this level, until a limit (the successors sent count as states: the
+         * round ends early so that they are stored and counted exactly before going on) */
+        int since = TH_CHECK_EVERY;
+        while (goff && p->head < p->end) {
+            if (++since >= TH_CHECK_EVERY) {
+                since = 0;
+                th_publish(p);
+                if (__atomic_load_n(&h->stop, __ATOMIC_RELAXED)) break;
+                int64_t s, a;
+                th_totals(h, &s, &a);
+                if (a >= h->max_arcs) { th_set_stop(h, ND_MAX_ARCS); break; }
+                if (s >= h->max_states) break;
+            }
+            int rc = th_expand(p, p->head, goff);
+            if (rc) {  /* the state stays unexpanded: its arcs so far are dropped */
+                th_set_stop(h, rc);
+                p->dst.n = p->bes.n = (p->aend.n ? ((int64_t *)p->aend.v)[p->aend.n / 2 - 1] : 0);
+                break;
+            }
+            p->head++;
+        }
+        th_barrier(p);
+        /* phase B */
+        if (th_receive(p)) th_set_stop(h, TH_NO_MEMORY);
+        p->nnew = cs_count(p->st) - p->end;
+        p->level_done = p->head == p->end;
+        p->saw_stop = __atomic_load_n(&h->stop, __ATOMIC_SEQ_CST) != 0;
+        th_publish(p);
+        th_barrier(p);
+        /* every thread reads the same figures here and takes the same decision */
+        int64_t fresh = 0, states = 0;
+        int stop = 0, done = 1;
+        for (int q = 0; q < N; q++) {
+            th_part *o = &h->parts[q];
+            fresh += o->nnew; states += o->pub_states; stop |= o->saw_stop; done &= o->level_done;
+        }
+        if (stop) break;
+        if (states >= h->max_states) { th_set_stop(h, ND_MAX_STATES); break; }
+        if (!done) continue;  /* a round cut short near the states limit: the level goes on */
+        if (!fresh) { th_set_stop(h, TH_COMPLETE); break; }  /* (a stop asked for from now on is too late) */
+        if (th_level_mark(p, p->end)) th_set_stop(h, TH_NO_MEMORY);  /* seen by all at the next round */
+        p->end = cs_count(p->st);
+        if (p->me == 0) __atomic_add_fetch(&h->levels, 1, __ATOMIC_RELAXED);
+    }
+    free(goff);
+    pthread_mutex_lock(&h->done_lock);
+    if (--h->running == 0) pthread_cond_broadcast(&h->done_cond);
+    pthread_mutex_unlock(&h->done_lock);
+    return NULL;
+}
+
+void th_free(th_search *h);
+
+/* A search of K-field states with the group layout of nd_new, over n threads, with the net's C `gen`. */
+th_search *th_new(int n, int K, int G, const int32_t *nread, const int32_t *nwrite, const int32_t *fields,
+                  void *gen, const uint32_t *s0, int64_t max_states, int64_t max_arcs) {
+    th_search *h = (th_search *)calloc(1, sizeof(th_search));
+    if (!h) return NULL;
+    h->N = n; h->K = K; h->gen = gen; h->max_states = max_states; h->max_arcs = max_arcs;
+    pthread_mutex_init(&h->lock, NULL);
+    pthread_mutex_init(&h->done_lock, NULL);
+    pthread_cond_init(&h->done_cond, NULL);
+    h->parts = (th_part *)calloc((size_t)n, sizeof(th_part));
+    uint8_t *w = (uint8_t *)malloc((size_t)K + 1);
+    h->shared = nd_new(NULL, K, G, nread, nwrite, fields);
+    if (!h->parts || !w || !h->shared) { free(w); th_free(h); return NULL; }
+    memset(w, 4, (size_t)K);
+    for (int q = 0; q < n; q++) {
+        th_part *p = &h->parts[q];
+        p->h = h; p->me = q;
+        p->st = cs_new(K, w);
+        p->d = nd_new(p->st, K, G, nread, nwrite, fields);
+        p->out = (th_buf *)calloc((size_t)n, sizeof(th_buf));
+        if (!p->st || !p->d || !p->out || th_level_mark(p, 0)) { free(w); th_free(h); return NULL; }
+    }
+    free(w);
+    th_part *own = &h->parts[th_owner(s0, K, n)];
+    int32_t id, fresh;
+    if (cs_add_many(own->st, (const uint8_t *)s0, 1, &id, &fresh) != 1
+        || th_push(&own->parent, 1) || th_push(&own->parent_be, 1)) { th_free(h); return NULL; }
+    own->parent.v[own->parent.n++] = TH_OPEN;
+    own->parent_be.v[own->parent_be.n++] = TH_OPEN;
+    for (int q = 0; q < n; q++) { h->parts[q].end = cs_count(h->parts[q].st); th_publish(&h->parts[q]); }
+    return h;
+}
+
+/* Start the threads (0, or -1 if they could not be started). */
+int th_start(th_search *h) {
+    if (pthread_barrier_init(&h->bar, NULL, (unsigned)h->N) != 0) return -1;
+    h->started = 1;
+    h->running = h->N;
+    for (int q = 0; q < h->N; q++)
+        if (pthread_create(&h->parts[q].tid, NULL, th_main, &h->parts[q]) != 0) {
+            /* the threads started wait at the first barrier for ever: this cannot be undone */
+            h->running -= h->N - q;
+            return q ? -2 : -1;
+        }
+    return 0;
+}
+
+/* Wait at most `ms` milliseconds for the search to end: TH_RUNNING, or why it ended (ND_DONE,
+ * ND_MAX_STATES, ND_MAX_ARCS, TH_STOPPED, TH_FALLBACK, TH_NO_MEMORY). */
+int th_wait(th_search *h, int ms) {
+    struct timespec ts;
+    clock_gettime(CLOCK_REALTIME, &ts);
+    ts.tv_sec += ms / 1000;
+    ts.tv_nsec += (long)(ms % 1000) * 1000000L;
+    if (ts.tv_nsec >= 1000000000L) { ts.tv_sec++; ts.tv_nsec -= 1000000000L; }
+    pthread_mutex_lock(&h->done_lock);
+    while (h->running > 0)
+        if (pthread_cond_timedwait(&h->done_cond, &h->done_lock, &ts) != 0) break;
+    int running = h->running;
+    pthread_mutex_unlock(&h->done_lock);
+    if (running > 0) return TH_RUNNING;
+    if (!h->joined) {
+        for (int q = 0; q < h->N; q++) pthread_join(h->parts[q].tid, NULL);
+        h->joined = 1;
+    }
+    return h->stop == TH_COMPLETE ? ND_DONE : h->stop;
+}
+
+/* Ask the threads to stop (they finish the level's exchange first). */
+void th_request_stop(th_search *h) { th_set_stop(h, TH_STOPPED); }
+
+/* states: stored (and on their way); arcs; expanded: the states expanded so far. */
+void th_progress(th_search *h, int64_t *out) {
+    th_totals(h, &out[0], &out[1]);
+    int64_t e = 0;
+    for (int q = 0; q < h->N; q++) e += __atomic_load_n(&h->parts[q].head, __ATOMIC_RELAXED);
+    out[2] = e;
+    out[3] = h->levels;
+}
+
+/* After the search: [0] states, [1] expanded states, [2] arcs, [3] the largest binding element,
+ * [4] levels, then per thread its states, then its look-ups in the shared cache, then the microseconds
+ * it waited at the barriers. */
+void th_sizes(th_search *h, int64_t *out) {
+    int64_t n = 0, e = 0, a = 0, be = 0;
+    for (int q = 0; q < h->N; q++) {
+        th_part *p = &h->parts[q];
+        n += cs_count(p->st); e += p->head; a += p->dst.n;
+        for (int64_t k = 0; k < p->bes.n; k++) if ((int64_t)p->bes.v[k] > be) be = p->bes.v[k];
+        out[5 + q] = cs_count(p->st);
+        out[5 + h->N + q] = p->misses;
+        out[5 + 2 * h->N + q] = (int64_t)(p->wait * 1e6);
+    }
+    out[0] = n; out[1] = e; out[2] = a; out[3] = be; out[4] = h->levels;
+}
+
+/* The global ids of part p's states in [lo, hi), from *next on. */
+static void th_number(uint32_t *gid, int64_t lo, int64_t hi, int64_t *next) {
+    for (int64_t i = lo; i < hi; i++) gid[i] = (uint32_t)(*next)++;
+}
+
+/* The one graph: `store` (holding the initial state as state 0) gets every state in the global order;
+ * offsets[expanded + 1], dst[arcs], bes[arcs] (uint16 if be16, else int32), parent[states] and
+ * parent_be[states] are written. 0, -1 (no memory) or -2 (the store disagrees: a bug). */
+int th_assemble(th_search *h, cs_store *store, int64_t *offsets, int32_t *dst, void *bes, int be16,
+                int32_t *parent, int32_t *parent_be) {
+    int N = h->N;
+    uint32_t **gid = (uint32_t **)calloc((size_t)N, sizeof(uint32_t *));
+    if (!gid) return -1;
+    int64_t levels = 0, most = 1;
+    for (int q = 0; q < N; q++) {
+        th_part *p = &h->parts[q];
+        /* the boundaries of the last two levels: the current one (partly expanded) and the next */
+        if (th_level_mark(p, p->end) || th_level_mark(p, cs_count(p->st))) { levels = -1; break; }
+        gid[q] = (uint32_t *)malloc(4 * (size_t)(cs_count(p->st) + 1));
+        if (!gid[q]) { levels = -1; break; }
+        if (p->nlv - 1 > levels) levels = p->nlv - 1;
+        if (cs_count(p->st) > most) most = cs_count(p->st);
+    }
+    /* the store's table at its final size at once (as cs_add_many would grow it: at most 3/4 full) */
+    int64_t total = 0;
+    for (int q = 0; q < N; q++) total += cs_count(h->parts[q].st);
+    uint64_t size = 2048;
+    while ((uint64_t)total * 4 > size * 3) size *= 2;
+    if (levels >= 0 && size > store->mask + 1 && cs_rehash(store, size) != 0) levels = -1;
+    int32_t *ids = levels < 0 ? NULL : (int32_t *)malloc(4 * (size_t)most);
+    int32_t *fresh = levels < 0 ? NULL : (int32_t *)malloc(4 * (size_t)most);
+    int rc = ids && fresh ? 0 : -1;
+    /* the order: the expanded states by (level, part, local id), then the others the same way */
+    int64_t next = 0, e = 0;
+    for (int done = 1; done >= 0 && !rc; done--)
+        for (int64_t l = 0; l < levels && !rc; l++)
+            for (int q = 0; q < N && !rc; q++) {
+                th_part *p = &h->parts[q];
+                if (l + 1 >= p->nlv) continue;
+                int64_t lo = p->lv[l], hi = p->lv[l + 1];
+                if (done) { if (hi > p->head) hi = p->head; }
+                else if (lo < p->head) lo = p->head;
+                if (lo >= hi) continue;
+                int64_t first = next;
+                th_number(gid[q], lo, hi, &next);
+                int64_t got = cs_add_many(store, cs_arena(p->st) + lo * cs_width(p->st), hi - lo, ids, fresh);
+                if (got < 0) { rc = -1; break; }
+                for (int64_t k = 0; k < hi - lo; k++) if (ids[k] != first + k) rc = -2;
+                for (int64_t i = lo; i < hi; i++) {
+                    uint32_t r = p->parent.v[i];
+                    parent[gid[q][i]] = r == TH_OPEN ? -1 : (int32_t)gid[r % N][r / N];
+                    parent_be[gid[q][i]] = r == TH_OPEN ? -1 : (int32_t)p->parent_be.v[i];
+                }
+                if (!done) continue;
+                /* the arcs of these expanded states, in order */
+                const int64_t *aend = (const int64_t *)p->aend.v;
+                for (int64_t i = lo; i < hi; i++) {
+                    int64_t a = i ? aend[i - 1] : 0, b = aend[i];
+                    for (int64_t k = a; k < b; k++, e++) {
+                        if (be16) ((uint16_t *)bes)[e] = (uint16_t)p->bes.v[k];
+                        else ((int32_t *)bes)[e] = (int32_t)p->bes.v[k];
+                    }
+                    offsets[gid[q][i] + 1] = e;
+                }
+            }
+    /* destinations: every state is numbered now */
+    if (!rc) {
+        offsets[0] = 0;
+        for (int q = 0; q < N; q++) {
+            th_part *p = &h->parts[q];
+            const int64_t *aend = (const int64_t *)p->aend.v;
+            for (int64_t i = 0; i < p->head; i++) {
+                int64_t a = i ? aend[i - 1] : 0, b = aend[i];
+                int32_t *out = dst + offsets[gid[q][i]];
+                for (int64_t k = a; k < b; k++) {
+                    uint32_t r = p->dst.v[k];
+                    if (r == TH_OPEN) { rc = -2; break; }
+                    *out++ = (int32_t)gid[r % N][r / N];
+                }
+            }
+        }
+    }
+    for (int q = 0; q < N; q++) free(gid[q]);
+    free(gid); free(ids); free(fresh);
+    return rc;
+}
+
+void th_free(th_search *h) {
+    if (!h) return;
+    if (h->started && !h->joined) return;  /* threads still running: leak rather than free under them */
+    if (h->parts)
+        for (int q = 0; q < h->N; q++) {
+            th_part *p = &h->parts[q];
+            nd_free(p->d); cs_free(p->st);
+            free(p->parent.v); free(p->parent_be.v); free(p->lv); free(p->aend.v); free(p->dst.v); free(p->bes.v);
+            if (p->out) for (int o = 0; o < h->N; o++) free(p->out[o].v);
+            free(p->out);
+        }
+    nd_free(h->shared);
+    if (h->started) pthread_barrier_destroy(&h->bar);
+    pthread_mutex_destroy(&h->lock);
+    pthread_mutex_destroy(&h->done_lock);
+    pthread_cond_destroy(&h->done_cond);
+    free(h->parts); free(h->scratch); free(h);
+}
