@@ -5,11 +5,15 @@ Usage:
                            [--simulate 1,2,4,16,64] [--bandwidth-mbs 117] [--latency-ms 0.2] [--json FILE]
 
 Measured (`--modes`): every run in a fresh subprocess, the modes alternating so that they share the
-machine's load. `one` is the default one-process search (the native back end where it runs), `python` the
-one-process Python search, `wN` the partitioned search with N worker processes, `rayN` the same on N Ray
-actors of a local Ray instance (its start is not counted). Per mode: the median wall seconds of the search
-(`Explorer.run`, graph assembly included), its phases for the partitioned search (search, collect, assemble),
-the workers' CPU seconds, and the bytes the workers sent each other per state and per arc sent. The load
+machine's load. `one` is the default one-process search (the native back end where it runs), `c` the
+one-process native search with the net's C from the start (`--backend c`), `python` the one-process
+Python search, `wN` what `--workers N` runs (N threads of one process where the net is wholly in C,
+`cpn.statespace.threads`, else N processes), `tN` the threads alone (the run fails if they do not apply),
+`pN` N worker processes (`threads=False`), `rayN` the partitioned search on N Ray actors of a local Ray
+instance (its start is not counted). The net's C is built (or found in the cache) before the clock starts.
+Per mode: the median wall seconds of the search (`Explorer.run`, graph assembly included), the median CPU
+seconds (this process's, all its threads, plus the worker processes'), its phases for the partitioned
+search, and for processes the bytes the workers sent each other per state and per arc sent. The load
 average of the machine is printed before and after: on a shared machine the ratios are what they are.
 
 Simulated (`--simulate P,...`): the partitioned search with P workers run in this one process, worker
@@ -48,20 +52,33 @@ def child(net: str, n: int, mode: str) -> dict:
     model = cpn.load(os.path.join(HERE, "nets", f"{net}.cpnet"), set={"N": str(n)})
     engine = model.engine()
     opts: dict = {}
+    if mode != "python":  # the net's C built (or loaded from the cache) before the clock starts
+        from cpn.statespace import native
+
+        code, _notes = native.generated(engine, ExploreOptions(backend="c"))
+        if code is not None:
+            native.library(code)
     if mode == "python":
         opts["backend"] = "python"
-    elif mode.startswith("w"):
+    elif mode == "c":
+        opts["backend"] = "c"
+    elif mode[0] in "wtp" and mode[1:].isdigit():
         opts["workers"] = int(mode[1:])
+        opts["threads"] = mode[0] != "p"
     elif mode.startswith("ray"):
         import ray
 
         ray.init(num_cpus=os.cpu_count(), include_dashboard=False, log_to_driver=False, configure_logging=False)
         opts.update(workers=int(mode[3:]), ray="local")
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     x = Explorer(engine, ExploreOptions(**opts)).run()
-    seconds = time.perf_counter() - t0
+    seconds, cpu = time.perf_counter() - t0, time.process_time() - c0
+    if mode[0] == "t" and x.backend != "threads":
+        raise SystemExit(f"the threads did not run: {x.notes}")
+    if x.partition and "worker_cpu_seconds" in x.partition:
+        cpu += sum(x.partition["worker_cpu_seconds"])
     out = {"net": net, "n": n, "mode": mode, "backend": x.backend, "states": x.n_states, "arcs": x.n_arcs,
-           "complete": x.complete, "seconds": seconds, "dead": len(x.graph.dead_states())}
+           "complete": x.complete, "seconds": seconds, "cpu": cpu, "dead": len(x.graph.dead_states())}
     if x.partition:
         out["partition"] = x.partition
     return out
@@ -91,11 +108,14 @@ def measure(nets: dict, modes: list[str], repeat: int) -> list[dict]:
                 for r in rs:
                     assert (r["states"], r["arcs"], r["dead"]) == (first["states"], first["arcs"], first["dead"])
                 med = statistics.median(r["seconds"] for r in rs)
-                row = {"net": f"{net.upper()}({n})", "mode": m, "states": first["states"], "arcs": first["arcs"],
-                       "seconds": med, f"vs_{modes[0]}": base / med,
+                row = {"net": f"{net.upper()}({n})", "mode": m, "backend": first["backend"], "states": first["states"],
+                       "arcs": first["arcs"], "seconds": med, "cpu": statistics.median(r["cpu"] for r in rs),
+                       "runs": [round(r["seconds"], 3) for r in rs], f"vs_{modes[0]}": base / med,
                        "vs_w1": (one_worker / med) if one_worker else None}
                 parts = [r["partition"] for r in rs if "partition" in r]
-                if parts:
+                if parts and "threads" in parts[0]:
+                    row["phases"] = parts[len(parts) // 2]["seconds"]
+                elif parts:
                     p = parts[len(parts) // 2]
                     row["phases"] = p["seconds"]
                     row["worker_cpu"] = statistics.median(sum(q["worker_cpu_seconds"]) for q in parts)
@@ -232,17 +252,17 @@ def main(argv=None) -> int:
         result["load_after"] = _load()
         print(f"{os.cpu_count()} CPUs; load average before {result['load_before']}, after {result['load_after']}; "
               f"medians of {args.repeat}")
-        print(f"| net | mode | states | arcs | seconds | vs {modes[0]} | vs w1 | phases (search/collect/assemble) "
-              "| workers' CPU s | bytes/state | bytes/arc sent | arcs sent |")
-        print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+        print(f"| net | mode | ran as | states | arcs | seconds | CPU s | vs {modes[0]} | vs w1 | phases "
+              "(search/collect/assemble) | workers' CPU s | bytes/state | bytes/arc sent | arcs sent |")
+        print("|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|")
         for r in rows:
             ph = r.get("phases")
-            phases = f"{ph['search']:.2f}/{ph['collect']:.2f}/{ph['assemble']:.2f}" if ph else ""
+            phases = "/".join(f"{ph[k]:.2f}" if k in ph else "-" for k in ("search", "collect", "assemble")) if ph else ""
             vs_w1 = f"{r['vs_w1']:.2f}" if r["vs_w1"] else ""
             extra = (f"{r['worker_cpu']:.2f} | {r['bytes_per_state']:.1f} | {r['bytes_per_arc_sent']:.1f} | "
                      f"{r['arcs_sent_share']:.0%}") if "worker_cpu" in r else " | | | "
-            print(f"| {r['net']} | {r['mode']} | {r['states']:,} | {r['arcs']:,} | {r['seconds']:.2f} | "
-                  f"{r[f'vs_{modes[0]}']:.2f} | {vs_w1} | {phases} | {extra} |")
+            print(f"| {r['net']} | {r['mode']} | {r['backend']} | {r['states']:,} | {r['arcs']:,} | {r['seconds']:.2f} | "
+                  f"{r['cpu']:.2f} | {r[f'vs_{modes[0]}']:.2f} | {vs_w1} | {phases} | {extra} |")
     if args.json:
         with open(args.json, "w", encoding="utf-8") as fh:
             json.dump(result, fh, indent=2)

@@ -62,7 +62,8 @@ typedef struct {
     th_buf aend;             /* per expanded state: where its arcs end (two uint32: int64) */
     th_buf dst, bes;         /* per arc: the destination's reference, the binding element */
     th_buf *out;             /* per thread: the successors sent to it (K + 4 uint32 each) */
-    int64_t nnew;            /* states stored during the last level */
+    th_buf succ, own;        /* the successors of the state being expanded (K values each), their owners */
+    int64_t nnew, stored;    /* states stored during this level and in all, as phase B left them */
     int saw_stop, level_done;
     int64_t misses;          /* look-ups in the shared cache (under the lock) */
     double wait;             /* seconds spent at the barriers */
@@ -134,13 +135,43 @@ static int64_t th_add_miss(th_search *h, th_part *p, const uint32_t *k) {
     return v;
 }
 
+/* Pack the K values v as a record of store st into r (room for 4 K bytes), widening a field a value does
+ * not fit: 0, 1 if the store was widened (records packed before are to be packed again), -1 without memory. */
+static int th_pack(cs_store *st, const uint32_t *v, int K, uint8_t *r) {
+    int widened = 0;
+    for (int f = 0; f < K; f++)
+        if (!cs_put(r + st->off[f], st->w[f], v[f])) {
+            if (cs_widen_field(st, f, v[f] > 0xFFFFu ? 4 : 2) != 0) return -1;
+            widened = 1;
+            f = -1;  /* the fields before f moved: all of them again */
+        }
+    return widened;
+}
+
+/* Store record r (hash hh) in part p, found by the arc `src` with binding element be: its reference, or
+ * TH_OPEN without memory. */
+static uint32_t th_store(th_part *p, const uint8_t *r, uint64_t hh, uint32_t src, uint32_t be) {
+    int32_t id;
+    int rc = cs_add_hashed(p->st, r, hh, &id);
+    uint64_t N = (uint64_t)p->h->N;
+    if (rc < 0 || (uint64_t)id * N + N > TH_OPEN) return TH_OPEN;
+    if (rc == 1) {
+        if (th_push(&p->parent, 1) || th_push(&p->parent_be, 1)) return TH_OPEN;
+        p->parent.v[p->parent.n++] = src;
+        p->parent_be.v[p->parent_be.n++] = be;
+    }
+    return (uint32_t)((uint64_t)id * N + (uint64_t)p->me);
+}
+
 /* Expand local state i of part p (phase A); 0, or why the search must stop. */
 static int th_expand(th_part *p, int64_t i, int64_t *goff) {
     th_search *h = p->h;
     nd_search *d = p->d;
+    cs_store *st = p->st;
     int K = h->K, N = h->N, me = p->me;
-    memcpy(d->s, cs_arena(p->st) + i * cs_width(p->st), (size_t)K * 4);
-    const uint32_t *s = d->s;
+    uint32_t *s = d->s;
+    const uint8_t *rec = st->arena + i * st->W;
+    for (int f = 0; f < K; f++) s[f] = (uint32_t)cs_get(rec + st->off[f], st->w[f]);
     int64_t nadd = 0, narcs = 0;
     /* every group's entry for this state, and the new ids of the places its bindings write */
     for (int g = 0; g < d->G; g++) {
@@ -163,70 +194,100 @@ static int th_expand(th_part *p, int64_t i, int64_t *goff) {
                 d->addv[nadd++] = (uint32_t)v;
             }
     }
-    /* the successors, in group order and each group's binding order */
-    if (th_push(&p->dst, narcs) || th_push(&p->bes, narcs) || th_push(&p->aend, 2)) return TH_NO_MEMORY;
-    uint32_t *t = d->t;
+    /* the successors' values and owners, in group order and each group's binding order */
+    p->succ.n = p->own.n = 0;
+    if (th_push(&p->dst, narcs) || th_push(&p->bes, narcs) || th_push(&p->aend, 2)
+        || th_push(&p->succ, narcs * K) || th_push(&p->own, narcs)) return TH_NO_MEMORY;
+    uint32_t *t = p->succ.v;
     const uint32_t *addv = d->addv;
-    uint32_t src = (uint32_t)(i * N + me);
+    int64_t k = 0;
     for (int g = 0; g < d->G; g++) {
         int nr = d->nread[g], nw = d->nwrite[g];
         int64_t cnt = d->res[goff[g]];
         const int32_t *e = d->res + goff[g] + 1;
-        for (int64_t j = 0; j < cnt; j++, e += 1 + nr + nw) {
+        for (int64_t j = 0; j < cnt; j++, e += 1 + nr + nw, t += K, k++) {
             memcpy(t, s, (size_t)K * 4);
             for (int r = 0; r < nr; r++) t[d->read[g][r]] = (uint32_t)e[1 + r];
             for (int w = 0; w < nw; w++) t[d->write[g][w]] = *addv++;
-            int o = th_owner(t, K, N);
-            int64_t pos = p->dst.n++;
-            p->bes.v[p->bes.n++] = (uint32_t)e[0];
-            if (o != me) {
-                th_buf *b = &p->out[o];
-                if (th_push(b, K + 4)) return TH_NO_MEMORY;
-                memcpy(b->v + b->n, t, (size_t)K * 4);
-                b->v[b->n + K] = src;
-                b->v[b->n + K + 1] = (uint32_t)e[0];
-                b->v[b->n + K + 2] = (uint32_t)pos;
-                b->v[b->n + K + 3] = (uint32_t)(pos >> 32);
-                b->n += K + 4;
-                p->dst.v[pos] = TH_OPEN;
-                continue;
-            }
-            int32_t id, fresh;
-            int64_t r = cs_add_many(p->st, (const uint8_t *)t, 1, &id, &fresh);
-            if (r < 0 || (uint64_t)id * (uint64_t)N + (uint64_t)N > TH_OPEN) return TH_NO_MEMORY;
-            if (r == 1) {
-                if (th_push(&p->parent, 1) || th_push(&p->parent_be, 1)) return TH_NO_MEMORY;
-                p->parent.v[p->parent.n++] = src;
-                p->parent_be.v[p->parent_be.n++] = (uint32_t)e[0];
-            }
-            p->dst.v[pos] = (uint32_t)((int64_t)id * N + me);
+            p->own.v[k] = (uint32_t)th_owner(t, K, N);
+            p->bes.v[p->bes.n + k] = (uint32_t)e[0];
         }
     }
-    int64_t end = p->dst.n;
-    memcpy(p->aend.v + p->aend.n, &end, 8);
+    /* the records of those this thread owns, hashed, their table slots prefetched (as nd_run does) */
+    int W;
+    for (;;) {
+        W = st->W;
+        if (grow((void **)&d->recs, &d->recs_cap, narcs * W + 1, 1) || grow((void **)&d->hs, &d->hs_cap, narcs + 1, 8))
+            return TH_NO_MEMORY;
+        int rc = 0;
+        for (k = 0; k < narcs && !rc; k++)
+            if ((int)p->own.v[k] == me) rc = th_pack(st, p->succ.v + k * K, K, d->recs + k * W);
+        if (rc < 0) return TH_NO_MEMORY;
+        if (!rc) break;
+    }
+    for (k = 0; k < narcs; k++)
+        if ((int)p->own.v[k] == me) {
+            d->hs[k] = cs_hash(d->recs + k * W, W);
+            __builtin_prefetch(cs_probe_start(st, d->hs[k]));
+        }
+    /* stored (or sent to their owners) in order */
+    uint32_t src = (uint32_t)(i * N + me);
+    int64_t base = p->dst.n;
+    for (k = 0; k < narcs; k++) {
+        int o = (int)p->own.v[k];
+        uint32_t be = p->bes.v[base + k];
+        if (o == me) {
+            if ((p->dst.v[base + k] = th_store(p, d->recs + k * W, d->hs[k], src, be)) == TH_OPEN) return TH_NO_MEMORY;
+            continue;
+        }
+        th_buf *b = &p->out[o];
+        if (th_push(b, K + 4)) return TH_NO_MEMORY;
+        uint32_t *m = b->v + b->n;
+        memcpy(m, p->succ.v + k * K, (size_t)K * 4);
+        int64_t pos = base + k;
+        m[K] = src; m[K + 1] = be; m[K + 2] = (uint32_t)pos; m[K + 3] = (uint32_t)(pos >> 32);
+        b->n += K + 4;
+        p->dst.v[pos] = TH_OPEN;
+    }
+    p->dst.n = p->bes.n = base + narcs;
+    memcpy(p->aend.v + p->aend.n, &p->dst.n, 8);
     p->aend.n += 2;
     return 0;
 }
 
+#define TH_CHUNK 32  /* successors received packed and prefetched at a time */
+
 /* Store the successors the other threads sent to part p (phase B); 0 or TH_NO_MEMORY. */
 static int th_receive(th_part *p) {
     th_search *h = p->h;
-    int K = h->K, N = h->N, me = p->me;
+    nd_search *d = p->d;
+    cs_store *st = p->st;
+    int K = h->K, N = h->N, me = p->me, E = K + 4;
+    if (grow((void **)&d->recs, &d->recs_cap, TH_CHUNK * 4 * (int64_t)K, 1) || grow((void **)&d->hs, &d->hs_cap, TH_CHUNK, 8))
+        return TH_NO_MEMORY;
     for (int from = 0; from < N; from++) {
         th_part *q = &h->parts[from];
         th_buf *b = &q->out[me];
-        for (int64_t x = 0; x < b->n; x += K + 4) {
-            const uint32_t *m = b->v + x;
-            int32_t id, fresh;
-            int64_t r = cs_add_many(p->st, (const uint8_t *)m, 1, &id, &fresh);
-            if (r < 0 || (uint64_t)id * (uint64_t)N + (uint64_t)N > TH_OPEN) return TH_NO_MEMORY;
-            if (r == 1) {
-                if (th_push(&p->parent, 1) || th_push(&p->parent_be, 1)) return TH_NO_MEMORY;
-                p->parent.v[p->parent.n++] = m[K];
-                p->parent_be.v[p->parent_be.n++] = m[K + 1];
+        int64_t n = b->n / E;
+        for (int64_t x0 = 0; x0 < n; x0 += TH_CHUNK) {
+            int64_t m = n - x0 < TH_CHUNK ? n - x0 : TH_CHUNK;
+            int W, rc;
+            do {
+                W = st->W;
+                rc = 0;
+                for (int64_t k = 0; k < m && !rc; k++) rc = th_pack(st, b->v + (x0 + k) * E, K, d->recs + k * W);
+                if (rc < 0) return TH_NO_MEMORY;
+            } while (rc);
+            for (int64_t k = 0; k < m; k++) {
+                d->hs[k] = cs_hash(d->recs + k * W, W);
+                __builtin_prefetch(cs_probe_start(st, d->hs[k]));
             }
-            int64_t pos = (int64_t)m[K + 2] | ((int64_t)m[K + 3] << 32);
-            q->dst.v[pos] = (uint32_t)((int64_t)id * N + me);
+            for (int64_t k = 0; k < m; k++) {
+                const uint32_t *e = b->v + (x0 + k) * E;
+                uint32_t ref = th_store(p, d->recs + k * W, d->hs[k], e[K], e[K + 1]);
+                if (ref == TH_OPEN) return TH_NO_MEMORY;
+                q->dst.v[(int64_t)e[K + 2] | ((int64_t)e[K + 3] << 32)] = ref;
+            }
         }
     }
     return 0;
@@ -306,7 +367,8 @@ static void *th_main(void *arg) {
         th_barrier(p);
         /* phase B */
         if (th_receive(p)) th_set_stop(h, TH_NO_MEMORY);
-        p->nnew = cs_count(p->st) - p->end;
+        p->stored = cs_count(p->st);  /* (pub_states changes during the next phase A: not read below) */
+        p->nnew = p->stored - p->end;
         p->level_done = p->head == p->end;
         p->saw_stop = __atomic_load_n(&h->stop, __ATOMIC_SEQ_CST) != 0;
         th_publish(p);
@@ -316,7 +378,7 @@ static void *th_main(void *arg) {
         int stop = 0, done = 1;
         for (int q = 0; q < N; q++) {
             th_part *o = &h->parts[q];
-            fresh += o->nnew; states += o->pub_states; stop |= o->saw_stop; done &= o->level_done;
+            fresh += o->nnew; states += o->stored; stop |= o->saw_stop; done &= o->level_done;
         }
         if (stop) break;
         if (states >= h->max_states) { th_set_stop(h, ND_MAX_STATES); break; }
@@ -335,9 +397,10 @@ static void *th_main(void *arg) {
 
 void th_free(th_search *h);
 
-/* A search of K-field states with the group layout of nd_new, over n threads, with the net's C `gen`. */
+/* A search of K-field states with the group layout of nd_new, over n threads, with the net's C `gen`;
+ * the stores' fields start `widths` bytes wide (the initial state's), widened as values need it. */
 th_search *th_new(int n, int K, int G, const int32_t *nread, const int32_t *nwrite, const int32_t *fields,
-                  void *gen, const uint32_t *s0, int64_t max_states, int64_t max_arcs) {
+                  void *gen, const uint32_t *s0, const uint8_t *widths, int64_t max_states, int64_t max_arcs) {
     th_search *h = (th_search *)calloc(1, sizeof(th_search));
     if (!h) return NULL;
     h->N = n; h->K = K; h->gen = gen; h->max_states = max_states; h->max_arcs = max_arcs;
@@ -345,25 +408,20 @@ th_search *th_new(int n, int K, int G, const int32_t *nread, const int32_t *nwri
     pthread_mutex_init(&h->done_lock, NULL);
     pthread_cond_init(&h->done_cond, NULL);
     h->parts = (th_part *)calloc((size_t)n, sizeof(th_part));
-    uint8_t *w = (uint8_t *)malloc((size_t)K + 1);
     h->shared = nd_new(NULL, K, G, nread, nwrite, fields);
-    if (!h->parts || !w || !h->shared) { free(w); th_free(h); return NULL; }
-    memset(w, 4, (size_t)K);
+    if (!h->parts || !h->shared) { th_free(h); return NULL; }
     for (int q = 0; q < n; q++) {
         th_part *p = &h->parts[q];
         p->h = h; p->me = q;
-        p->st = cs_new(K, w);
+        p->st = cs_new(K, widths);
         p->d = nd_new(p->st, K, G, nread, nwrite, fields);
         p->out = (th_buf *)calloc((size_t)n, sizeof(th_buf));
-        if (!p->st || !p->d || !p->out || th_level_mark(p, 0)) { free(w); th_free(h); return NULL; }
+        if (!p->st || !p->d || !p->out || th_level_mark(p, 0)) { th_free(h); return NULL; }
     }
-    free(w);
     th_part *own = &h->parts[th_owner(s0, K, n)];
-    int32_t id, fresh;
-    if (cs_add_many(own->st, (const uint8_t *)s0, 1, &id, &fresh) != 1
-        || th_push(&own->parent, 1) || th_push(&own->parent_be, 1)) { th_free(h); return NULL; }
-    own->parent.v[own->parent.n++] = TH_OPEN;
-    own->parent_be.v[own->parent_be.n++] = TH_OPEN;
+    uint8_t *r = own->d->recs;  /* room for 4096 bytes (nd_new) */
+    if (4 * K > 4096 || th_pack(own->st, s0, K, r) < 0
+        || th_store(own, r, cs_hash(r, own->st->W), TH_OPEN, TH_OPEN) == TH_OPEN) { th_free(h); return NULL; }
     for (int q = 0; q < n; q++) { h->parts[q].end = cs_count(h->parts[q].st); th_publish(&h->parts[q]); }
     return h;
 }
@@ -429,6 +487,18 @@ void th_sizes(th_search *h, int64_t *out) {
         out[5 + 2 * h->N + q] = (int64_t)(p->wait * 1e6);
     }
     out[0] = n; out[1] = e; out[2] = a; out[3] = be; out[4] = h->levels;
+}
+
+/* The fields' widths of the assembled store (`out`, K bytes): each the widest of the parts', to which every
+ * part is widened (0, or -1 without memory). */
+int th_widths(th_search *h, uint8_t *out) {
+    for (int f = 0; f < h->K; f++) {
+        out[f] = 1;
+        for (int q = 0; q < h->N; q++) if (h->parts[q].st->w[f] > out[f]) out[f] = h->parts[q].st->w[f];
+    }
+    for (int q = 0; q < h->N; q++)
+        if (memcmp(h->parts[q].st->w, out, (size_t)h->K) != 0 && cs_widen(h->parts[q].st, out) != 0) return -1;
+    return 0;
 }
 
 /* The global ids of part p's states in [lo, hi), from *next on. */
@@ -526,6 +596,7 @@ void th_free(th_search *h) {
             th_part *p = &h->parts[q];
             nd_free(p->d); cs_free(p->st);
             free(p->parent.v); free(p->parent_be.v); free(p->lv); free(p->aend.v); free(p->dst.v); free(p->bes.v);
+            free(p->succ.v); free(p->own.v);
             if (p->out) for (int o = 0; o < h->N; o++) free(p->out[o].v);
             free(p->out);
         }

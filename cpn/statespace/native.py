@@ -91,7 +91,8 @@ UNCACHED_AFTER: int = 4096
 _THREADS_CDEF = """
 typedef struct th_search th_search;
 th_search *th_new(int n, int K, int G, const int32_t *nread, const int32_t *nwrite, const int32_t *fields,
-                  void *gen, const uint32_t *s0, int64_t max_states, int64_t max_arcs);
+                  void *gen, const uint32_t *s0, const uint8_t *widths, int64_t max_states, int64_t max_arcs);
+int th_widths(th_search *h, uint8_t *out);
 int th_start(th_search *h);
 int th_wait(th_search *h, int ms);
 void th_request_stop(th_search *h);

@@ -96,6 +96,7 @@ def run_threaded(engine, options: ExploreOptions, progress=None, stop_watch=None
                     ffi.new("int32_t[]", [len(r) for r, _ in groups] or [0]),
                     ffi.new("int32_t[]", [len(w) for _, w in groups] or [0]),
                     ffi.new("int32_t[]", fields or [0]), gen, ffi.new("uint32_t[]", list(s0)),
+                    bytes(1 if v < 1 << 8 else 2 if v < 1 << 16 else 4 for v in s0),  # as narrow as s0 allows
                     1 if stopped_at_s0 else options.max_states if options.max_states is not None else big,
                     options.max_arcs if options.max_arcs is not None else big)
     if h == ffi.NULL:
@@ -183,8 +184,11 @@ def _assemble(lib, h, s0: tuple, n: int) -> tuple[StateGraph, list[int]]:
     clib.th_sizes(h, out)
     sizes = list(out)
     n_states, expanded, arcs, be_max = sizes[:4]
+    widths = ffi.new("uint8_t[]", len(s0))
+    if clib.th_widths(h, widths) != 0:
+        raise MemoryError("the threaded search's graph cannot be assembled (no memory)")
     g = StateGraph()
-    g.store = PackedStore(lib, s0, widths=[4] * len(s0))
+    g.store = PackedStore(lib, s0, widths=list(widths))
     g.offsets = array("q", bytes(8 * (expanded + 1)))
     g.dst = array("i", bytes(4 * arcs))
     be16 = be_max < 1 << 16
