@@ -101,9 +101,10 @@ def add_limit_options(p: argparse.ArgumentParser) -> None:
 def add_parallel_options(p: argparse.ArgumentParser) -> None:
     """--workers N and --ray [ADDRESS]: the partitioned search (cpn.statespace.parallel, .distributed)."""
     p.add_argument("--workers", type=int, metavar="N", default=None,
-                   help="search with N processes, each owning a part of the states (untimed nets; the same "
-                   "state space and report as one process; timed nets, reductions and branching options "
-                   "are searched in one process, with a note)")
+                   help="search with N threads of this process where every transition is in generated C "
+                   "(else N processes), each owning a part of the states (untimed nets; the same state space "
+                   "and report as one process; timed nets, reductions and branching options are searched "
+                   "in one process, with a note)")
     p.add_argument("--ray", nargs="?", const="local", default=None, metavar="ADDRESS",
                    help="run the workers of the partitioned search on a Ray cluster: ADDRESS of its head "
                    "(host:port), 'auto' for the cluster started on this machine with 'ray start --head', "

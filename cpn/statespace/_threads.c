@@ -66,6 +66,7 @@ typedef struct {
     int64_t nnew, stored;    /* states stored during this level and in all, as phase B left them */
     int saw_stop, level_done;
     int64_t misses;          /* look-ups in the shared cache (under the lock) */
+    int64_t contended;       /* of which found the lock taken */
     double wait;             /* seconds spent at the barriers */
     /* published for the limits and the progress of the others (written by this thread only) */
     int64_t pub_states, pub_arcs, pub_pending;
@@ -88,6 +89,13 @@ struct th_search {
     uint32_t *scratch;       /* th_assemble's ids */
 };
 
+/* The lock over the net's C; a thread that finds it taken counts it (`contended`) and waits. */
+static void th_lock(th_search *h, th_part *p) {
+    if (pthread_mutex_trylock(&h->lock) == 0) return;
+    p->contended++;
+    pthread_mutex_lock(&h->lock);
+}
+
 static void th_set_stop(th_search *h, int why) { __sync_bool_compare_and_swap(&h->stop, 0, why); }
 
 /* Which thread owns the record of K fields (a hash other than the store's, so that a part's table
@@ -105,7 +113,7 @@ static int64_t th_group_miss(th_search *h, th_part *p, int g, const uint32_t *ke
     nd_search *sh = h->shared, *d = p->d;
     p->misses++;
     int64_t o;
-    pthread_mutex_lock(&h->lock);
+    th_lock(h, p);
     o = vm_get(&sh->groups[g], key);
     if (o < 0) {
         int rc = gen_group(h->gen, sh, g, key);
@@ -123,7 +131,7 @@ static int64_t th_group_miss(th_search *h, th_part *p, int g, const uint32_t *ke
 static int64_t th_add_miss(th_search *h, th_part *p, const uint32_t *k) {
     nd_search *sh = h->shared, *d = p->d;
     p->misses++;
-    pthread_mutex_lock(&h->lock);
+    th_lock(h, p);
     int64_t v = vm_get(&sh->adds, k);
     if (v < 0) {
         v = gen_add(h->gen, k[0], k[1], k[2]);
@@ -474,8 +482,8 @@ void th_progress(th_search *h, int64_t *out) {
 }
 
 /* After the search: [0] states, [1] expanded states, [2] arcs, [3] the largest binding element,
- * [4] levels, then per thread its states, then its look-ups in the shared cache, then the microseconds
- * it waited at the barriers. */
+ * [4] levels, then per thread: its states, its look-ups in the shared cache, the microseconds it waited
+ * at the barriers, the look-ups that found the lock taken. */
 void th_sizes(th_search *h, int64_t *out) {
     int64_t n = 0, e = 0, a = 0, be = 0;
     for (int q = 0; q < h->N; q++) {
@@ -485,6 +493,7 @@ void th_sizes(th_search *h, int64_t *out) {
         out[5 + q] = cs_count(p->st);
         out[5 + h->N + q] = p->misses;
         out[5 + 2 * h->N + q] = (int64_t)(p->wait * 1e6);
+        out[5 + 3 * h->N + q] = p->contended;
     }
     out[0] = n; out[1] = e; out[2] = a; out[3] = be; out[4] = h->levels;
 }
@@ -506,6 +515,27 @@ static void th_number(uint32_t *gid, int64_t lo, int64_t hi, int64_t *next) {
     for (int64_t i = lo; i < hi; i++) gid[i] = (uint32_t)(*next)++;
 }
 
+/* Store the n records r (all new, their ids to be first, first + 1, ...) in `store`, their hashes computed
+ * and table slots prefetched a chunk at a time (hs: room for TH_CHUNK): 0, -1 (no memory) or -2 (a record
+ * was there already: the parts overlap). */
+static int th_copy(cs_store *store, const uint8_t *r, int64_t n, int64_t first, uint64_t *hs) {
+    int W = store->W;
+    for (int64_t k0 = 0; k0 < n; k0 += TH_CHUNK) {
+        int64_t m = n - k0 < TH_CHUNK ? n - k0 : TH_CHUNK;
+        for (int64_t k = 0; k < m; k++) {
+            hs[k] = cs_hash(r + (k0 + k) * W, W);
+            __builtin_prefetch(cs_probe_start(store, hs[k]));
+        }
+        for (int64_t k = 0; k < m; k++) {
+            int32_t id = -1;
+            int rc = cs_add_hashed(store, r + (k0 + k) * W, hs[k], &id);
+            if (rc < 0) return -1;
+            if (id != first + k0 + k || (rc == 0 && id != 0)) return -2;  /* (state 0: stored by the caller) */
+        }
+    }
+    return 0;
+}
+
 /* The one graph: `store` (holding the initial state as state 0) gets every state in the global order;
  * offsets[expanded + 1], dst[arcs], bes[arcs] (uint16 if be16, else int32), parent[states] and
  * parent_be[states] are written. 0, -1 (no memory) or -2 (the store disagrees: a bug). */
@@ -514,7 +544,7 @@ int th_assemble(th_search *h, cs_store *store, int64_t *offsets, int32_t *dst, v
     int N = h->N;
     uint32_t **gid = (uint32_t **)calloc((size_t)N, sizeof(uint32_t *));
     if (!gid) return -1;
-    int64_t levels = 0, most = 1;
+    int64_t levels = 0;
     for (int q = 0; q < N; q++) {
         th_part *p = &h->parts[q];
         /* the boundaries of the last two levels: the current one (partly expanded) and the next */
@@ -522,7 +552,6 @@ int th_assemble(th_search *h, cs_store *store, int64_t *offsets, int32_t *dst, v
         gid[q] = (uint32_t *)malloc(4 * (size_t)(cs_count(p->st) + 1));
         if (!gid[q]) { levels = -1; break; }
         if (p->nlv - 1 > levels) levels = p->nlv - 1;
-        if (cs_count(p->st) > most) most = cs_count(p->st);
     }
     /* the store's table at its final size at once (as cs_add_many would grow it: at most 3/4 full) */
     int64_t total = 0;
@@ -530,9 +559,8 @@ int th_assemble(th_search *h, cs_store *store, int64_t *offsets, int32_t *dst, v
     uint64_t size = 2048;
     while ((uint64_t)total * 4 > size * 3) size *= 2;
     if (levels >= 0 && size > store->mask + 1 && cs_rehash(store, size) != 0) levels = -1;
-    int32_t *ids = levels < 0 ? NULL : (int32_t *)malloc(4 * (size_t)most);
-    int32_t *fresh = levels < 0 ? NULL : (int32_t *)malloc(4 * (size_t)most);
-    int rc = ids && fresh ? 0 : -1;
+    int32_t *ids = levels < 0 ? NULL : (int32_t *)malloc(8 * TH_CHUNK);
+    int rc = ids ? 0 : -1;
     /* the order: the expanded states by (level, part, local id), then the others the same way */
     int64_t next = 0, e = 0;
     for (int done = 1; done >= 0 && !rc; done--)
@@ -546,9 +574,8 @@ int th_assemble(th_search *h, cs_store *store, int64_t *offsets, int32_t *dst, v
                 if (lo >= hi) continue;
                 int64_t first = next;
                 th_number(gid[q], lo, hi, &next);
-                int64_t got = cs_add_many(store, cs_arena(p->st) + lo * cs_width(p->st), hi - lo, ids, fresh);
-                if (got < 0) { rc = -1; break; }
-                for (int64_t k = 0; k < hi - lo; k++) if (ids[k] != first + k) rc = -2;
+                if ((rc = th_copy(store, cs_arena(p->st) + lo * cs_width(p->st), hi - lo, first, (uint64_t *)ids)))
+                    break;
                 for (int64_t i = lo; i < hi; i++) {
                     uint32_t r = p->parent.v[i];
                     parent[gid[q][i]] = r == TH_OPEN ? -1 : (int32_t)gid[r % N][r / N];
@@ -584,7 +611,7 @@ int th_assemble(th_search *h, cs_store *store, int64_t *offsets, int32_t *dst, v
         }
     }
     for (int q = 0; q < N; q++) free(gid[q]);
-    free(gid); free(ids); free(fresh);
+    free(gid); free(ids);
     return rc;
 }
 
