@@ -62,7 +62,7 @@ typedef struct {
     th_buf aend;             /* per expanded state: where its arcs end (two uint32: int64) */
     th_buf dst, bes;         /* per arc: the destination's reference, the binding element */
     th_buf *out;             /* per thread: the successors sent to it (K + 4 uint32 each) */
-    th_buf succ, own;        /* the successors of the state being expanded (K values each), their owners */
+    th_buf own;              /* the owners of the successors of the state being expanded */
     int64_t nnew, stored;    /* states stored during this level and in all, as phase B left them */
     int saw_stop, level_done;
     int64_t misses;          /* look-ups in the shared cache (under the lock) */
@@ -77,6 +77,7 @@ typedef struct {
 struct th_search {
     int N, K;
     th_part *parts;
+    uint64_t *mul;           /* per field: the odd constant of the owner's hash */
     nd_search *shared;       /* the cache behind the lock (filled by the net's C) */
     void *gen;
     pthread_mutex_t lock;    /* the net's C and the shared cache */
@@ -86,7 +87,6 @@ struct th_search {
     pthread_mutex_t done_lock;
     pthread_cond_t done_cond;
     int running, started, joined;
-    uint32_t *scratch;       /* th_assemble's ids */
 };
 
 /* The lock over the net's C; a thread that finds it taken counts it (`contended`) and waits. */
@@ -98,13 +98,19 @@ static void th_lock(th_search *h, th_part *p) {
 
 static void th_set_stop(th_search *h, int why) { __sync_bool_compare_and_swap(&h->stop, 0, why); }
 
-/* Which thread owns the record of K fields (a hash other than the store's, so that a part's table
- * uses all of its slots). */
-static int th_owner(const uint32_t *t, int K, int N) {
+/* Which thread owns a state: a mix of the sum of its place ids each times its own odd constant (mul; a
+ * successor's sum is its state's plus the changes); independent of the store's own hash, so that a
+ * part's table uses all of its slots. */
+static inline int th_mix_owner(uint64_t x, int N) {
     if (N == 1) return 0;
-    uint64_t x = vm_hash(t, K);
-    x ^= x >> 31; x *= 0x94D049BB133111EBULL; x ^= x >> 29;
-    return (int)(((x >> 32) * (uint64_t)N) >> 32);
+    x ^= x >> 31; x *= 0x94D049BB133111EBULL; x ^= x >> 29; x *= 0xBF58476D1CE4E5B9ULL; x ^= x >> 32;
+    return (int)(((x & 0xFFFFFFFFu) * (uint64_t)N) >> 32);
+}
+
+static int th_owner(const th_search *h, const uint32_t *t) {
+    uint64_t x = 0;
+    for (int f = 0; f < h->K; f++) x += t[f] * h->mul[f];
+    return th_mix_owner(x, h->N);
 }
 
 /* The cache entry of group g for `key` in the thread's cache, taken from the shared one (filled by the
@@ -202,61 +208,84 @@ static int th_expand(th_part *p, int64_t i, int64_t *goff) {
                 d->addv[nadd++] = (uint32_t)v;
             }
     }
-    /* the successors' values and owners, in group order and each group's binding order */
-    p->succ.n = p->own.n = 0;
-    if (th_push(&p->dst, narcs) || th_push(&p->bes, narcs) || th_push(&p->aend, 2)
-        || th_push(&p->succ, narcs * K) || th_push(&p->own, narcs)) return TH_NO_MEMORY;
-    uint32_t *t = p->succ.v;
+    /* the successors in group order and each group's binding order: their owners (the state's hash sum
+     * plus the changes), those of other threads sent (their place ids, source, binding element, arc) */
+    if (th_push(&p->dst, narcs) || th_push(&p->bes, narcs) || th_push(&p->aend, 2) || th_push(&p->own, narcs))
+        return TH_NO_MEMORY;
+    const uint64_t *mul = h->mul;
+    uint64_t sum = 0;
+    for (int f = 0; f < K; f++) sum += s[f] * mul[f];
+    uint32_t src = (uint32_t)(i * N + me);
+    int64_t base = p->dst.n, k = 0, nlocal = 0;
     const uint32_t *addv = d->addv;
-    int64_t k = 0;
     for (int g = 0; g < d->G; g++) {
         int nr = d->nread[g], nw = d->nwrite[g];
+        const int *rd = d->read[g], *wr = d->write[g];
         int64_t cnt = d->res[goff[g]];
         const int32_t *e = d->res + goff[g] + 1;
-        for (int64_t j = 0; j < cnt; j++, e += 1 + nr + nw, t += K, k++) {
-            memcpy(t, s, (size_t)K * 4);
-            for (int r = 0; r < nr; r++) t[d->read[g][r]] = (uint32_t)e[1 + r];
-            for (int w = 0; w < nw; w++) t[d->write[g][w]] = *addv++;
-            p->own.v[k] = (uint32_t)th_owner(t, K, N);
-            p->bes.v[p->bes.n + k] = (uint32_t)e[0];
+        for (int64_t j = 0; j < cnt; j++, e += 1 + nr + nw, addv += nw, k++) {
+            uint64_t x = sum;
+            for (int r = 0; r < nr; r++) x += ((uint64_t)(uint32_t)e[1 + r] - s[rd[r]]) * mul[rd[r]];
+            for (int w = 0; w < nw; w++) x += ((uint64_t)addv[w] - s[wr[w]]) * mul[wr[w]];
+            int o = th_mix_owner(x, N);
+            p->own.v[k] = (uint32_t)o;
+            p->bes.v[base + k] = (uint32_t)e[0];
+            if (o == me) { nlocal++; continue; }
+            th_buf *b = &p->out[o];
+            if (th_push(b, K + 4)) return TH_NO_MEMORY;
+            uint32_t *m = b->v + b->n;
+            memcpy(m, s, (size_t)K * 4);
+            for (int r = 0; r < nr; r++) m[rd[r]] = (uint32_t)e[1 + r];
+            for (int w = 0; w < nw; w++) m[wr[w]] = addv[w];
+            int64_t pos = base + k;
+            m[K] = src; m[K + 1] = (uint32_t)e[0]; m[K + 2] = (uint32_t)pos; m[K + 3] = (uint32_t)(pos >> 32);
+            b->n += K + 4;
+            p->dst.v[pos] = TH_OPEN;
         }
     }
-    /* the records of those this thread owns, hashed, their table slots prefetched (as nd_run does) */
-    int W;
-    for (;;) {
+    /* the records of those this thread owns: the state's record with the changed fields put in (a value
+     * too wide for its field widens the store, and the records are made again), hashed, their table
+     * slots prefetched, then stored in order (as nd_run does) */
+    int W = st->W;
+    for (int widened = nlocal > 0; widened;) {
+        widened = 0;
         W = st->W;
         if (grow((void **)&d->recs, &d->recs_cap, narcs * W + 1, 1) || grow((void **)&d->hs, &d->hs_cap, narcs + 1, 8))
             return TH_NO_MEMORY;
-        int rc = 0;
-        for (k = 0; k < narcs && !rc; k++)
-            if ((int)p->own.v[k] == me) rc = th_pack(st, p->succ.v + k * K, K, d->recs + k * W);
-        if (rc < 0) return TH_NO_MEMORY;
-        if (!rc) break;
+        for (int f = 0; f < K; f++) cs_put(d->rs + st->off[f], st->w[f], s[f]);  /* s fits: it is stored here */
+        addv = d->addv;
+        k = 0;
+        for (int g = 0; g < d->G && !widened; g++) {
+            int nr = d->nread[g], nw = d->nwrite[g];
+            const int *rd = d->read[g], *wr = d->write[g];
+            int64_t cnt = d->res[goff[g]];
+            const int32_t *e = d->res + goff[g] + 1;
+            for (int64_t j = 0; j < cnt && !widened; j++, e += 1 + nr + nw, addv += nw, k++) {
+                if ((int)p->own.v[k] != me) continue;
+                uint8_t *r = d->recs + k * W;
+                memcpy(r, d->rs, (size_t)W);
+                int f = -1;
+                uint32_t v = 0;
+                for (int q = 0; q < nr && f < 0; q++)
+                    if (!cs_put(r + st->off[rd[q]], st->w[rd[q]], (uint32_t)e[1 + q])) { f = rd[q]; v = (uint32_t)e[1 + q]; }
+                for (int q = 0; q < nw && f < 0; q++)
+                    if (!cs_put(r + st->off[wr[q]], st->w[wr[q]], addv[q])) { f = wr[q]; v = addv[q]; }
+                if (f >= 0) {
+                    if (cs_widen_field(st, f, v > 0xFFFFu ? 4 : 2) != 0) return TH_NO_MEMORY;
+                    widened = 1;
+                }
+            }
+        }
     }
     for (k = 0; k < narcs; k++)
         if ((int)p->own.v[k] == me) {
             d->hs[k] = cs_hash(d->recs + k * W, W);
             __builtin_prefetch(cs_probe_start(st, d->hs[k]));
         }
-    /* stored (or sent to their owners) in order */
-    uint32_t src = (uint32_t)(i * N + me);
-    int64_t base = p->dst.n;
-    for (k = 0; k < narcs; k++) {
-        int o = (int)p->own.v[k];
-        uint32_t be = p->bes.v[base + k];
-        if (o == me) {
-            if ((p->dst.v[base + k] = th_store(p, d->recs + k * W, d->hs[k], src, be)) == TH_OPEN) return TH_NO_MEMORY;
-            continue;
-        }
-        th_buf *b = &p->out[o];
-        if (th_push(b, K + 4)) return TH_NO_MEMORY;
-        uint32_t *m = b->v + b->n;
-        memcpy(m, p->succ.v + k * K, (size_t)K * 4);
-        int64_t pos = base + k;
-        m[K] = src; m[K + 1] = be; m[K + 2] = (uint32_t)pos; m[K + 3] = (uint32_t)(pos >> 32);
-        b->n += K + 4;
-        p->dst.v[pos] = TH_OPEN;
-    }
+    for (k = 0; k < narcs && nlocal; k++)
+        if ((int)p->own.v[k] == me
+            && (p->dst.v[base + k] = th_store(p, d->recs + k * W, d->hs[k], src, p->bes.v[base + k])) == TH_OPEN)
+            return TH_NO_MEMORY;
     p->dst.n = p->bes.n = base + narcs;
     memcpy(p->aend.v + p->aend.n, &p->dst.n, 8);
     p->aend.n += 2;
@@ -417,7 +446,14 @@ th_search *th_new(int n, int K, int G, const int32_t *nread, const int32_t *nwri
     pthread_cond_init(&h->done_cond, NULL);
     h->parts = (th_part *)calloc((size_t)n, sizeof(th_part));
     h->shared = nd_new(NULL, K, G, nread, nwrite, fields);
-    if (!h->parts || !h->shared) { th_free(h); return NULL; }
+    h->mul = (uint64_t *)malloc(8 * (size_t)(K + 1));
+    if (!h->parts || !h->shared || !h->mul) { th_free(h); return NULL; }
+    for (int f = 0; f < K; f++) {  /* splitmix64 of f + 1, made odd */
+        uint64_t z = ((uint64_t)f + 1) * 0x9E3779B97F4A7C15ULL;
+        z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+        z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+        h->mul[f] = (z ^ (z >> 31)) | 1;
+    }
     for (int q = 0; q < n; q++) {
         th_part *p = &h->parts[q];
         p->h = h; p->me = q;
@@ -426,7 +462,7 @@ th_search *th_new(int n, int K, int G, const int32_t *nread, const int32_t *nwri
         p->out = (th_buf *)calloc((size_t)n, sizeof(th_buf));
         if (!p->st || !p->d || !p->out || th_level_mark(p, 0)) { th_free(h); return NULL; }
     }
-    th_part *own = &h->parts[th_owner(s0, K, n)];
+    th_part *own = &h->parts[th_owner(h, s0)];
     uint8_t *r = own->d->recs;  /* room for 4096 bytes (nd_new) */
     if (4 * K > 4096 || th_pack(own->st, s0, K, r) < 0
         || th_store(own, r, cs_hash(r, own->st->W), TH_OPEN, TH_OPEN) == TH_OPEN) { th_free(h); return NULL; }
@@ -623,7 +659,7 @@ void th_free(th_search *h) {
             th_part *p = &h->parts[q];
             nd_free(p->d); cs_free(p->st);
             free(p->parent.v); free(p->parent_be.v); free(p->lv); free(p->aend.v); free(p->dst.v); free(p->bes.v);
-            free(p->succ.v); free(p->own.v);
+            free(p->own.v);
             if (p->out) for (int o = 0; o < h->N; o++) free(p->out[o].v);
             free(p->out);
         }
@@ -632,5 +668,5 @@ void th_free(th_search *h) {
     pthread_mutex_destroy(&h->lock);
     pthread_mutex_destroy(&h->done_lock);
     pthread_cond_destroy(&h->done_cond);
-    free(h->parts); free(h->scratch); free(h);
+    free(h->parts); free(h->mul); free(h); 
 }
