@@ -114,7 +114,10 @@ def measure(nets: dict, modes: list[str], repeat: int) -> list[dict]:
                        "vs_w1": (one_worker / med) if one_worker else None}
                 parts = [r["partition"] for r in rs if "partition" in r]
                 if parts and "threads" in parts[0]:
-                    row["phases"] = parts[len(parts) // 2]["seconds"]
+                    p = parts[len(parts) // 2]
+                    row["phases"] = p["seconds"]
+                    row["cache_misses"] = p["cache_misses"]  # per thread: look-ups in the shared cache
+                    row["lock_contended"] = p["lock_contended"]
                 elif parts:
                     p = parts[len(parts) // 2]
                     row["phases"] = p["seconds"]
