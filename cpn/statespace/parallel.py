@@ -426,7 +426,11 @@ def run_partitioned(engine, options: ExploreOptions, progress=None):
     n = options.workers
     if n is not None and n < 1:
         raise ValueError(f"workers must be at least 1, got {n}")
-    threaded, why_not = _threads(engine, options, progress)
+    # the stop predicate (an observing one: why_not_partitioned) is asked about the initial state once,
+    # whichever search runs
+    pred = options.stop_predicate
+    at_s0 = pred is not None and bool(pred(engine.initial_state()))
+    threaded, why_not = _threads(engine, options, progress, at_s0)
     if threaded is not None:
         return threaded, None
     t0 = time.perf_counter()
@@ -443,6 +447,7 @@ def run_partitioned(engine, options: ExploreOptions, progress=None):
         return None, f"the search ran in one process: the workers could not start ({exc})"
     try:
         search = _Coordinator(engine, transfer_for(engine), options, progress, transport, t0)
+        search.at_s0 = at_s0
         with _CtrlC() as ctrl_c:
             search.ctrl_c = ctrl_c
             x = search.run()
@@ -456,12 +461,12 @@ def run_partitioned(engine, options: ExploreOptions, progress=None):
         transport.close()
 
 
-def _threads(engine, options: ExploreOptions, progress):
+def _threads(engine, options: ExploreOptions, progress, at_s0: bool):
     """The threaded search (`cpn.statespace.threads`) where it applies: (Exploration or None, why not)."""
     from cpn.statespace.threads import run_threaded
 
     with _CtrlC() as ctrl_c:
-        return run_threaded(engine, options, progress, lambda: ctrl_c.hit)
+        return run_threaded(engine, options, progress, lambda: ctrl_c.hit, at_s0)
 
 
 class _Coordinator:
@@ -474,6 +479,7 @@ class _Coordinator:
         self.ctrl_c = _CtrlC()
         self.bytes_sent = 0  # the batches' bytes, all steps
         self.sent = 0  # successors sent to another worker (one per arc whose target another worker owns)
+        self.at_s0 = False  # the stop predicate holds in the initial state (asked by the caller)
 
     def _memory_mb(self) -> float:
         return current_rss_mb() + sum(self.rss)
@@ -494,8 +500,7 @@ class _Coordinator:
         advance = False
         states, expanded, arcs = 1, 0, 0
         stop = StopReason.COMPLETE
-        pred = opts.stop_predicate
-        if pred is not None and pred(s0):
+        if self.at_s0:
             stop = StopReason.PREDICATE
         try:
             while stop is StopReason.COMPLETE:

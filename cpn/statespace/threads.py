@@ -67,10 +67,12 @@ def why_not_threaded(engine, options: ExploreOptions, s0) -> tuple[str | None, o
     return None, code
 
 
-def run_threaded(engine, options: ExploreOptions, progress=None, stop_watch=None):
+def run_threaded(engine, options: ExploreOptions, progress=None, stop_watch=None, stopped_at_s0: bool = False):
     """The threaded search of `engine` with `options.workers` threads: (Exploration, None), or (None, why)
     where it does not apply or must be repeated another way. `stop_watch()` (optional) says whether
-    Ctrl-C was pressed (the caller's handler); a KeyboardInterrupt stops the search the same way."""
+    Ctrl-C was pressed (the caller's handler); a KeyboardInterrupt stops the search the same way.
+    `stopped_at_s0`: the (observing) stop predicate holds in the initial state, as the caller found when
+    it asked it (once, whichever search then runs)."""
     from cpn.statespace.explore import Exploration, Progress
     from cpn.statespace.parallel import observe
 
@@ -80,8 +82,6 @@ def run_threaded(engine, options: ExploreOptions, progress=None, stop_watch=None
     if why is not None:
         return None, why
     n = options.workers or 1
-    pred = options.stop_predicate
-    stopped_at_s0 = pred is not None and pred(s0)  # (an observing predicate: why_not_partitioned)
     lib = native.library(code)
     ffi, clib = lib.ffi, lib.lib
     gen = clib.gen_new()

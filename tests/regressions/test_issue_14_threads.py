@@ -199,3 +199,20 @@ def test_a_transition_left_to_python_keeps_the_processes():
     assert why is not None
     x = Explorer(engine, ExploreOptions(workers=2)).run()
     assert x.backend == "workers" and x.n_states == 4
+
+
+def test_an_observing_predicate_sees_each_state_once_when_the_processes_search_again():
+    class Observer:
+        may_stop = False  # it never ends the search: the partitioned search calls it afterwards
+
+        def __init__(self):
+            self.seen = []
+
+        def __call__(self, s):
+            self.seen.append(s)
+            return False
+
+    seen = Observer()
+    x = Explorer(cpn.loads(DEEP).engine(), ExploreOptions(workers=2, stop_predicate=seen)).run()
+    assert x.backend == "workers" and x.complete  # the threads gave up: the C could not evaluate a key
+    assert seen.seen == list(x.graph.states)  # the initial state once, then every other in order
