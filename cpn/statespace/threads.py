@@ -131,6 +131,11 @@ def run_threaded(engine, options: ExploreOptions, progress=None, stop_watch=None
         except KeyboardInterrupt:
             asked = StopReason.INTERRUPTED
             clib.th_request_stop(h)
+        except BaseException:  # the progress hook failed: the threads stop before their tables go
+            clib.th_request_stop(h)
+            while clib.th_wait(h, POLL_MS) == _RUNNING:
+                pass
+            raise
     t_search = time.perf_counter()
     if status == _FALLBACK:
         return None, ("the net's C met a binding it cannot evaluate (a value outside its colour set, a "

@@ -216,3 +216,14 @@ def test_an_observing_predicate_sees_each_state_once_when_the_processes_search_a
     x = Explorer(cpn.loads(DEEP).engine(), ExploreOptions(workers=2, stop_predicate=seen)).run()
     assert x.backend == "workers" and x.complete  # the threads gave up: the C could not evaluate a key
     assert seen.seen == list(x.graph.states)  # the initial state once, then every other in order
+
+
+def test_an_error_in_the_progress_hook_stops_the_threads_and_is_raised():
+    def progress(p):
+        raise ValueError("the hook failed")
+
+    engine = _load("bench/nets/dp.cpnet:14").engine()
+    with pytest.raises(ValueError, match="the hook failed"):
+        Explorer(engine, ExploreOptions(workers=2, progress_interval=0.0), progress=progress).run()
+    x = Explorer(engine, ExploreOptions(workers=2, max_states=1000)).run()  # the engine still works
+    assert x.backend == "threads" and x.n_states >= 1000
