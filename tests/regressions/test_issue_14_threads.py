@@ -87,7 +87,11 @@ def test_most_repository_models_run_in_threads():
     assert untimed and ran >= untimed // 2, (ran, untimed)
 
 
-@pytest.mark.parametrize("seed", range(40))
+# the random nets whose C test_issue_13_generated.py builds too (the libraries are cached by their source)
+SEEDS = list(range(3, 1000, 23))[:16]
+
+
+@pytest.mark.parametrize("seed", SEEDS)
 def test_random_nets_with_threads(seed):
     model = cpn.loads(random_net(seed))
     if model.net.is_timed:
@@ -106,11 +110,11 @@ def test_random_nets_with_threads(seed):
 
 def test_random_nets_run_in_threads():
     ran = 0
-    for seed in range(40):
+    for seed in SEEDS:
         engine = cpn.loads(random_net(seed)).engine()
         if not engine.is_timed:
             ran += why_not_threaded(engine, ExploreOptions(workers=2), engine.initial_state())[0] is None
-    assert ran >= 10
+    assert ran >= 12
 
 
 # a recursion deeper than the C's limit (ccodegen.MAX_DEPTH) from the fourth level on: the C hands that key
