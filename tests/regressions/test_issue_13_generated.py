@@ -81,7 +81,7 @@ def test_the_benchmark_nets_run_wholly_in_c(returns):
 @needs_native
 def test_generated_c_gives_the_python_graph_on_random_nets(returns):
     wholly = 0
-    for seed in range(3, 1000, 23):  # 44 nets (each compilation takes a second or two)
+    for seed in list(range(3, 1000, 23))[:24]:  # 24 nets (each compilation takes a second or two)
         text = random_net(seed)
         model = cpn.loads(text, f"random{seed}.cpnet")
         before = returns[0]
@@ -93,7 +93,7 @@ def test_generated_c_gives_the_python_graph_on_random_nets(returns):
         if code is not None and not code.left:
             assert returns[0] == before, f"random net {seed} went back to the Python engine:\n{text}"
             wholly += 1
-    assert wholly >= 30  # the untimed ones are wholly in C
+    assert wholly >= 16  # the untimed ones are wholly in C
 
 
 LEFT = """

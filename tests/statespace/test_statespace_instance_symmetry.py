@@ -77,7 +77,7 @@ def test_random_instance_nets_under_rotations(seed):
 def test_some_random_instance_nets_are_really_reduced():
     """The cross-check is not vacuous: many random nets have fewer orbits than states."""
     smaller = 0
-    for seed in range(40):
+    for seed in range(20):
         for rotations in (False, True):
             model = cpn.loads(random_instance_net(seed, rotations), f"random-{seed}.cpnet")
             engine = model.engine()
@@ -85,7 +85,7 @@ def test_some_random_instance_nets_are_really_reduced():
             quot = Explorer(engine, ExploreOptions(reduction="symmetry", symmetry=model.symmetry(
                 "S:rotations" if rotations else "S"))).run()
             smaller += full.complete and quot.n_states < full.n_states
-    assert smaller >= 20  # 30 of the 80 when this was written
+    assert smaller >= 10  # 16 of the 40 when this was written
 
 
 @pytest.mark.parametrize("reference", [False, True])
