@@ -23,8 +23,16 @@ import tempfile
 from dataclasses import dataclass
 from functools import lru_cache
 
-#: the flags every library is built with
-CFLAGS = ["-O2", "-shared", "-fPIC", "-std=c99"]
+#: the flags every library is built with (after the optimisation level)
+CFLAGS = ["-shared", "-fPIC", "-std=c99"]
+_OPT_LEVELS = ("-O0", "-O1", "-O2", "-O3", "-Os")
+
+
+def cflags() -> list[str]:
+    """The compiler flags: CFLAGS after the optimisation level, `-O2` unless CPN_CC_OPT names another
+    (the test suite builds with `-O1`, whose compilations take about a third less time: tests/conftest.py)."""
+    opt = os.environ.get("CPN_CC_OPT", "-O2")
+    return [opt if opt in _OPT_LEVELS else "-O2", *CFLAGS]
 
 _reason: list[str] = []
 
@@ -87,7 +95,7 @@ def load_library(source: str, cdef: str, flags: tuple[str, ...] = ()) -> Library
     cc = compiler()
     if cc is None:
         return _unavailable("no C compiler found (set CC or install cc/gcc/clang)")
-    key = hashlib.sha256("\0".join([source, cdef, cc[1], " ".join(CFLAGS + list(flags)), cffi.__version__])
+    key = hashlib.sha256("\0".join([source, cdef, cc[1], " ".join(cflags() + list(flags)), cffi.__version__])
                          .encode()).hexdigest()[:24]
     if key in _loaded:
         return _loaded[key]
@@ -101,7 +109,7 @@ def load_library(source: str, cdef: str, flags: tuple[str, ...] = ()) -> Library
                 with open(src, "w") as f:
                     f.write(source)
                 out = os.path.join(tmp, "lib.so")
-                res = subprocess.run([cc[0], *CFLAGS, *flags, "-o", out, src], capture_output=True, text=True, timeout=300)
+                res = subprocess.run([cc[0], *cflags(), *flags, "-o", out, src], capture_output=True, text=True, timeout=300)
                 if res.returncode != 0:
                     first = (res.stderr.strip().splitlines() or ["no message"])[0]
                     return _unavailable(f"the C compiler failed: {first}")
