@@ -6,7 +6,78 @@
  * the Python dict the engine builds, which is the order its tokens (and so the bindings found in it) are
  * enumerated in. Two lists with the same pairs in any order are the same multiset: the table finds it by
  * an order-independent hash and keeps the order of the first list it was given.
+ *
+ * Threads (ND_THREADS, the multi-threaded search of _threads.c): each thread has a context of its own
+ * (gen_clone: its scratch buffers, its error flag) over the one set of tables (gtab), which is then
+ * `shared`. A table is changed under its own lock (a spin lock: each place's markings, each place's
+ * deltas, the binding elements with their recipes); what is read without a lock (a multiset's pairs, a
+ * binding element's recipe) is never moved while shared: an array that grows is copied, the new one
+ * published with a release store, the old one kept until gen_unshare. An entry is written before its id
+ * is published, and an id reaches another thread only through a lock, a barrier or an acquire load, so
+ * a reader sees the entry of any id it holds. The ids are then numbered in the order the threads reach
+ * the locks: the same multisets and binding elements, numbered differently from run to run.
  */
+
+#ifdef ND_THREADS
+#include <sched.h>
+static void g_lock(int *l) {
+    if (!__atomic_exchange_n(l, 1, __ATOMIC_ACQUIRE)) return;
+    for (int spins = 0;;) {
+        while (__atomic_load_n(l, __ATOMIC_RELAXED)) {
+            if (++spins > 200) { spins = 0; sched_yield(); }  /* the holder may have lost its core */
+#if defined(__x86_64__) || defined(__i386__)
+            else __builtin_ia32_pause();
+#endif
+        }
+        if (!__atomic_exchange_n(l, 1, __ATOMIC_ACQUIRE)) return;
+    }
+}
+static void g_unlock(int *l) { __atomic_store_n(l, 0, __ATOMIC_RELEASE); }
+#else
+static void g_lock(int *l) { (void)l; }
+static void g_unlock(int *l) { (void)l; }
+#endif
+
+/* Arrays replaced while the tables are shared, freed by g_keep_free. */
+typedef struct { void **v; int64_t n, cap; } g_kept;
+
+static int g_keep(g_kept *k, void *p) {
+    if (k->n == k->cap) {
+        int64_t cap = k->cap ? 2 * k->cap : 16;
+        void **v = (void **)realloc(k->v, sizeof(void *) * (size_t)cap);
+        if (!v) return -1;
+        k->v = v; k->cap = cap;
+    }
+    k->v[k->n++] = p;
+    return 0;
+}
+
+static void g_keep_free(g_kept *k) {
+    for (int64_t i = 0; i < k->n; i++) free(k->v[i]);
+    free(k->v);
+    memset(k, 0, sizeof *k);
+}
+
+/* Grow *b (cap elements of `size` bytes, `used` of them in use) to hold `need`: realloc, or while
+ * `shared` a copy whose old array is kept (readers without the lock may hold it); 0, or -1. */
+static int g_grow_kept(void **b, int64_t *cap, int64_t used, int64_t need, size_t size, int shared, g_kept *k) {
+    if (need <= *cap) return 0;
+    int64_t c = *cap ? *cap : 64;
+    while (c < need) c *= 2;
+    if (!shared) {
+        void *p = realloc(*b, (size_t)c * size);
+        if (!p) return -1;
+        *b = p; *cap = c;
+        return 0;
+    }
+    void *p = malloc((size_t)c * size);
+    if (!p) return -1;
+    if (used) memcpy(p, *b, (size_t)used * size);
+    if (*b && g_keep(k, *b) != 0) { free(p); return -1; }
+    __atomic_store_n(b, p, __ATOMIC_RELEASE);
+    *cap = c;
+    return 0;
+}
 
 typedef struct {
     int64_t n, cap;          /* multisets */
@@ -15,7 +86,16 @@ typedef struct {
     uint64_t *hash;
     int32_t *pairs; int64_t np, pcap;
     uint32_t *table; uint64_t mask;   /* id + 1 per slot, 0: empty */
+    int lock, shared;        /* (ND_THREADS) */
+    g_kept kept;
 } mstab;
+
+/* Multiset `id`'s pairs and number of distinct colours (read without the table's lock). */
+static inline const int32_t *ms_pairs(const mstab *t, int64_t id) {
+    return __atomic_load_n(&t->pairs, __ATOMIC_ACQUIRE) + __atomic_load_n(&t->off, __ATOMIC_ACQUIRE)[id];
+}
+
+static inline int32_t ms_len(const mstab *t, int64_t id) { return __atomic_load_n(&t->len, __ATOMIC_ACQUIRE)[id]; }
 
 static uint64_t ms_mix(uint64_t x) {
     x += 0x9E3779B97F4A7C15ULL;
@@ -54,10 +134,13 @@ static int ms_init(mstab *t) {
     return (t->off && t->len && t->hash && t->pairs && t->table) ? 0 : -1;
 }
 
-static void ms_free(mstab *t) { free(t->off); free(t->len); free(t->hash); free(t->pairs); free(t->table); }
+static void ms_free(mstab *t) {
+    free(t->off); free(t->len); free(t->hash); free(t->pairs); free(t->table);
+    g_keep_free(&t->kept);
+}
 
 /* The id of the multiset of the n pairs `pr` (a new id if it is new); -1 if memory runs out. */
-static int64_t ms_intern(mstab *t, const int32_t *pr, int32_t n) {
+static int64_t ms_intern_locked(mstab *t, const int32_t *pr, int32_t n) {
     uint64_t h = ms_hash(pr, n);
     uint64_t i = h & t->mask;
     for (;;) {
@@ -68,24 +151,17 @@ static int64_t ms_intern(mstab *t, const int32_t *pr, int32_t n) {
         i = (i + 1) & t->mask;
     }
     if (t->n == t->cap) {
-        int64_t cap = t->cap * 2;
-        int64_t *off = (int64_t *)realloc(t->off, 8 * (size_t)cap);
-        if (!off) return -1;
-        t->off = off;
-        int32_t *len = (int32_t *)realloc(t->len, 4 * (size_t)cap);
-        if (!len) return -1;
-        t->len = len;
-        uint64_t *hs = (uint64_t *)realloc(t->hash, 8 * (size_t)cap);
+        int64_t cap = t->cap;
+        if (g_grow_kept((void **)&t->off, &cap, t->n, t->cap * 2, 8, t->shared, &t->kept) != 0) return -1;
+        cap = t->cap;
+        if (g_grow_kept((void **)&t->len, &cap, t->n, t->cap * 2, 4, t->shared, &t->kept) != 0) return -1;
+        uint64_t *hs = (uint64_t *)realloc(t->hash, 8 * (size_t)cap);  /* read under the lock only */
         if (!hs) return -1;
         t->hash = hs; t->cap = cap;
     }
-    if (t->np + 2 * (int64_t)n > t->pcap) {
-        int64_t cap = t->pcap;
-        while (cap < t->np + 2 * (int64_t)n) cap *= 2;
-        int32_t *p = (int32_t *)realloc(t->pairs, 4 * (size_t)cap);
-        if (!p) return -1;
-        t->pairs = p; t->pcap = cap;
-    }
+    if (t->np + 2 * (int64_t)n > t->pcap
+        && g_grow_kept((void **)&t->pairs, &t->pcap, t->np, t->np + 2 * (int64_t)n, 4, t->shared, &t->kept) != 0)
+        return -1;
     if ((uint64_t)(t->n + 1) * 4 > (t->mask + 1) * 3) {
         uint64_t size = (t->mask + 1) * 2;
         uint32_t *tb = (uint32_t *)calloc(size, 4);
@@ -107,13 +183,21 @@ static int64_t ms_intern(mstab *t, const int32_t *pr, int32_t n) {
     return id;
 }
 
+static int64_t ms_intern(mstab *t, const int32_t *pr, int32_t n) {
+    if (!t->shared) return ms_intern_locked(t, pr, n);
+    g_lock(&t->lock);
+    int64_t id = ms_intern_locked(t, pr, n);
+    g_unlock(&t->lock);
+    return id;
+}
+
 /* The count of colour c in the n pairs pr. */
 static int64_t ms_count(const int32_t *pr, int32_t n, int64_t c) {
     for (int32_t i = 0; i < n; i++) if (pr[2 * i] == c) return pr[2 * i + 1];
     return 0;
 }
 
-/* ---------------------------------------------------------------- the context of one search */
+/* ---------------------------------------------------------------- the tables and a search's context */
 typedef struct {
     int P, T;
     mstab *mk;               /* per place: its markings */
@@ -121,8 +205,16 @@ typedef struct {
     int32_t **be_of;         /* per transition: binding key -> binding element id (-1: none yet) */
     int64_t *be_size;        /* per transition: the number of binding keys */
     int32_t *be_t; int64_t *be_key; int64_t nbe, be_cap;
-    int64_t *rcp; int64_t rcp_cap;  /* per binding element: its recipe's offset in `pool` (-1: none yet) */
+    int64_t *rcp;            /* per binding element: its recipe's offset in `pool` (-1: none yet) */
     int32_t *pool; int64_t npool, pool_cap;
+    int be_lock, shared;     /* the binding elements and recipes (ND_THREADS) */
+    g_kept kept;
+    int contexts;            /* the contexts over these tables */
+} gtab;
+
+typedef struct {
+    gtab *tb;
+    mstab *mk, *dl;          /* tb's */
     int32_t *buf; int64_t buf_cap;  /* scratch pairs */
     int64_t *bind; int64_t nb, bind_cap;  /* the bindings found, one after the other */
     int32_t *out; int64_t out_cap;  /* the entries of a result */
@@ -140,57 +232,140 @@ static int g_grow(void **b, int64_t *cap, int64_t need, size_t size) {
     return 0;
 }
 
-static gctx *g_new(int P, int T, const int64_t *be_size) {
+static gctx *g_context(gtab *tb) {
     gctx *c = (gctx *)calloc(1, sizeof(gctx));
     if (!c) return NULL;
-    c->P = P; c->T = T;
-    c->mk = (mstab *)calloc((size_t)P + 1, sizeof(mstab));
-    c->dl = (mstab *)calloc((size_t)P + 1, sizeof(mstab));
-    c->be_of = (int32_t **)calloc((size_t)T + 1, sizeof(int32_t *));
-    c->be_size = (int64_t *)calloc((size_t)T + 1, sizeof(int64_t));
-    if (!c->mk || !c->dl || !c->be_of || !c->be_size) return NULL;
-    for (int p = 0; p < P; p++) if (ms_init(&c->mk[p]) || ms_init(&c->dl[p])) return NULL;
-    for (int t = 0; t < T; t++) c->be_size[t] = be_size[t];  /* be_of[t]: allocated when first used */
+    c->tb = tb; c->mk = tb->mk; c->dl = tb->dl;
+    tb->contexts++;
     return c;
 }
 
+static void g_tab_free(gtab *tb) {
+    for (int p = 0; p < tb->P; p++) { ms_free(&tb->mk[p]); ms_free(&tb->dl[p]); }
+    for (int t = 0; t < tb->T; t++) free(tb->be_of[t]);
+    free(tb->mk); free(tb->dl); free(tb->be_of); free(tb->be_size); free(tb->be_t); free(tb->be_key);
+    free(tb->rcp); free(tb->pool);
+    g_keep_free(&tb->kept);
+    free(tb);
+}
+
+static gctx *g_new(int P, int T, const int64_t *be_size) {
+    gtab *tb = (gtab *)calloc(1, sizeof(gtab));
+    if (!tb) return NULL;
+    tb->P = P; tb->T = T;
+    tb->mk = (mstab *)calloc((size_t)P + 1, sizeof(mstab));
+    tb->dl = (mstab *)calloc((size_t)P + 1, sizeof(mstab));
+    tb->be_of = (int32_t **)calloc((size_t)T + 1, sizeof(int32_t *));
+    tb->be_size = (int64_t *)calloc((size_t)T + 1, sizeof(int64_t));
+    if (!tb->mk || !tb->dl || !tb->be_of || !tb->be_size) { g_tab_free(tb); return NULL; }
+    for (int p = 0; p < P; p++) if (ms_init(&tb->mk[p]) || ms_init(&tb->dl[p])) { g_tab_free(tb); return NULL; }
+    for (int t = 0; t < T; t++) tb->be_size[t] = be_size[t];  /* be_of[t]: allocated when first used */
+    gctx *c = g_context(tb);
+    if (!c) g_tab_free(tb);
+    return c;
+}
+
+/* Free a context; the tables go with the last one. */
 void gen_free(void *g) {
     gctx *c = (gctx *)g;
     if (!c) return;
-    for (int p = 0; p < c->P; p++) { ms_free(&c->mk[p]); ms_free(&c->dl[p]); }
-    for (int t = 0; t < c->T; t++) free(c->be_of[t]);
-    free(c->mk); free(c->dl); free(c->be_of); free(c->be_size); free(c->be_t); free(c->be_key);
-    free(c->rcp); free(c->pool); free(c->buf); free(c->bind); free(c->out); free(c);
+    if (--c->tb->contexts == 0) g_tab_free(c->tb);
+    free(c->buf); free(c->bind); free(c->out); free(c);
 }
 
-/* The binding element of transition t with binding key `key` (a new one if it is new: *fresh = 1). */
+#ifdef ND_THREADS
+/* Another context over g's tables, for another thread: the tables are shared from now on (NULL without
+ * memory). */
+static void *gen_clone(void *g) {
+    gtab *tb = ((gctx *)g)->tb;
+    tb->shared = 1;
+    for (int p = 0; p < tb->P; p++) tb->mk[p].shared = tb->dl[p].shared = 1;
+    return g_context(tb);
+}
+
+/* The threads are done (their contexts freed): the tables are one thread's again, the arrays kept for
+ * readers without a lock freed. */
+static void gen_unshare(void *g) {
+    gtab *tb = ((gctx *)g)->tb;
+    tb->shared = 0;
+    g_keep_free(&tb->kept);
+    for (int p = 0; p < tb->P; p++) {
+        tb->mk[p].shared = tb->dl[p].shared = 0;
+        g_keep_free(&tb->mk[p].kept);
+        g_keep_free(&tb->dl[p].kept);
+    }
+}
+#endif
+
+/* The binding element of transition t with binding key `key` (a new one if it is new: *fresh = 1);
+ * under the binding elements' lock while the tables are shared. */
 static int64_t g_be(gctx *c, int t, int64_t key, int *fresh) {
+    gtab *tb = c->tb;
     *fresh = 0;
-    if (key < 0 || key >= c->be_size[t]) { c->err = 1; return -1; }
-    if (!c->be_of[t]) {
-        c->be_of[t] = (int32_t *)malloc(4 * (size_t)c->be_size[t]);
-        if (!c->be_of[t]) { c->err = 2; return -1; }
-        memset(c->be_of[t], 0xFF, 4 * (size_t)c->be_size[t]);  /* -1: no binding element yet */
+    if (key < 0 || key >= tb->be_size[t]) { c->err = 1; return -1; }
+    if (!tb->be_of[t]) {
+        int32_t *of = (int32_t *)malloc(4 * (size_t)tb->be_size[t]);
+        if (!of) { c->err = 2; return -1; }
+        memset(of, 0xFF, 4 * (size_t)tb->be_size[t]);  /* -1: no binding element yet */
+        __atomic_store_n(&tb->be_of[t], of, __ATOMIC_RELEASE);
     }
-    int32_t be = c->be_of[t][key];
+    int32_t be = tb->be_of[t][key];
     if (be >= 0) return be;
-    if (c->nbe == c->be_cap) {
-        int64_t cap = c->be_cap ? 2 * c->be_cap : 256;
-        int32_t *bt = (int32_t *)realloc(c->be_t, 4 * (size_t)cap);
-        if (!bt) { c->err = 2; return -1; }
-        c->be_t = bt;
-        int64_t *bk = (int64_t *)realloc(c->be_key, 8 * (size_t)cap);
-        if (!bk) { c->err = 2; return -1; }
-        c->be_key = bk;
-        int64_t *r = (int64_t *)realloc(c->rcp, 8 * (size_t)cap);
-        if (!r) { c->err = 2; return -1; }
-        c->rcp = r; c->be_cap = c->rcp_cap = cap;
+    if (tb->nbe == tb->be_cap) {
+        int64_t cap = tb->be_cap, n = tb->nbe, need = cap ? 2 * cap : 256;
+        if (g_grow_kept((void **)&tb->be_t, &cap, n, need, 4, tb->shared, &tb->kept)) { c->err = 2; return -1; }
+        cap = tb->be_cap;
+        if (g_grow_kept((void **)&tb->be_key, &cap, n, need, 8, tb->shared, &tb->kept)) { c->err = 2; return -1; }
+        cap = tb->be_cap;
+        if (g_grow_kept((void **)&tb->rcp, &cap, n, need, 8, tb->shared, &tb->kept)) { c->err = 2; return -1; }
+        tb->be_cap = cap;
     }
-    be = (int32_t)c->nbe++;
-    c->be_t[be] = t; c->be_key[be] = key; c->rcp[be] = -1;
-    c->be_of[t][key] = be;
+    be = (int32_t)tb->nbe;
+    tb->be_t[be] = t; tb->be_key[be] = key; tb->rcp[be] = -1;
+    __atomic_store_n(&tb->nbe, tb->nbe + 1, __ATOMIC_RELEASE);
+    __atomic_store_n(&tb->be_of[t][key], be, __ATOMIC_RELEASE);
     *fresh = 1;
     return be;
+}
+
+/* Room for `width` more int32 in the recipes' pool (under the binding elements' lock). */
+static int g_pool(gctx *c, int64_t width) {
+    gtab *tb = c->tb;
+    return g_grow_kept((void **)&tb->pool, &tb->pool_cap, tb->npool, tb->npool + width, 4, tb->shared, &tb->kept);
+}
+
+/* Binding element `be`'s recipe is the `width` int32 written at the end of the pool: published. */
+static void g_recipe_done(gctx *c, int64_t be, int64_t width) {
+    gtab *tb = c->tb;
+    int64_t at = tb->npool;
+    tb->npool += width;
+    __atomic_store_n(&tb->rcp[be], at, __ATOMIC_RELEASE);
+}
+
+typedef int (*g_rcp_fn)(gctx *c, const int64_t *v, int64_t be);
+
+/* The recipe of transition t's binding with key `key` and variables' values v (`make` writes it if it
+ * is not there yet), and its binding element in *be; NULL if c->err says why not. Without a lock when
+ * both are there already. */
+static const int32_t *g_recipe(gctx *c, int t, int64_t key, const int64_t *v, g_rcp_fn make, int64_t *be) {
+    gtab *tb = c->tb;
+    if (key < 0 || key >= tb->be_size[t]) { c->err = 1; return NULL; }
+    const int32_t *of = __atomic_load_n(&tb->be_of[t], __ATOMIC_ACQUIRE);
+    if (of) {
+        int32_t b = __atomic_load_n(&of[key], __ATOMIC_ACQUIRE);
+        if (b >= 0) {
+            int64_t r = __atomic_load_n(&__atomic_load_n(&tb->rcp, __ATOMIC_ACQUIRE)[b], __ATOMIC_ACQUIRE);
+            if (r >= 0) { *be = b; return __atomic_load_n(&tb->pool, __ATOMIC_ACQUIRE) + r; }
+        }
+    }
+    int fresh;
+    if (tb->shared) g_lock(&tb->be_lock);
+    int64_t b = g_be(c, t, key, &fresh);
+    if (!c->err && tb->rcp[b] < 0) make(c, v, b);
+    if (tb->shared) g_unlock(&tb->be_lock);
+    if (c->err) return NULL;
+    *be = b;
+    return tb->pool + tb->rcp[b];
 }
 
 /* The id of delta pairs pr (n of them) of place p; -1 for none (n == 0 and not `keep_empty`). */
@@ -203,11 +378,11 @@ static int64_t g_delta(gctx *c, int p, const int32_t *pr, int32_t n) {
 /* Marking `cur` of place p minus (sign < 0) or plus (sign > 0) delta `did`, interned. */
 static int64_t g_apply(gctx *c, int p, int64_t cur, int64_t did, int sign) {
     mstab *m = &c->mk[p], *d = &c->dl[p];
-    int32_t n = m->len[cur], dn = d->len[did];
+    int32_t n = ms_len(m, cur), dn = ms_len(d, did);
     if (g_grow((void **)&c->buf, &c->buf_cap, 2 * ((int64_t)n + dn) + 2, 4)) { c->err = 2; return -1; }
     int32_t *b = c->buf;
-    memcpy(b, m->pairs + m->off[cur], 8 * (size_t)n);
-    const int32_t *dp = d->pairs + d->off[did];
+    memcpy(b, ms_pairs(m, cur), 8 * (size_t)n);
+    const int32_t *dp = ms_pairs(d, did);
     for (int32_t i = 0; i < dn; i++) {
         int32_t col = dp[2 * i], k = dp[2 * i + 1], j = 0;
         while (j < n && b[2 * j] != col) j++;
@@ -284,7 +459,7 @@ static int64_t g_fail(gctx *c) { c->err = 1; return 0; }
 /* ---------------------------------------------------------------- exchange with the Python engine */
 int64_t gen_count(void *g, int what, int p) {
     gctx *c = (gctx *)g;
-    if (what == 2) return c->nbe;
+    if (what == 2) return c->tb->nbe;
     return (what ? c->dl : c->mk)[p].n;
 }
 
@@ -311,22 +486,23 @@ int64_t gen_ms_put(void *g, int what, int p, const int32_t *pr, int32_t n) {
 
 int64_t gen_be_key(void *g, int64_t be, int32_t *t) {
     gctx *c = (gctx *)g;
-    *t = c->be_t[be];
-    return c->be_key[be];
+    *t = c->tb->be_t[be];
+    return c->tb->be_key[be];
 }
 
 int64_t gen_be_put(void *g, int t, int64_t key) {
     gctx *c = (gctx *)g;
+    gtab *tb = c->tb;
     int fresh;
     c->err = 0;
     if (key < 0) {  /* a binding the C code does not number: kept for its id only */
-        int64_t saved = c->be_size[t];
-        c->be_size[t] = 1;
-        int32_t *saved_of = c->be_of[t], slot = -1;
-        c->be_of[t] = &slot;
+        int64_t saved = tb->be_size[t];
+        tb->be_size[t] = 1;
+        int32_t *saved_of = tb->be_of[t], slot = -1;
+        tb->be_of[t] = &slot;
         int64_t be = g_be(c, t, 0, &fresh);
-        c->be_of[t] = saved_of; c->be_size[t] = saved;
-        if (be >= 0) c->be_key[be] = -1;
+        tb->be_of[t] = saved_of; tb->be_size[t] = saved;
+        if (be >= 0) tb->be_key[be] = -1;
         return c->err ? -1 : be;
     }
     int64_t be = g_be(c, t, key, &fresh);

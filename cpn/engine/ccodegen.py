@@ -452,8 +452,8 @@ class TransitionC:
         nv = len(t.variables)
         head = [f"static int bind{self.k}(gctx *c, const uint32_t *key) {{"]
         for i, p in enumerate(self.read):
-            head.append(f"    const int32_t *M{i} = c->mk[{p}].pairs + c->mk[{p}].off[key[{i}]];")
-            head.append(f"    const int32_t N{i} = c->mk[{p}].len[key[{i}]];")
+            head.append(f"    const int32_t *M{i} = ms_pairs(&c->mk[{p}], key[{i}]);")
+            head.append(f"    const int32_t N{i} = ms_len(&c->mk[{p}], key[{i}]);")
             head.append(f"    (void)M{i}; (void)N{i};")
         for i in range(nv):
             head.append(f"    int64_t v{i} = 0;")
@@ -630,8 +630,8 @@ class TransitionC:
         for it in plan.input_terms(t, self.read):
             consumed.setdefault(it.place, []).append(it.term)
         width = 3 * len(self.read) + len(self.writes)
-        self.emit(f"if (g_grow((void **)&c->pool, &c->pool_cap, c->npool + {max(width, 1)}, 4)) {{ c->err = 2; goto done; }}")
-        self.emit("int32_t *r = c->pool + c->npool;")
+        self.emit(f"if (g_pool(c, {max(width, 1)})) {{ c->err = 2; goto done; }}")
+        self.emit("int32_t *r = c->tb->pool + c->tb->npool;")
         resets = {a.place for a in t.arcs if a.kind.empties}
         for i, p in enumerate(self.read):
             terms = consumed.get(i, [])
@@ -656,8 +656,7 @@ class TransitionC:
         for w, p in enumerate(self.writes):  # the empty delta of a written place this binding leaves alone
             self.emit(f"if (r[{base + w}] == -2) r[{base + w}] = (int32_t)g_delta(c, {p}, NULL, 0);")
         self.emit("if (c->err) goto done;")
-        self.emit("c->rcp[be] = c->npool;")
-        self.emit(f"c->npool += {max(width, 1)};")
+        self.emit(f"g_recipe_done(c, be, {max(width, 1)});")
         self.lines.append("done:")
         self.lines.append("    return c->err ? -1 : 0;")
         self.lines.append("}")
@@ -680,17 +679,16 @@ class TransitionC:
             lines.append(f"        x = v[{i}] - {lo}; if (x < 0 || x >= {lay.size}) return -1;")
             lines.append(f"        bk = bk * {lay.size} + x;")
         lines += [
-            "        int fresh;",
-            f"        int64_t be = g_be(c, {self.t.index}, bk, &fresh);",
-            "        if (c->err) return c->err == 2 ? -2 : -1;",
-            f"        if (c->rcp[be] < 0 && rcp{self.k}(c, v, be)) return c->err == 2 ? -2 : -1;",
+            "        int64_t be;",
+            f"        const int32_t *R = g_recipe(c, {self.t.index}, bk, v, rcp{self.k}, &be);",
+            "        if (!R) return c->err == 2 ? -2 : -1;",
             f"        int32_t *e = c->out + b * {width};",
             "        e[0] = (int32_t)be;",
         ]
         for i, p in enumerate(self.read):
             lines += [
                 "        {",
-                f"            const int32_t *r = c->pool + c->rcp[be] + {3 * i};",
+                f"            const int32_t *r = R + {3 * i};",
                 f"            int64_t nid = r[2] ? 0 : key[{i}];",
                 f"            if (r[0] >= 0 && !r[2]) nid = g_apply(c, {p}, nid, r[0], -1);",
                 f"            if (!c->err && r[1] >= 0) nid = g_apply(c, {p}, nid, r[1], 1);",
@@ -698,7 +696,7 @@ class TransitionC:
                 f"            e[{1 + i}] = (int32_t)nid;",
                 "        }"]
         for w in range(nw):
-            lines.append(f"        e[{1 + nr + w}] = c->pool[c->rcp[be] + {3 * nr + w}];")
+            lines.append(f"        e[{1 + nr + w}] = R[{3 * nr + w}];")
         lines += ["    }",
                   f"    return nd_put_group(d, {self.k}, key, nb, c->out) ? -2 : 0;",
                   "}"]

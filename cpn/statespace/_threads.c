@@ -17,12 +17,12 @@
  * gives a shortest path, as in the one-process search.
  *
  * Caches: every thread has its own (an nd_search: group results per key of read values, written places'
- * new ids per (place, delta, old id)) and reads them without a lock. On a miss it takes the one lock
- * over the net's C (its tables of markings, deltas and binding elements are shared: one numbering for
- * all) and looks in a shared cache, which gen_group / gen_add fill on a miss there; the entry is then
- * copied into the thread's own cache. A key the C cannot evaluate (gen_group or gen_add return -1: a
- * division by zero, a value outside its colour set, deep recursion) stops the search (TH_FALLBACK):
- * the caller repeats it another way.
+ * new ids per (place, delta, old id)), read and filled without a lock; a cache whose results rarely recur
+ * computes them anew (uncache_after, as in the one-process search). On a miss the thread runs the net's C
+ * itself, in a context of its own (gen_clone) over the one set of tables of markings, deltas and binding
+ * elements (one numbering for all threads), which _cnet.c changes under a lock per table. A key the C
+ * cannot evaluate (gen_group or gen_add return -1: a division by zero, a value outside its colour set,
+ * deep recursion) stops the search (TH_FALLBACK): the caller repeats it another way.
  *
  * A state is referred to as local id * N + part while the search runs; th_assemble numbers them
  * globally afterwards (expanded states first, by level, part and local id; then the unexpanded ones the
@@ -31,6 +31,12 @@
 
 #include <pthread.h>
 #include <time.h>
+
+/* compiled after this file (cpn/engine/_cnet.c, with ND_THREADS): another context over the tables of
+ * the net's C, and the end of their sharing */
+static void *gen_clone(void *g);
+static void gen_unshare(void *g);
+void gen_free(void *g);
 
 enum { TH_RUNNING = -9, TH_STOPPED = 8, TH_FALLBACK = 7, TH_NO_MEMORY = 5, TH_COMPLETE = 9 };
 #define TH_OPEN 0xFFFFFFFFu       /* an arc whose destination another thread stores */
@@ -55,6 +61,7 @@ typedef struct {
     int me;
     cs_store *st;            /* the states this thread owns: local id -> record (K uint32 fields) */
     nd_search *d;            /* its caches and scratch buffers */
+    void *gen;               /* its context of the net's C */
     th_buf parent;           /* per local state: its parent's reference (TH_OPEN: none) and binding element */
     th_buf parent_be;
     int64_t *lv; int64_t nlv, lv_cap;  /* lv[l]: the first local id of level l */
@@ -65,8 +72,7 @@ typedef struct {
     th_buf own;              /* the owners of the successors of the state being expanded */
     int64_t nnew, stored;    /* states stored during this level and in all, as phase B left them */
     int saw_stop, level_done;
-    int64_t misses;          /* look-ups in the shared cache (under the lock) */
-    int64_t contended;       /* of which found the lock taken */
+    int64_t computed;        /* results computed by the net's C (cache misses and uncached results) */
     double wait;             /* seconds spent at the barriers */
     /* published for the limits and the progress of the others (written by this thread only) */
     int64_t pub_states, pub_arcs, pub_pending;
@@ -78,9 +84,7 @@ struct th_search {
     int N, K;
     th_part *parts;
     uint64_t *mul;           /* per field: the odd constant of the owner's hash */
-    nd_search *shared;       /* the cache behind the lock (filled by the net's C) */
-    void *gen;
-    pthread_mutex_t lock;    /* the net's C and the shared cache */
+    void *gen;               /* the caller's context of the net's C (its tables are shared while the threads run) */
     pthread_barrier_t bar;
     int stop;                /* 0, or why the search stops (the first reason set wins) */
     int64_t max_states, max_arcs, levels;
@@ -88,13 +92,6 @@ struct th_search {
     pthread_cond_t done_cond;
     int running, started, joined;
 };
-
-/* The lock over the net's C; a thread that finds it taken counts it (`contended`) and waits. */
-static void th_lock(th_search *h, th_part *p) {
-    if (pthread_mutex_trylock(&h->lock) == 0) return;
-    p->contended++;
-    pthread_mutex_lock(&h->lock);
-}
 
 static void th_set_stop(th_search *h, int why) { __sync_bool_compare_and_swap(&h->stop, 0, why); }
 
@@ -113,39 +110,54 @@ static int th_owner(const th_search *h, const uint32_t *t) {
     return th_mix_owner(x, h->N);
 }
 
-/* The cache entry of group g for `key` in the thread's cache, taken from the shared one (filled by the
- * net's C if need be); the offset of the entry in d->res, or -(TH_FALLBACK or TH_NO_MEMORY). */
-static int64_t th_group_miss(th_search *h, th_part *p, int g, const uint32_t *key) {
-    nd_search *sh = h->shared, *d = p->d;
-    p->misses++;
-    int64_t o;
-    th_lock(h, p);
-    o = vm_get(&sh->groups[g], key);
-    if (o < 0) {
-        int rc = gen_group(h->gen, sh, g, key);
-        o = rc == 0 ? vm_get(&sh->groups[g], key) : -1;
-        if (o < 0) { pthread_mutex_unlock(&h->lock); return rc == -2 ? -TH_NO_MEMORY : -TH_FALLBACK; }
+/* Group g's result for `key` (the read values of the state being expanded): computed by the net's C
+ * into the thread's cache, or into its scratch for a group whose results are not cached; 0 with its
+ * offset in *o (in d->tmp if d->in_tmp[g], else in d->res), or why the search must stop. */
+static int th_group(th_part *p, int g, const uint32_t *key, int64_t *o) {
+    nd_search *d = p->d;
+    d->in_tmp[g] = d->uncached[g];
+    if (!d->uncached[g]) {
+        *o = vm_get(&d->groups[g], key);
+        if (d->looks[g] >= 0) {  /* the hit rate is judged once, after uncache_after look-ups */
+            d->looks[g]++;
+            d->misses[g] += *o < 0;
+            if (d->looks[g] == d->uncache_after) {
+                if (2 * d->misses[g] > d->looks[g]) d->uncached[g] = 1;
+                d->looks[g] = -1;
+            }
+        }
+        if (*o >= 0) return 0;
     }
-    int64_t n = sh->res[o];
-    int rc = nd_put_group(d, g, key, n, sh->res + o + 1);
-    pthread_mutex_unlock(&h->lock);
-    if (rc != 0) return -TH_NO_MEMORY;
-    return vm_get(&d->groups[g], key);
+    p->computed++;
+    d->scratch = d->in_tmp[g];
+    int rc = gen_group(p->gen, d, g, key);
+    d->scratch = 0;
+    if (rc != 0) return rc == -2 ? TH_NO_MEMORY : TH_FALLBACK;
+    *o = d->last_off;
+    return 0;
 }
 
-/* The new id of written place k[0] (delta k[1], old id k[2]), as th_group_miss; -(reason) on failure. */
-static int64_t th_add_miss(th_search *h, th_part *p, const uint32_t *k) {
-    nd_search *sh = h->shared, *d = p->d;
-    p->misses++;
-    th_lock(h, p);
-    int64_t v = vm_get(&sh->adds, k);
-    if (v < 0) {
-        v = gen_add(h->gen, k[0], k[1], k[2]);
-        if (v >= 0 && vm_put(&sh->adds, k, v) != 0) v = -2;
+/* The new id of written place k[0] (delta k[1], old id k[2]), cached as th_group caches; -(reason) on
+ * failure. */
+static int64_t th_add(th_part *p, const uint32_t *k) {
+    nd_search *d = p->d;
+    int64_t v = -1;
+    if (!d->adds_uncached) {
+        v = vm_get(&d->adds, k);
+        if (d->adds_looks >= 0) {
+            d->adds_looks++;
+            d->adds_misses += v < 0;
+            if (d->adds_looks == d->uncache_after) {
+                if (2 * d->adds_misses > d->adds_looks) d->adds_uncached = 1;
+                d->adds_looks = -1;
+            }
+        }
+        if (v >= 0) return v;
     }
-    pthread_mutex_unlock(&h->lock);
-    if (v < 0) return v == -2 ? -TH_NO_MEMORY : -TH_FALLBACK;
-    if (vm_put(&d->adds, k, v) != 0) return -TH_NO_MEMORY;
+    p->computed++;
+    v = gen_add(p->gen, k[0], k[1], k[2]);
+    if (v < 0) return -TH_FALLBACK;
+    if (!d->adds_uncached && vm_put(&d->adds, k, v) != 0) return -TH_NO_MEMORY;
     return v;
 }
 
@@ -187,24 +199,27 @@ static int th_expand(th_part *p, int64_t i, int64_t *goff) {
     const uint8_t *rec = st->arena + i * st->W;
     for (int f = 0; f < K; f++) s[f] = (uint32_t)cs_get(rec + st->off[f], st->w[f]);
     int64_t nadd = 0, narcs = 0;
+    d->ntmp = 0;
     /* every group's entry for this state, and the new ids of the places its bindings write */
     for (int g = 0; g < d->G; g++) {
         int nr = d->nread[g], nw = d->nwrite[g];
         uint32_t *key = d->req_key;
         for (int r = 0; r < nr; r++) key[r] = s[d->read[g][r]];
-        int64_t o = vm_get(&d->groups[g], key);
-        if (o < 0 && (o = th_group_miss(h, p, g, key)) < 0) return (int)-o;
+        int64_t o;
+        int rc = th_group(p, g, key, &o);
+        if (rc) return rc;
         goff[g] = o;
-        int64_t cnt = d->res[o];
+        const int32_t *res = d->in_tmp[g] ? d->tmp : d->res;
+        int64_t cnt = res[o];
         narcs += cnt;
         if (!nw) continue;
         if (grow((void **)&d->addv, &d->addv_cap, nadd + cnt * nw, 4) != 0) return TH_NO_MEMORY;
-        const int32_t *e = d->res + o + 1;
+        const int32_t *e = res + o + 1;
         for (int64_t j = 0; j < cnt; j++, e += 1 + nr + nw)
             for (int w = 0; w < nw; w++) {
                 uint32_t k[3] = {(uint32_t)d->write[g][w], (uint32_t)e[1 + nr + w], s[d->write[g][w]]};
-                int64_t v = vm_get(&d->adds, k);
-                if (v < 0 && (v = th_add_miss(h, p, k)) < 0) return (int)-v;
+                int64_t v = th_add(p, k);
+                if (v < 0) return (int)-v;
                 d->addv[nadd++] = (uint32_t)v;
             }
     }
@@ -221,8 +236,9 @@ static int th_expand(th_part *p, int64_t i, int64_t *goff) {
     for (int g = 0; g < d->G; g++) {
         int nr = d->nread[g], nw = d->nwrite[g];
         const int *rd = d->read[g], *wr = d->write[g];
-        int64_t cnt = d->res[goff[g]];
-        const int32_t *e = d->res + goff[g] + 1;
+        const int32_t *res = d->in_tmp[g] ? d->tmp : d->res;
+        int64_t cnt = res[goff[g]];
+        const int32_t *e = res + goff[g] + 1;
         for (int64_t j = 0; j < cnt; j++, e += 1 + nr + nw, addv += nw, k++) {
             uint64_t x = sum;
             for (int r = 0; r < nr; r++) x += ((uint64_t)(uint32_t)e[1 + r] - s[rd[r]]) * mul[rd[r]];
@@ -258,8 +274,9 @@ static int th_expand(th_part *p, int64_t i, int64_t *goff) {
         for (int g = 0; g < d->G && !widened; g++) {
             int nr = d->nread[g], nw = d->nwrite[g];
             const int *rd = d->read[g], *wr = d->write[g];
-            int64_t cnt = d->res[goff[g]];
-            const int32_t *e = d->res + goff[g] + 1;
+            const int32_t *res = d->in_tmp[g] ? d->tmp : d->res;
+            int64_t cnt = res[goff[g]];
+            const int32_t *e = res + goff[g] + 1;
             for (int64_t j = 0; j < cnt && !widened; j++, e += 1 + nr + nw, addv += nw, k++) {
                 if ((int)p->own.v[k] != me) continue;
                 uint8_t *r = d->recs + k * W;
@@ -434,20 +451,21 @@ static void *th_main(void *arg) {
 
 void th_free(th_search *h);
 
-/* A search of K-field states with the group layout of nd_new, over n threads, with the net's C `gen`;
- * the stores' fields start `widths` bytes wide (the initial state's), widened as values need it. */
+/* A search of K-field states with the group layout of nd_new, over n threads, with the net's C `gen`
+ * (its tables shared by the threads until th_wait sees them end, or th_free); the stores' fields start
+ * `widths` bytes wide (the initial state's), widened as values need it; each thread's caches judge their
+ * hit rate after `uncache_after` look-ups (nd_set_uncache_after). */
 th_search *th_new(int n, int K, int G, const int32_t *nread, const int32_t *nwrite, const int32_t *fields,
-                  void *gen, const uint32_t *s0, const uint8_t *widths, int64_t max_states, int64_t max_arcs) {
+                  void *gen, const uint32_t *s0, const uint8_t *widths, int64_t max_states, int64_t max_arcs,
+                  int64_t uncache_after) {
     th_search *h = (th_search *)calloc(1, sizeof(th_search));
     if (!h) return NULL;
     h->N = n; h->K = K; h->gen = gen; h->max_states = max_states; h->max_arcs = max_arcs;
-    pthread_mutex_init(&h->lock, NULL);
     pthread_mutex_init(&h->done_lock, NULL);
     pthread_cond_init(&h->done_cond, NULL);
     h->parts = (th_part *)calloc((size_t)n, sizeof(th_part));
-    h->shared = nd_new(NULL, K, G, nread, nwrite, fields);
     h->mul = (uint64_t *)malloc(8 * (size_t)(K + 1));
-    if (!h->parts || !h->shared || !h->mul) { th_free(h); return NULL; }
+    if (!h->parts || !h->mul) { th_free(h); return NULL; }
     for (int f = 0; f < K; f++) {  /* splitmix64 of f + 1, made odd */
         uint64_t z = ((uint64_t)f + 1) * 0x9E3779B97F4A7C15ULL;
         z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
@@ -460,7 +478,9 @@ th_search *th_new(int n, int K, int G, const int32_t *nread, const int32_t *nwri
         p->st = cs_new(K, widths);
         p->d = nd_new(p->st, K, G, nread, nwrite, fields);
         p->out = (th_buf *)calloc((size_t)n, sizeof(th_buf));
-        if (!p->st || !p->d || !p->out || th_level_mark(p, 0)) { th_free(h); return NULL; }
+        p->gen = gen_clone(gen);
+        if (!p->st || !p->d || !p->out || !p->gen || th_level_mark(p, 0)) { th_free(h); return NULL; }
+        nd_set_uncache_after(p->d, uncache_after);
     }
     th_part *own = &h->parts[th_owner(h, s0)];
     uint8_t *r = own->d->recs;  /* room for 4096 bytes (nd_new) */
@@ -468,6 +488,15 @@ th_search *th_new(int n, int K, int G, const int32_t *nread, const int32_t *nwri
         || th_store(own, r, cs_hash(r, own->st->W), TH_OPEN, TH_OPEN) == TH_OPEN) { th_free(h); return NULL; }
     for (int q = 0; q < n; q++) { h->parts[q].end = cs_count(h->parts[q].st); th_publish(&h->parts[q]); }
     return h;
+}
+
+/* The threads' contexts of the net's C freed: its tables are the caller's alone again. */
+static void th_end_sharing(th_search *h) {
+    if (!h->parts) return;
+    int shared = 0;
+    for (int q = 0; q < h->N; q++)
+        if (h->parts[q].gen) { gen_free(h->parts[q].gen); h->parts[q].gen = NULL; shared = 1; }
+    if (shared) gen_unshare(h->gen);
 }
 
 /* Start the threads (0, or -1 if they could not be started). */
@@ -501,6 +530,7 @@ int th_wait(th_search *h, int ms) {
     if (!h->joined) {
         for (int q = 0; q < h->N; q++) pthread_join(h->parts[q].tid, NULL);
         h->joined = 1;
+        th_end_sharing(h);
     }
     return h->stop == TH_COMPLETE ? ND_DONE : h->stop;
 }
@@ -518,8 +548,8 @@ void th_progress(th_search *h, int64_t *out) {
 }
 
 /* After the search: [0] states, [1] expanded states, [2] arcs, [3] the largest binding element,
- * [4] levels, then per thread: its states, its look-ups in the shared cache, the microseconds it waited
- * at the barriers, the look-ups that found the lock taken. */
+ * [4] levels, then per thread: its states, the results it computed with the net's C, the microseconds it
+ * waited at the barriers, the caches it stopped filling (their results computed anew each time). */
 void th_sizes(th_search *h, int64_t *out) {
     int64_t n = 0, e = 0, a = 0, be = 0;
     for (int q = 0; q < h->N; q++) {
@@ -527,9 +557,9 @@ void th_sizes(th_search *h, int64_t *out) {
         n += cs_count(p->st); e += p->head; a += p->dst.n;
         for (int64_t k = 0; k < p->bes.n; k++) if ((int64_t)p->bes.v[k] > be) be = p->bes.v[k];
         out[5 + q] = cs_count(p->st);
-        out[5 + h->N + q] = p->misses;
+        out[5 + h->N + q] = p->computed;
         out[5 + 2 * h->N + q] = (int64_t)(p->wait * 1e6);
-        out[5 + 3 * h->N + q] = p->contended;
+        out[5 + 3 * h->N + q] = nd_uncached(p->d);
     }
     out[0] = n; out[1] = e; out[2] = a; out[3] = be; out[4] = h->levels;
 }
@@ -654,6 +684,7 @@ int th_assemble(th_search *h, cs_store *store, int64_t *offsets, int32_t *dst, v
 void th_free(th_search *h) {
     if (!h) return;
     if (h->started && !h->joined) return;  /* threads still running: leak rather than free under them */
+    th_end_sharing(h);
     if (h->parts)
         for (int q = 0; q < h->N; q++) {
             th_part *p = &h->parts[q];
@@ -663,9 +694,7 @@ void th_free(th_search *h) {
             if (p->out) for (int o = 0; o < h->N; o++) free(p->out[o].v);
             free(p->out);
         }
-    nd_free(h->shared);
     if (h->started) pthread_barrier_destroy(&h->bar);
-    pthread_mutex_destroy(&h->lock);
     pthread_mutex_destroy(&h->done_lock);
     pthread_cond_destroy(&h->done_cond);
     free(h->parts); free(h->mul); free(h); 

@@ -91,7 +91,8 @@ UNCACHED_AFTER: int = 4096
 _THREADS_CDEF = """
 typedef struct th_search th_search;
 th_search *th_new(int n, int K, int G, const int32_t *nread, const int32_t *nwrite, const int32_t *fields,
-                  void *gen, const uint32_t *s0, const uint8_t *widths, int64_t max_states, int64_t max_arcs);
+                  void *gen, const uint32_t *s0, const uint8_t *widths, int64_t max_states, int64_t max_arcs,
+                  int64_t uncache_after);
 int th_widths(th_search *h, uint8_t *out);
 int th_start(th_search *h);
 int th_wait(th_search *h, int ms);
@@ -115,7 +116,7 @@ def library(code=None, timed: bool = False):
     threads = code is not None and not timed
     names = ("_packed.c", "_search.c") + (("_timed.c",) if timed else ()) + (("_threads.c",) if threads else ())
     # POSIX for the threads: their barriers and clock (-std=c99 alone declares neither)
-    parts = ["#define _POSIX_C_SOURCE 200809L"] if threads else []
+    parts = ["#define _POSIX_C_SOURCE 200809L", "#define ND_THREADS"] if threads else []
     parts += ["#define ND_GENERATED"] if code is not None else []
     for name in names:
         with open(os.path.join(here, name)) as f:

@@ -3,11 +3,12 @@
 N threads of this process, inside the C of `_threads.c` (cffi releases the GIL while the search runs),
 search breadth-first level by level: each owns the states whose hash falls to it (a store of its own,
 so the stores need no lock), keeps its own caches of the transitions' results, and sends the
-successors another thread owns to it between two barriers; the net's C (its tables of markings, deltas
-and binding elements, one numbering for all threads) and a shared cache behind it are used under one
-lock, on a thread's cache misses only. The states are then numbered breadth-first (expanded ones first,
-by level, thread and order of storing; then the unexpanded ones) into one ordinary `StateGraph`, the
-same arrays the one-process native search fills: every analysis runs unchanged. The graph has the
+successors another thread owns to it between two barriers. On a cache miss a thread runs the net's C
+itself, in a context of its own over the one set of tables of markings, deltas and binding elements (one
+numbering for all threads), which `_cnet.c` changes under a lock per table and reads without one. The
+states are then numbered breadth-first (expanded ones first, by level, thread and order of storing;
+then the unexpanded ones) into one ordinary `StateGraph`, the same arrays the one-process native search
+fills: every analysis runs unchanged. The graph has the
 states, arcs, dead markings and bounds of the one-process search (the numbering of states and the order
 of arcs aside), and its parent pointers give shortest paths.
 
@@ -98,7 +99,7 @@ def run_threaded(engine, options: ExploreOptions, progress=None, stop_watch=None
                     ffi.new("int32_t[]", fields or [0]), gen, ffi.new("uint32_t[]", list(s0)),
                     bytes(1 if v < 1 << 8 else 2 if v < 1 << 16 else 4 for v in s0),  # as narrow as s0 allows
                     1 if stopped_at_s0 else options.max_states if options.max_states is not None else big,
-                    options.max_arcs if options.max_arcs is not None else big)
+                    options.max_arcs if options.max_arcs is not None else big, native.UNCACHED_AFTER)
     if h == ffi.NULL:
         raise MemoryError("cannot allocate the threaded search")
     h = ffi.gc(h, clib.th_free)
@@ -176,8 +177,8 @@ def run_threaded(engine, options: ExploreOptions, progress=None, stop_watch=None
                        peak_memory_mb=peak_rss_mb(), predicate_state=predicate_state, levels=sizes[4],
                        notes=[note], backend="threads",
                        partition={"workers": n, "threads": n, "worker_states": sizes[5:5 + n],
-                                  "cache_misses": sizes[5 + n:5 + 2 * n],
-                                  "lock_contended": sizes[5 + 3 * n:5 + 4 * n],
+                                  "computed": sizes[5 + n:5 + 2 * n],
+                                  "uncached": sizes[5 + 3 * n:5 + 4 * n],
                                   "barrier_seconds": [round(us / 1e6, 3) for us in sizes[5 + 2 * n:5 + 3 * n]],
                                   "seconds": {"search": round(t_search - t0, 3),
                                               "assemble": round(t_assemble - t_search, 3)}}), None

@@ -9,7 +9,6 @@ from __future__ import annotations
 import glob
 import os
 import signal
-from collections import Counter
 
 import pytest
 
@@ -19,7 +18,7 @@ from cpn.statespace import ExploreOptions, Explorer, StopReason
 from cpn.statespace.threads import why_not_threaded
 from tests._shared import ROOT
 from tests.engine.randomnets import random_net
-from tests.statespace._partition import canonical, compare, summary
+from tests.statespace._partition import compare, consistent, summary
 
 THREADS = (1, 2, 3)
 MODELS = sorted(os.path.relpath(p, ROOT) for p in glob.glob(os.path.join(ROOT, "models", "**", "*.cpnet"),
@@ -29,27 +28,6 @@ MODELS = sorted(os.path.relpath(p, ROOT) for p in glob.glob(os.path.join(ROOT, "
 def _load(spec: str):
     path, _, n = spec.partition(":")
     return cpn.load(os.path.join(ROOT, path), set={"N": n} if n else None)
-
-
-def _consistent(x) -> None:
-    """The graph is one the one-process search could have made: the expanded states first, each with
-    exactly the engine's successors (as a multiset), arcs in range, and BFS parents giving shortest paths."""
-    e, g = x.engine, x.graph
-    assert len(g.offsets) == g.expanded + 1 and g.offsets[0] == 0 and g.offsets[-1] == g.n_arcs
-    assert len(g.parent) == len(g.parent_be) == g.n_states and g.parent[0] == -1
-    assert all(0 <= d < g.n_states for d in g.dst)
-    names = [canonical(e, s) for s in g.states]
-    assert len(set(names)) == g.n_states  # no state stored twice
-    for i in range(g.expanded):
-        want = Counter((be, canonical(e, t)) for be, t in e.successors(g.states[i]))
-        assert Counter((be, names[d]) for be, d in g.out_arcs(i)) == want, f"state {i}"
-    depth = [0] * g.n_states
-    for i in range(1, g.n_states):
-        p = g.parent[i]
-        assert 0 <= p < i and p < g.expanded, "a parent comes earlier and is expanded"
-        assert (g.parent_be[i], i) in g.out_arcs(p), "the parent's arc leads to the state"
-        depth[i] = depth[p] + 1
-    assert depth == sorted(depth), "the states are in breadth-first order"
 
 
 @pytest.mark.parametrize("spec", ["bench/nets/dp.cpnet:6", "bench/nets/ms.cpnet:4"])
@@ -63,7 +41,7 @@ def test_ms5_graph_is_consistent_state_by_state():
         x = Explorer(_load("bench/nets/ms.cpnet:5").engine(), ExploreOptions(workers=n)).run()
         assert x.backend == "threads" and x.complete and (x.n_states, x.n_arcs) == (12393, 76545)
         assert x.partition["threads"] == n and sum(x.partition["worker_states"]) == x.n_states
-        _consistent(x)
+        consistent(x)
 
 
 @pytest.mark.parametrize("spec", MODELS)
@@ -105,7 +83,7 @@ def test_random_nets_with_threads(seed):
     for n in THREADS:
         x = Explorer(model.engine(), ExploreOptions(workers=n, max_states=3000)).run()
         assert x.stop_reason is StopReason.MAX_STATES and x.n_states >= 3000
-        _consistent(x)
+        consistent(x)
 
 
 def test_random_nets_run_in_threads():
@@ -150,7 +128,7 @@ def test_limits_stop_the_threads_near_the_limit_with_a_consistent_graph(n, limit
     reached = x.n_states if limit == "max_states" else x.n_arcs
     # checked every few dozen states per thread: at most that many expansions past the limit
     assert value <= reached < value + n * 64 * 20
-    _consistent(x)
+    consistent(x)
 
 
 def test_max_seconds_progress_and_ctrl_c():

@@ -33,6 +33,27 @@ def summary(x) -> dict:
             "stop": x.stop_reason, "levels": x.levels, "initial": names[0]}
 
 
+def consistent(x) -> None:
+    """The graph is one the one-process search could have made: the expanded states first, each with
+    exactly the engine's successors (as a multiset), arcs in range, and BFS parents giving shortest paths."""
+    e, g = x.engine, x.graph
+    assert len(g.offsets) == g.expanded + 1 and g.offsets[0] == 0 and g.offsets[-1] == g.n_arcs
+    assert len(g.parent) == len(g.parent_be) == g.n_states and g.parent[0] == -1
+    assert all(0 <= d < g.n_states for d in g.dst)
+    names = [canonical(e, s) for s in g.states]
+    assert len(set(names)) == g.n_states  # no state stored twice
+    for i in range(g.expanded):
+        want = Counter((be, canonical(e, t)) for be, t in e.successors(g.states[i]))
+        assert Counter((be, names[d]) for be, d in g.out_arcs(i)) == want, f"state {i}"
+    depth = [0] * g.n_states
+    for i in range(1, g.n_states):
+        p = g.parent[i]
+        assert 0 <= p < i and p < g.expanded, "a parent comes earlier and is expanded"
+        assert (g.parent_be[i], i) in g.out_arcs(p), "the parent's arc leads to the state"
+        depth[i] = depth[p] + 1
+    assert depth == sorted(depth), "the states are in breadth-first order"
+
+
 def report_figures(x) -> dict:
     """The standard report as JSON, node numbers replaced by markings and traces by their length."""
     r = to_json(build_report(x))
