@@ -116,8 +116,9 @@ def measure(nets: dict, modes: list[str], repeat: int) -> list[dict]:
                 if parts and "threads" in parts[0]:
                     p = parts[len(parts) // 2]
                     row["phases"] = p["seconds"]
-                    row["cache_misses"] = p["cache_misses"]  # per thread: look-ups in the shared cache
-                    row["lock_contended"] = p["lock_contended"]
+                    row["computed"] = p["computed"]  # per thread: results computed by the net's C
+                    row["uncached"] = p["uncached"]  # per thread: caches whose results are computed anew
+                    row["barrier_seconds"] = p["barrier_seconds"]
                 elif parts:
                     p = parts[len(parts) // 2]
                     row["phases"] = p["seconds"]
