@@ -56,6 +56,7 @@ class _Places:
         self.index: list[dict] = [{} for _ in range(n)]
         self.counts: list[list[int]] = [[] for _ in range(n)]
         self.timed = [p.timed for p in places]
+        self.pending: dict[int, int] = {}  # place -> its first id not in `index` yet (append_new)
         for p in range(n):
             self.intern(p, {})
 
@@ -64,6 +65,11 @@ class _Places:
         idx = self.index[p]
         i = idx.get(key)
         if i is None:
+            if self.pending and p in self.pending:
+                self.index_pending(p)
+                i = idx.get(key)
+                if i is not None:
+                    return i
             i = len(self.dicts[p])
             idx[key] = i
             self.dicts[p].append(d)
@@ -76,6 +82,33 @@ class _Places:
                 self.views[p].append(d)
             self.counts[p].append(sum(d.values()))
         return i
+
+    def append_new(self, p: int, dicts: list[dict]) -> None:
+        """Append markings of place p that native code interned (distinct, and distinct from those here:
+        their ids follow on); their keys go into `index` when it is next needed (`index_pending`)."""
+        if not dicts:
+            return
+        self.pending.setdefault(p, len(self.dicts[p]))
+        self.dicts[p].extend(dicts)
+        if self.timed[p]:
+            for d in dicts:
+                view: dict = {}
+                for (v, _ts), n in d.items():
+                    view[v] = view.get(v, 0) + n
+                self.views[p].append(view)
+        else:
+            self.views[p].extend(dicts)
+        self.counts[p].extend([sum(d.values()) for d in dicts])
+
+    def index_pending(self, p: int) -> None:
+        """Put the keys of place p's markings appended by `append_new` into `index`."""
+        start = self.pending.pop(p, None)
+        if start is None:
+            return
+        idx, dicts = self.index[p], self.dicts[p]
+        for i in range(start, len(dicts)):
+            if idx.setdefault(canonical_key(dicts[i]), i) != i:
+                raise RuntimeError(f"native tables out of step with the engine (place {p}: a marking has two ids)")
 
 
 class TransitionGroups:

@@ -224,11 +224,15 @@ class NativeCode:
                 lens = ffi.unpack(lenp[0] + have, total - have)
                 start = offs[0]
                 pairs = ffi.unpack(pairp[0] + start, offs[-1] + 2 * lens[-1] - start)
-                put = store.intern if what == 0 else engine._delta
-                for i, o, n in zip(range(have, total), offs, lens):
+                made = []
+                for o, n in zip(offs, lens):
                     o -= start
-                    d = dict(zip([vals[c] for c in pairs[o:o + 2 * n:2]], pairs[o + 1:o + 2 * n:2]))
-                    if put(p, d) != i:
+                    made.append(dict(zip([vals[c] for c in pairs[o:o + 2 * n:2]], pairs[o + 1:o + 2 * n:2])))
+                if what == 0:  # C interned them: new and distinct, indexed when the engine next needs it
+                    store.append_new(p, made)
+                    continue
+                for i, d in enumerate(made, have):
+                    if engine._delta(p, d) != i:
                         raise RuntimeError(f"native tables out of step with the engine (place {p}, id {i})")
         total = lib.gen_count(ctx, 2, 0)
         tp = ffi.new("int32_t *")

@@ -115,6 +115,7 @@ class StateTransfer:
     def import_place_keys(self, p: int, keys) -> list[int]:
         """This engine's ids of place p's markings given by their canonical keys (interned when new)."""
         places = self._places
+        places.index_pending(p)
         get = places.index[p].get
         out = []
         for key in keys:

@@ -3,7 +3,7 @@ a context of its own over one set of tables of markings, deltas and binding elem
 per table, reads without one), and compute the results of caches that rarely hit anew (as one process
 does). The graph is the one-process search's whatever the number of threads, more threads than cores
 included; every marking and binding element is numbered once; the results computed anew are the cached
-ones."""
+ones. The markings C made come back to the engine unindexed, and are indexed when it next needs them."""
 
 from __future__ import annotations
 
@@ -89,3 +89,29 @@ def test_the_engine_searches_again_after_the_threads():
     assert summary(_threaded(engine, 3)) == first
     again = Explorer(engine, ExploreOptions(backend="c")).run()
     assert again.backend == "c" and summary(again) == first
+
+
+def test_markings_made_in_c_are_indexed_when_the_python_engine_next_needs_them():
+    """The markings C made come back to the engine without their keys (`append_new`, the serial part of
+    the threads' assembly); the engine's interning finds each with C's id, and indexes them only then."""
+    engine = _load("bench/nets/dp.cpnet:6").engine()
+    x = Explorer(engine, ExploreOptions(backend="c")).run()
+    assert x.backend == "c"
+    places = engine.store
+    assert places.pending, "the markings C made are not indexed yet"
+    for p, ds in enumerate(places.dicts):
+        for i, d in enumerate(list(ds)):
+            assert places.intern(p, dict(reversed(list(d.items())))) == i  # found, in any token order
+    assert not places.pending
+    one = summary(Explorer(_load("bench/nets/dp.cpnet:6").engine(), ExploreOptions(backend="python")).run())
+    assert summary(x) == one
+
+
+def test_a_marking_appended_twice_is_an_error_when_indexed():
+    engine = _load("bench/nets/dp.cpnet:3").engine()
+    engine.initial_state()
+    places = engine.store
+    p = next(p for p, ds in enumerate(places.dicts) if ds[-1])
+    places.append_new(p, [dict(places.dicts[p][-1])])
+    with pytest.raises(RuntimeError, match="a marking has two ids"):
+        places.intern(p, {"no such token": 1})
