@@ -5,6 +5,8 @@
  * linear probing, at most three quarters full; it is rebuilt from the arena when it grows or the widths change.
  * Below 2^24 - 1 records a slot keeps the top 8 bits of the record's hash above its 24-bit id + 1, so that
  * a probe compares a record (a likely cache miss in the arena) only when those bits agree.
+ * Records known to be distinct can be appended without the table (cs_append: the threads' graph is put
+ * together so); the table is then built when a record is first looked up or added.
  */
 #include <stdint.h>
 #include <stdlib.h>
@@ -20,6 +22,7 @@ typedef struct {
     uint32_t *table;
     uint64_t mask;
     int tagged;              /* slots carry 8 bits of hash (fewer than CS_TAG_LIMIT records) */
+    int unindexed;           /* the table is not built (cs_append) */
 } cs_store;
 
 #define CS_TAG_LIMIT ((int64_t)0xFFFFFE)
@@ -156,14 +159,26 @@ static inline int64_t cs_lookup(const cs_store *s, const uint8_t *r, uint64_t hh
 /* Where a record of hash hh is looked for first (for a prefetch). */
 static inline const uint32_t *cs_probe_start(const cs_store *s, uint64_t hh) { return s->table + (hh & s->mask); }
 
+/* Build the table of a store whose records were appended without it: 0, or -1 without memory. */
+static int cs_index(cs_store *s) {
+    uint64_t size = 2048;
+    while ((uint64_t)s->n * 4 > size * 3) size *= 2;  /* as cs_add_hashed grows it: at most 3/4 full */
+    if (cs_rehash(s, size) != 0) return -1;
+    s->unindexed = 0;
+    return 0;
+}
+
+/* The id of record r, -1 if it is not stored (-2 without memory for the table). */
 int64_t cs_find(cs_store *s, const uint8_t *r) {
     uint64_t slot;
+    if (s->unindexed && cs_index(s) != 0) return -2;
     return cs_lookup(s, r, cs_hash(r, s->W), &slot);
 }
 
 /* Store record r of hash hh if it is new: its id in *id; 1 if it was new, 0 if not, -1 when memory ran out. */
 static inline int cs_add_hashed(cs_store *s, const uint8_t *r, uint64_t hh, int32_t *id) {
     uint64_t slot;
+    if (s->unindexed && cs_index(s) != 0) return -1;
     int64_t i = cs_lookup(s, r, hh, &slot);
     if (i >= 0) { *id = (int32_t)i; return 0; }
     int W = s->W;
@@ -202,6 +217,30 @@ int64_t cs_add_many(cs_store *s, const uint8_t *recs, int64_t n, int32_t *ids, i
     return nfresh;
 }
 
+/* Empty the store (its records are to be appended again). */
+void cs_clear(cs_store *s) {
+    s->n = 0;
+    s->unindexed = 1;
+}
+
+/* Append n records known to be distinct (from each other and from those stored) without the table;
+ * 0, or -1 without memory. */
+int cs_append(cs_store *s, const uint8_t *recs, int64_t n) {
+    int W = s->W;
+    if (s->n + n > 0x7FFFFFFE) return -1;
+    if (s->n + n > s->cap) {
+        int64_t cap = s->cap;
+        while (cap < s->n + n) cap *= 2;
+        uint8_t *a = (uint8_t *)realloc(s->arena, (size_t)(cap * (W ? W : 1)));
+        if (!a) return -1;
+        s->arena = a; s->cap = cap;
+    }
+    memcpy(s->arena + s->n * W, recs, (size_t)(n * W));
+    s->n += n;
+    s->unindexed = 1;
+    return 0;
+}
+
 /* Make field f at least w bytes wide (the records re-laid, the table rebuilt); 0, or -1 without memory. */
 int cs_widen(cs_store *s, const uint8_t *w);
 static int cs_widen_field(cs_store *s, int f, int w) {
@@ -236,7 +275,7 @@ int cs_widen(cs_store *s, const uint8_t *w) {
     s->W = W2;
     memcpy(s->w, w, (size_t)s->nf);
     for (int f = 0, o = 0; f < s->nf; f++) { s->off[f] = o; o += w[f]; }
-    return cs_rehash(s, s->mask + 1);
+    return s->unindexed ? 0 : cs_rehash(s, s->mask + 1);
 }
 
 int64_t cs_count(cs_store *s) { return s->n; }

@@ -73,6 +73,7 @@ typedef struct {
     int64_t nnew, stored;    /* states stored during this level and in all, as phase B left them */
     int saw_stop, level_done;
     int64_t computed;        /* results computed by the net's C (cache misses and uncached results) */
+    uint32_t be_max;         /* the largest binding element of its arcs */
     double wait;             /* seconds spent at the barriers */
     /* published for the limits and the progress of the others (written by this thread only) */
     int64_t pub_states, pub_arcs, pub_pending;
@@ -246,6 +247,7 @@ static int th_expand(th_part *p, int64_t i, int64_t *goff) {
             int o = th_mix_owner(x, N);
             p->own.v[k] = (uint32_t)o;
             p->bes.v[base + k] = (uint32_t)e[0];
+            if ((uint32_t)e[0] > p->be_max) p->be_max = (uint32_t)e[0];
             if (o == me) { nlocal++; continue; }
             th_buf *b = &p->out[o];
             if (th_push(b, K + 4)) return TH_NO_MEMORY;
@@ -555,7 +557,7 @@ void th_sizes(th_search *h, int64_t *out) {
     for (int q = 0; q < h->N; q++) {
         th_part *p = &h->parts[q];
         n += cs_count(p->st); e += p->head; a += p->dst.n;
-        for (int64_t k = 0; k < p->bes.n; k++) if ((int64_t)p->bes.v[k] > be) be = p->bes.v[k];
+        if ((int64_t)p->be_max > be) be = p->be_max;
         out[5 + q] = cs_count(p->st);
         out[5 + h->N + q] = p->computed;
         out[5 + 2 * h->N + q] = (int64_t)(p->wait * 1e6);
@@ -576,57 +578,25 @@ int th_widths(th_search *h, uint8_t *out) {
     return 0;
 }
 
-/* The global ids of part p's states in [lo, hi), from *next on. */
-static void th_number(uint32_t *gid, int64_t lo, int64_t hi, int64_t *next) {
-    for (int64_t i = lo; i < hi; i++) gid[i] = (uint32_t)(*next)++;
-}
-
-/* Store the n records r (all new, their ids to be first, first + 1, ...) in `store`, their hashes computed
- * and table slots prefetched a chunk at a time (hs: room for TH_CHUNK): 0, -1 (no memory) or -2 (a record
- * was there already: the parts overlap). */
-static int th_copy(cs_store *store, const uint8_t *r, int64_t n, int64_t first, uint64_t *hs) {
-    int W = store->W;
-    for (int64_t k0 = 0; k0 < n; k0 += TH_CHUNK) {
-        int64_t m = n - k0 < TH_CHUNK ? n - k0 : TH_CHUNK;
-        for (int64_t k = 0; k < m; k++) {
-            hs[k] = cs_hash(r + (k0 + k) * W, W);
-            __builtin_prefetch(cs_probe_start(store, hs[k]));
-        }
-        for (int64_t k = 0; k < m; k++) {
-            int32_t id = -1;
-            int rc = cs_add_hashed(store, r + (k0 + k) * W, hs[k], &id);
-            if (rc < 0) return -1;
-            if (id != first + k0 + k || (rc == 0 && id != 0)) return -2;  /* (state 0: stored by the caller) */
-        }
-    }
-    return 0;
-}
-
-/* The one graph: `store` (holding the initial state as state 0) gets every state in the global order;
- * offsets[expanded + 1], dst[arcs], bes[arcs] (uint16 if be16, else int32), parent[states] and
- * parent_be[states] are written. 0, -1 (no memory) or -2 (the store disagrees: a bug). */
+/* The one graph: `store` gets every state in the global order, appended without its table (built when
+ * first needed: cs_append); offsets[expanded + 1], dst[arcs], bes[arcs] (uint16 if be16, else int32),
+ * parent[states] and parent_be[states] are written. 0, -1 (no memory) or -2 (an arc left open: a bug).
+ * A state's reference local id * N + part indexes `gid`, its global id. */
 int th_assemble(th_search *h, cs_store *store, int64_t *offsets, int32_t *dst, void *bes, int be16,
                 int32_t *parent, int32_t *parent_be) {
     int N = h->N;
-    uint32_t **gid = (uint32_t **)calloc((size_t)N, sizeof(uint32_t *));
-    if (!gid) return -1;
-    int64_t levels = 0;
+    int64_t levels = 0, most = 0;
     for (int q = 0; q < N; q++) {
         th_part *p = &h->parts[q];
         /* the boundaries of the last two levels: the current one (partly expanded) and the next */
-        if (th_level_mark(p, p->end) || th_level_mark(p, cs_count(p->st))) { levels = -1; break; }
-        gid[q] = (uint32_t *)malloc(4 * (size_t)(cs_count(p->st) + 1));
-        if (!gid[q]) { levels = -1; break; }
+        if (th_level_mark(p, p->end) || th_level_mark(p, cs_count(p->st))) return -1;
         if (p->nlv - 1 > levels) levels = p->nlv - 1;
+        if (cs_count(p->st) > most) most = cs_count(p->st);
     }
-    /* the store's table at its final size at once (as cs_add_many would grow it: at most 3/4 full) */
-    int64_t total = 0;
-    for (int q = 0; q < N; q++) total += cs_count(h->parts[q].st);
-    uint64_t size = 2048;
-    while ((uint64_t)total * 4 > size * 3) size *= 2;
-    if (levels >= 0 && size > store->mask + 1 && cs_rehash(store, size) != 0) levels = -1;
-    int32_t *ids = levels < 0 ? NULL : (int32_t *)malloc(8 * TH_CHUNK);
-    int rc = ids ? 0 : -1;
+    uint32_t *gid = (uint32_t *)malloc(4 * (size_t)((most + 1) * N));
+    if (!gid) return -1;
+    cs_clear(store);
+    int rc = 0;
     /* the order: the expanded states by (level, part, local id), then the others the same way */
     int64_t next = 0, e = 0;
     for (int done = 1; done >= 0 && !rc; done--)
@@ -638,46 +608,42 @@ int th_assemble(th_search *h, cs_store *store, int64_t *offsets, int32_t *dst, v
                 if (done) { if (hi > p->head) hi = p->head; }
                 else if (lo < p->head) lo = p->head;
                 if (lo >= hi) continue;
-                int64_t first = next;
-                th_number(gid[q], lo, hi, &next);
-                if ((rc = th_copy(store, cs_arena(p->st) + lo * cs_width(p->st), hi - lo, first, (uint64_t *)ids)))
-                    break;
+                for (int64_t i = lo; i < hi; i++) gid[i * N + q] = (uint32_t)next++;
+                if (cs_append(store, cs_arena(p->st) + lo * cs_width(p->st), hi - lo) != 0) { rc = -1; break; }
                 for (int64_t i = lo; i < hi; i++) {
-                    uint32_t r = p->parent.v[i];
-                    parent[gid[q][i]] = r == TH_OPEN ? -1 : (int32_t)gid[r % N][r / N];
-                    parent_be[gid[q][i]] = r == TH_OPEN ? -1 : (int32_t)p->parent_be.v[i];
+                    uint32_t r = p->parent.v[i], g = gid[i * N + q];
+                    parent[g] = r == TH_OPEN ? -1 : (int32_t)gid[r];
+                    parent_be[g] = r == TH_OPEN ? -1 : (int32_t)p->parent_be.v[i];
                 }
                 if (!done) continue;
                 /* the arcs of these expanded states, in order */
                 const int64_t *aend = (const int64_t *)p->aend.v;
                 for (int64_t i = lo; i < hi; i++) {
                     int64_t a = i ? aend[i - 1] : 0, b = aend[i];
-                    for (int64_t k = a; k < b; k++, e++) {
-                        if (be16) ((uint16_t *)bes)[e] = (uint16_t)p->bes.v[k];
-                        else ((int32_t *)bes)[e] = (int32_t)p->bes.v[k];
-                    }
-                    offsets[gid[q][i] + 1] = e;
+                    if (be16) for (int64_t k = a; k < b; k++) ((uint16_t *)bes)[e + k - a] = (uint16_t)p->bes.v[k];
+                    else for (int64_t k = a; k < b; k++) ((int32_t *)bes)[e + k - a] = (int32_t)p->bes.v[k];
+                    e += b - a;
+                    offsets[gid[i * N + q] + 1] = e;
                 }
             }
     /* destinations: every state is numbered now */
     if (!rc) {
         offsets[0] = 0;
-        for (int q = 0; q < N; q++) {
+        for (int q = 0; q < N && !rc; q++) {
             th_part *p = &h->parts[q];
             const int64_t *aend = (const int64_t *)p->aend.v;
-            for (int64_t i = 0; i < p->head; i++) {
+            for (int64_t i = 0; i < p->head && !rc; i++) {
                 int64_t a = i ? aend[i - 1] : 0, b = aend[i];
-                int32_t *out = dst + offsets[gid[q][i]];
+                int32_t *out = dst + offsets[gid[i * N + q]];
                 for (int64_t k = a; k < b; k++) {
                     uint32_t r = p->dst.v[k];
                     if (r == TH_OPEN) { rc = -2; break; }
-                    *out++ = (int32_t)gid[r % N][r / N];
+                    *out++ = (int32_t)gid[r];
                 }
             }
         }
     }
-    for (int q = 0; q < N; q++) free(gid[q]);
-    free(gid); free(ids);
+    free(gid);
     return rc;
 }
 

@@ -206,6 +206,8 @@ class PackedStore:
         except (struct.error, TypeError):
             return None
         i = self.lib.cs_find(self.handle, rec)
+        if i == -2:
+            raise MemoryError("the state store cannot build its table (no memory)")
         return None if i < 0 else i
 
     def add_successors(self, succ: list, dst) -> list[int]:

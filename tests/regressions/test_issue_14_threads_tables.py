@@ -8,6 +8,7 @@ ones. The markings C made come back to the engine unindexed, and are indexed whe
 from __future__ import annotations
 
 import os
+from array import array
 
 import pytest
 
@@ -115,3 +116,19 @@ def test_a_marking_appended_twice_is_an_error_when_indexed():
     places.append_new(p, [dict(places.dicts[p][-1])])
     with pytest.raises(RuntimeError, match="a marking has two ids"):
         places.intern(p, {"no such token": 1})
+
+
+def test_the_threads_store_builds_its_table_when_a_state_is_first_looked_up():
+    """The assembled graph's records are appended without the store's hash table (cs_append), which is
+    built when a state is first looked up or added."""
+    g = _threaded(_load("bench/nets/ms.cpnet:5").engine(), 2).graph
+    store = g.store
+    unbuilt = store.nbytes()
+    assert all(store.find(s) == i for i, s in enumerate(g.states))
+    assert store.nbytes() > unbuilt
+    n = g.n_states
+    s = g.states[n - 1]
+    new = tuple(v + 70000 for v in s)  # no such marking ids: a new state, its fields widened
+    dst = array("i")
+    assert store.add_successors([(0, s), (0, new), (0, g.states[0])], dst) == [1]
+    assert list(dst) == [n - 1, n, 0] and store.find(new) == n and len(store) == n + 1
