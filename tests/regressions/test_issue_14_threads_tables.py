@@ -8,6 +8,9 @@ ones. The markings C made come back to the engine unindexed, and are indexed whe
 from __future__ import annotations
 
 import os
+import shutil
+import subprocess
+import sys
 from array import array
 
 import pytest
@@ -132,3 +135,38 @@ def test_the_threads_store_builds_its_table_when_a_state_is_first_looked_up():
     dst = array("i")
     assert store.add_successors([(0, s), (0, new), (0, g.states[0])], dst) == [1]
     assert list(dst) == [n - 1, n, 0] and store.find(new) == n and len(store) == n + 1
+
+
+_RACES = """
+import sys
+import cpn._util.cbuild as cbuild
+flags = cbuild.cflags
+cbuild.cflags = lambda: flags() + ["-fsanitize=thread", "-g"]
+import cpn
+from cpn.statespace import ExploreOptions, Explorer, native
+native.UNCACHED_AFTER = int(sys.argv[1])
+for net in ("dp", "ms"):
+    model = cpn.load(f"bench/nets/{net}.cpnet", set={"N": "5"})
+    x = Explorer(model.engine(), ExploreOptions(workers=3)).run()
+    assert x.backend == "threads", x.notes
+    print(net, x.n_states, x.n_arcs)
+"""
+
+
+@pytest.mark.skipif(not sys.platform.startswith("linux"), reason="ThreadSanitizer's run-time is looked for on Linux")
+def test_the_threads_race_on_no_memory_under_thread_sanitizer():
+    """The library built with -fsanitize=thread (the tables read without a lock, their locks, the kept
+    arrays): ThreadSanitizer reports no data race with 3 threads, results cached or computed anew."""
+    cc = shutil.which("gcc")
+    found = subprocess.run([cc, "-print-file-name=libtsan.so"], capture_output=True, text=True) if cc else None
+    runtime = found.stdout.strip() if found else ""
+    if not os.path.isabs(runtime):
+        pytest.skip("no ThreadSanitizer run-time (gcc's libtsan)")
+    env = {**os.environ, "LD_PRELOAD": runtime, "TSAN_OPTIONS": "report_signal_unsafe=0 halt_on_error=0",
+           "CC": cc}
+    for after in ("0", "2"):
+        run = subprocess.run([sys.executable, "-c", _RACES, after], cwd=ROOT, env=env, capture_output=True,
+                             text=True, timeout=300)
+        assert "ThreadSanitizer" not in run.stderr, run.stderr[-3000:]
+        assert run.returncode == 0, run.stderr[-3000:]
+        assert run.stdout.split() == ["dp", "82", "265", "ms", "12393", "76545"]
