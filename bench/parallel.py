@@ -119,6 +119,7 @@ def measure(nets: dict, modes: list[str], repeat: int) -> list[dict]:
                     row["computed"] = p["computed"]  # per thread: results computed by the net's C
                     row["uncached"] = p["uncached"]  # per thread: caches whose results are computed anew
                     row["barrier_seconds"] = p["barrier_seconds"]
+                    row["cpu_seconds"] = p["cpu_seconds"]  # per thread: expanding, storing what was sent
                 elif parts:
                     p = parts[len(parts) // 2]
                     row["phases"] = p["seconds"]

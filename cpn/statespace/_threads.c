@@ -75,6 +75,7 @@ typedef struct {
     int64_t computed;        /* results computed by the net's C (cache misses and uncached results) */
     uint32_t be_max;         /* the largest binding element of its arcs */
     double wait;             /* seconds spent at the barriers */
+    double cpu_a, cpu_b;     /* the thread's CPU seconds expanding (phase A) and storing what it was sent (B) */
     /* published for the limits and the progress of the others (written by this thread only) */
     int64_t pub_states, pub_arcs, pub_pending;
     pthread_t tid;
@@ -384,6 +385,12 @@ static double th_now(void) {
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
+static double th_cpu(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
 static void th_barrier(th_part *p) {
     double t = th_now();
     pthread_barrier_wait(&p->h->bar);
@@ -402,6 +409,7 @@ static void *th_main(void *arg) {
         /* phase A: the states of this level, until a limit (the successors sent count as states: the
          * round ends early so that they are stored and counted exactly before going on) */
         int since = TH_CHECK_EVERY;
+        double c0 = th_cpu();
         while (goff && p->head < p->end) {
             if (++since >= TH_CHECK_EVERY) {
                 since = 0;
@@ -420,9 +428,13 @@ static void *th_main(void *arg) {
             }
             p->head++;
         }
+        double c1 = th_cpu();
+        p->cpu_a += c1 - c0;
         th_barrier(p);
         /* phase B */
+        c0 = th_cpu();
         if (th_receive(p)) th_set_stop(h, TH_NO_MEMORY);
+        p->cpu_b += th_cpu() - c0;
         p->stored = cs_count(p->st);  /* (pub_states changes during the next phase A: not read below) */
         p->nnew = p->stored - p->end;
         p->level_done = p->head == p->end;
@@ -551,7 +563,8 @@ void th_progress(th_search *h, int64_t *out) {
 
 /* After the search: [0] states, [1] expanded states, [2] arcs, [3] the largest binding element,
  * [4] levels, then per thread: its states, the results it computed with the net's C, the microseconds it
- * waited at the barriers, the caches it stopped filling (their results computed anew each time). */
+ * waited at the barriers, the caches it stopped filling (their results computed anew each time), the
+ * microseconds of CPU it spent expanding states and storing the states it was sent. */
 void th_sizes(th_search *h, int64_t *out) {
     int64_t n = 0, e = 0, a = 0, be = 0;
     for (int q = 0; q < h->N; q++) {
@@ -562,6 +575,8 @@ void th_sizes(th_search *h, int64_t *out) {
         out[5 + h->N + q] = p->computed;
         out[5 + 2 * h->N + q] = (int64_t)(p->wait * 1e6);
         out[5 + 3 * h->N + q] = nd_uncached(p->d);
+        out[5 + 4 * h->N + q] = (int64_t)(p->cpu_a * 1e6);
+        out[5 + 5 * h->N + q] = (int64_t)(p->cpu_b * 1e6);
     }
     out[0] = n; out[1] = e; out[2] = a; out[3] = be; out[4] = h->levels;
 }

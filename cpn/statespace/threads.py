@@ -179,6 +179,8 @@ def run_threaded(engine, options: ExploreOptions, progress=None, stop_watch=None
                        partition={"workers": n, "threads": n, "worker_states": sizes[5:5 + n],
                                   "computed": sizes[5 + n:5 + 2 * n],
                                   "uncached": sizes[5 + 3 * n:5 + 4 * n],
+                                  "cpu_seconds": {"expand": [round(us / 1e6, 3) for us in sizes[5 + 4 * n:5 + 5 * n]],
+                                                  "receive": [round(us / 1e6, 3) for us in sizes[5 + 5 * n:5 + 6 * n]]},
                                   "barrier_seconds": [round(us / 1e6, 3) for us in sizes[5 + 2 * n:5 + 3 * n]],
                                   "seconds": {"search": round(t_search - t0, 3),
                                               "assemble": round(t_assemble - t_search, 3)}}), None
@@ -187,7 +189,7 @@ def run_threaded(engine, options: ExploreOptions, progress=None, stop_watch=None
 def _assemble(lib, h, s0: tuple, n: int) -> tuple[StateGraph, list[int]]:
     """The one graph of the threads' parts (see the module's docstring) and the search's figures."""
     ffi, clib = lib.ffi, lib.lib
-    out = ffi.new("int64_t[]", 5 + 4 * n)
+    out = ffi.new("int64_t[]", 5 + 6 * n)
     clib.th_sizes(h, out)
     sizes = list(out)
     n_states, expanded, arcs, be_max = sizes[:4]
