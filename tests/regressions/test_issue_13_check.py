@@ -8,9 +8,9 @@ import os
 
 import pytest
 
-from cpn.cli.main import main
 from cpn.statespace import native
 from cpn.statespace.store import packed_unavailable
+from tests._checkrun import check_reports, record_backends
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(__file__)))
 DP = os.path.join(ROOT, "bench", "nets", "dp.cpnet").replace("\\", "/")
@@ -46,28 +46,14 @@ kind = "deadlock_free"
 def _check(tmp_path, name, capsys):
     spec = tmp_path / f"{name}.toml"
     spec.write_text(SPEC, encoding="utf-8")
-    rep = tmp_path / name
-    code = main(["check", str(spec), "--reports", str(rep), "--no-timings"])
-    capsys.readouterr()
-    doc = json.loads(next(rep.glob("*.json")).read_text(encoding="utf-8"))
-    for p in doc["properties"]:
-        p.pop("seconds", None)
-    for key in ("seconds", "check_seconds"):
-        doc["statespace"].pop(key, None)
+    code, docs = check_reports(tmp_path, name, capsys, str(spec))
+    (doc,) = docs.values()
     return code, doc
 
 
 @pytest.mark.skipif(NATIVE is not None, reason=f"no native code: {NATIVE}")
 def test_check_searches_natively_with_the_python_verdicts(tmp_path, capsys, monkeypatch):
-    backends = []
-    unavailable = native.unavailable
-
-    def spy(engine, options, s0):
-        why = unavailable(engine, options, s0)
-        backends.append(why)
-        return why
-
-    monkeypatch.setattr(native, "unavailable", spy)
+    backends = record_backends(monkeypatch)
     code_c, doc_c = _check(tmp_path, "c", capsys)
     assert backends == [None]  # the native search ran, the monitor on its states
     monkeypatch.setattr(native, "unavailable", lambda *_: "the Python search, for comparison")

@@ -4,7 +4,6 @@ the same ids, arcs in the same order, the same binding elements, BFS parents and
 time-growth evidence), with and without time condensation; each test asserts that the C search ran."""
 
 import glob
-import json
 import os
 import random
 import tomllib
@@ -14,6 +13,7 @@ import pytest
 import cpn
 from cpn.statespace import ExploreOptions, Explorer, native, nativetimed
 from cpn.statespace.store import packed_unavailable
+from tests._checkrun import check_reports, record_backends
 from tests.engine._explore import same_exploration
 from tests.engine.randomnets import random_net, random_timed_net
 
@@ -273,23 +273,6 @@ expr = "size (Modbus'b2s 1) <= 1"
 """
 
 
-def _check_reports(tmp_path, name, capsys, spec):
-    from cpn.cli.main import main
-
-    rep = tmp_path / name
-    code = main(["check", spec, "--reports", str(rep), "--no-timings"])
-    capsys.readouterr()
-    docs = {}
-    for path in sorted(rep.glob("*.json")):
-        doc = json.loads(path.read_text(encoding="utf-8"))
-        for p in doc["properties"]:
-            p.pop("seconds", None)
-        for key in ("seconds", "check_seconds"):
-            doc["statespace"].pop(key, None)
-        docs[path.name] = doc
-    return code, docs
-
-
 @needs_native
 @pytest.mark.parametrize("name,to_the_end", [("A_1", True), ("D_4_faults", True), ("early", False)])
 def test_modbus_scenario_checks_search_natively_with_the_python_verdicts(name, to_the_end, tmp_path, capsys,
@@ -305,19 +288,11 @@ def test_modbus_scenario_checks_search_natively_with_the_python_verdicts(name, t
         spec = str(tmp_path / "early.toml")
         with open(spec, "w", encoding="utf-8") as f:
             f.write(EARLY.replace("MODEL", os.path.join(ROOT, "models", "modbus", "modbus.cpnet").replace("\\", "/")))
-    backends = []
-    unavailable = native.unavailable
-
-    def spy(engine, options, s0):
-        why = unavailable(engine, options, s0)
-        backends.append(why)
-        return why
-
-    monkeypatch.setattr(native, "unavailable", spy)
-    code_c, docs_c = _check_reports(tmp_path, "c", capsys, spec)
+    backends = record_backends(monkeypatch)
+    code_c, docs_c = check_reports(tmp_path, "c", capsys, spec)
     assert backends and backends == [None] * len(backends)
     monkeypatch.setattr(native, "unavailable", lambda *_: "the Python search, for comparison")
-    code_py, docs_py = _check_reports(tmp_path, "py", capsys, spec)
+    code_py, docs_py = check_reports(tmp_path, "py", capsys, spec)
     assert code_c == code_py and docs_c == docs_py and docs_c
 
 
