@@ -229,6 +229,17 @@ def _explore_process(values: dict, budget: float, sweep: bool, max_memory: float
     return st
 
 
+def _series(title: str, header: str, items, row) -> None:
+    """A table: its title, its header, then `row(item)` for each item (it prints its row and says whether
+    its runs completed); the first run stopped by the budget ends the table."""
+    print(title)
+    print(header)
+    for item in items:
+        if not row(item):
+            print("    (stopped by the budget)")
+            break
+
+
 def _sweep_row(label, values: dict, budget: float, full_memory: float) -> bool:
     full = _explore_process(values, budget, False, full_memory)
     sweep = _explore_process(values, budget, True)
@@ -249,24 +260,17 @@ def sweep_scaling(budget: float, ns_list: list[int], ks: list[int], full_memory:
     search bounded by `full_memory` MiB on this shared machine). The sweep-line's measure is SWEEP_MEASURE."""
     header = ("| {} | states | arcs | DM | full: peak MiB | s | sweep-line: peak states held | peak MiB | s "
               "| exact |\n|---|---|---|---|---|---|---|---|---|---|")
-    print(f"scenario B with one broadcast, PO 1, FCS [1], --time-condensation; sweep-line: --progress "
-          f"\"{SWEEP_MEASURE}\"")
-    print(header.format("NS"))
-    for ns in ns_list:
-        values = {"CONFIG": '"B"', "NS": str(ns), "ADRS": str([0] + list(range(1, ns + 1))).replace(" ", ""),
-                  "FCS": "[1]", "PO": "1"}
-        if not _sweep_row(str(ns), values, budget, full_memory):
-            print("    (stopped by the budget)")
-            break
+
+    def b_row(ns, adrs, label):
+        values = {"CONFIG": '"B"', "NS": str(ns), "ADRS": str(adrs).replace(" ", ""), "FCS": "[1]", "PO": "1"}
+        return _sweep_row(label, values, budget, full_memory)
+
+    _series(f"scenario B with one broadcast, PO 1, FCS [1], --time-condensation; sweep-line: --progress "
+            f"\"{SWEEP_MEASURE}\"", header.format("NS"), ns_list,
+            lambda ns: b_row(ns, [0] + list(range(1, ns + 1)), str(ns)))
     print()
-    print("scenario B, NS 10, the frames {1..10} x {1} and k broadcasts (ADRS = [0,1,...,10,0,...,0])")
-    print(header.format("k"))
-    for k in ks:
-        values = {"CONFIG": '"B"', "NS": "10", "ADRS": str([0] + list(range(1, 11)) + [0] * (k - 1)).replace(" ", ""),
-                  "FCS": "[1]", "PO": "1"}
-        if not _sweep_row(str(k), values, budget, full_memory):
-            print("    (stopped by the budget)")
-            break
+    _series("scenario B, NS 10, the frames {1..10} x {1} and k broadcasts (ADRS = [0,1,...,10,0,...,0])",
+            header.format("k"), ks, lambda k: b_row(10, [0] + list(range(1, 11)) + [0] * (k - 1), str(k)))
 
 
 SYM_MODEL = os.path.join(HERE, "nets", "modbus_bcast_sym.cpnet")
@@ -378,28 +382,15 @@ def symmetry_scaling(budget: float, ns_list: list[int], ks: list[int], max_memor
 
     header = ("| {} | modbus.cpnet: states | arcs | s | peak MiB | quotient: orbits | arcs | full states (orbit sums) "
               "| full arcs | s | peak MiB | check on the quotient |\n|---|---|---|---|---|---|---|---|---|---|---|---|")
-    print("one broadcast (ADRS [0], FCS [1], PO 1; every slave drops the code), --time-condensation")
-    print(header.format("NS"))
-    for ns in ns_list:
-        if not row(ns, {"ADRS": "[0]", "FCS": "[1]", "PO": "1"}, True, str(ns)):
-            print("    (stopped by the budget)")
-            break
+    _series("one broadcast (ADRS [0], FCS [1], PO 1; every slave drops the code), --time-condensation",
+            header.format("NS"), ns_list, lambda ns: row(ns, {"ADRS": "[0]", "FCS": "[1]", "PO": "1"}, True, str(ns)))
     print()
-    print("the same with BCAST_ANY = true: every slave processes the broadcast (1 or 50 ms); no modbus.cpnet "
-          "column (its scenario-B slaves 2 and 3 drop the code)")
-    print(header.format("NS"))
-    for ns in ns_list:
-        if not row(ns, {"ADRS": "[0]", "FCS": "[1]", "PO": "1", "BCAST_ANY": "true"}, False, str(ns)):
-            print("    (stopped by the budget)")
-            break
+    _series("the same with BCAST_ANY = true: every slave processes the broadcast (1 or 50 ms); no modbus.cpnet "
+            "column (its scenario-B slaves 2 and 3 drop the code)", header.format("NS"), ns_list,
+            lambda ns: row(ns, {"ADRS": "[0]", "FCS": "[1]", "PO": "1", "BCAST_ANY": "true"}, False, str(ns)))
     print()
-    print("NS 16, k broadcasts (ADRS [0,...,0])")
-    print(header.format("k"))
-    for k in ks:
-        adrs = str([0] * k).replace(" ", "")
-        if not row(16, {"ADRS": adrs, "FCS": "[1]", "PO": "1"}, k == 1, str(k)):
-            print("    (stopped by the budget)")
-            break
+    _series("NS 16, k broadcasts (ADRS [0,...,0])", header.format("k"), ks,
+            lambda k: row(16, {"ADRS": str([0] * k).replace(" ", ""), "FCS": "[1]", "PO": "1"}, k == 1, str(k)))
 
 
 THESIS_MEASURE = "ms_to_col (Master'LastClosed 1)"
