@@ -708,18 +708,9 @@ class CompiledEngine(EngineAPI):
         if f == INF:
             return []
         out = []
+        fired = self._fired
         for _ready, info, key, entry in now:
-            if info.timed:
-                be = entry[1]
-                fk = (be, key, f)
-                w = self._fire_memo.get(fk)
-                if w is None:
-                    _, _, keys, consumed, produced, td, _pr = entry
-                    w = self._writes(info, keys, consumed, produced, f, td)
-                    self._fire_memo[fk] = w
-                sets, adds = w
-            else:
-                be, sets, adds = entry[1], entry[2], entry[3]
+            be, sets, adds = fired(info, key, entry, f)
             lst = list(s)
             for pos, nid in sets:
                 lst[pos] = nid
@@ -739,6 +730,21 @@ class CompiledEngine(EngineAPI):
             best = min(prio)
             out = [o for o, p in zip(out, prio) if p == best]
         return out
+
+    def _fired(self, info, key, entry, f) -> tuple:
+        """(binding element, sets, adds) of an entry of `info`'s result for the read ids `key` occurring at
+        time f (`_writes`). The effects of a transition that touches a timed place depend on f: they are
+        computed once per (binding element, read ids, f)."""
+        if not info.timed:
+            return entry[1], entry[2], entry[3]
+        be = entry[1]
+        fk = (be, key, f)
+        w = self._fire_memo.get(fk)
+        if w is None:
+            _, _, keys, consumed, produced, td, _pr = entry
+            w = self._writes(info, keys, consumed, produced, f, td)
+            self._fire_memo[fk] = w
+        return be, w[0], w[1]
 
     def _readers_at(self, s: tuple, clock, f):
         """The occurrence time (at most f, the earliest time of the transitions that do not read the clock)

@@ -112,7 +112,7 @@ class TimedGroups:
         x.time = f
         condense = self.condensation and f
         timed_places = self.timed_places
-        fire_memo, add, shift = e._fire_memo, e._add, e._shift
+        fired, add, shift = e._fired, e._add, e._shift
         adds_out, shifts_out, succ = x.adds, x.shifts, x.succ
         for k, info, key, res in fixed:
             entries = []
@@ -121,17 +121,7 @@ class TimedGroups:
             for entry in res:
                 if entry[0] > f:
                     continue
-                if info.timed:
-                    be = entry[1]
-                    fk = (be, key, f)
-                    w = fire_memo.get(fk)
-                    if w is None:
-                        _, _, ekeys, consumed, produced, td, _pr = entry
-                        w = e._writes(info, ekeys, consumed, produced, f, td)
-                        fire_memo[fk] = w
-                    sets, adds = w
-                else:
-                    be, sets, adds = entry[1], entry[2], entry[3]
+                be, sets, adds = fired(info, key, entry, f)
                 lst = list(s)
                 for pos, nid in sets:
                     lst[pos] = nid
