@@ -9,6 +9,9 @@ from cpn.engine.clock import clock_reads, refuse_condensation
 from cpn.engine.evaluate import Evaluator
 from cpn.values.colours import format_multiset
 
+#: the priority of a transition without one (CPN Tools' P_NORMAL)
+P_NORMAL: int = 1000
+
 
 @dataclass(frozen=True, slots=True)
 class BindingElement:

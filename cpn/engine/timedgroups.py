@@ -20,7 +20,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 
-from cpn.engine.compiled import NEG_INF, P_NORMAL
+from cpn.engine.api import P_NORMAL
+from cpn.engine.timedsuccessors import NEG_INF
 
 #: a written place the binding element puts no token on
 NO_DELTA: int = -1
