@@ -40,3 +40,24 @@ def agree(engine, full, quot):
     for d in rq.dead_listed:
         assert replay(engine, quot.graph, d.trace)
     return rf, rq
+
+
+def fewer_orbits(model, scalars, max_states: int) -> bool:
+    """Whether the full graph has at most `max_states` states and more than the quotient has orbits (a
+    cross-check on a net that is not reduced compares nothing)."""
+    engine = model.engine()
+    full = Explorer(engine, ExploreOptions(max_states=max_states)).run()
+    quot = Explorer(engine, ExploreOptions(reduction="symmetry", symmetry=scalars)).run()
+    return full.complete and quot.n_states < full.n_states
+
+
+def check_canonical_forms(c, group: list, states) -> None:
+    """Against brute force over the whole `group` of canonicaliser `c`: each state's representative is the
+    same for every state of its orbit and lies in it; its stabiliser size is the number of renamings
+    fixing the state."""
+    for s in states:
+        rep, stab = c.canonical(s)
+        images = [c.apply(s, g) for g in group]
+        assert rep in images
+        assert stab == sum(1 for t in images if t == s)
+        assert {c.canonical(t)[0] for t in images} == {rep}

@@ -12,7 +12,7 @@ import cpn
 from cpn.engine.symmetry import Canonicaliser, Scalar
 from cpn.statespace import ExploreOptions, Explorer
 from tests.statespace._instance_nets import random_instance_net
-from tests.statespace._quotient import agree, full_and_quotient
+from tests.statespace._quotient import agree, check_canonical_forms, fewer_orbits, full_and_quotient
 
 MAX_STATES = 5000  # three random nets of the 80 have more: they are skipped
 
@@ -63,11 +63,7 @@ def test_some_random_instance_nets_are_really_reduced():
     for seed in range(20):
         for rotations in (False, True):
             model = cpn.loads(random_instance_net(seed, rotations), f"random-{seed}.cpnet")
-            engine = model.engine()
-            full = Explorer(engine, ExploreOptions(max_states=MAX_STATES)).run()
-            quot = Explorer(engine, ExploreOptions(reduction="symmetry", symmetry=model.symmetry(
-                "S:rotations" if rotations else "S"))).run()
-            smaller += full.complete and quot.n_states < full.n_states
+            smaller += fewer_orbits(model, model.symmetry("S:rotations" if rotations else "S"), MAX_STATES)
     assert smaller >= 10  # 16 of the 40 when this was written
 
 
@@ -91,12 +87,7 @@ def test_canonical_form_is_the_orbit_minimum_with_moved_instances():
         c = Canonicaliser(engine, [Scalar("S", "rotations" if rotations else "permutations")])
         assert c.families
         group = list(c.group())
-        for s in list(x.graph.states)[:60]:
-            rep, stab = c.canonical(s)
-            images = [c.apply(s, g) for g in group]
-            assert rep in images
-            assert stab == sum(1 for t in images if t == s)
-            assert {c.canonical(t)[0] for t in images} == {rep}
+        check_canonical_forms(c, group, list(x.graph.states)[:60])
 
 
 def test_a_symmetry_the_check_refuses_would_give_wrong_counts():
