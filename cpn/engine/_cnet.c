@@ -85,7 +85,7 @@ typedef struct {
     int32_t *len;            /* its number of distinct colours */
     uint64_t *hash;
     int32_t *pairs; int64_t np, pcap;
-    uint32_t *table; uint64_t mask;   /* id + 1 per slot, 0: empty */
+    uint32_t *table;         /* id + 1 per slot, 0: empty; its mask stored before it (ms_slots) */
     int lock, shared;        /* (ND_THREADS) */
     g_kept kept;
 } mstab;
@@ -122,6 +122,19 @@ static int ms_same(const int32_t *a, const int32_t *b, int32_t n) {
     return 1;
 }
 
+/* A table of `size` empty slots (a power of two), its mask in the 8 bytes before it: a thread reading it
+ * without the lock gets the slots and their mask with one load. */
+static uint32_t *ms_slots(uint64_t size) {
+    uint64_t *b = (uint64_t *)calloc((size_t)(size / 2 + 1), 8);
+    if (!b) return NULL;
+    b[0] = size - 1;
+    return (uint32_t *)(b + 1);
+}
+
+static inline uint64_t ms_mask(const uint32_t *table) { return ((const uint64_t *)table)[-1]; }
+
+static void *ms_slots_block(uint32_t *table) { return table ? (void *)((uint64_t *)table - 1) : NULL; }
+
 static int ms_init(mstab *t) {
     memset(t, 0, sizeof *t);
     t->cap = 64; t->pcap = 256;
@@ -129,62 +142,83 @@ static int ms_init(mstab *t) {
     t->len = (int32_t *)malloc(4 * (size_t)t->cap);
     t->hash = (uint64_t *)malloc(8 * (size_t)t->cap);
     t->pairs = (int32_t *)malloc(4 * (size_t)t->pcap);
-    t->table = (uint32_t *)calloc(128, 4);
-    t->mask = 127;
+    t->table = ms_slots(128);
     return (t->off && t->len && t->hash && t->pairs && t->table) ? 0 : -1;
 }
 
 static void ms_free(mstab *t) {
-    free(t->off); free(t->len); free(t->hash); free(t->pairs); free(t->table);
+    free(t->off); free(t->len); free(t->hash); free(t->pairs); free(ms_slots_block(t->table));
     g_keep_free(&t->kept);
+}
+
+/* The id of the multiset of the n pairs `pr` (hash h), or -1: without the table's lock (the slots, then
+ * each entry's arrays loaded after its slot, so that they hold it; a multiset added meanwhile may be
+ * missed, which the caller then looks for under the lock). */
+static int64_t ms_find(const mstab *t, const int32_t *pr, int32_t n, uint64_t h) {
+    const uint32_t *tab = __atomic_load_n(&t->table, __ATOMIC_ACQUIRE);
+    uint64_t mask = ms_mask(tab);
+    for (uint64_t i = h & mask;; i = (i + 1) & mask) {
+        uint32_t e = __atomic_load_n(&tab[i], __ATOMIC_ACQUIRE);
+        if (!e) return -1;
+        int64_t id = (int64_t)e - 1;
+        if (__atomic_load_n(&t->hash, __ATOMIC_ACQUIRE)[id] == h && ms_len(t, id) == n && ms_same(pr, ms_pairs(t, id), n))
+            return id;
+    }
 }
 
 /* The id of the multiset of the n pairs `pr` (a new id if it is new); -1 if memory runs out. */
 static int64_t ms_intern_locked(mstab *t, const int32_t *pr, int32_t n) {
-    uint64_t h = ms_hash(pr, n);
-    uint64_t i = h & t->mask;
+    uint64_t h = ms_hash(pr, n), mask = ms_mask(t->table);
+    uint64_t i = h & mask;
     for (;;) {
         uint32_t e = t->table[i];
         if (!e) break;
         int64_t id = (int64_t)e - 1;
         if (t->hash[id] == h && t->len[id] == n && ms_same(pr, t->pairs + t->off[id], n)) return id;
-        i = (i + 1) & t->mask;
+        i = (i + 1) & mask;
     }
     if (t->n == t->cap) {
         int64_t cap = t->cap;
         if (g_grow_kept((void **)&t->off, &cap, t->n, t->cap * 2, 8, t->shared, &t->kept) != 0) return -1;
         cap = t->cap;
         if (g_grow_kept((void **)&t->len, &cap, t->n, t->cap * 2, 4, t->shared, &t->kept) != 0) return -1;
-        uint64_t *hs = (uint64_t *)realloc(t->hash, 8 * (size_t)cap);  /* read under the lock only */
-        if (!hs) return -1;
-        t->hash = hs; t->cap = cap;
+        cap = t->cap;
+        if (g_grow_kept((void **)&t->hash, &cap, t->n, t->cap * 2, 8, t->shared, &t->kept) != 0) return -1;
+        t->cap = cap;
     }
     if (t->np + 2 * (int64_t)n > t->pcap
         && g_grow_kept((void **)&t->pairs, &t->pcap, t->np, t->np + 2 * (int64_t)n, 4, t->shared, &t->kept) != 0)
         return -1;
-    if ((uint64_t)(t->n + 1) * 4 > (t->mask + 1) * 3) {
-        uint64_t size = (t->mask + 1) * 2;
-        uint32_t *tb = (uint32_t *)calloc(size, 4);
+    if ((uint64_t)(t->n + 1) * 4 > (mask + 1) * 3) {
+        uint64_t size = (mask + 1) * 2;
+        uint32_t *tb = ms_slots(size);
         if (!tb) return -1;
         for (int64_t k = 0; k < t->n; k++) {
             uint64_t j = t->hash[k] & (size - 1);
             while (tb[j]) j = (j + 1) & (size - 1);
             tb[j] = (uint32_t)(k + 1);
         }
-        free(t->table); t->table = tb; t->mask = size - 1;
-        i = h & t->mask;
-        while (t->table[i]) i = (i + 1) & t->mask;
+        void *old = ms_slots_block(t->table);
+        if (!t->shared) free(old);
+        else if (g_keep(&t->kept, old) != 0) { free(ms_slots_block(tb)); return -1; }  /* readers may hold it */
+        __atomic_store_n(&t->table, tb, __ATOMIC_RELEASE);
+        mask = size - 1;
+        i = h & mask;
+        while (t->table[i]) i = (i + 1) & mask;
     }
     int64_t id = t->n++;
     t->off[id] = t->np; t->len[id] = n; t->hash[id] = h;
     memcpy(t->pairs + t->np, pr, 8 * (size_t)n);
     t->np += 2 * (int64_t)n;
-    t->table[i] = (uint32_t)(id + 1);
+    __atomic_store_n(&t->table[i], (uint32_t)(id + 1), __ATOMIC_RELEASE);  /* published: its entry is written */
     return id;
 }
 
+/* As ms_intern_locked; while the tables are shared, a multiset already there is found without the lock. */
 static int64_t ms_intern(mstab *t, const int32_t *pr, int32_t n) {
     if (!t->shared) return ms_intern_locked(t, pr, n);
+    int64_t found = ms_find(t, pr, n, ms_hash(pr, n));
+    if (found >= 0) return found;
     g_lock(&t->lock);
     int64_t id = ms_intern_locked(t, pr, n);
     g_unlock(&t->lock);
@@ -359,13 +393,14 @@ static const int32_t *g_recipe(gctx *c, int t, int64_t key, const int64_t *v, g_
         }
     }
     int fresh;
+    const int32_t *recipe = NULL;
     if (tb->shared) g_lock(&tb->be_lock);
     int64_t b = g_be(c, t, key, &fresh);
     if (!c->err && tb->rcp[b] < 0) make(c, v, b);
+    if (!c->err) recipe = tb->pool + tb->rcp[b];  /* (the pool may grow once the lock is released) */
     if (tb->shared) g_unlock(&tb->be_lock);
-    if (c->err) return NULL;
     *be = b;
-    return tb->pool + tb->rcp[b];
+    return recipe;
 }
 
 /* The id of delta pairs pr (n of them) of place p; -1 for none (n == 0 and not `keep_empty`). */
