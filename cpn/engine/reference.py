@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import itertools
 
-from cpn.engine.api import EngineAPI
+from cpn.engine.api import P_NORMAL, EngineAPI
 from cpn.engine.evaluate import run_deep_again
 from cpn.errors import EvaluationError
 from cpn.net import binding as B
@@ -232,7 +232,7 @@ class ReferenceEngine(EngineAPI):
             return []
         self.ev.time = f
         if any(t.priority is not None for t in self.transitions):
-            prios = [self._eval(t.priority, self._env(t, a), t, "the priority") if t.priority is not None else 1000
+            prios = [self._eval(t.priority, self._env(t, a), t, "the priority") if t.priority is not None else P_NORMAL
                      for t, a, _ in now]
             best = min(prios)
             now = [c for c, p in zip(now, prios) if p == best]
