@@ -224,10 +224,11 @@ class NativeCode:
                 lens = ffi.unpack(lenp[0] + have, total - have)
                 start = offs[0]
                 pairs = ffi.unpack(pairp[0] + start, offs[-1] + 2 * lens[-1] - start)
-                made = []
-                for o, n in zip(offs, lens):
-                    o -= start
-                    made.append(dict(zip([vals[c] for c in pairs[o:o + 2 * n:2]], pairs[o + 1:o + 2 * n:2])))
+                # the colours' values and counts of all the pairs at once, then each multiset's slice of them
+                get = vals.__getitem__
+                cols, counts = list(map(get, pairs[0::2])), pairs[1::2]
+                made = [dict(zip(cols[h:h + n], counts[h:h + n]))
+                        for h, n in zip([(o - start) >> 1 for o in offs], lens)]
                 if what == 0:  # C interned them: new and distinct, indexed when the engine next needs it
                     store.append_new(p, made)
                     continue
