@@ -42,6 +42,14 @@ def canonical_key(d: dict):
     return tuple(chain.from_iterable(items))
 
 
+def _untimed(d: dict) -> dict:
+    """A timed marking's untimed view: (value, timestamp) -> count becomes value -> count."""
+    view: dict = {}
+    for (v, _ts), n in d.items():
+        view[v] = view.get(v, 0) + n
+    return view
+
+
 class _Places:
     """Interning of place markings: per place, id -> dict and frozenset key -> id."""
 
@@ -70,13 +78,7 @@ class _Places:
             i = len(self.dicts[p])
             idx[key] = i
             self.dicts[p].append(d)
-            if self.timed[p]:
-                view: dict = {}
-                for (v, _ts), n in d.items():
-                    view[v] = view.get(v, 0) + n
-                self.views[p].append(view)
-            else:
-                self.views[p].append(d)
+            self.views[p].append(_untimed(d) if self.timed[p] else d)
             self.counts[p].append(sum(d.values()))
         return i
 
@@ -87,14 +89,7 @@ class _Places:
             return
         self.pending.setdefault(p, len(self.dicts[p]))
         self.dicts[p].extend(dicts)
-        if self.timed[p]:
-            for d in dicts:
-                view: dict = {}
-                for (v, _ts), n in d.items():
-                    view[v] = view.get(v, 0) + n
-                self.views[p].append(view)
-        else:
-            self.views[p].extend(dicts)
+        self.views[p].extend(map(_untimed, dicts) if self.timed[p] else dicts)
         self.counts[p].extend([sum(d.values()) for d in dicts])
 
     def index_pending(self, p: int) -> None:

@@ -139,13 +139,13 @@ def test_max_seconds_progress_and_ctrl_c():
         if len(seen) == 2:
             os.kill(os.getpid(), signal.SIGINT)  # what Ctrl-C sends
 
-    x = Explorer(_load("bench/nets/dp.cpnet:14").engine(),
+    x = Explorer(_load("bench/nets/dp.cpnet:16").engine(),
                  ExploreOptions(workers=2, progress_interval=0.0), progress=progress).run()
     assert x.backend == "threads" and x.stop_reason is StopReason.INTERRUPTED and x.unexpanded > 0
     assert seen[-1].states == x.n_states and all(p.states >= 1 for p in seen)
     assert signal.getsignal(signal.SIGINT) is signal.default_int_handler
-    y = Explorer(_load("bench/nets/dp.cpnet:14").engine(), ExploreOptions(workers=2, max_seconds=0.2)).run()
-    assert y.stop_reason is StopReason.MAX_SECONDS and y.unexpanded > 0 and y.n_states < 228486
+    y = Explorer(_load("bench/nets/dp.cpnet:16").engine(), ExploreOptions(workers=2, max_seconds=0.2)).run()
+    assert y.stop_reason is StopReason.MAX_SECONDS and y.unexpanded > 0 and y.n_states < 1331714
     g = y.graph
     assert len(g.offsets) == g.expanded + 1 and all(0 <= d < g.n_states for d in g.dst)
 
