@@ -104,6 +104,7 @@ def run_threaded(engine, options: ExploreOptions, progress=None, stop_watch=None
         raise MemoryError("cannot allocate the threaded search")
     h = ffi.gc(h, clib.th_free)
     if clib.th_start(h) != 0:
+        ffi.release(h)  # now, while `gen` (whose tables it shares) is alive: the order of collection is not known
         return None, "the threads could not be started"
     asked = None
     deadline = t0 + options.max_seconds if options.max_seconds is not None else None

@@ -170,3 +170,32 @@ def test_the_threads_race_on_no_memory_under_thread_sanitizer():
         assert "ThreadSanitizer" not in run.stderr, run.stderr[-3000:]
         assert run.returncode == 0, run.stderr[-3000:]
         assert run.stdout.split() == ["dp", "82", "265", "ms", "12393", "76545"]
+
+
+def test_threads_that_cannot_start_leave_the_search_to_the_processes(monkeypatch):
+    """th_start fails: the threaded search is freed at once (its tables shared with the engine's context
+    of the net's C, which is still alive), and the processes search, with a note."""
+    from types import SimpleNamespace
+
+    from cpn.statespace import threads
+
+    real = native.library
+
+    def failing(code=None, timed=False):
+        lib = real(code, timed)
+        if lib is None or code is None:
+            return lib
+
+        class Lib:
+            def __getattr__(self, name):
+                return getattr(lib.lib, name)
+
+            def th_start(self, h):
+                return -1
+
+        return SimpleNamespace(ffi=lib.ffi, lib=Lib(), path=lib.path)
+
+    monkeypatch.setattr(threads.native, "library", failing)
+    x = Explorer(_load("bench/nets/dp.cpnet:5").engine(), ExploreOptions(workers=2)).run()
+    assert x.backend == "workers" and x.n_states == 82
+    assert any("the threads could not be started" in n for n in x.notes), x.notes
