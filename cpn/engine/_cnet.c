@@ -11,7 +11,8 @@
  * (gen_clone: its scratch buffers, its error flag) over the one set of tables (gtab), which is then
  * `shared`. A table is changed under its own lock (a spin lock: each place's markings, each place's
  * deltas, the binding elements with their recipes); what is read without a lock (a multiset's pairs, a
- * binding element's recipe) is never moved while shared: an array that grows is copied, the new one
+ * binding element's recipe, and a table's slots when a multiset already there is looked for: ms_find)
+ * is never moved while shared: an array that grows is copied, the new one
  * published with a release store, the old one kept until gen_unshare. An entry is written before its id
  * is published, and an id reaches another thread only through a lock, a barrier or an acquire load, so
  * a reader sees the entry of any id it holds. The ids are then numbered in the order the threads reach
