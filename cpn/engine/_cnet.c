@@ -152,32 +152,26 @@ static void ms_free(mstab *t) {
     g_keep_free(&t->kept);
 }
 
-/* The id of the multiset of the n pairs `pr` (hash h), or -1: without the table's lock (the slots, then
- * each entry's arrays loaded after its slot, so that they hold it; a multiset added meanwhile may be
- * missed, which the caller then looks for under the lock). */
-static int64_t ms_find(const mstab *t, const int32_t *pr, int32_t n, uint64_t h) {
+/* The id of the multiset of the n pairs `pr` (hash h), or -1 with the empty slot where it would go in
+ * *slot. Safe without the table's lock: the slots, then each entry's arrays loaded after its slot, so
+ * that they hold it (a multiset added meanwhile may be missed: the caller then looks under the lock). */
+static int64_t ms_find(const mstab *t, const int32_t *pr, int32_t n, uint64_t h, uint64_t *slot) {
     const uint32_t *tab = __atomic_load_n(&t->table, __ATOMIC_ACQUIRE);
     uint64_t mask = ms_mask(tab);
     for (uint64_t i = h & mask;; i = (i + 1) & mask) {
         uint32_t e = __atomic_load_n(&tab[i], __ATOMIC_ACQUIRE);
-        if (!e) return -1;
+        if (!e) { *slot = i; return -1; }
         int64_t id = (int64_t)e - 1;
         if (__atomic_load_n(&t->hash, __ATOMIC_ACQUIRE)[id] == h && ms_len(t, id) == n && ms_same(pr, ms_pairs(t, id), n))
             return id;
     }
 }
 
-/* The id of the multiset of the n pairs `pr` (a new id if it is new); -1 if memory runs out. */
-static int64_t ms_intern_locked(mstab *t, const int32_t *pr, int32_t n) {
-    uint64_t h = ms_hash(pr, n), mask = ms_mask(t->table);
-    uint64_t i = h & mask;
-    for (;;) {
-        uint32_t e = t->table[i];
-        if (!e) break;
-        int64_t id = (int64_t)e - 1;
-        if (t->hash[id] == h && t->len[id] == n && ms_same(pr, t->pairs + t->off[id], n)) return id;
-        i = (i + 1) & mask;
-    }
+/* The id of the multiset of the n pairs `pr` of hash h (a new id if it is new); -1 if memory runs out. */
+static int64_t ms_intern_locked(mstab *t, const int32_t *pr, int32_t n, uint64_t h) {
+    uint64_t mask = ms_mask(t->table), i;
+    int64_t found = ms_find(t, pr, n, h, &i);
+    if (found >= 0) return found;
     if (t->n == t->cap) {
         int64_t cap = t->cap;
         if (g_grow_kept((void **)&t->off, &cap, t->n, t->cap * 2, 8, t->shared, &t->kept) != 0) return -1;
@@ -217,11 +211,12 @@ static int64_t ms_intern_locked(mstab *t, const int32_t *pr, int32_t n) {
 
 /* As ms_intern_locked; while the tables are shared, a multiset already there is found without the lock. */
 static int64_t ms_intern(mstab *t, const int32_t *pr, int32_t n) {
-    if (!t->shared) return ms_intern_locked(t, pr, n);
-    int64_t found = ms_find(t, pr, n, ms_hash(pr, n));
+    uint64_t h = ms_hash(pr, n), slot;
+    if (!t->shared) return ms_intern_locked(t, pr, n, h);
+    int64_t found = ms_find(t, pr, n, h, &slot);
     if (found >= 0) return found;
     g_lock(&t->lock);
-    int64_t id = ms_intern_locked(t, pr, n);
+    int64_t id = ms_intern_locked(t, pr, n, h);
     g_unlock(&t->lock);
     return id;
 }

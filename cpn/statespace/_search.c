@@ -126,7 +126,7 @@ typedef struct {
     int64_t last_off;        /* where nd_put_group put (or found) the last result */
     uint8_t *uncached, *in_tmp;        /* per group: uncached; its result for this state is in tmp */
     int64_t *looks, *misses;           /* per group: cache lookups, and misses, while they are counted */
-    int adds_uncached; int64_t adds_looks, adds_misses;
+    uint8_t adds_uncached; int64_t adds_looks, adds_misses;
     int64_t uncache_after;
     void *gen;               /* the C generated from the net's inscriptions, if any (ND_GENERATED) */
 } nd_search;
@@ -191,6 +191,19 @@ void nd_free(nd_search *d) {
     free(d->req_key); free(d->s); free(d->t); free(d->addv); free(d->req);
     free(d->rs); free(d->recs); free(d->hs);
     free(d->tmp); free(d->uncached); free(d->in_tmp); free(d->looks); free(d->misses); free(d);
+}
+
+/* Count a look-up in a cache (a miss if `missed`) while its hit rate is judged (*looks >= 0): once
+ * `after` look-ups were counted, more than half of them misses makes it compute its results anew
+ * (*uncached); the judging then ends (*looks = -1). */
+static inline void nd_judge(int64_t *looks, int64_t *misses, uint8_t *uncached, int64_t after, int missed) {
+    if (*looks < 0) return;
+    ++*looks;
+    *misses += missed;
+    if (*looks == after) {
+        if (2 * *misses > *looks) *uncached = 1;
+        *looks = -1;
+    }
 }
 
 /* The result of group g for the read values `key`: n entries of 1 + nread + nwrite values. */
@@ -283,14 +296,7 @@ int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs) {
             if (o < 0) {
                 o = vm_get(&d->groups[g], key);
 #ifdef ND_GENERATED
-                if (d->gen && d->looks[g] >= 0) {  /* the hit rate is judged once, after uncache_after lookups */
-                    d->looks[g]++;
-                    d->misses[g] += o < 0;
-                    if (d->looks[g] == d->uncache_after) {
-                        if (2 * d->misses[g] > d->looks[g]) d->uncached[g] = 1;
-                        d->looks[g] = -1;
-                    }
-                }
+                if (d->gen) nd_judge(&d->looks[g], &d->misses[g], &d->uncached[g], d->uncache_after, o < 0);
                 if (o < 0 && d->gen && !tried) {
                     int rc = gen_group(d->gen, d, g, key);
                     if (rc == -2) { status = ND_NO_MEMORY; break; }
@@ -321,14 +327,7 @@ int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs) {
                     if (d->adds_uncached) { v = gen_add(d->gen, k[0], k[1], k[2]); tried_add = 1; }
                     if (v < 0) {
                         v = vm_get(&d->adds, k);
-                        if (d->gen && d->adds_looks >= 0) {
-                            d->adds_looks++;
-                            d->adds_misses += v < 0;
-                            if (d->adds_looks == d->uncache_after) {
-                                if (2 * d->adds_misses > d->adds_looks) d->adds_uncached = 1;
-                                d->adds_looks = -1;
-                            }
-                        }
+                        if (d->gen) nd_judge(&d->adds_looks, &d->adds_misses, &d->adds_uncached, d->uncache_after, v < 0);
                     }
                     if (v < 0 && d->gen && !tried_add) {
                         int64_t nid = gen_add(d->gen, k[0], k[1], k[2]);

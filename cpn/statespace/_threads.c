@@ -120,14 +120,7 @@ static int th_group(th_part *p, int g, const uint32_t *key, int64_t *o) {
     d->in_tmp[g] = d->uncached[g];
     if (!d->uncached[g]) {
         *o = vm_get(&d->groups[g], key);
-        if (d->looks[g] >= 0) {  /* the hit rate is judged once, after uncache_after look-ups */
-            d->looks[g]++;
-            d->misses[g] += *o < 0;
-            if (d->looks[g] == d->uncache_after) {
-                if (2 * d->misses[g] > d->looks[g]) d->uncached[g] = 1;
-                d->looks[g] = -1;
-            }
-        }
+        nd_judge(&d->looks[g], &d->misses[g], &d->uncached[g], d->uncache_after, *o < 0);
         if (*o >= 0) return 0;
     }
     p->computed++;
@@ -146,14 +139,7 @@ static int64_t th_add(th_part *p, const uint32_t *k) {
     int64_t v = -1;
     if (!d->adds_uncached) {
         v = vm_get(&d->adds, k);
-        if (d->adds_looks >= 0) {
-            d->adds_looks++;
-            d->adds_misses += v < 0;
-            if (d->adds_looks == d->uncache_after) {
-                if (2 * d->adds_misses > d->adds_looks) d->adds_uncached = 1;
-                d->adds_looks = -1;
-            }
-        }
+        nd_judge(&d->adds_looks, &d->adds_misses, &d->adds_uncached, d->uncache_after, v < 0);
         if (v >= 0) return v;
     }
     p->computed++;
