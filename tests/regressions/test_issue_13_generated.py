@@ -14,6 +14,7 @@ from cpn.engine import ccodegen
 from cpn.errors import EvaluationError
 from cpn.statespace import ExploreOptions, Explorer, native, nativetimed
 from cpn.statespace.store import packed_unavailable
+from tests._shared import count_calls
 from tests.engine._explore import same_exploration
 from tests.engine.randomnets import random_net
 
@@ -28,14 +29,7 @@ needs_native = pytest.mark.skipif(NATIVE is not None, reason=f"native code unava
 @pytest.fixture
 def returns(monkeypatch):
     """How many times the native search went back to the Python engine (the generated C missing)."""
-    count = [0]
-    fill = native.NativeSearch._fill
-
-    def counted(self):
-        count[0] += 1
-        return fill(self)
-    monkeypatch.setattr(native.NativeSearch, "_fill", counted)
-    return count
+    return count_calls(monkeypatch, native.NativeSearch, "_fill")
 
 
 def _both(model, limit=3000):

@@ -14,6 +14,7 @@ import cpn
 from cpn.statespace import ExploreOptions, Explorer, native, nativetimed
 from cpn.statespace.store import packed_unavailable
 from tests._checkrun import check_reports, record_backends
+from tests._shared import count_calls
 from tests.engine._explore import same_exploration
 from tests.engine.randomnets import random_net, random_timed_net
 
@@ -30,14 +31,7 @@ TIMED_NOTE = "the Python engine computes every transition's bindings: the net is
 def fills(monkeypatch):
     """How many states the engine expanded for the C search; the C search never hands over here."""
     monkeypatch.setattr(nativetimed, "HAND_OVER_RATE", 1e9)
-    count = [0]
-    fill = nativetimed.TimedNativeSearch._fill
-
-    def counted(self):
-        count[0] += 1
-        return fill(self)
-    monkeypatch.setattr(nativetimed.TimedNativeSearch, "_fill", counted)
-    return count
+    return count_calls(monkeypatch, nativetimed.TimedNativeSearch, "_fill")
 
 
 def _both(model, condensation: bool, limit: int = 3000, **options):

@@ -18,7 +18,7 @@ from cpn.statespace import ExploreOptions, Explorer, StopReason
 from cpn.statespace.threads import why_not_threaded
 from tests._shared import ROOT
 from tests.engine.randomnets import random_net
-from tests.statespace._partition import compare, consistent, summary
+from tests.statespace._partition import Observer, compare, consistent, summary
 
 THREADS = (1, 2, 3)
 MODELS = sorted(os.path.relpath(p, ROOT) for p in glob.glob(os.path.join(ROOT, "models", "**", "*.cpnet"),
@@ -184,16 +184,6 @@ def test_a_transition_left_to_python_keeps_the_processes():
 
 
 def test_an_observing_predicate_sees_each_state_once_when_the_processes_search_again():
-    class Observer:
-        may_stop = False  # it never ends the search: the partitioned search calls it afterwards
-
-        def __init__(self):
-            self.seen = []
-
-        def __call__(self, s):
-            self.seen.append(s)
-            return False
-
     seen = Observer()
     x = Explorer(cpn.loads(DEEP).engine(), ExploreOptions(workers=2, stop_predicate=seen)).run()
     assert x.backend == "workers" and x.complete  # the threads gave up: the C could not evaluate a key

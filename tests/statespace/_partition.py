@@ -11,6 +11,19 @@ from cpn.statespace import ExploreOptions, Explorer
 from cpn.statespace.trace import shortest_trace
 
 
+class Observer:
+    """An observing stop predicate that records every state it is asked about."""
+
+    may_stop = False  # it never ends the search: the partitioned search calls it afterwards
+
+    def __init__(self):
+        self.seen = []
+
+    def __call__(self, s):
+        self.seen.append(s)
+        return False
+
+
 def canonical(engine, s) -> tuple:
     return tuple(frozenset(d.items()) for d in engine.marking(s)) + ((engine.clock(s),) if engine.is_timed else ())
 

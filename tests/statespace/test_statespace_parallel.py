@@ -16,7 +16,7 @@ from cpn.engine.transfer import transfer_for
 from cpn.statespace import ExploreOptions, Explorer, StopReason
 from cpn.statespace.parallel import PartitionWorker, why_not_partitioned
 from tests._shared import ROOT, SHARED
-from tests.statespace._partition import canonical, compare, summary
+from tests.statespace._partition import Observer, canonical, compare, summary
 
 MODELS = sorted(os.path.relpath(p, ROOT) for p in glob.glob(os.path.join(ROOT, "models", "**", "*.cpnet"),
                                                                recursive=True))
@@ -129,16 +129,6 @@ def test_max_memory_counts_the_workers_memory(threads):
 @pytest.mark.parametrize("threads", [False, True])
 def test_an_observing_stop_predicate_sees_every_state_in_breadth_first_order(threads):
     model = _load("bench/nets/dp.cpnet:5")
-
-    class Observer:
-        may_stop = False  # it never ends the search: the partitioned search calls it afterwards
-
-        def __init__(self):
-            self.seen = []
-
-        def __call__(self, s):
-            self.seen.append(s)
-            return False
 
     one, two = Observer(), Observer()
     x = Explorer(model.engine(), ExploreOptions(stop_predicate=one)).run()
