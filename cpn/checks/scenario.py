@@ -47,6 +47,9 @@ class TextOrigin:
     source: str
     offsets: tuple
 
+    def __repr__(self) -> str:
+        return f"TextOrigin({self.span(0, len(self.offsets) - 2)})"
+
     def span(self, start: int, end: int | None = None) -> Span:
         """The file span of value characters start..end (end inclusive; clamped to the value)."""
         n = len(self.offsets) - 1
@@ -69,6 +72,10 @@ class PropertySpec:
     description: str = ""
     source: str = ""  # the scenario file's text (for positions inside arrays)
     expect: str = "holds"  # the verdict the gate expects: 'violated' for a mutant that must be caught
+
+    def __repr__(self) -> str:
+        # short: the dataclass's own repr prints the scenario file's text once per field that holds it
+        return f"PropertySpec({self.index}, {self.name!r}, kind={self.kind!r}, at {self.span})"
 
 
 @dataclass
@@ -93,6 +100,10 @@ class Scenario:
     properties: list[PropertySpec]
     value_spans: dict = field(default_factory=dict)  # constant name -> Span of its value in [set] or a row
     explore_texts: dict = field(default_factory=dict)  # [explore] key -> (TextOrigin, Span) of a text value
+
+    def __repr__(self) -> str:
+        return (f"Scenario({self.name!r}, {self.path!r}, {len(self.runs)} run{'s' if len(self.runs) != 1 else ''}, "
+                f"{len(self.properties)} propert{'ies' if len(self.properties) != 1 else 'y'})")
 
 
 def _line_col(text: str, offset: int) -> tuple[int, int]:

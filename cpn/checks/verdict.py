@@ -33,6 +33,11 @@ class Evidence:
     cycle: tuple = ()
     cycle_arcs: tuple = ()
 
+    def __repr__(self) -> str:
+        steps = len(self.path) - 1
+        cycle = f", then a cycle of {len(self.cycle)}" if self.cycle else ""
+        return f"Evidence({steps} step{'s' if steps != 1 else ''} to state {self.target}{cycle})"
+
     @property
     def is_lasso(self) -> bool:
         return bool(self.cycle)
