@@ -50,7 +50,8 @@ EPILOG = """exit statuses:
   130 interrupted (Ctrl-C during a search instead ends it with a partial report and status 2)
 
 outputs: every option that names an output file takes '-' for standard output; at most one output may
-go to standard output, and it then replaces the text report.
+go to standard output, and it then replaces the text report. A reader that stops early
+('cpn-verify check | head') never changes the exit status: the command finishes its work.
 """
 
 
@@ -243,8 +244,8 @@ def exit_status_of(exc: BaseException) -> ExitStatus:
         return ExitStatus(exc.exit_status)
     if isinstance(exc, KeyboardInterrupt):
         return ExitStatus.INTERRUPTED
-    if isinstance(exc, BrokenPipeError):
-        return ExitStatus.OK
+    # a BrokenPipeError of standard output never gets here (cpn.cli.main guards both streams): any other
+    # is an error like every other one, never a success
     return ExitStatus.SOFTWARE
 
 

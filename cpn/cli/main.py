@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
 
 from cpn.cli._common import EPILOG, ExitStatus, exit_status_of, render_error
@@ -42,7 +43,67 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+class _ReaderGone:
+    """A text stream that goes on silently once the program reading it has gone.
+
+    `cpn-verify check DIR | head -n 3` closes the pipe early; writing to it raises BrokenPipeError.
+    The command must still finish its work and exit with its verdict's status (a violation is never
+    turned into success), so from then on the stream's output is thrown away: its file descriptor is
+    pointed at the null device, which also lets the interpreter flush it at exit without an error.
+    """
+
+    def __init__(self, stream):
+        self._stream = stream
+        self.gone = False
+
+    def write(self, text: str) -> int:
+        if not self.gone:
+            try:
+                return self._stream.write(text)
+            except BrokenPipeError:
+                self._lost()
+        return len(text)
+
+    def flush(self) -> None:
+        if not self.gone:
+            try:
+                self._stream.flush()
+            except BrokenPipeError:
+                self._lost()
+
+    def _lost(self) -> None:
+        self.gone = True
+        try:
+            null = os.open(os.devnull, os.O_WRONLY)
+            try:
+                os.dup2(null, self._stream.fileno())
+            finally:
+                os.close(null)
+        except (OSError, ValueError, AttributeError):  # no descriptor (a stream in memory): nothing to flush
+            pass
+
+    def __getattr__(self, name):
+        return getattr(self._stream, name)
+
+
 def main(argv: list[str] | None = None) -> int:
+    """Run the command line; returns the exit status. Standard output and error are guarded: a reader
+    that goes away early never changes the status (`_ReaderGone`)."""
+    saved = sys.stdout, sys.stderr
+    if sys.stdout is not None:
+        sys.stdout = _ReaderGone(sys.stdout)
+    if sys.stderr is not None:
+        sys.stderr = _ReaderGone(sys.stderr)
+    try:
+        return _main(argv)
+    finally:
+        for guard in (sys.stdout, sys.stderr):
+            if isinstance(guard, _ReaderGone):
+                guard.flush()
+        sys.stdout, sys.stderr = saved
+
+
+def _main(argv: list[str] | None) -> int:
     parser = build_parser()
     try:
         args, extra = parser.parse_known_args(argv)
@@ -57,8 +118,6 @@ def main(argv: list[str] | None = None) -> int:
         return int(ExitStatus.USAGE)
     try:
         return int(args._run(args))
-    except BrokenPipeError:
-        return int(ExitStatus.OK)
     except (Exception, KeyboardInterrupt) as exc:  # noqa: BLE001 - the last line of defence
         status = exit_status_of(exc)
         if status is ExitStatus.SOFTWARE:
