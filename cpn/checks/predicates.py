@@ -268,9 +268,34 @@ class PropertyLanguage:
             ck.unify(t, want, expr.span, what)
         if not ck.diags:
             self._validate(expr, ck)
+        if not ck.diags:
+            self._refuse_clock_under_condensation(expr, what)
         if ck.diags:
             raise _remap(ModelError(list(ck.diags)), text, origin, fallback)
         return expr
+
+    def _refuse_clock_under_condensation(self, expr: A.Expr, what: str) -> None:
+        """A text that reads the clock cannot be decided on a condensed state space, whose clock is 0 in
+        every state: refused (E0601) as a model that reads the clock is (cpn.engine.clock)."""
+        if not getattr(self.engine, "time_condensation", False):
+            return
+        from cpn.engine import clock
+
+        if self._clock_readers is None:
+            self._clock_readers = clock._global_readers(self.net.globals.decls)
+        translated = self._tr.expr(expr)
+        span = clock._first_read(translated, self._clock_readers)
+        if span is None:
+            return
+        via = clock._called_reader(translated, self._clock_readers)
+        self._checker.diags.append(Diagnostic(
+            "E0601",
+            f"time condensation cannot be used: {what} reads the model clock, and time condensation sets the "
+            "clock to 0 in every state, so the property would be decided on the clock of another model",
+            span, notes=[f"'{via[0]}' reads it at {via[1]}"] if via else [],
+            hint="Remove time_condensation = true from [explore] (a timed model whose state space grows only "
+                 "because time grows is then stopped by the time-growth watch; bound it with until_time or "
+                 "max_states), or state the property without reading intTime()."))
 
     def _quoted_places(self, expr: A.Expr, ck) -> A.Expr:
         """`Mark "Page'a place" 1`: a place whose name is not an identifier (declared with a string)
