@@ -205,59 +205,104 @@ class DeadMarkings(Check):
         return Verdict.holds(f"{len(dead):,} dead marking{'s' if len(dead) != 1 else ''}", count=len(dead))
 
 
+# the fields of a `bound` property (docs/specs.md): the exact forms under their names that read as exact,
+# each with the older spelling that means the same; then the one-sided forms
+INTEGER_LIMITS = (("upper_equals", "upper"), ("lower_equals", "lower"), ("at_most", None), ("at_least", None))
+MULTISET_LIMITS = (("upper_multiset_equals", "upper_multiset"), ("lower_multiset_equals", "lower_multiset"),
+                   ("at_most_multiset", None), ("at_least_multiset", None))
+_UPPER_SIDE = {"upper_equals", "at_most", "upper_multiset_equals", "at_most_multiset"}
+_EXACT = {"upper_equals", "lower_equals", "upper_multiset_equals", "lower_multiset_equals"}
+
+
+def judge_integer_limit(key: str, want: int, hi: int, lo: int, complete: bool) -> tuple[str, str]:
+    """(outcome, text) of one integer limit, given the largest and smallest values found: 'violated' as
+    soon as a value found breaks it (also on a partial state space), 'holds' only on a complete one."""
+    upper = key in _UPPER_SIDE
+    got = hi if upper else lo
+    which = "upper" if upper else "lower"
+    beyond = got > want if upper else got < want
+    if key in _EXACT:
+        if got == want and complete:
+            return "holds", f"{which} bound {got}"
+        if got != want and (complete or beyond):
+            return "violated", f"best {which} bound is {got}, expected {want}"
+        return "unknown", f"{which} bound {got} so far, expected {want}"
+    if beyond:
+        return "violated", (f"reaches {got}, more than at_most = {want}" if upper
+                            else f"falls to {got}, less than at_least = {want}")
+    if complete:
+        return "holds", f"{'at most' if upper else 'at least'} {want} (best {which} bound {got})"
+    return "unknown", f"{which} bound {got} so far ({key} = {want})"
+
+
+def judge_multiset_limit(key: str, want_text: str, got_text: str, broken: bool, equal: bool,
+                         complete: bool) -> tuple[str, str]:
+    """(outcome, text) of one multiset limit: `broken` says a marking found is not included in it (for
+    an upper limit) or does not include it (lower); `equal`, that the best bound found equals it."""
+    which = "upper" if key in _UPPER_SIDE else "lower"
+    if broken:
+        if key in _EXACT:
+            return "violated", f"a marking breaks the expected {which} multiset bound {want_text}"
+        return "violated", (f"a marking is not included in at_most_multiset = {want_text}" if which == "upper"
+                            else f"a marking does not include at_least_multiset = {want_text}")
+    if not complete:
+        return "unknown", f"{which} multiset bound ({key})"
+    if key in _EXACT and not equal:
+        return "violated", f"best {which} multiset bound is {got_text}, expected {want_text}"
+    if key in _EXACT:
+        return "holds", f"{which} multiset bound"
+    return "holds", f"{'at most' if which == 'upper' else 'at least'} {want_text} (best {which} multiset bound)"
+
+
 class Bound(Check):
-    def __init__(self, spec, places: list[int] | None, fn, upper, lower, upper_ms, lower_ms):
+    """`limits`: field -> expected integer; `multiset_limits`: field -> expected Multiset (with `place`)."""
+
+    def __init__(self, spec, places: list[int] | None, fn, limits: dict, multiset_limits: dict):
         super().__init__(spec)
         self.places = places  # place instances, or None for an integer expression
         self.fn = fn
-        self.upper, self.lower, self.upper_ms, self.lower_ms = upper, lower, upper_ms, lower_ms
+        self.limits = limits
+        self.multiset_limits = multiset_limits
 
     def decide(self, view):
         g = view.g
-        results = []
+        rows = []  # (name, states in BFS order, their values, place or None)
         if self.places is None:
             ctx = view.lang.ctx
             ctx.graph = g
-            values = (self.fn.fn(i, s) for i, s in enumerate(g.states))
-            results.append((self.spec.fields.get("expr"), *self._extremes(values), None))
+            rows.append((self.spec.fields.get("expr"), None, [self.fn.fn(i, s) for i, s in enumerate(g.states)],
+                         None))
         else:
+            ms_of = view.lang.ctx.mk
             for p in self.places:
-                name = view.engine.places[p].name
-                ms_of = view.lang.ctx.mk
                 first = _first_states(view, p)
-                hi, hi_at, lo, lo_at = self._extremes(sum(ms_of(g.states[i], p)._d.values()) for i in first)
-                results.append((name, hi, first[hi_at], lo, first[lo_at], p))
+                rows.append((view.engine.places[p].name, first,
+                             [sum(ms_of(g.states[i], p)._d.values()) for i in first], p))
         problems, unknowns, holds = [], [], []
         evidence = None
-        for name, hi, hi_at, lo, lo_at, p in results:
-            for which, want, got, at, worse in (("upper", self.upper, hi, hi_at, lambda a, b: a > b),
-                                                ("lower", self.lower, lo, lo_at, lambda a, b: a < b)):
-                if want is None:
-                    continue
-                if got == want and view.complete:
-                    holds.append(f"{name}: {which} bound {got}")
-                elif got != want and (view.complete or worse(got, want)):
-                    problems.append(f"{name}: best {which} bound is {got}, expected {want}")
-                    evidence = evidence or evidence_to(g, at)
-                else:
-                    unknowns.append(f"{name}: {which} bound {got} so far, expected {want}")
-            if p is not None:
-                for which, want in (("upper", self.upper_ms), ("lower", self.lower_ms)):
-                    if want is None:
-                        continue
-                    got, bad_at = self._ms_bound(view, p, which, want)
-                    if bad_at is not None:
-                        problems.append(f"{name}: a marking breaks the expected {which} multiset bound "
-                                        f"{view.engine.format_multiset(p, dict(want._d))}")
-                        evidence = evidence or evidence_to(g, bad_at)
-                    elif view.complete and got != want:
-                        problems.append(f"{name}: best {which} multiset bound is "
-                                        f"{view.engine.format_multiset(p, dict(got._d))}, expected "
-                                        f"{view.engine.format_multiset(p, dict(want._d))}")
-                    elif view.complete:
-                        holds.append(f"{name}: {which} multiset bound")
-                    else:
-                        unknowns.append(f"{name}: {which} multiset bound")
+        for name, states, values, p in rows:
+            if not values:
+                continue
+            hi, hi_at, lo, lo_at = self._extremes(values)
+            for key, want in self.limits.items():
+                outcome, text = judge_integer_limit(key, want, hi, lo, view.complete)
+                {"holds": holds, "violated": problems, "unknown": unknowns}[outcome].append(f"{name}: {text}")
+                if outcome == "violated" and evidence is None:
+                    upper = key in _UPPER_SIDE
+                    at = hi_at if upper else lo_at
+                    if key not in _EXACT:  # the shallowest marking beyond the limit, not the extreme one
+                        at = next(i for i, v in enumerate(values) if (v > want if upper else v < want))
+                    evidence = evidence_to(g, states[at] if states is not None else at)
+            if p is None:
+                continue
+            for key, want in self.multiset_limits.items():
+                got, bad_at = self._ms_bound(view, p, "upper" if key in _UPPER_SIDE else "lower", want)
+                fmt = view.engine.format_multiset
+                outcome, text = judge_multiset_limit(key, fmt(p, dict(want._d)), fmt(p, dict(got._d)),
+                                                     bad_at is not None, got == want, view.complete)
+                {"holds": holds, "violated": problems, "unknown": unknowns}[outcome].append(f"{name}: {text}")
+                if bad_at is not None and evidence is None:
+                    evidence = evidence_to(g, bad_at)
         if problems:
             return Verdict.violated("; ".join(problems), evidence)
         if unknowns:
@@ -617,11 +662,17 @@ def _bound(spec, lang) -> Check:
     else:
         fn = _pred(spec, lang, "expr", T.INT, "a bounded integer expression")
         cst = None
-    upper = const("upper", T.INT, "an upper bound")
-    lower = const("lower", T.INT, "a lower bound")
-    upper_ms = const("upper_multiset", T.ms(cst), "an upper multiset bound") if cst is not None else None
-    lower_ms = const("lower_multiset", T.ms(cst), "a lower multiset bound") if cst is not None else None
-    return Bound(spec, places, fn, upper, lower, upper_ms, lower_ms)
+    limits = {}
+    for key, old in INTEGER_LIMITS:
+        given = key if key in f else old if old in f else None
+        if given is not None:
+            limits[key] = const(given, T.INT, f"'{given}'")
+    multiset_limits = {}
+    for key, old in MULTISET_LIMITS:
+        given = key if key in f else old if old in f else None
+        if given is not None and cst is not None:
+            multiset_limits[key] = const(given, T.ms(cst), f"'{given}'")
+    return Bound(spec, places, fn, limits, multiset_limits)
 
 
 def _base(name: str, lang) -> str:

@@ -30,13 +30,21 @@ KINDS: dict[str, tuple[set, set]] = {
     "reachable": ({"expr"}, set()),
     "deadlock_free": (set(), set()),
     "dead_markings": (set(), {"count", "count_modulo_time", "expr"}),
-    "bound": (set(), {"place", "expr", "upper", "lower", "upper_multiset", "lower_multiset"}),
+    "bound": (set(), {"place", "expr", "upper_equals", "lower_equals", "at_most", "at_least",
+                      "upper_multiset_equals", "lower_multiset_equals", "at_most_multiset", "at_least_multiset",
+                      "upper", "lower", "upper_multiset", "lower_multiset"}),
     "dead_transitions": ({"expected"}, set()),
     "live_transitions": (set(), {"transitions"}),
     "home": (set(), {"expr", "initial"}),
     "no_livelock": (set(), {"progress"}),
     "ctl": ({"formula"}, {"fairness"}),
 }
+# a `bound` property's limits (docs/specs.md): an exact one is written `upper_equals`, ...; `upper`, ... are
+# its older spellings, still read with the same meaning
+BOUND_INTEGER = ("upper_equals", "lower_equals", "at_most", "at_least")
+BOUND_MULTISET = ("upper_multiset_equals", "lower_multiset_equals", "at_most_multiset", "at_least_multiset")
+BOUND_OLD_SPELLINGS = {"upper": "upper_equals", "lower": "lower_equals", "upper_multiset": "upper_multiset_equals",
+                       "lower_multiset": "lower_multiset_equals"}
 
 
 @dataclass(frozen=True)
@@ -507,13 +515,15 @@ def _check_fields(r: _Reader, table: tuple, kind: str, f: dict) -> bool:
         ok = False
         r.error("E0702", f"'{key}' of a '{kind}' property must be {what}", r.value_span(table, key), hint=hint)
 
-    for k in ("expr", "formula", "place", "upper_multiset", "lower_multiset"):
+    multisets = (*BOUND_MULTISET, "upper_multiset", "lower_multiset")
+    integers = (*BOUND_INTEGER, "upper", "lower")
+    for k in ("expr", "formula", "place", *multisets):
         if k in f and (not isinstance(f[k], str) or not f[k].strip()):
             bad(k, "a non-empty string")
     for k in ("count", "count_modulo_time"):
         if k in f and (not isinstance(f[k], int) or isinstance(f[k], bool) or f[k] < 0):
             bad(k, "a non-negative integer")
-    for k in ("upper", "lower"):
+    for k in integers:
         if k in f and (isinstance(f[k], bool) or not isinstance(f[k], (int, str))):
             bad(k, "an integer or a CPN ML integer expression")
     for k in ("expected", "transitions", "progress", "fairness"):
@@ -529,11 +539,18 @@ def _check_fields(r: _Reader, table: tuple, kind: str, f: dict) -> bool:
         if ("place" in f) == ("expr" in f):
             ok = False
             r.error("E0702", "a 'bound' property needs exactly one of 'place' and 'expr'", r.value_span(table, "kind"))
-        if not {"upper", "lower", "upper_multiset", "lower_multiset"} & set(f):
+        if not (set(integers) | set(multisets)) & set(f):
             ok = False
-            r.error("E0702", "a 'bound' property needs 'upper', 'lower', 'upper_multiset' or 'lower_multiset'",
-                    r.value_span(table, "kind"))
-        if "expr" in f and {"upper_multiset", "lower_multiset"} & set(f):
+            r.error("E0702", f"a 'bound' property needs a limit: one of {', '.join(BOUND_INTEGER + BOUND_MULTISET)}",
+                    r.value_span(table, "kind"), hint="For example: at_most = 1 (every reachable marking has at "
+                    "most 1), or upper_equals = 1 (the best upper bound is exactly 1).")
+        for old, new in BOUND_OLD_SPELLINGS.items():
+            if old in f and new in f:
+                ok = False
+                r.error("E0702", f"'{old}' and '{new}' are two spellings of the same bound", r.key_span(table, old),
+                        hint=f"Keep '{new}' (the older spelling '{old}' means the same: the best bound equals the "
+                        "value).")
+        if "expr" in f and set(multisets) & set(f):
             ok = False
             r.error("E0702", "multiset bounds are given for a 'place', not for an 'expr'", r.value_span(table, "kind"))
     return ok

@@ -12,7 +12,16 @@ from __future__ import annotations
 from collections.abc import Callable
 
 from cpn.checks.predicates import PredicateError, PropertyLanguage
-from cpn.checks.properties import Bound, Check, DeadlockFree, DeadMarkings, Invariant, Reachable
+from cpn.checks.properties import (
+    Bound,
+    Check,
+    DeadlockFree,
+    DeadMarkings,
+    Invariant,
+    Reachable,
+    judge_integer_limit,
+    judge_multiset_limit,
+)
 from cpn.checks.scenario import TextOrigin
 from cpn.checks.verdict import Verdict
 from cpn.diagnostics import Span
@@ -185,35 +194,21 @@ def _bound(check: Bound, x, monitor: SweepMonitor, engine, reason: str | None) -
             hi, lo = x.bounds[p]
             rows.append((engine.places[p].name, hi, lo, p))
     problems, unknowns, holds = [], [], []
+    into = {"holds": holds, "violated": problems, "unknown": unknowns}
     for name, hi, lo, p in rows:
-        for which, want, got, worse in (("upper", check.upper, hi, lambda a, b: a > b),
-                                        ("lower", check.lower, lo, lambda a, b: a < b)):
-            if want is None:
-                continue
-            if got == want and complete:
-                holds.append(f"{name}: {which} bound {got}")
-            elif got != want and (complete or worse(got, want)):
-                problems.append(f"{name}: best {which} bound is {got}, expected {want}")
-            else:
-                unknowns.append(f"{name}: {which} bound {got} so far, expected {want}")
+        for key, want in check.limits.items():
+            outcome, text = judge_integer_limit(key, want, hi, lo, complete)
+            into[outcome].append(f"{name}: {text}")
         if p is None:
             continue
-        for which, want, got in (("upper", check.upper_ms, x.multiset_upper[p]),
-                                 ("lower", check.lower_ms, x.multiset_lower[p])):
-            if want is None:
-                continue
-            got = Multiset(got or {})
-            broken = not got <= want if which == "upper" else not want <= got
-            text = engine.format_multiset(p, dict(want._d))
-            if broken:
-                problems.append(f"{name}: a marking breaks the expected {which} multiset bound {text}")
-            elif complete and got != want:
-                problems.append(f"{name}: best {which} multiset bound is "
-                                f"{engine.format_multiset(p, dict(got._d))}, expected {text}")
-            elif complete:
-                holds.append(f"{name}: {which} multiset bound")
-            else:
-                unknowns.append(f"{name}: {which} multiset bound")
+        for key, want in check.multiset_limits.items():
+            upper = key in ("upper_multiset_equals", "at_most_multiset")
+            got = Multiset((x.multiset_upper if upper else x.multiset_lower)[p] or {})
+            broken = not got <= want if upper else not want <= got
+            outcome, text = judge_multiset_limit(key, engine.format_multiset(p, dict(want._d)),
+                                                 engine.format_multiset(p, dict(got._d)), broken, got == want,
+                                                 complete)
+            into[outcome].append(f"{name}: {text}")
     if problems:
         return Verdict.violated("; ".join(problems) + f" ({NO_TRACE})")
     if unknowns:

@@ -48,7 +48,7 @@ def symmetry_plan(checks: list, net, scalars) -> dict:
             refused[c] = (f"{NOT_PRESERVED}: two symmetric terminal components of the full graph are one in the "
                           "quotient, so its home markings are not those of the full graph")
             continue
-        if isinstance(c, Bound) and (c.upper_ms is not None or c.lower_ms is not None):
+        if isinstance(c, Bound) and c.multiset_limits:
             refused[c] = (f"{NOT_PRESERVED}: a multi-set bound of the full graph is that of a colour's whole "
                           "orbit, not the representative's")
             continue
