@@ -3,8 +3,8 @@
 DIR holds `expected.json` (shared/validation/README.md): per instance a model file, its format and the
 published figures. Each model goes through `cpn.load`, is explored completely, and every published
 figure (states, arcs, token maxima, dead markings, the Model Checking Contest global properties) is
-compared. Exit status: 0 all match, 1 some figure differs (or a model cannot be loaded), 2 nothing
-differs but some state space was cut short by --max-states.
+compared, one row per instance: match, mismatch, error (the model could not be loaded or explored),
+partial (cut short by --max-states: nothing compared) or skipped.
 """
 
 from __future__ import annotations
@@ -32,11 +32,26 @@ FIGURES = ("states", "arcs", "arcs_distinct_marking_pairs", "max_tokens_per_mark
            "dead_markings", "deadlock_reachable")
 MAX_STATES_DEFAULT = 3_000_000
 
+# validate's own exit statuses: it verifies no property, so the commands' common list (where 1 is "a
+# property is violated") does not describe it
+EPILOG = """exit statuses:
+  0   every instance compared matches all its published figures (skipped instances aside)
+  1   the corpus does not validate: a published figure differs ('mismatch'), or an instance's model
+      could not be loaded or explored ('error')
+  2   nothing differs, but some state space was cut short by --max-states ('partial': not compared)
+  64  bad usage: DIR has no readable expected.json, or no instance matches --only
+  70  internal error (a bug in cpn-verify: please report it)
+  73  the --json file cannot be created (checked before any work starts)
+  130 interrupted
+
+outputs: --json takes '-' for standard output; the table then goes to standard error.
+"""
+
 
 def add_parser(subparsers) -> argparse.ArgumentParser:
     p = subparsers.add_parser(
         "validate", help="explore an external validation corpus and compare with its published figures",
-        description=__doc__.split("\n\n")[1], formatter_class=argparse.RawDescriptionHelpFormatter)
+        description=__doc__.split("\n\n")[1], epilog=EPILOG, formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("directory", metavar="DIR", help="folder with expected.json and the model files")
     p.add_argument("--max-states", type=int, default=MAX_STATES_DEFAULT, metavar="N",
                    help=f"stop exploring an instance after N states (default {MAX_STATES_DEFAULT:,})")
