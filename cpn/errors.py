@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from cpn.diagnostics import Diagnostic, Severity, Span
+from cpn.diagnostics import Diagnostic, Severity, Span, shorten_words
 
 
 class CpnError(Exception):
@@ -38,7 +38,8 @@ class ModelError(CpnError):
         self.diagnostics = sorted(diagnostics, key=Diagnostic.sort_key)
         self.sources = dict(sources or {})
         first = self.diagnostics[0] if self.diagnostics else None
-        super().__init__(f"{first.span}: {first.message}" if first and first.span else (first.message if first else ""))
+        text = shorten_words(first.message) if first else ""
+        super().__init__(f"{first.span}: {text}" if first and first.span else text)
 
     @property
     def errors(self) -> list[Diagnostic]:

@@ -8,12 +8,13 @@ from __future__ import annotations
 import functools
 import re
 import threading
+import unicodedata
 from importlib import resources
 
 from lark import Lark, Token, Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken, VisitError
 
-from cpn.diagnostics import Diagnostic, Span
+from cpn.diagnostics import Diagnostic, Span, other_command_hint
 from cpn.errors import ModelSyntaxError
 from cpn.lang import ast as A
 from cpn.lang.syntax_errors import CASE_RULE_DELAY, SYNTAX_ERRORS, TERMINAL_NAMES
@@ -97,8 +98,6 @@ def describe_char(ch: str) -> str:
     """A character for a message: quoted if it is visible, else by its code point ('U+0000')."""
     if ch.isprintable() and not ch.isspace() or ch == " ":
         return f"'{ch}'"
-    import unicodedata
-
     name = unicodedata.name(ch, "")
     return f"U+{ord(ch):04X}" + (f" ({name.lower()})" if name else "")
 
@@ -169,12 +168,49 @@ def _diagnose(exc: UnexpectedInput, text: str, filename: str) -> Diagnostic:
         code, message, hint, _ = SYNTAX_ERRORS[label]
         return Diagnostic(code, f"{message}, found {found}", span, hint=hint, params={"found": found})
     if isinstance(exc, UnexpectedCharacters):  # an unterminated string or comment returned above
-        return Diagnostic("E0101", f"unexpected character {found}", span,
-                          hint="Remove it, or put it inside a string or a comment.", params={"found": found})
+        hint = _non_ascii_hint(text, exc.pos_in_stream) or "Remove it, or put it inside a string or a comment."
+        return Diagnostic("E0101", f"unexpected character {found}", span, hint=hint, params={"found": found})
     expected = _expected_text(exc)
     msg = ("unexpected end of the file" if found == "the end of the file" else f"unexpected {found}") \
         + (f", expected {expected}" if expected else "")
     return Diagnostic("E0101", msg, span, params={"found": found})
+
+
+_WORD_CHARS = re.compile(r"[\w']+")
+
+
+def _non_ascii_hint(text: str, pos: int) -> str | None:
+    """The hint for a letter outside ASCII (`place Überlauf`): quoting the name where a quoted name is allowed
+    (places, transitions, arcs' ends, instances: `"Überlauf"`, tried on the statement), else an ASCII name."""
+    if pos >= len(text) or text[pos].isascii() or not text[pos].isalnum():
+        return None
+    start = pos
+    while start > 0 and (text[start - 1].isalnum() or text[start - 1] in "_'"):
+        start -= 1
+    word = _WORD_CHARS.match(text, start).group()
+    if word[0] == "'" or not word[0].isalpha():
+        return None
+    stmt_start = max(text.rfind(";", 0, start), text.rfind("{", 0, start), text.rfind("}", 0, start)) + 1
+    stmt_end = text.find(";", start)
+    stmt_end = len(text) if stmt_end < 0 else stmt_end + 1
+    quoted = text[stmt_start:start] + f'"{word}"' + text[start + len(word):stmt_end]
+    at = start - stmt_start
+    try:
+        tree = _parser().parse(quoted)
+    except UnexpectedInput:
+        tree = None
+    finally:
+        _lexed_reserved().clear()
+    if tree is None or not any(sub.data == "name" and isinstance(tok, Token) and tok.start_pos == at
+                               for sub in tree.iter_subtrees() for tok in sub.children):
+        parts = ["".join(x for x in unicodedata.normalize("NFKD", c) if x.isascii()) for c in word]
+        ascii_name = "".join(parts)
+        example = f", e.g. '{ascii_name}'" if all(parts) and ascii_name[0].isalpha() else ""
+        return (f"Names of colour sets, variables, constants and functions are written in ASCII letters, digits, "
+                f"'_' and \"'\": rename '{word}'{example}. Only the names of places, transitions and module "
+                f"instances may be quoted to hold other characters.")
+    return (f"Write the name in double quotes: \"{word}\". A place, transition or instance may have any name in "
+            f"quotes; every use of it is quoted too (arc \"{word}\" -> ...; in a property, Mark \"Page'{word}\" 1).")
 
 
 _CASE_RULE_DELAY = re.compile(r"\bcase\b[^;]*=>[^;|]*@\+[^;|]*\|\s*_?\Z")
@@ -387,6 +423,15 @@ def parse(text: str, filename: str = "<string>") -> A.Model:
         diags += [d for d in _reserved_names(tree, filename) if d.span.line not in seen]
     if diags:
         diags.sort(key=lambda d: (d.span.line, d.span.col))
+        other = other_command_hint(filename, text, "model")
+        if other is not None:
+            # a scenario file given to lint or explore: its first error and where it belongs, not one per line
+            first = diags[0]
+            first.hint = other
+            if len(diags) > 1:
+                first.notes.append(f"{len(diags) - 1} more syntax {'error' if len(diags) == 2 else 'errors'} "
+                                   "not shown: the file is not a model")
+            diags = [first]
         raise ModelSyntaxError(diags, {filename: text})
     try:
         decls = ToAst(filename).transform(balance_chains(tree))
