@@ -27,6 +27,7 @@ class PropertyResult:
     spec: PropertySpec
     verdict: Verdict
     seconds: float
+    reads: tuple = ()  # the place instances the property's texts read (indices), for the reports
 
     @property
     def as_expected(self) -> bool:
@@ -122,22 +123,33 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     """Explore one run of a scenario and decide its properties.
 
     Raises ModelError (the model or a property text is wrong) and ConfigurationError (no model file).
-    `overrides` replaces exploration options of the scenario (`max_states`, ...).
+    `overrides` replaces exploration options of the scenario (`max_states`, ...; `max_seconds = 0`: no
+    time limit); `default_max_memory_mb` and `default_max_seconds` apply only where the scenario sets no
+    such limit; `set` (the command line's constant values, already in `run.values`) is recorded in the
+    options, and a value the model refuses stays an error of the command line.
     """
     from cpn.model import load
 
     overrides = dict(overrides or {})
     default_memory = overrides.pop("default_max_memory_mb", None)
+    default_seconds = overrides.pop("default_max_seconds", None)
     opts = {**scenario.explore, **{k: v for k, v in overrides.items() if v is not None}}
     if "max_memory_mb" not in opts and default_memory is not None:
         opts["max_memory_mb"] = default_memory
+    if "max_seconds" not in opts and default_seconds is not None:
+        # the scenario sets no time limit: the command's default applies, and the report says so
+        opts["max_seconds"] = default_seconds
+        opts["max_seconds_is_default"] = True
+    if opts.get("max_seconds") == 0:  # `--max-seconds 0`: no time limit, whatever the scenario says
+        opts["max_seconds"] = None
     try:
         model = load(scenario.model, set=run.values)
     except ModelError as exc:
         raise _at_scenario(exc, scenario) from None
     except ConfigurationError as exc:
-        if getattr(exc, "code", None) != "E0305":
-            raise
+        named = _names_in(exc)
+        if getattr(exc, "code", None) != "E0305" or (named and named <= set(opts.get("set") or {})):
+            raise  # no such model file, or a value of the command line's --set: not the scenario's fault
         raise _values_at_scenario(exc, scenario) from None
     engine = model.engine(time_condensation=bool(opts.get("time_condensation", False)))
     index = TransitionIndex(engine)
@@ -202,8 +214,16 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
         except PredicateError as exc:
             ev = evidence_to(x.graph, exc.state_id) if exc.state_id is not None else None
             verdict = Verdict(Status.ERROR, str(exc), ev)
-        results.append(PropertyResult(c.spec, verdict, time.perf_counter() - t))
+        results.append(PropertyResult(c.spec, verdict, time.perf_counter() - t, _places_read(c)))
     return RunResult(scenario, run, x, engine, results, explore_seconds, time.perf_counter() - t1, opts)
+
+
+def _places_read(check: Check) -> tuple:
+    """The place instances a property names or its texts read (indices, sorted)."""
+    out = set(getattr(check, "places", None) or ())
+    for text in [getattr(check, "pred", None), getattr(check, "fn", None), *(getattr(check, "atoms", None) or ())]:
+        out.update(getattr(text, "reads", ()) or ())
+    return tuple(sorted(out))
 
 
 def symmetric_colour_sets(model, spec: str | None, scenario: Scenario) -> tuple:
@@ -242,6 +262,13 @@ def _at_scenario(exc: ModelError, scenario: Scenario) -> ModelError:
                     break
         diags.append(d)
     return ModelError(diags, {**exc.sources, scenario.path: scenario.source})
+
+
+def _names_in(exc) -> set:
+    """The constants an E0305 ConfigurationError names (one '--set NAME=...' line each)."""
+    import re
+
+    return {m.group(1) for m in re.finditer(r"^\s*--set ([^=\s]+)=", str(exc), re.MULTILINE)}
 
 
 def _values_at_scenario(exc, scenario: Scenario) -> ModelError:

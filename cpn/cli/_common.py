@@ -86,13 +86,22 @@ def add_output_option(p: argparse.ArgumentParser, flag: str, what: str, *names: 
     p.add_argument(*names, flag, metavar="FILE", help=f"write {what} to FILE ('-': standard output)")
 
 
-def add_limit_options(p: argparse.ArgumentParser) -> None:
+def add_limit_options(p: argparse.ArgumentParser, default_seconds: float | None = None) -> None:
+    """--max-states, --max-arcs, --max-seconds, --max-memory. With `default_seconds` (`check`), a search
+    whose scenario sets no time limit stops after that many seconds, and `--max-seconds 0` means none."""
     from cpn.statespace.options import DEFAULT_MEMORY_SHARE, default_max_memory_mb
 
     default = default_max_memory_mb()
     p.add_argument("--max-states", type=int, metavar="N", help="stop after N states")
     p.add_argument("--max-arcs", type=int, metavar="N", help="stop after N arcs")
-    p.add_argument("--max-seconds", type=float, metavar="S", help="stop after S seconds of generation")
+    if default_seconds is None:
+        p.add_argument("--max-seconds", type=float, metavar="S", help="stop after S seconds of generation")
+    else:
+        p.add_argument("--max-seconds", type=float, metavar="S",
+                       help=f"stop each search after S seconds of generation (default {default_seconds:g}, for "
+                       "the runs whose scenario sets no max_seconds, so that an unbounded model ends with a "
+                       "partial report; 0: no time limit)")
+        p.set_defaults(max_seconds_default=default_seconds)
     p.add_argument("--max-memory", type=float, metavar="MB",
                    help="stop when the process uses MB MiB of resident memory (default "
                    f"{_mib(default)}: {DEFAULT_MEMORY_SHARE * 100:.0f}%% of the memory of this machine or of its "
@@ -133,12 +142,14 @@ def _mib(mb: float | None) -> str:
 
 def check_limits(args) -> None:
     """Limits must be positive. Without --max-memory the default applies (`args.max_memory_is_default`
-    says so); `--max-memory 0` means no memory limit."""
+    says so); `--max-memory 0` means no memory limit, and so does `--max-seconds 0` where the command has
+    a default time limit (`add_limit_options(default_seconds=...)`)."""
     from cpn.statespace.options import default_max_memory_mb
 
+    may_be_zero = {"max_memory"} | ({"max_seconds"} if getattr(args, "max_seconds_default", None) else set())
     for name in ("max_states", "max_arcs", "max_seconds", "max_memory"):
         v = getattr(args, name, None)
-        if v is None or (name == "max_memory" and v == 0):
+        if v is None or (name in may_be_zero and v == 0):
             continue
         if v <= 0:
             raise UsageError(f"--{name.replace('_', '-')} must be positive, got {v:g}")

@@ -20,20 +20,26 @@ from cpn.cli._common import (
     add_output_option,
     add_parallel_options,
     add_quiet_option,
+    add_set_option,
     check_limits,
     check_parallel,
     prepare_outputs,
+    sets_of,
     write_output,
 )
 from cpn.cli.explore import _ProgressLine
 
 DEFAULT_DIR = "specs"
+# seconds of generation per run where neither the scenario (max_seconds) nor --max-seconds sets a limit: an
+# unbounded model ends with a partial report (status 2) instead of filling the machine's memory
+DEFAULT_MAX_SECONDS = 600.0
 
 DESCRIPTION = """Explore the state space of each scenario (a TOML file naming a model, the values of its
 constants, exploration limits and the properties the protocol must have; docs/specs.md) and give each
 property a verdict: holds, violated (with the shortest counterexample), or unknown (a limit stopped the
 search). With no argument, every *.toml under specs/ is checked. Reports (text, JSON, Markdown) are
-written per scenario run under --reports."""
+written per scenario run under --reports. A run whose scenario sets no max_seconds stops after
+600 seconds of search (--max-seconds changes it for every run)."""
 
 
 
@@ -54,7 +60,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    help="compare with the JSON reports of an earlier run in DIR and print what changed")
     p.add_argument("--trace-format", choices=("text", "json"), default="text",
                    help="how counterexamples are printed (default: text)")
-    add_limit_options(p)  # override the limits of every scenario ([explore] in the file)
+    add_set_option(p)  # over [set] and the parameter table of every scenario; the run's name shows it
+    add_limit_options(p, default_seconds=DEFAULT_MAX_SECONDS)  # override every scenario's [explore] limits
     add_parallel_options(p)
     p.add_argument("--stop-at-first-violation", action="store_true",
                    help="stop each search at the first violated invariant or dead marking (fail fast)")
@@ -74,11 +81,13 @@ def run(args) -> int:
     from cpn import __version__
     from cpn.checks.gate import run_scenario
     from cpn.checks.scenario import load_scenario, scenario_files
+    from cpn.diagnostics import render
     from cpn.errors import ConfigurationError, EvaluationError, ModelError
     from cpn.report.verdicts import report_name, run_report
 
     check_limits(args)
     check_parallel(args)
+    sets = sets_of(args)
     outputs = {o.option: o for o in prepare_outputs(("--junit", args.junit), ("--sarif", args.sarif))}
     paths = args.paths or [DEFAULT_DIR]
     for p in paths:
@@ -88,19 +97,32 @@ def run(args) -> int:
     files = scenario_files(paths)
     if not files:
         raise UsageError(f"no scenario (*.toml) in {', '.join(paths)}")
+    if args.baseline is not None and not os.path.isdir(args.baseline):
+        what = "is not a folder" if os.path.exists(args.baseline) else "does not exist"
+        raise UsageError(f"--baseline {args.baseline}: the folder {what}\nhint: name the --reports folder of an "
+                         "earlier run of 'cpn-verify check' (its JSON reports are compared with this run's)")
+    # before any run: a long check must never be lost to a bad path
+    if not args.no_reports:
+        _prepare_folder(args.reports, "--reports",
+                        "" if args.reports != "reports" else " (the default, reports/ in the working directory; "
+                        "give --reports DIR, or --no-reports)")
+    if args.html:
+        _prepare_folder(args.html, "--html")
     overrides = {"max_states": args.max_states, "max_arcs": args.max_arcs, "max_seconds": args.max_seconds,
-                 # the default memory limit applies only where a scenario sets none
+                 # the default limits apply only where a scenario sets none
                  "default_max_memory_mb" if args.max_memory_is_default else "max_memory_mb": args.max_memory,
+                 "default_max_seconds": args.max_seconds_default if args.max_seconds is None else None,
                  "stop_at_first_violation": True if args.stop_at_first_violation else None,
                  "workers": args.workers, "ray": args.ray,
-                 "sweep_line": True if args.sweep_line or args.progress else None, "progress": args.progress}
-    if args.html:
-        _prepare_html_folder(args.html)  # before any run: a long check must never be lost to a bad path
+                 "sweep_line": True if args.sweep_line or args.progress else None, "progress": args.progress,
+                 "set": sets or None}
     pages: list = []
     stdout_taken = any(o.to_stdout for o in outputs.values())
     docs: list[dict] = []
     bad_files = 0
+    usage_errors = 0
     timings = not args.no_timings
+    scenarios = []
     for path in files:
         try:
             scenario = load_scenario(path)
@@ -108,6 +130,16 @@ def run(args) -> int:
             print(err.render(), file=sys.stderr)
             bad_files += 1
             continue
+        if sets:
+            _apply_sets(scenario, sets)
+        scenarios.append(scenario)
+    for scenario, diag in _unique_names(scenarios):  # two runs never share their report files
+        print(render(diag, scenario.source), file=sys.stderr)
+        scenarios.remove(scenario)
+        bad_files += 1
+    for scenario in scenarios:
+        if not scenario.properties:
+            print(render(_no_property(scenario), scenario.source), file=sys.stderr)
         for r in scenario.runs:
             display = _ProgressLine() if (not args.quiet and sys.stderr.isatty()) else None
             try:
@@ -119,15 +151,18 @@ def run(args) -> int:
                 bad_files += 1
                 continue
             except ConfigurationError as err:
-                print(f"{path}: {err.render()}", file=sys.stderr)
-                bad_files += 1
+                print(f"{scenario.path}: {err.render()}", file=sys.stderr)
+                if getattr(err, "code", None) == "E0305":  # a value of --set that the model refuses
+                    usage_errors += 1
+                else:
+                    bad_files += 1
                 continue
             finally:
                 if display is not None:
                     display.close()
             doc = run_report(result, timings=timings)
             docs.append(doc)
-            if not args.quiet and not stdout_taken:
+            if not stdout_taken:  # --quiet keeps results: where a property fails, and its trace
                 _print_run(doc, args.trace_format)
             if not args.no_reports:
                 _write_reports(args.reports, report_name(r.name), doc)
@@ -151,13 +186,101 @@ def run(args) -> int:
     if args.baseline and not stdout_taken:
         _print_baseline(args.baseline, docs)
     statuses = {d["verdict"] for d in docs}
-    if bad_files or "error" in statuses:
-        return ExitStatus.DATAERR
-    if "violated" in statuses:
-        return ExitStatus.VIOLATED
-    if "unknown" in statuses:
-        return ExitStatus.UNKNOWN
-    return ExitStatus.OK
+    found = [ExitStatus.USAGE if usage_errors else ExitStatus.OK,
+             ExitStatus.DATAERR if bad_files or "error" in statuses else ExitStatus.OK,
+             ExitStatus.VIOLATED if "violated" in statuses else ExitStatus.OK,
+             ExitStatus.UNKNOWN if "unknown" in statuses else ExitStatus.OK]
+    return ExitStatus.worst(found)
+
+
+def _apply_sets(scenario, sets: dict[str, str]) -> None:
+    """`check --set NAME=VALUE`: every run of the scenario takes the value (over [set] and over a parameter
+    table's), and its name says so, as a parameter row's does: 'MS[N=5]' (rows made equal are run once)."""
+    from cpn.checks.scenario import Run
+
+    def show(v) -> str:
+        return ("true" if v else "false") if isinstance(v, bool) else str(v)
+
+    runs, seen = [], set()
+    for r in scenario.runs:
+        params = {k: sets.get(k, v) for k, v in r.params.items()}
+        label = {**params, **{k: v for k, v in sets.items() if k not in params}}
+        name = f"{scenario.name}[{','.join(f'{k}={show(v)}' for k, v in label.items())}]"
+        if name not in seen:
+            seen.add(name)
+            runs.append(Run(name, params, {**r.values, **sets}))
+    scenario.runs = runs
+
+
+def _stem(path: str) -> str:
+    return os.path.splitext(os.path.basename(path))[0]
+
+
+def _unique_names(scenarios: list) -> list:
+    """Make every run's report name unique; returns the scenarios refused, each with its error.
+
+    Two scenarios named by their files alone (`a/basic.toml`, `b/basic.toml`) take the paths from the
+    folder they share: runs `a/basic` and `b/basic`, reports `a-basic.*` and `b-basic.*`. Names that
+    still meet (a `name = ...` given twice, or names that become the same file name) are refused at the
+    later scenario's `name` line: its reports would overwrite the other's.
+    """
+    from cpn.diagnostics import Diagnostic
+    from cpn.report.verdicts import report_name
+
+    groups: dict[str, list] = {}
+    for s in scenarios:
+        groups.setdefault(report_name(s.name).casefold(), []).append(s)
+    for group in groups.values():
+        named_by_file = [s for s in group if s.name == _stem(s.path)]
+        if len(group) < 2 or not named_by_file:
+            continue
+        root = os.path.commonpath([os.path.dirname(os.path.abspath(s.path)) for s in group])
+        for s in named_by_file:
+            qualified = os.path.splitext(os.path.relpath(os.path.abspath(s.path), root))[0].replace(os.sep, "/")
+            for r in s.runs:
+                r.name = qualified + r.name[len(s.name):]
+            s.name = qualified
+    taken: dict[str, tuple] = {}  # a report name (case folded: some file systems ignore case) -> its run
+    refused = []
+    for s in scenarios:
+        stems = {report_name(r.name).casefold(): r for r in s.runs}
+        clash = next((key for key in stems if key in taken), None)
+        if clash is None:
+            taken.update({key: (s, r) for key, r in stems.items()})
+            continue
+        other, other_run = taken[clash]
+        stem = report_name(stems[clash].name)
+        refused.append((s, Diagnostic(
+            "E0702", f"the run '{stems[clash].name}' would write the reports of the run '{other_run.name}' of "
+            f"{other.path} ({stem}.json, .txt, .md): two runs need two names", _name_span(s),
+            hint="Give each scenario its own name = \"...\" (the default is the file name).")))
+    return refused
+
+
+def _name_span(scenario):
+    """The span of the scenario's top-level `name` value, else the start of the file."""
+    import re
+
+    from cpn.diagnostics import Span
+
+    for n, line in enumerate(scenario.source.splitlines(), 1):
+        if line.lstrip().startswith("["):
+            break
+        m = re.match(r"""(\s*name\s*=\s*)("[^"]*"|'[^']*')""", line)
+        if m:
+            start = len(m.group(1)) + 1
+            return Span(scenario.path, n, start, n, start + len(m.group(2)) - 1)
+    return Span(scenario.path, 1, 1)
+
+
+def _no_property(scenario):
+    """The warning for a scenario that states no property: its runs would pass the gate having checked nothing."""
+    from cpn.diagnostics import Diagnostic, Severity, Span
+
+    return Diagnostic("W0701", "the scenario states no property: its runs check nothing, and the gate counts "
+                      "them as holding", Span(scenario.path, 1, 1),
+                      hint="Add the properties the protocol must have as [[property]] tables (docs/specs.md); "
+                      "to look at a state space alone, run 'cpn-verify explore MODEL'.", severity=Severity.WARNING)
 
 
 def _print_run(doc: dict, trace_format: str) -> None:
@@ -177,6 +300,8 @@ def _print_run(doc: dict, trace_format: str) -> None:
 
 
 def _print_summary(docs: list[dict], timings: bool) -> None:
+    """One line per run (its time limit says "default" where its scenario sets none), then each property
+    that does not hold, the runs that checked nothing, and the runs the default time limit stopped."""
     from cpn.report.verdicts import label
 
     if not docs:
@@ -191,17 +316,38 @@ def _print_summary(docs: list[dict], timings: bool) -> None:
                                                                                         kv[0])))
         space = f"{st['states']:,}" + ("" if st["complete"] else " (partial)")
         secs = f"{st.get('seconds', 0) + st.get('check_seconds', 0):.2f}" if timings else "-"
-        rows.append((d["run"], space, secs, d["verdict"], tally))
-    head = ("scenario", "states", "seconds", "verdict", "properties")
-    widths = [max(len(r[i]) for r in rows + [head]) for i in range(5)]
-    line = "  ".join(f"{h:<{widths[i]}}" if i in (0, 3, 4) else f"{h:>{widths[i]}}" for i, h in enumerate(head))
-    print(line.rstrip())
+        rows.append((d["run"], space, secs, _time_limit(d), d["verdict"], tally or "no property"))
+    head = ("scenario", "states", "seconds", "time limit", "verdict", "properties")
+    left = (0, 3, 4, 5)
+    widths = [max(len(r[i]) for r in rows + [head]) for i in range(len(head))]
+
+    def row(cells) -> str:
+        return "  ".join(f"{c:<{widths[i]}}" if i in left else f"{c:>{widths[i]}}" for i, c in enumerate(cells))
+
+    print(row(head).rstrip())
     for r in rows:
-        print("  ".join(f"{c:<{widths[i]}}" if i in (0, 3, 4) else f"{c:>{widths[i]}}" for i, c in enumerate(r)).rstrip())
+        print(row(r).rstrip())
     for d in docs:
         bad = [p for p in d["properties"] if p.get("gate", p["verdict"]) != "holds"]
         for p in bad:
             print(f"  {label(p):<9} {d['run']}: {p['name']}")
+    empty = [d["run"] for d in docs if not d["properties"]]
+    if empty:
+        print(f"  {len(empty)} run{'s' if len(empty) > 1 else ''} checked no property, the scenario states none: "
+              + ", ".join(empty))
+    for d in docs:
+        o = d.get("options", {})
+        if d["statespace"]["stop_reason"] == "max_seconds" and o.get("max_seconds_is_default"):
+            print(f"  {d['run']}: stopped by the default time limit of {o['max_seconds']:g} s a run; set max_seconds "
+                  "in the scenario's [explore], or give --max-seconds S (0: no limit)")
+
+
+def _time_limit(doc: dict) -> str:
+    """The run's limit on seconds of search: '600 s (default)' where the scenario sets none."""
+    o = doc.get("options", {})
+    if o.get("max_seconds") is None:
+        return "none"
+    return f"{o['max_seconds']:g} s" + (" (default)" if o.get("max_seconds_is_default") else "")
 
 
 _ORDER = {"error": 0, "violated": 1, "unknown": 2, "holds": 3}
@@ -224,13 +370,22 @@ def _print_baseline(folder: str, docs: list[dict]) -> None:
         print(f"  {'REGRESSION ' if c.is_regression else ''}{c.text}")
 
 
-def _prepare_html_folder(folder: str) -> None:
+def _prepare_folder(folder: str, option: str, default: str = "") -> None:
+    """Create the output folder and write a file in it, before any work: CannotCreate (exit 73) if it
+    cannot be (a file in the way, no permission, a read-only file system)."""
+    import tempfile
+
     from cpn.cli._common import CannotCreate
 
+    if os.path.exists(folder) and not os.path.isdir(folder):
+        raise CannotCreate(f"cannot write {option} {folder}: it is a file, not a folder{default}")
     try:
         os.makedirs(folder, exist_ok=True)
+        fd, probe = tempfile.mkstemp(prefix=".cpn-verify-", dir=folder)
+        os.close(fd)
+        os.remove(probe)
     except OSError as exc:
-        raise CannotCreate(f"cannot write --html {folder}: {exc.strerror or exc}") from None
+        raise CannotCreate(f"cannot write {option} {folder}: {exc.strerror or exc}{default}") from None
 
 
 def _write_html_page(folder: str, result, stem: str):
@@ -253,15 +408,19 @@ def _write_html_page(folder: str, result, stem: str):
 def _write_reports(folder: str, stem: str, doc: dict) -> None:
     from cpn.report.verdicts import render_markdown, render_text
 
-    os.makedirs(folder, exist_ok=True)
     _write(os.path.join(folder, f"{stem}.json"), json.dumps(doc, indent=2, ensure_ascii=False) + "\n")
     _write(os.path.join(folder, f"{stem}.txt"), render_text(doc))
     _write(os.path.join(folder, f"{stem}.md"), render_markdown(doc))
 
 
 def _write(path: str, text: str) -> None:
-    folder = os.path.dirname(path)
-    if folder:
-        os.makedirs(folder, exist_ok=True)
-    with open(path, "w", encoding="utf-8") as fh:
-        fh.write(text)
+    from cpn.cli._common import CannotCreate
+
+    try:
+        folder = os.path.dirname(path)
+        if folder:
+            os.makedirs(folder, exist_ok=True)
+        with open(path, "w", encoding="utf-8") as fh:
+            fh.write(text)
+    except OSError as exc:  # the folder was checked before the run; this is a full disk, or a folder in the way
+        raise CannotCreate(f"cannot write the report {path}: {exc.strerror or exc}") from None

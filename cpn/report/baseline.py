@@ -22,8 +22,9 @@ class Change:
 
 
 def load_reports(folder: str) -> dict[str, dict]:
-    """The JSON check reports of a folder, by run name (other JSON files are ignored)."""
-    out = {}
+    """The JSON check reports of a folder, by run name (other JSON files are ignored). A run name that
+    two reports of the folder share pairs with neither: its entry is an `Ambiguous` list of their files."""
+    out: dict = {}
     if not os.path.isdir(folder):
         return out
     for name in sorted(os.listdir(folder)):
@@ -35,8 +36,17 @@ def load_reports(folder: str) -> dict[str, dict]:
         except (OSError, ValueError):
             continue
         if isinstance(doc, dict) and str(doc.get("schema", "")).startswith("cpn-verify/check-report/"):
-            out[doc["run"]] = doc
+            run = doc["run"]
+            if run in out:
+                before = out[run]
+                out[run] = Ambiguous([*before, name] if isinstance(before, Ambiguous) else [before["_file"], name])
+            else:
+                out[run] = {**doc, "_file": name}
     return out
+
+
+class Ambiguous(list):
+    """The report files of a baseline folder that hold the same run name: none of them is compared."""
 
 
 def compare(old: dict[str, dict], new: list[dict]) -> list[Change]:
@@ -47,6 +57,10 @@ def compare(old: dict[str, dict], new: list[dict]) -> list[Change]:
         before = old.get(run)
         if before is None:
             changes.append(Change(run, "new", f"{run}: new scenario run (no baseline report)"))
+            continue
+        if isinstance(before, Ambiguous):
+            changes.append(Change(run, "new", f"{run}: not compared: the baseline holds {len(before)} reports of "
+                                  f"a run of this name ({', '.join(before)})"))
             continue
         oldp = {p["name"]: p for p in before.get("properties", [])}
         newp = {p["name"]: p for p in doc["properties"]}
