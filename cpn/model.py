@@ -231,9 +231,9 @@ def load(path: str | os.PathLike, set: dict | None = None) -> Model:  # noqa: A0
     """
     path = os.fspath(path)
     if not os.path.exists(path):
-        raise ConfigurationError(f"no such model file: {path}")
+        raise ConfigurationError(f"no such model file: '{path}'")
     if os.path.isdir(path):
-        raise ConfigurationError(f"{path} is a directory, not a model file")
+        raise ConfigurationError(f"'{path}' is a directory, not a model file")
     importer = importer_for(path)
     if importer is not None:
         # foreign formats are translated to .cpnet text; errors in the translation point back at the file

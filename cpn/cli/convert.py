@@ -51,7 +51,7 @@ def _check(text: str, name: str):
 def run(args) -> int:
     (output,) = prepare_outputs(("-o", args.output or "-"))
     if not os.path.isfile(args.model):
-        raise UsageError(f"no such file: '{args.model}'" if not os.path.exists(args.model)
+        raise UsageError(f"no such model file: '{args.model}'" if not os.path.exists(args.model)
                          else f"'{args.model}' is not a file")
     from cpn.io import IMPORTERS, importer_for
 
