@@ -18,7 +18,7 @@ from cpn.engine.timedsuccessors import NEG_INF, TimedSuccessors, ready_time
 from cpn.errors import EvaluationError
 from cpn.net import expr as E
 from cpn.values.builtins import MLError
-from cpn.values.colours import format_multiset
+from cpn.values.colours import format_multiset, outside
 from cpn.values.multiset import MultisetError
 
 # what a function of the model may raise while it is evaluated: reported with the binding (`_blame`)
@@ -594,7 +594,7 @@ class CompiledEngine(TimedSuccessors, EngineAPI):
                 arc = next((a for a in info.t.arcs if a.place == p and a.kind.produces), None)
                 raise EvaluationError(
                     f"transition '{info.t.name}' puts {_fmt(cs, v)} on place '{self.places[p].name}', "
-                    f"outside its colour set {cs.name} = {cs.describe()}",
+                    f"outside its colour set {outside(cs, v)}",
                     arc.span if arc else info.t.span, info.t.name, None,
                     f"Make the inscription of arc {arc.label if arc else ''} produce values of {cs.name}.",
                     self.net.source, code="E0402")

@@ -16,6 +16,7 @@ from cpn.lang.evaluate import run_deep
 from cpn.lang.typecheck import CheckedModel, PageInfo
 from cpn.net.model import ArcInstance, Net, PageInstance, PlaceInstance, TransitionInstance
 from cpn.net.translate import Translator
+from cpn.values.colours import outside
 from cpn.values.multiset import TimedMultiset
 
 MAX_INSTANCE_DEPTH: int = 64
@@ -63,7 +64,7 @@ class _Lowerer:
         for v, n, delay in items:
             if not cs.contains(v):
                 self.error("E0303", f"the initial marking of place '{d.name}' contains {_fmt(cs, v)}, which is "
-                           f"outside colour set {cs.name} = {cs.describe()}", d.init.span,
+                           f"outside colour set {outside(cs, v)}", d.init.span,
                            hint=f"Use values of {cs.name}, or widen the colour set.")
                 continue
             key = (v, delay) if timed else v

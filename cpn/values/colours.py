@@ -226,6 +226,9 @@ class ProductCS(ColourSet):
     def format(self, v):
         return "(" + ",".join(c.format(x) for c, x in zip(self.components, v)) + ")"
 
+    def describe(self):
+        return "product " + " * ".join(c.name for c in self.components)
+
     def sort_key(self, v):
         return tuple(c.sort_key(x) for c, x in zip(self.components, v))
 
@@ -249,6 +252,9 @@ class RecordCS(ColourSet):
     def format(self, v):
         return "{" + ",".join(f"{label}={c.format(x)}" for (label, c), x in zip(self.fields, v)) + "}"
 
+    def describe(self):
+        return "record " + " * ".join(f"{label}:{c.name}" for label, c in self.fields)
+
     def sort_key(self, v):
         return tuple(c.sort_key(x) for (_, c), x in zip(self.fields, v))
 
@@ -270,6 +276,9 @@ class ListCS(ColourSet):
 
     def format(self, v):
         return "[" + ",".join(self.elem.format(x) for x in v) + "]"
+
+    def describe(self):
+        return f"list {self.elem.name}" + (f" with {self.low}..{self.high}" if self.low is not None else "")
 
     def sort_key(self, v):
         return tuple(self.elem.sort_key(x) for x in v)
@@ -304,6 +313,9 @@ class UnionCS(ColourSet):
             if len(out) > MAX_ENUMERABLE:
                 return None
         return out
+
+    def describe(self):
+        return "union " + " + ".join(name if cs is None else f"{name}:{cs.name}" for name, cs in self.constructors)
 
     def format(self, v):
         if isinstance(v, tuple):
@@ -379,6 +391,54 @@ class AliasCS(ColourSet):
 
     def describe(self):
         return self.base.describe()
+
+
+def declared(cs: ColourSet) -> str:
+    """A colour set for messages: its name, and its declaration where that says more (`PEND = product ID * NO`)."""
+    text = cs.describe()
+    return cs.name if text == cs.name else f"{cs.name} = {text}"
+
+
+def outside(cs: ColourSet, v: Any) -> str:
+    """Why `v` is not a value of `cs`, for messages: the colour set as declared and, for a product, record,
+    list or union, the part of `v` that is out of its colour set.
+
+    >>> pend = ProductCS("PEND", [IntCS("ID", 1, 2), IntCS("NO", 0, 3)])
+    >>> outside(pend, (1, 5))
+    'PEND = product ID * NO: its component 2, 5, is outside NO = int with 0..3'
+    """
+    return declared(cs) + _why(cs, v)
+
+
+def _safe_format(cs: ColourSet, v: Any) -> str:
+    try:
+        return cs.format(v)
+    except Exception:  # noqa: BLE001 - a value outside the colour set may not print as one of its values
+        return repr(v)
+
+
+def _why(cs: ColourSet, v: Any) -> str:
+    while isinstance(cs, AliasCS):
+        cs = cs.base
+    parts: list[tuple[str, ColourSet, Any]] = []
+    if isinstance(cs, ProductCS) and isinstance(v, tuple) and len(v) == len(cs.components):
+        parts = [(f"its component {i}", c, x) for i, (c, x) in enumerate(zip(cs.components, v), 1)]
+    elif isinstance(cs, RecordCS) and isinstance(v, tuple) and len(v) == len(cs.fields):
+        parts = [(f"its field {label}", c, x) for (label, c), x in zip(cs.fields, v)]
+    elif isinstance(cs, ListCS) and isinstance(v, tuple):
+        if cs.low is not None and not cs.low <= len(v) <= cs.high:
+            return f": its length {len(v)} is outside {cs.low}..{cs.high}"
+        parts = [(f"its element {i}", cs.elem, x) for i, x in enumerate(v, 1)]
+    elif (isinstance(cs, UnionCS) and isinstance(v, tuple) and len(v) == 2 and isinstance(v[0], int)
+          and 0 <= v[0] < len(cs.constructors) and cs.constructors[v[0]][1] is not None):
+        name, arg = cs.constructors[v[0]]
+        parts = [(f"the argument of {name}", arg, v[1])]
+    elif isinstance(cs, SubsetCS) and cs.base.contains(v):
+        return f": it is a value of {cs.base.name} but not of the subset"
+    for what, c, x in parts:
+        if not c.contains(x):
+            return f": {what}, {_safe_format(c, x)}, is outside {outside(c, x)}"
+    return ""
 
 
 def format_multiset(cs: ColourSet, items: Iterable[tuple[Any, int]], timed: bool = False) -> str:
