@@ -180,7 +180,7 @@ class PropertyLanguage:
             acc = _Accessor(self.ctx, base, inst)
             self.accessors[base] = acc
             for spelling in (base, f"Mark.{base}"):
-                sym = Symbol(spelling, "val", T.TFun(T.INT, T.ms(self.place_cstype[base])))
+                sym = Symbol(spelling, "val", T.TFun(T.INT, T.ms(self.place_cstype[base])), what="the place")
                 names[spelling] = sym
                 self.symbols[sym.uid] = acc
                 self.ev.globals[sym.uid] = checked.evaluator.globals[sym.uid] = acc
@@ -194,7 +194,7 @@ class PropertyLanguage:
                                 ("enabled", "string -> bool", self._enabled)):
             if name in checked.globals:
                 continue  # the model's own declaration wins
-            sym = Symbol(name, "val", parse_type(ty))  # a Scheme: polymorphic where the type says 'a
+            sym = Symbol(name, "val", parse_type(ty), what="the property function")  # polymorphic where it says 'a
             names[name] = sym
             self.special[name] = sym
             self.ev.globals[sym.uid] = checked.evaluator.globals[sym.uid] = value

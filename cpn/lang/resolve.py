@@ -28,6 +28,11 @@ def suggestion(name: str, candidates: dict[str, str]) -> str | None:
     return f"Did you mean {candidates[cand]}?" if cand is not None else None
 
 
+def _other_case(a: str, b: str) -> bool:
+    """Whether the letters of two names differ in case somewhere they could be compared ('INT', 'intt')."""
+    return a.lower() == b.lower() or a.isupper() != b.isupper() or a[:1].isupper() != b[:1].isupper()
+
+
 class NameResolution:
     """Lookups with one error per cause (mixed into the Checker)."""
 
@@ -36,7 +41,7 @@ class NameResolution:
         self.unknown_reported: dict[tuple[str, str], Diagnostic] = {}  # (namespace, name) -> its error
 
     def describe(self, sym: Symbol) -> str:
-        word = _KIND_WORDS.get(sym.kind, "")
+        word = sym.what or _KIND_WORDS.get(sym.kind, "")
         where = f" (declared at {self._where(sym.span)})" if sym.span is not None and sym.span.line > 0 else ""
         return f"{word} '{sym.name}'{where}".strip()
 
@@ -58,9 +63,12 @@ class NameResolution:
         if cs is None and name not in self.failed_names:
             cands = {n: f"'{n}' (declared at {self._where(self.cs_spans[n])})" if self.cs_spans[n].line > 0
                      else f"'{n}'" for n in self.colsets}
-            hint = suggestion(name, cands)
-            hint = (hint + " Colour-set names are case-sensitive." if hint else
-                    "Declare it with 'colset NAME = ...;' before its first use.")
+            cand = did_you_mean(name, cands)
+            if cand is None:
+                hint = "Declare it with 'colset NAME = ...;' before its first use."
+            else:
+                hint = f"Did you mean {cands[cand]}?" + (" Colour-set names are case-sensitive."
+                                                          if _other_case(cand, name) else "")
             self._unknown("colset", name, span, f"unknown colour set '{name}'", hint)
         return cs
 

@@ -25,6 +25,7 @@ class Symbol:
     type: Any = None  # a Type or a Scheme
     span: Span | None = None
     data: Any = None
+    what: str | None = None  # how messages name it when its kind says too little ("the place" for Page'place)
     uid: int = field(default_factory=lambda: next(_uids))
 
     @property
