@@ -8,7 +8,7 @@ import cpn
 from cpn.checks import Fairness
 from cpn.report import build_report
 from cpn.statespace import ExploreOptions, Explorer
-from tests._shared import SHARED
+from tests._shared import SHARED, needs_shared
 
 if not hasattr(cpn, "load"):
     pytest.skip("cpn.load is not available yet", allow_module_level=True)
@@ -82,13 +82,10 @@ def test_ms_report():
     assert r.bounds.max_tokens_per_marking == 6 + 3 + 3 + 1
 
 
-LIMIT = next((p for p in (os.path.join(os.path.dirname(__file__), "..", "..", "..", "shared", "validation",
-                                       "CPNBook-LimitProtocol", "7-2LimitProtocol.cpn"),
-                          SHARED + "/validation/CPNBook-LimitProtocol/7-2LimitProtocol.cpn")
-              if os.path.exists(p)), None)
+LIMIT = os.path.join(SHARED, "validation", "CPNBook-LimitProtocol", "7-2LimitProtocol.cpn")
 
 
-@pytest.mark.skipif(LIMIT is None, reason="shared/validation is not beside the repository")
+@needs_shared
 def test_limit_protocol_matches_the_published_cpn_tools_report():
     try:
         e = cpn.load(LIMIT).engine(time_condensation=False)

@@ -3,11 +3,9 @@
 
 import os
 
-import pytest
-
 from cpn.checks.gate import run_scenario
 from cpn.checks.scenario import loads_scenario
-from tests._shared import SHARED
+from tests._shared import SHARED, needs_shared
 
 MODEL = os.path.join(SHARED, "validation", "CPNBook-LimitProtocol", "7-2LimitProtocol.cpn")
 
@@ -15,7 +13,7 @@ BOUNDS = {"Packets_To_Send": (6, 6), "Data_Received": (1, 1), "NextSend": (1, 1)
           "A": (3, 0), "B": (3, 0), "C": (3, 0), "D": (3, 0), "Limit": (3, 0)}
 
 
-@pytest.mark.skipif(not os.path.exists(MODEL), reason="shared validation data not available")
+@needs_shared
 def test_limit_protocol_published_properties(tmp_path):
     props = ['[[property]]\nname = "one dead marking"\nkind = "dead_markings"\ncount = 1\n',
              '[[property]]\nname = "deadlock"\nkind = "deadlock_free"\n',

@@ -10,7 +10,7 @@ import pytest
 from cpn.errors import ModelError
 from cpn.io.cpntools import remap_error, translate, translate_text
 from cpn.lang.parser import parse
-from tests._shared import SHARED
+from tests._shared import SHARED, needs_shared
 
 SAMPLES = SHARED + "/cpntools-samples"
 LIMIT = SHARED + "/validation/CPNBook-LimitProtocol/7-2LimitProtocol.cpn"
@@ -315,11 +315,13 @@ SAMPLE_TRANSLATION = {
 }
 
 
+@needs_shared
 def test_the_table_covers_every_sample():
     names = {os.path.basename(p)[:-4] for p in glob.glob(f"{SAMPLES}/*.cpn")}
     assert names == set(SAMPLE_TRANSLATION)
 
 
+@needs_shared
 @pytest.mark.parametrize("name", sorted(SAMPLE_TRANSLATION))
 def test_sample_loads_or_is_refused_clearly(name):
     import cpn
@@ -341,6 +343,7 @@ def test_sample_loads_or_is_refused_clearly(name):
         assert all(d.hint for d in diags)
 
 
+@needs_shared
 def test_limit_protocol_translates():
     text = translate(LIMIT)
     assert "net Protocol;" in text and "place Limit : UNIT = 3`();" in text
@@ -368,6 +371,7 @@ def test_code_segment_with_side_effects_and_outputs_is_refused():
 # ------------------------------------------------------------------ cpn-verify convert
 
 
+@needs_shared
 def test_convert_writes_a_model_that_loads(tmp_path, capsys):
     from cpn.cli.main import main
 
@@ -376,6 +380,7 @@ def test_convert_writes_a_model_that_loads(tmp_path, capsys):
     assert "place Unused_Chopsticks : CS = CS.all();" in out.read_text()
 
 
+@needs_shared
 def test_convert_refuses_with_exit_65_and_positions(tmp_path, capsys):
     from cpn.cli.main import main
 
@@ -423,6 +428,7 @@ def test_unused_declarations_are_left_out_and_used_ones_kept():
     assert "fun logit" not in text and "(* declaration M4 (logit) at line" in text
 
 
+@needs_shared
 def test_convert_reads_pnml_too(tmp_path):
     from cpn.cli.main import main
 

@@ -15,7 +15,7 @@ import pytest
 
 import cpn
 from cpn.io.cpntools import translate
-from tests._shared import SHARED
+from tests._shared import SHARED, needs_shared
 
 SAMPLES = SHARED + "/cpntools-samples"
 LIMIT = SHARED + "/validation/CPNBook-LimitProtocol/7-2LimitProtocol.cpn"
@@ -111,11 +111,13 @@ def _tarjan(succ: list[list[int]]) -> list[int]:
     return comp
 
 
+@needs_shared
 def test_dining_philosophers_11_nodes_30_arcs_1_scc():
     s = explore(f"{SAMPLES}/DiningPhilosophers.cpn")
     assert (s.nodes, s.arcs, s.dead, s.scc_nodes) == (11, 30, 0, 1)
 
 
+@needs_shared
 def test_limit_protocol_matches_the_cpn_tools_report():
     s = explore(LIMIT, max_states=20_000)
     assert (s.nodes, s.arcs, s.dead, s.complete) == (13_215, 52_784, 1, True)
@@ -138,6 +140,7 @@ FINITE = {
 }
 
 
+@needs_shared
 @pytest.mark.parametrize("name", sorted(FINITE))
 def test_finite_samples_match_cpncheck(name):
     s = explore(f"{SAMPLES}/{name}.cpn", max_states=5_000)
@@ -150,12 +153,14 @@ LARGE = ["HierarchicalProtocol", "ProtocolWithTimer", "ResourceAllocation", "Rin
          "SimpleProtocol", "SimpleProtocol_RP", "Telephones", "TimedProtocol", "TimedResourceAlloc"]
 
 
+@needs_shared
 @pytest.mark.parametrize("name", LARGE)
 def test_large_samples_explore(name):
     s = explore(f"{SAMPLES}/{name}.cpn", max_states=1_500, scc=False)
     assert s.nodes > 1
 
 
+@needs_shared
 def test_round_trip_through_cpnet_text_gives_the_same_state_space(tmp_path):
     for name in ["DiningPhilosophers", "ResourceAllocation_OG", "SimpleProtocol_OG", "priorities"]:
         path = tmp_path / f"{name}.cpnet"
@@ -176,12 +181,14 @@ def bench_cpn(tmp_path_factory):
 BENCH = {("dp", 5): (82, 265), ("dp", 8): (1_154, 5_968), ("ms", 4): (3_321, 17_172)}
 
 
+@needs_shared
 @pytest.mark.parametrize("net,n", sorted(BENCH))
 def test_bench_nets_match_the_published_counts(bench_cpn, net, n):
     s = explore(str(bench_cpn / f"{net}_{n}.cpn"), scc=False)
     assert (s.nodes, s.arcs) == BENCH[(net, n)]
 
 
+@needs_shared
 @pytest.mark.parametrize("net,n", [("dp", 5), ("ms", 3)])
 def test_bench_cpn_equals_our_cpnet_version(bench_cpn, net, n):
     ours = os.path.join(BENCH_NETS, f"{net}.cpnet")

@@ -11,7 +11,7 @@ import pytest
 
 from cpn.errors import ModelError
 from cpn.io.pnml import translate_text
-from tests._shared import SHARED
+from tests._shared import SHARED, needs_shared
 from tests.io.test_pnml_translate import ENUM, all_of, const, numberof, sn, sub, var
 
 VALIDATION = os.environ.get("CPN_VALIDATION_DIR", SHARED + "/validation")
@@ -70,6 +70,7 @@ def greatspn_form(data: bytes) -> tuple[bytes, int]:
     return ET.tostring(root, encoding="utf-8", xml_declaration=True), wrapped
 
 
+@needs_shared
 @pytest.mark.parametrize("path", COL_MODELS, ids=lambda p: os.path.basename(os.path.dirname(p)))
 def test_greatspn_form_of_every_coloured_instance_translates_identically(path):
     with open(path, "rb") as fh:
@@ -94,6 +95,7 @@ def _figures(text_or_bytes: bytes, tmp_path, name: str) -> tuple:
             b.max_of_one_colour_in_place)
 
 
+@needs_shared
 @pytest.mark.parametrize("name", ["Philosophers-COL-000005", "SafeBus-COL-03"])
 def test_greatspn_form_gives_the_published_figures(name, tmp_path):
     import json

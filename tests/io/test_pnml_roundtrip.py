@@ -9,7 +9,7 @@ import pytest
 
 from cpn.errors import ModelError
 from cpn.io.pnml import translate, translate_text, write, write_text
-from tests._shared import SHARED
+from tests._shared import SHARED, needs_shared
 
 VALIDATION = os.environ.get("CPN_VALIDATION_DIR", SHARED + "/validation")
 CORPUS = sorted(glob.glob(os.path.join(VALIDATION, "*", "model.pnml")))
@@ -19,7 +19,7 @@ def _body(text: str) -> list[str]:
     return text.splitlines()[1:]  # the first line is a comment naming the source file
 
 
-@pytest.mark.skipif(not CORPUS, reason="validation corpus not found")
+@needs_shared
 @pytest.mark.parametrize("path", CORPUS, ids=lambda p: os.path.basename(os.path.dirname(p)))
 def test_read_write_read_is_the_same_net(path, tmp_path):
     first = translate(path)
@@ -80,7 +80,7 @@ SMALL = ["TokenRing-COL-005", "DatabaseWithMutex-COL-02", "Sudoku-COL-AN02", "Br
          "ResAllocation-PT-R003C005", "IBM319-PT-none"]
 
 
-@pytest.mark.skipif(not CORPUS, reason="validation corpus not found")
+@needs_shared
 @pytest.mark.parametrize("name", SMALL)
 def test_written_pnml_has_the_same_state_space(name, tmp_path):
     if _loader_missing():
@@ -175,6 +175,7 @@ def _figures_of(model):
             f.properties)
 
 
+@needs_shared
 def test_flat_net_object_is_written(tmp_path):
     import cpn
 

@@ -9,7 +9,7 @@ import pytest
 
 from cpn.errors import ModelError
 from cpn.io.pnml import translate, translate_text
-from tests._shared import SHARED
+from tests._shared import SHARED, needs_shared
 
 VALIDATION = os.environ.get("CPN_VALIDATION_DIR", SHARED + "/validation")
 NS = "http://www.pnml.org/version-2009/grammar/pnml"
@@ -304,7 +304,7 @@ def test_unknown_references():
 CORPUS = sorted(glob.glob(os.path.join(VALIDATION, "*", "model.pnml")))
 
 
-@pytest.mark.skipif(not CORPUS, reason="validation corpus not found")
+@needs_shared
 @pytest.mark.parametrize("path", CORPUS, ids=lambda p: os.path.basename(os.path.dirname(p)))
 def test_corpus_translates_and_parses(path):
     from cpn.lang.parser import parse

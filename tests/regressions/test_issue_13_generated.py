@@ -14,7 +14,7 @@ from cpn.engine import ccodegen
 from cpn.errors import EvaluationError
 from cpn.statespace import ExploreOptions, Explorer, native, nativetimed
 from cpn.statespace.store import packed_unavailable
-from tests._shared import count_calls
+from tests._shared import count_calls, needs_shared
 from tests.engine._explore import same_exploration
 from tests.engine.randomnets import random_net
 
@@ -227,8 +227,8 @@ def _corpus():
 CORPUS = _corpus()
 
 
+@needs_shared
 @needs_native
-@pytest.mark.skipif(not CORPUS, reason="validation corpus not found")
 @pytest.mark.parametrize("inst", CORPUS, ids=[i["name"] for i in CORPUS])
 def test_generated_c_gives_the_python_graph_on_the_validation_corpus(inst):
     """`CPN_NATIVE_CORPUS_STATES=100000` compares every instance of up to 100,000 states."""

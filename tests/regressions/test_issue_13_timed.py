@@ -14,7 +14,7 @@ import cpn
 from cpn.statespace import ExploreOptions, Explorer, native, nativetimed
 from cpn.statespace.store import packed_unavailable
 from tests._checkrun import check_reports, record_backends
-from tests._shared import count_calls
+from tests._shared import count_calls, needs_shared
 from tests.engine._explore import same_exploration
 from tests.engine.randomnets import random_net, random_timed_net
 
@@ -61,6 +61,7 @@ def test_the_repository_timed_models_run_in_c(path, condensation, fills):
 SAMPLES = ["TimedProtocol.cpn", "TimedResourceAlloc.cpn", "priorities.cpn"]
 
 
+@needs_shared
 @needs_native
 @pytest.mark.parametrize("name", SAMPLES)
 def test_cpn_tools_timed_samples_run_in_c(name, fills):

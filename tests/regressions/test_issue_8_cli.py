@@ -22,7 +22,7 @@ import cpn.cli.explore as explore  # noqa: E402
 from cpn.cli.main import build_parser, main  # noqa: E402
 from cpn.report import build_report, render_text, to_json  # noqa: E402
 from cpn.statespace import ExploreOptions, Explorer, replay  # noqa: E402
-from tests._shared import SHARED  # noqa: E402
+from tests._shared import SHARED, needs_shared  # noqa: E402
 
 EXAMPLES = os.path.join(ROOT, "models", "examples")
 SAMPLES = os.path.join(SHARED, "cpntools-samples")
@@ -132,6 +132,7 @@ def test_an_unwritable_output_is_refused_before_loading(toy, tmp_path, capsys, o
     assert state["loaded"] == 0
 
 
+@needs_shared
 def test_every_subcommand_checks_its_outputs_first(tmp_path, capsys):
     bad = str(tmp_path / "missing" / "out")
     model = os.path.join(EXAMPLES, "stations.cpnet")
@@ -215,6 +216,7 @@ def test_lint_warns_about_an_empty_model(tmp_path, capsys, text):
 # ---------------------------------------------------------------------- 12: '-' for every output
 
 
+@needs_shared
 def test_dash_is_stdout_for_every_output(toy, tmp_path, monkeypatch, capsys):
     model, _ = toy
     monkeypatch.chdir(tmp_path)
@@ -274,6 +276,7 @@ def test_quiet_means_the_same_in_every_subcommand():
         assert helps == [QUIET_HELP], name
 
 
+@needs_shared
 def test_quiet_drops_confirmations_and_notes(tmp_path, capsys):
     stations = os.path.join(EXAMPLES, "stations.cpnet")
     assert main(["lint", "--quiet", stations]) == 0
@@ -319,6 +322,7 @@ def test_one_is_singular(tmp_path, capsys):
     assert "(1 step)" in render_text(_report(pt_net([[1]], [[0]], [1])))
 
 
+@needs_shared
 def test_convert_without_o_writes_to_stdout_not_beside_its_input(tmp_path, capsys):
     net = tmp_path / "DiningPhilosophers.cpn"
     shutil.copy(os.path.join(SAMPLES, "DiningPhilosophers.cpn"), net)

@@ -7,7 +7,7 @@ import pytest
 from _toy import Mode, ToyEngine, ToyPlace, ToyTransition, dining_philosophers, pt_net
 
 from cpn.statespace import ExploreOptions, Explorer, StopReason, replay, shortest_trace
-from tests._shared import SHARED
+from tests._shared import SHARED, needs_shared
 
 REFERENCE = SHARED + "/bench/reference_counts.py"
 
@@ -18,6 +18,7 @@ def _reference(net, n):
     return int(fields["states"]), int(fields["arcs"]), int(fields["dead"])
 
 
+@needs_shared
 @pytest.mark.parametrize("n", [3, 5, 8])
 def test_dining_philosophers_counts_match_reference(n):
     x = Explorer(dining_philosophers(n)).run()

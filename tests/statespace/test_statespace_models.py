@@ -8,7 +8,7 @@ import pytest
 
 import cpn
 from cpn.statespace import ExploreOptions, Explorer, StopReason, replay, shortest_trace
-from tests._shared import SHARED
+from tests._shared import SHARED, needs_shared
 
 if not hasattr(cpn, "load"):
     pytest.skip("cpn.load is not available yet", allow_module_level=True)
@@ -17,8 +17,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 MODELS = os.path.join(HERE, "models")
 NETS = os.path.join(ROOT, "bench", "nets")
-REFERENCE = next((p for p in (os.path.join(ROOT, "..", "shared", "bench", "reference_counts.py"),
-                              SHARED + "/bench/reference_counts.py") if os.path.exists(p)), None)
+REFERENCE = os.path.join(SHARED, "bench", "reference_counts.py")
 
 
 def engine(path, **sets):
@@ -26,13 +25,12 @@ def engine(path, **sets):
 
 
 def _reference(net, n):
-    if REFERENCE is None:
-        pytest.skip("shared/bench/reference_counts.py not found")
     out = subprocess.run([sys.executable, REFERENCE, net, str(n)], capture_output=True, text=True, check=True)
     fields = dict(kv.split("=") for kv in out.stdout.split()[2:])
     return int(fields["states"]), int(fields["arcs"]), int(fields["dead"])
 
 
+@needs_shared
 @pytest.mark.parametrize("net,n", [("dp", 5), ("dp", 8), ("ms", 3), ("ms", 4)])
 def test_benchmark_counts_match_reference(net, n):
     x = Explorer(engine(os.path.join(NETS, f"{net}.cpnet"), N=n)).run()

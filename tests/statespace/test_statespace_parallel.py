@@ -15,7 +15,7 @@ import cpn
 from cpn.engine.transfer import transfer_for
 from cpn.statespace import ExploreOptions, Explorer, StopReason
 from cpn.statespace.parallel import PartitionWorker, why_not_partitioned
-from tests._shared import ROOT, SHARED
+from tests._shared import ROOT, SHARED, needs_shared
 from tests.statespace._partition import Observer, canonical, compare, summary
 
 MODELS = sorted(os.path.relpath(p, ROOT) for p in glob.glob(os.path.join(ROOT, "models", "**", "*.cpnet"),
@@ -37,6 +37,7 @@ def test_repository_models_have_the_same_state_space_with_1_and_2_workers(spec):
     compare(_load(spec), max_states=20000)
 
 
+@needs_shared
 @pytest.mark.parametrize("name", CORPUS)
 def test_corpus_sample_has_the_same_state_space_with_1_and_2_workers(name):
     folder = os.path.join(SHARED, "validation", name)

@@ -10,7 +10,7 @@ import pytest
 import cpn
 from cpn.cli.main import main
 from cpn.statespace import ExploreOptions, Explorer, StopReason
-from tests._shared import ROOT, SHARED
+from tests._shared import ROOT, SHARED, needs_shared
 from tests.statespace._partition import compare
 
 ray = pytest.importorskip("ray", reason="Ray is not installed (pip install 'cpn-verify[ray]')")
@@ -36,6 +36,7 @@ def test_repository_models_on_ray_have_the_same_state_space(spec):
     compare(cpn.load(os.path.join(ROOT, path), set={"N": n} if n else None), workers=(2,), ray="local")
 
 
+@needs_shared
 def test_a_corpus_model_on_ray():
     folder = os.path.join(SHARED, "validation", "CSRepetitions-COL-02")
     if not os.path.isdir(folder):

@@ -10,7 +10,7 @@ import pytest
 import cpn
 from cpn.engine.stubborn import StubbornSets
 from cpn.statespace import ExploreOptions, Explorer
-from tests._shared import ROOT, SHARED
+from tests._shared import ROOT, SHARED, needs_shared
 from tests.engine.randomnets import random_net
 from tests.statespace._reduction import compare, dead_set, projections
 
@@ -92,6 +92,7 @@ def test_repository_models(path, n):
 CORPUS = ["CSRepetitions-COL-02", "CSRepetitions-PT-02", "DatabaseWithMutex-COL-02"]
 
 
+@needs_shared
 @pytest.mark.parametrize("name", CORPUS)
 def test_validation_corpus_subset(name):
     folder = os.path.join(SHARED, "validation", name)

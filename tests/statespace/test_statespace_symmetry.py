@@ -12,7 +12,7 @@ import pytest
 import cpn
 from cpn.engine.symmetry import Canonicaliser, Scalar
 from cpn.statespace import ExploreOptions, Explorer, replay, shortest_trace
-from tests._shared import SHARED
+from tests._shared import SHARED, needs_shared
 from tests.statespace._quotient import agree, check_canonical_forms, fewer_orbits, full_and_quotient
 from tests.statespace._symmetric_nets import random_symmetric_net
 
@@ -59,6 +59,7 @@ CORPUS = [("Philosophers-COL-000005", "Philo:rotations", 51), ("SharedMemory-COL
           ("CSRepetitions-COL-02", "Client,Server", 352), ("DrinkVendingMachine-COL-02", "Products,Options", 576)]
 
 
+@needs_shared
 @pytest.mark.parametrize("name,spec,orbits", CORPUS)
 def test_corpus_symmetric_nets(name, spec, orbits):
     path = os.path.join(SHARED, "validation", name, "model.pnml")
@@ -84,6 +85,7 @@ def test_canonical_form_is_the_orbit_minimum_of_the_fixed_order():
         check_canonical_forms(c, group, list(x.graph.states)[:60])
 
 
+@needs_shared
 def test_lifted_traces_replay_in_the_full_graph():
     model = cpn.load(os.path.join(SHARED, "validation", "SharedMemory-COL-000005", "model.pnml"))
     engine = model.engine()

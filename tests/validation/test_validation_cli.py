@@ -6,15 +6,13 @@ import json
 import os
 import shutil
 
-import pytest
-
 from cpn.cli.main import main
-from tests._shared import SHARED
+from tests._shared import SHARED, needs_shared
 
 VALIDATION = os.environ.get("CPN_VALIDATION_DIR", SHARED + "/validation")
 SOURCE = os.path.join(VALIDATION, "TokenRing-PT-005", "model.pnml")
 
-pytestmark = pytest.mark.skipif(not os.path.exists(SOURCE), reason="validation corpus not found")
+pytestmark = needs_shared
 
 
 def _corpus(tmp_path, states: int, extra: list | None = None):

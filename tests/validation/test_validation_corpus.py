@@ -9,7 +9,7 @@ import os
 import pytest
 
 from cpn.cli.validate import select, validate_instance
-from tests._shared import SHARED
+from tests._shared import SHARED, needs_shared
 
 VALIDATION = os.environ.get("CPN_VALIDATION_DIR", SHARED + "/validation")
 LIMIT = 100_000
@@ -33,7 +33,7 @@ def _loader_missing() -> bool:
     return not hasattr(cpn, "load")
 
 
-@pytest.mark.skipif(not INSTANCES, reason="validation corpus not found")
+@needs_shared
 @pytest.mark.parametrize("inst", INSTANCES, ids=[i["name"] for i in INSTANCES])
 def test_instance_matches_published_figures(inst):
     if _loader_missing():
