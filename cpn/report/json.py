@@ -1,11 +1,12 @@
 """The JSON result of `explore`: a stable schema (docs/statespace.md); keys are added, never renamed.
 
-Imports `cpn.report.model` only.
+Imports `cpn.report.model` and `cpn.values` only.
 """
 
 from __future__ import annotations
 
 from cpn.report.model import NOT_PRESERVED, REDUCED_SECTIONS, Report
+from cpn.values import colours as C
 
 SCHEMA_VERSION: int = 1
 EXAMPLES: int = 10
@@ -58,7 +59,7 @@ def to_json(r: Report) -> dict:
             "seconds": round(r.scc.seconds, 3),
         },
         "bounds": {b.place: {"upper": b.upper, "lower": b.lower} for b in r.bounds.places},
-        "multiset_bounds": {b.place: {"upper": b.upper_text, "lower": b.lower_text} for b in r.bounds.places},
+        "multiset_bounds": _multiset_bounds(r),
         "dead_markings": {
             "count": r.dead.count,
             "examples": [i + 1 for i in r.dead.states[:EXAMPLES]],
@@ -115,3 +116,64 @@ def to_json(r: Report) -> dict:
             out[key] = None
         out["statespace"]["reduced"] = True
     return out
+
+
+def _multiset_bounds(r: Report) -> dict:
+    """Each place's multi-set bounds as CPN ML text (`upper`, `lower`) and as terms (`upper_terms`,
+    `lower_terms`): one {"colour": CPN ML text, "value": the colour as JSON, "count": n} per colour, in the
+    text's order."""
+    sets = {p.name: p.colour_set for p in r.engine.places}
+    out = {}
+    for b in r.bounds.places:
+        cs = sets.get(b.place)
+        out[b.place] = {"upper": b.upper_text, "lower": b.lower_text,
+                        "upper_terms": multiset_terms(cs, b.upper_multiset),
+                        "lower_terms": multiset_terms(cs, b.lower_multiset)}
+    return out
+
+
+def multiset_terms(cs, ms: dict) -> list[dict]:
+    """The terms of an untimed multiset (value -> count) of colour set `cs`, in CPN ML order.
+
+    >>> from cpn.values.colours import IntCS, ProductCS, EnumCS
+    >>> pend = ProductCS("PEND", [EnumCS("K", ["req", "resp"]), IntCS("NO", 0, 9)])
+    >>> multiset_terms(pend, {(1, 3): 2, (0, 7): 1})
+    [{'colour': '(req,7)', 'value': ['req', 7], 'count': 1}, {'colour': '(resp,3)', 'value': ['resp', 3], 'count': 2}]
+    """
+    items = [(v, n) for v, n in ms.items() if n]
+    if not isinstance(cs, C.ColourSet):  # an engine that gives no colour sets (a test's toy engine)
+        return [{"colour": repr(v), "value": _plain(v), "count": n} for v, n in sorted(items, key=repr)]
+    items.sort(key=lambda it: cs.sort_key(it[0]))
+    return [{"colour": cs.format(v), "value": json_value(cs, v), "count": n} for v, n in items]
+
+
+def json_value(cs, v):
+    """A colour as a JSON value: numbers, booleans and strings as they are, unit as null, an enumeration's or
+    a union's constant by its name, an index by its number, products and lists as arrays, records as objects
+    by label, a union's constructor with an argument as {constructor: argument}."""
+    while isinstance(cs, (C.AliasCS, C.SubsetCS)):
+        cs = cs.base
+    if isinstance(cs, C.UnitCS):
+        return None
+    if isinstance(cs, C.EnumCS):
+        return cs.format(v)
+    if isinstance(cs, C.ProductCS):
+        return [json_value(c, x) for c, x in zip(cs.components, v)]
+    if isinstance(cs, C.RecordCS):
+        return {label: json_value(c, x) for (label, c), x in zip(cs.fields, v)}
+    if isinstance(cs, C.ListCS):
+        return [json_value(cs.elem, x) for x in v]
+    if isinstance(cs, C.UnionCS):
+        if isinstance(v, tuple):
+            name, arg = cs.constructors[v[0]]
+            return {name: json_value(arg, v[1])}
+        return cs.constructors[v][0]
+    return _plain(v)
+
+
+def _plain(v):
+    if v is None or isinstance(v, (bool, int, float, str)):
+        return v
+    if isinstance(v, tuple):
+        return [_plain(x) for x in v]
+    return str(v)

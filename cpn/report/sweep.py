@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import time
 
+from cpn.report.json import multiset_terms
 from cpn.statespace.sweep import SweepExploration
 
 #: the sections of the standard report a sweep-line search cannot give, and why
@@ -99,7 +100,9 @@ def sweep_to_json(x: SweepExploration, model: str, options: dict | None = None) 
         "scc": None,
         "bounds": x.integer_bounds(),
         "multiset_bounds": {p.name: {"upper": engine.format_multiset(i, x.multiset_upper[i] or {}),
-                                     "lower": engine.format_multiset(i, x.multiset_lower[i] or {})}
+                                     "lower": engine.format_multiset(i, x.multiset_lower[i] or {}),
+                                     "upper_terms": multiset_terms(p.colour_set, x.multiset_upper[i] or {}),
+                                     "lower_terms": multiset_terms(p.colour_set, x.multiset_lower[i] or {})}
                             for i, p in enumerate(engine.places)},
         "dead_markings": {"count": len(x.dead), "markings": _dead_texts(x, None), "trace": None},
         "dead_transitions": None,

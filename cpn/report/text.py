@@ -3,11 +3,13 @@ the partial-search status and unexpanded states, time condensation, dead marking
 dead marking (up to a cap) with its marking and a shortest trace.
 
 Long listings are cut (multi-set bounds of a counter place can have a million colours) and say how
-many entries were left out; the JSON result keeps everything. Imports `cpn.report.model` only.
+many entries were left out; the JSON result keeps everything. Imports `cpn.report.model` and
+`cpn.diagnostics` (display widths) only.
 """
 
 from __future__ import annotations
 
+from cpn.diagnostics import display_width, ljust_cells
 from cpn.report._words import noun
 from cpn.report.model import NOT_PRESERVED, SYM_NOT_PRESERVED, Report
 
@@ -58,15 +60,17 @@ def _name_list(names: list[str], total: int, cap: int | None) -> list[str]:
 
 
 def _widths(rows: list[tuple]) -> list[int]:
-    """One width per column: CPN Tools' 11, or the widest cell plus two spaces."""
+    """One width per column: CPN Tools' 11, or the widest cell plus two spaces (widths in terminal cells: a
+    wide (CJK) character takes two)."""
     ncols = max((len(cols) for _name, cols in rows), default=0)
-    return [max([COLUMN_WIDTH] + [len(cols[i]) + 2 for _n, cols in rows if i < len(cols)]) for i in range(ncols)]
+    return [max([COLUMN_WIDTH] + [display_width(cols[i]) + 2 for _n, cols in rows if i < len(cols)])
+            for i in range(ncols)]
 
 
 def _row(name: str, cols: tuple, widths: list[int]) -> list[str]:
-    cells = "".join(c.ljust(w) for c, w in zip(cols, widths)).rstrip()
-    if len(name) < NAME_WIDTH:
-        return [f"     {name.ljust(NAME_WIDTH)}{cells}"]
+    cells = "".join(ljust_cells(c, w) for c, w in zip(cols, widths)).rstrip()
+    if display_width(name) < NAME_WIDTH:
+        return [f"     {ljust_cells(name, NAME_WIDTH)}{cells}"]
     return [f"     {name}", " " * (5 + NAME_WIDTH) + cells]
 
 
@@ -74,20 +78,25 @@ def _table(rows: list[tuple], header: tuple | None = None) -> list[str]:
     widths = _widths(rows + ([("", header)] if header else []))
     out = []
     if header:
-        out.append(" " * (5 + NAME_WIDTH) + "".join(h.ljust(w) for h, w in zip(header, widths)).rstrip())
+        out.append(" " * (5 + NAME_WIDTH) + "".join(ljust_cells(h, w) for h, w in zip(header, widths)).rstrip())
     for name, cols in rows:
         out += _row(name, cols, widths)
     return out
 
 
+MULTISET_INDENT = 25  # the column where CPN Tools starts a multi-set bound, under the place's name
+
+
 def _multiset(name: str, text: str, cap: int | None) -> list[str]:
+    """A multi-set bound under its place, one colour a line, every line starting in the bound's column."""
     parts = text.split("++")
     k = _cut(len(parts), cap)
-    lines = [f"     {name}", " " * 25 + (parts[0] + ("++" if len(parts) > 1 else ""))]
-    for i, p in enumerate(parts[1:k], 1):
-        lines.append(p + ("++" if i < len(parts) - 1 else ""))
+    pad = " " * MULTISET_INDENT
+    lines = [f"     {name}"]
+    for i, p in enumerate(parts[:k]):
+        lines.append(pad + p + ("++" if i < len(parts) - 1 else ""))
     if k < len(parts):
-        lines.append(" " * 25 + _left_out(len(parts) - k, noun(len(parts) - k, "colour")))
+        lines.append(pad + _left_out(len(parts) - k, noun(len(parts) - k, "colour")))
     return lines
 
 
