@@ -291,11 +291,12 @@ class PropertyLanguage:
         self._checker.diags.append(Diagnostic(
             "E0601",
             f"time condensation cannot be used: {what} reads the model clock, and time condensation sets the "
-            "clock to 0 in every state, so the property would be decided on the clock of another model",
+            "clock to 0 in every state, so the text would not read the model's clock",
             span, notes=[f"'{via[0]}' reads it at {via[1]}"] if via else [],
-            hint="Remove time_condensation = true from [explore] (a timed model whose state space grows only "
-                 "because time grows is then stopped by the time-growth watch; bound it with until_time or "
-                 "max_states), or state the property without reading intTime()."))
+            hint="Explore without time condensation (time_condensation = true in a scenario's [explore], "
+                 "--time-condensation on the command line; a timed state space that grows only because time "
+                 "grows is then stopped by the time-growth watch, or bound it with until_time), or write the "
+                 "text without reading the clock."))
 
     def _quoted_places(self, expr: A.Expr, ck) -> A.Expr:
         """`Mark "Page'a place" 1`: a place whose name is not an identifier (declared with a string)

@@ -46,7 +46,7 @@ def test_a_property_reading_the_clock_is_refused_at_its_position(tmp_path):
     assert d.code == "E0601"
     # line 7 of the scenario (2 lines of [explore], the model line, then the property's 4 lines)
     assert (d.span.file.endswith("s.toml"), d.span.line, d.span.col) == (True, 7, 33)
-    assert "time_condensation" in d.hint
+    assert "time_condensation = true" in d.hint and "--time-condensation" in d.hint
 
 
 def test_without_condensation_the_same_property_is_decided(tmp_path):
@@ -79,3 +79,12 @@ def test_the_command_exits_65_with_the_positioned_error(tmp_path, capsys):
     assert main(["check", path, "--reports", str(tmp_path / "reports")]) == 65
     err = capsys.readouterr().err
     assert "s.toml:7:33: error[E0601]" in err and "hint:" in err and "Traceback" not in err
+
+
+def test_a_progress_measure_reading_the_clock_is_refused_under_condensation(tmp_path, capsys):
+    model = tmp_path / "t.cpnet"
+    model.write_text(TIMED, encoding="utf-8")
+    args = ["explore", str(model), "--sweep-line", "--progress", "intTime ()", "--quiet"]
+    assert main(args + ["--time-condensation"]) == 65
+    err = capsys.readouterr().err
+    assert "--progress:1:1: error[E0601]" in err and "Traceback" not in err
