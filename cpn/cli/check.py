@@ -34,12 +34,12 @@ DEFAULT_DIR = "specs"
 # unbounded model ends with a partial report (status 2) instead of filling the machine's memory
 DEFAULT_MAX_SECONDS = 600.0
 
-DESCRIPTION = """Explore the state space of each scenario (a TOML file naming a model, the values of its
+DESCRIPTION = f"""Explore the state space of each scenario (a TOML file naming a model, the values of its
 constants, exploration limits and the properties the protocol must have; docs/specs.md) and give each
 property a verdict: holds, violated (with the shortest counterexample), or unknown (a limit stopped the
 search). With no argument, every *.toml under specs/ is checked. Reports (text, JSON, Markdown) are
 written per scenario run under --reports. A run whose scenario sets no max_seconds stops after
-600 seconds of search (--max-seconds changes it for every run)."""
+{DEFAULT_MAX_SECONDS:g} seconds of search (--max-seconds changes it for every run)."""
 
 
 
@@ -98,8 +98,8 @@ def run(args) -> int:
     if not files:
         raise UsageError(f"no scenario (*.toml) in {', '.join(paths)}")
     if args.baseline is not None and not os.path.isdir(args.baseline):
-        what = "is not a folder" if os.path.exists(args.baseline) else "does not exist"
-        raise UsageError(f"--baseline {args.baseline}: the folder {what}\nhint: name the --reports folder of an "
+        what = "it is a file, not a folder" if os.path.exists(args.baseline) else "no such folder"
+        raise UsageError(f"--baseline {args.baseline}: {what}\nhint: name the --reports folder of an "
                          "earlier run of 'cpn-verify check' (its JSON reports are compared with this run's)")
     # before any run: a long check must never be lost to a bad path
     if not args.no_reports:

@@ -205,7 +205,7 @@ def test_a_missing_baseline_folder_is_bad_usage_before_any_work(tmp_path, capsys
     for missing in (tmp_path / "nowhere", tmp_path / "c.cpnet"):
         code, out, err = check(spec, "--reports", str(tmp_path / "r"), "--baseline", str(missing), capsys=capsys)
         assert code == 64, err
-        assert f"--baseline {missing}: the folder" in err and out == ""
+        assert f"--baseline {missing}: " in err and "hint: name the --reports folder" in err and out == ""
         assert not (tmp_path / "r").exists()
 
 
