@@ -14,7 +14,7 @@ import re
 import tomllib
 from dataclasses import dataclass, field
 
-from cpn.diagnostics import Diagnostic, Span
+from cpn.diagnostics import Diagnostic, Span, other_command_hint
 from cpn.errors import ModelError
 
 TOP_KEYS = {"name", "model", "description", "set", "explore", "parameters", "property"}
@@ -297,7 +297,8 @@ def loads_scenario(text: str, path: str = "<scenario>") -> Scenario:
         msg = re.sub(r"\s*\(at line \d+, column \d+\)", "", msg).rstrip(".")
         raise ModelError([Diagnostic("E0701", f"not valid TOML: {msg[:1].lower() + msg[1:]}",
                                      Span(path, line, col, line, col),
-                                     hint="Check quotes and brackets; TOML is described at https://toml.io.")],
+                                     hint=other_command_hint(path, text, "scenario")
+                                     or "Check quotes and brackets; TOML is described at https://toml.io.")],
                          {path: text}) from None
     r = _Reader(path, text)
     for key in data:

@@ -50,3 +50,13 @@ def test_a_model_read_as_a_scenario_is_told_apart_from_a_scenario_with_a_place_k
     # a property's `place = "..."` key is TOML, not a place declaration
     assert other_command_hint("s.toml", '[[property]]\nkind = "bound"\nplace = "M\'A 1"\n', "scenario") is None
     assert other_command_hint("m.cpnet", "net M;\n", "model") is None
+
+
+def test_a_model_given_to_check_hints_at_lint_and_explore(tmp_path, capsys):
+    path = tmp_path / "m.cpnet"
+    path.write_text("net M;\ncolset C = int with 0..1;\nplace A : C = 1`0;\n", encoding="utf-8")
+    code = main(["check", "--reports", str(tmp_path / "r"), str(path)])
+    err = capsys.readouterr().err
+    assert code == 65
+    assert f"cpn-verify lint {path}" in err and f"cpn-verify explore {path}" in err
+    assert "TOML is described" not in err
