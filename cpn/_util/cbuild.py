@@ -3,8 +3,9 @@
 Nothing is compiled at install time: a library is built the first time it is needed, in the user's
 cache directory (``$CPN_CACHE_DIR``, else ``$XDG_CACHE_HOME/cpn-verify``, else ``~/.cache/cpn-verify``),
 named by a hash of the source, the declarations and the compiler's version, and reused from there.
-Where cffi or a compiler is missing, `load_library` returns None and `why_unavailable` says why, so
-that callers fall back to pure Python and say so.
+Where a build cannot happen (CPN_NO_NATIVE is set, cffi or a compiler is missing, the compiler fails, a
+C file of the package is missing, the cache cannot be written), `load_library` and `sources` return None
+and `why_unavailable` says why, so that callers fall back to pure Python and say so.
 
 Examples
 --------
@@ -22,6 +23,8 @@ import subprocess
 import tempfile
 from dataclasses import dataclass
 from functools import lru_cache
+
+from cpn._util.resources import ResourceMissing, read_text
 
 #: the flags every library is built with (after the optimisation level)
 CFLAGS = ["-shared", "-fPIC", "-std=c99"]
@@ -70,6 +73,22 @@ def compiler() -> tuple[str, str] | None:
     return cc, (out.stdout.splitlines() or [""])[0]
 
 
+def switched_off() -> str | None:
+    """Why native code is not to be used at all (CPN_NO_NATIVE is set), or None."""
+    if os.environ.get("CPN_NO_NATIVE"):
+        return "native code is switched off (CPN_NO_NATIVE is set)"
+    return None
+
+
+def sources(*names: str) -> str | None:
+    """The package's C files `names` (paths under `cpn/`, see `cpn._util.resources`) joined by newlines,
+    or None where one cannot be read (`why_unavailable` says which)."""
+    try:
+        return "\n".join(read_text(name) for name in names)
+    except ResourceMissing as exc:
+        return _unavailable(str(exc))
+
+
 def why_unavailable() -> str | None:
     """Why the last `load_library` returned None (None if it did not)."""
     return _reason[-1] if _reason else None
@@ -86,8 +105,9 @@ _loaded: dict[str, Library] = {}
 def load_library(source: str, cdef: str, flags: tuple[str, ...] = ()) -> Library | None:
     """The library built from C `source` whose functions `cdef` declares (built once, then cached);
     `flags`: more compiler flags than CFLAGS (part of the cache key, as the source is)."""
-    if os.environ.get("CPN_NO_NATIVE"):
-        return _unavailable("native code is switched off (CPN_NO_NATIVE is set)")
+    off = switched_off()
+    if off is not None:
+        return _unavailable(off)
     try:
         import cffi
     except ImportError:
@@ -104,6 +124,10 @@ def load_library(source: str, cdef: str, flags: tuple[str, ...] = ()) -> Library
     if not os.path.exists(path):
         try:
             os.makedirs(directory, exist_ok=True)
+        except OSError as err:
+            return _unavailable(f"the compile cache {directory} cannot be made ({err.strerror or err}); "
+                                "set CPN_CACHE_DIR to a writable folder")
+        try:
             with tempfile.TemporaryDirectory(dir=directory) as tmp:
                 src = os.path.join(tmp, "lib.c")
                 with open(src, "w") as f:
@@ -115,7 +139,9 @@ def load_library(source: str, cdef: str, flags: tuple[str, ...] = ()) -> Library
                     return _unavailable(f"the C compiler failed: {first}")
                 os.replace(out, path)  # atomic: a concurrent build of the same key is harmless
         except (OSError, subprocess.SubprocessError) as err:
-            return _unavailable(f"could not build native code: {err}")
+            where = f" in the compile cache {directory}" if isinstance(err, OSError) else ""
+            return _unavailable(f"could not build native code{where}: {getattr(err, 'strerror', None) or err}"
+                                + ("; set CPN_CACHE_DIR to a writable folder" if where else ""))
     ffi = cffi.FFI()
     ffi.cdef(cdef)
     try:

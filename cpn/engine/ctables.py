@@ -12,10 +12,10 @@ Examples
 
 from __future__ import annotations
 
-import os
 from dataclasses import dataclass, field
 from itertools import product as _cartesian
 
+from cpn._util.resources import read_text
 from cpn.values.colours import AliasCS, BoolCS, EnumCS, IndexCS, IntCS, ProductCS, RecordCS, UnitCS
 
 #: colour sets with more values than this are not laid out as colour ids
@@ -249,8 +249,7 @@ class NativeCode:
 
 
 def runtime() -> str:
-    """The C run-time of the generated code (`_cnet.c`)."""
-    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "_cnet.c")) as f:
-        return f.read()
+    """The C run-time of the generated code (`_cnet.c`); `ResourceMissing` where the installation lacks it."""
+    return read_text("engine/_cnet.c")
 
 

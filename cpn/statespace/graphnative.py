@@ -16,12 +16,11 @@ the place columns, MIN_ITEMS x CHEAP items): there the Python code is faster.
 from __future__ import annotations
 
 import gc
-import os
 from array import array
 from functools import lru_cache
 from itertools import compress
 
-from cpn._util.cbuild import load_library
+from cpn._util.cbuild import load_library, sources
 
 _CDEF = """
 int64_t gr_scc(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, int32_t *comp,
@@ -67,7 +66,8 @@ def library(items: int | None = None):
         collecting = gc.isenabled()
         gc.disable()
         try:
-            lib = load_library(_source(), _CDEF)
+            source = _source()
+            lib = None if source is None else load_library(source, _CDEF)
         finally:
             if collecting:
                 gc.enable()
@@ -81,9 +81,8 @@ _loaded: list = []  # the library once loaded (load_library would hash the sourc
 
 
 @lru_cache(maxsize=1)
-def _source() -> str:
-    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "_graph.c")) as f:
-        return f.read()
+def _source() -> str | None:
+    return sources("statespace/_graph.c")
 
 
 def _csr_ok(offsets, dst) -> bool:

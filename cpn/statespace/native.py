@@ -25,7 +25,7 @@ import gc
 import os
 from array import array
 
-from cpn._util.cbuild import load_library, why_unavailable
+from cpn._util.cbuild import load_library, sources, switched_off, why_unavailable
 from cpn.statespace.options import StopReason
 from cpn.statespace.store import _CDEF as _STORE_CDEF
 from cpn.statespace.store import PackedStore
@@ -112,15 +112,15 @@ def library(code=None, timed: bool = False):
     """The native search's library; with `code` (a `NativeCode`), the net's generated C compiled in, and
     the multi-threaded search (`_threads.c`, `cpn.statespace.threads`) with it; with `timed`, the search
     of timed nets and nets with priorities (`_timed.c`, `cpn.statespace.nativetimed`)."""
-    here = os.path.dirname(os.path.abspath(__file__))
     threads = code is not None and not timed
     names = ("_packed.c", "_search.c") + (("_timed.c",) if timed else ()) + (("_threads.c",) if threads else ())
     # POSIX for the threads: their barriers and clock (-std=c99 alone declares neither)
     parts = ["#define _POSIX_C_SOURCE 200809L", "#define ND_THREADS"] if threads else []
     parts += ["#define ND_GENERATED"] if code is not None else []
-    for name in names:
-        with open(os.path.join(here, name)) as f:
-            parts.append(f.read())
+    text = sources(*(f"statespace/{name}" for name in names))
+    if text is None:
+        return None
+    parts.append(text)
     if code is None:
         return load_library("\n".join(parts), _CDEF + (_TIMED_CDEF if timed else ""))
     if threads:
@@ -132,6 +132,9 @@ def generated(engine, options) -> tuple[object | None, list[str]]:
     """The net's generated C (a `NativeCode`, or None) and the notes saying what is left to Python."""
     if options.backend == "python" or os.environ.get("CPN_NO_GENERATED"):
         return None, []
+    off = switched_off()
+    if off is not None:
+        return None, [off]
     make = getattr(engine, "native_code", None)  # an optional capability of the compiled engine
     if make is None:
         return None, ["the C back end has no code of this engine's transitions (the reference interpreter)"]
@@ -178,6 +181,13 @@ def unavailable(engine, options, s0) -> str | None:
     if library(timed=timed is not None) is None:
         return f"no native code: {why_unavailable()}"
     return None
+
+
+def needs_action(why: str) -> bool:
+    """Whether `why`, a reason `unavailable` gave, asks something of the user: native code could not be
+    built for a reason they can change (no compiler, the compiler failed, an unwritable compile cache, an
+    incomplete installation), not because they switched it off or the net has no C."""
+    return why.startswith("no native code: ") and switched_off() is None
 
 
 def new_search(engine, graph, s0, options=None, notes: list[str] | None = None, on_level=None):

@@ -21,13 +21,12 @@ Examples
 
 from __future__ import annotations
 
-import os
 import struct
 from array import array
 from collections.abc import Sequence
 from itertools import chain
 
-from cpn._util.cbuild import load_library, why_unavailable
+from cpn._util.cbuild import load_library, sources, why_unavailable
 
 _CDEF = """
 typedef struct cs_store cs_store;
@@ -49,10 +48,9 @@ _CHUNK = 4096  # records decoded per copy when the states are iterated
 
 
 def _library():
-    with open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "_packed.c")) as f:
-        source = f.read()
+    source = sources("statespace/_packed.c")
     # the C source names its struct; cffi sees it as opaque
-    return load_library(source, _CDEF)
+    return None if source is None else load_library(source, _CDEF)
 
 
 def packed_unavailable() -> str | None:

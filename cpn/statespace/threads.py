@@ -51,6 +51,9 @@ def why_not_threaded(engine, options: ExploreOptions, s0) -> tuple[str | None, o
         return "processes were asked for (threads=False)", None
     if options.backend == "python":
         return "the Python back end was asked for", None
+    off = native.switched_off()
+    if off is not None:
+        return off, None
     if not options.packed_states:
         return "the states are to be kept as tuples (packed_states=False)", None
     groups = getattr(engine, "successor_groups", None)  # an optional capability of the compiled engine
