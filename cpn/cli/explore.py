@@ -84,7 +84,7 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    help="the search: 'c' runs its loop, caches and graph in native code and the transitions "
                    "in C generated from the net (built with the system C compiler, cached), 'python' in "
                    "Python; 'auto' (the default) is 'c' where it can run, generating the C once the search "
-                   "is large, and says why not elsewhere; the state space is the same")
+                   "is large, and says why not elsewhere (with --verbose); the state space is the same")
     add_parallel_options(p)
     add_output_option(p, "--json", "the result as JSON")
     add_output_option(p, "--dot", "the state space and SCC graph as DOT (small nets)")
@@ -93,6 +93,9 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                       "a chart of the trace to each dead marking)")
     add_output_option(p, "--msc", "the trace to the first dead marking as a message sequence chart (SVG)")
     add_quiet_option(p)
+    p.add_argument("-v", "--verbose", action="store_true",
+                   help="also print which search ran and why, where that changes no result and asks nothing "
+                   "of you (the Python search of a timed net, transitions whose bindings come from Python)")
     p.add_argument("--trace-to-dead", action="store_true",
                    help="show the marking changes of each step of the traces to the dead markings")
     p.add_argument("--max-listed", type=int, metavar="N", default=None,
@@ -214,9 +217,11 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
         raise
     if display:
         display.close()
+    printed = set()
     if not quiet or options.backend == "c":
-        for note in x.notes:
+        for note in x.notes + (x.backend_notes if getattr(args, "verbose", False) else []):
             print(f"note: {note}", file=sys.stderr)
+            printed.add(note)
     memory_default = bool(getattr(args, "max_memory_is_default", False))
     opts = {"set": sets or {}, "max_states": args.max_states, "max_arcs": args.max_arcs,
             "max_seconds": args.max_seconds, "max_memory_mb": args.max_memory,
@@ -261,7 +266,8 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
         print(f"partial state space: stopped because {reason}; {x.unexpanded:,} "
               f"{noun(x.unexpanded, 'state was', 'states were')} not expanded", file=sys.stderr)
         for note in report.notes:
-            print(f"note: {note}", file=sys.stderr)
+            if note not in printed:  # each note once: the search's were printed above
+                print(f"note: {note}", file=sys.stderr)
         return ExitStatus.UNKNOWN
     if x.restricted:
         # a warning about the result, so printed even with --quiet

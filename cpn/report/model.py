@@ -102,6 +102,9 @@ class Report:
     analysis_seconds: float
     generated: str = ""
     notes: list = field(default_factory=list)
+    #: which search ran and why, where that changes no result and asks nothing of the user
+    #: (`Exploration.backend_notes`): not in the text or HTML report; `--verbose` prints them
+    backend_notes: list = field(default_factory=list)
     dead_listed: list = field(default_factory=list)  # list[DeadMarking], the first DEAD_LISTED ones
     dead_listed_cap: int | None = DEAD_LISTED
     # seconds of each part of the analysis, in the order computed (see REPORT_PARTS)
@@ -244,6 +247,7 @@ def build_report(x: Exploration, model: str = "<unsaved net>", options: dict | N
         dead_transitions=dead_t, live_transitions=live_names, home=home, fairness=fair,
         fairness_known=x.complete, dead_trace=trace, seconds=x.seconds + analysis,
         analysis_seconds=analysis, generated=time.strftime("%a %b %d %H:%M:%S %Y"), notes=notes,
+        backend_notes=list(getattr(x, "backend_notes", ())),
         dead_listed=listed, dead_listed_cap=dead_listed, part_seconds=parts,
     )
 

@@ -70,6 +70,11 @@ class Exploration:
     time_growth: dict | None = None
     levels: int = 0
     notes: list = field(default_factory=list)
+    #: notes on which search ran and why, that change no result and ask nothing of the user (the Python
+    #: search of a timed net under `auto`, transitions whose bindings come from Python, a hand-over); the
+    #: command line prints them with --verbose; a note that carries an action (no compiler, an unwritable
+    #: compile cache, an incomplete installation) or answers `--backend c` is in `notes`
+    backend_notes: list = field(default_factory=list)
     #: which search ran: "c" (cpn.statespace.native), "python", or the partitioned search
     #: (cpn.statespace.parallel): "threads" (cpn.statespace.threads), "workers" (processes) or "ray"
     backend: str = "python"
@@ -160,6 +165,8 @@ class Explorer:
         levels = 0
         self._backend = "python"
         self._notes = [parallel_note] if parallel_note else []
+        # what `auto` chose and why goes to backend_notes; what `--backend c` was refused, to notes
+        self._backend_notes = self._notes if opts.backend == "c" else []
         if stop is StopReason.COMPLETE:
             s0 = self._queue[0]
             why = self._python_only() or native.unavailable(self.engine, opts, s0)
@@ -168,7 +175,8 @@ class Explorer:
                 stop, predicate_state, levels = self._search_native(g, s0)
             else:
                 if opts.backend != "python":
-                    self._notes.append(f"the Python back end searched this net: {why}")
+                    note = f"the Python back end searched this net: {why}"
+                    (self._notes if native.needs_action(why) else self._backend_notes).append(note)
                 stop, predicate_state, levels = self._search(g)
         return self._finish(g, stop, predicate_state, levels)
 
@@ -211,7 +219,7 @@ class Explorer:
         """The same search as `_search`, its loop in C (`cpn.statespace.native`)."""
         opts = self.options
         self._queue = None
-        search = native.new_search(self.engine, g, s0, opts, self._notes, self._level_hook(g))
+        search = native.new_search(self.engine, g, s0, opts, self._backend_notes, self._level_hook(g))
         max_states = opts.max_states if opts.max_states is not None else 1 << 62
         max_arcs = opts.max_arcs if opts.max_arcs is not None else 1 << 62
         until = CHECK_EVERY
@@ -269,7 +277,7 @@ class Explorer:
         """Go on in Python from where the native search is: its caches are rarely reused on this net (or
         `why`: it cannot go on)."""
         head = search.head
-        self._notes.append(
+        self._backend_notes.append(
             f"the native search handed over to the Python search after {head:,} states: " + (why or
             f"each state needed the engine {search.round_trips / head:.1f} times on average (transitions' "
             "results rarely recur)"))
@@ -490,6 +498,7 @@ class Explorer:
             untimed_states=len(watcher.untimed) if watcher is not None else None,
             time_growth=watcher.evidence() if stop is StopReason.TIME_GROWS else None,
             levels=levels, notes=self._notes + notes, backend=self._backend,
+            backend_notes=[] if self._backend_notes is self._notes else list(self._backend_notes),
             reduction=self.options.reduction if self._reduced is not None else None,
             reduction_stats=None if self._reduced is None else g.symmetry.stats(g) if g.symmetry is not None else {
                 "reduced_states": self._reduced.reduced, "fully_expanded_states": self._reduced.full_expansions,

@@ -132,3 +132,17 @@ def test_bad_model_65(monkeypatch, tmp_path, capsys):
     model.write_text("x")
     assert main(["explore", str(model)]) == 65
     assert "unknown colour set 'Phil'" in capsys.readouterr().err
+
+
+def test_notes_on_the_search_of_a_timed_net_are_said_with_verbose_only(capsys):
+    """Which search ran, where that asks nothing of the user, is neither on stderr nor in the report
+    unless --verbose asks; then once."""
+    path = os.path.join(os.path.dirname(__file__), "..", "..", "models", "examples", "stop_and_wait.cpnet")
+    assert main(["explore", path, "--time-condensation"]) == 0
+    out, err = capsys.readouterr()
+    assert "Python back end" not in err and "Python back end" not in out
+    assert main(["explore", path, "--time-condensation", "--verbose"]) == 0
+    out, err = capsys.readouterr()
+    assert err.count("note: the Python back end searched this net") == 1
+    assert "Python back end" not in out
+
