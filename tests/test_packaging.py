@@ -153,3 +153,19 @@ def test_switched_off_stops_the_threads_before_any_c_is_made(tmp_path, monkeypat
     assert x.n_states == 189 and x.backend == "workers"
     assert made == []
     assert any("CPN_NO_NATIVE" in n for n in x.notes)
+
+
+def test_a_grammar_missing_from_the_installation_is_one_line_not_a_traceback(tmp_path):
+    """The grammar has no fallback: the command says what is missing and exits 70, without a traceback."""
+    code = ("import sys; from cpn._util import resources\n"
+            "class Missing:\n"
+            "    def joinpath(self, name): return self\n"
+            "    def read_text(self, encoding=None): raise FileNotFoundError(2, 'No such file or directory')\n"
+            "resources.resources.files = lambda _: Missing()\n"
+            "from cpn.cli.main import main\n"
+            f"sys.exit(main(['lint', {os.path.join(ROOT, 'models', 'examples', 'stations.cpnet')!r}]))\n")
+    out = subprocess.run([sys.executable, "-c", code], cwd=tmp_path, capture_output=True, text=True, timeout=300,
+                         env={**os.environ, "PYTHONPATH": ROOT})
+    assert out.returncode == 70, out.stderr
+    assert "Traceback" not in out.stderr
+    assert "cpn/lang/grammar.lark cannot be read" in out.stderr and "reinstall" in out.stderr

@@ -12,6 +12,8 @@ import os
 import sys
 from dataclasses import dataclass
 
+from cpn._util.resources import ResourceMissing
+
 STDOUT = "-"
 
 
@@ -270,6 +272,8 @@ def render_error(exc: BaseException) -> str:
         return exc.render()
     if isinstance(exc, KeyboardInterrupt):
         return "interrupted"
+    if isinstance(exc, ResourceMissing):  # an incomplete installation (status 70): no bug to trace
+        return f"error: {exc}"
     return "error: internal error in cpn-verify (this is a bug, please report it with the model)"
 
 

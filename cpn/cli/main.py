@@ -12,6 +12,7 @@ import importlib
 import os
 import sys
 
+from cpn._util.resources import ResourceMissing
 from cpn.cli._common import EPILOG, ExitStatus, exit_status_of, render_error
 
 SUBCOMMANDS = ["lint", "simulate", "explore", "check", "convert", "validate"]
@@ -120,7 +121,7 @@ def _main(argv: list[str] | None) -> int:
         return int(args._run(args))
     except (Exception, KeyboardInterrupt) as exc:  # noqa: BLE001 - the last line of defence
         status = exit_status_of(exc)
-        if status is ExitStatus.SOFTWARE:
+        if status is ExitStatus.SOFTWARE and not isinstance(exc, ResourceMissing):
             import traceback
 
             traceback.print_exc()

@@ -9,11 +9,11 @@ import functools
 import re
 import threading
 import unicodedata
-from importlib import resources
 
 from lark import Lark, Token, Tree
 from lark.exceptions import UnexpectedCharacters, UnexpectedEOF, UnexpectedInput, UnexpectedToken, VisitError
 
+from cpn._util.resources import read_text
 from cpn.diagnostics import Diagnostic, Span, other_command_hint
 from cpn.errors import ModelSyntaxError
 from cpn.lang import ast as A
@@ -56,7 +56,7 @@ def _lexed_reserved() -> list:
 
 @functools.lru_cache(maxsize=None)
 def _parser() -> Lark:
-    text = resources.files("cpn.lang").joinpath("grammar.lark").read_text(encoding="utf-8")
+    text = read_text("lang/grammar.lark")
     # cache=True keeps the LALR tables in the temporary directory: 0.57 s of every start otherwise
     return Lark(text, parser="lalr", propagate_positions=True, maybe_placeholders=True, cache=True,
                 lexer_callbacks={"NAME": _note_name})
