@@ -89,6 +89,7 @@ def to_json(r: Report) -> dict:
         "report_seconds": round(r.seconds, 3),
         "report_part_seconds": {part: round(sec, 3) for part, sec in r.part_seconds.items()},
         "notes": r.notes,
+        "backend_notes": r.backend_notes,
         "reduction": None if not r.reduced else {
             "name": x.reduction, **(x.reduction_stats or {}),
             "preserves": ["dead_markings"] + (["invariants_over_visible_places"]

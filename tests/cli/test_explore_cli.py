@@ -146,3 +146,11 @@ def test_notes_on_the_search_of_a_timed_net_are_said_with_verbose_only(capsys):
     assert err.count("note: the Python back end searched this net") == 1
     assert "Python back end" not in out
 
+
+
+def test_the_json_keeps_the_notes_on_the_search_apart(capsys):
+    path = os.path.join(os.path.dirname(__file__), "..", "..", "models", "examples", "stop_and_wait.cpnet")
+    assert main(["explore", path, "--time-condensation", "--json", "-"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert any("Python back end searched" in n for n in doc["backend_notes"]), doc["backend_notes"]
+    assert not any("Python back end" in n for n in doc["notes"])
