@@ -33,7 +33,9 @@ class Verdict:
     status: 'holds', 'violated' or 'unknown'; detail: the reason or evidence in words; trace: a
     cpn.statespace.Trace of the report's exploration (a counterexample or a witness); cycle_from: for a
     lasso, the 1-based step where the repeated part starts; marked_step: the violating step (default:
-    the last step of a violated property's trace; none for a lasso, whose cycle is marked).
+    the last step of a violated property's trace; none for a lasso, whose cycle is marked); places: the
+    place instances (names) the property reads, listed first, even when empty, in the marking shown after
+    its trace.
     """
 
     name: str
@@ -42,16 +44,19 @@ class Verdict:
     trace: object = None
     cycle_from: int | None = None
     marked_step: int | None = None
+    places: tuple = ()
 
     def resolved(self, engine) -> Verdict:
         """This verdict with `trace` as a Trace: evidence given as a path of states (`path`, `arcs`,
         and for a lasso `cycle`, `cycle_arcs`) is turned into steps, the cycle's start noted."""
         status = str(getattr(self.status, "value", self.status))  # a Status enum or its text
         if self.trace is None or hasattr(self.trace, "steps"):
-            return Verdict(self.name, status, self.detail, self.trace, self.cycle_from, self.marked_step)
+            return Verdict(self.name, status, self.detail, self.trace, self.cycle_from, self.marked_step,
+                           tuple(self.places))
         trace, cycle_from = evidence_trace(self.trace, engine)
         return Verdict(self.name, status, self.detail, trace,
-                       self.cycle_from if self.cycle_from is not None else cycle_from, self.marked_step)
+                       self.cycle_from if self.cycle_from is not None else cycle_from, self.marked_step,
+                       tuple(self.places))
 
 
 def evidence_trace(evidence, engine=None) -> tuple:
@@ -319,7 +324,7 @@ def _verdicts(r: Report, verdicts: list, failed: list) -> str:
             marked = v.marked_step if v.marked_step is not None else (
                 None if v.cycle_from is not None else len(v.trace) or None)  # a lasso: the cycle is marked
             top += _trace_block(v.trace, r, f"Counterexample of {v.name} ({len(v.trace)} steps)", marked,
-                                v.cycle_from, "v0")
+                                v.cycle_from, "v0", end=v)
         inner = top + inner
     for k, v in enumerate(verdicts):
         if v.trace is not None and v is not (failed[0] if failed else None):
@@ -327,7 +332,7 @@ def _verdicts(r: Report, verdicts: list, failed: list) -> str:
                 len(v.trace) if v.status == "violated" and v.cycle_from is None else None)
             what = "counterexample" if v.status == "violated" else "trace"
             inner += _trace_block(v.trace, r, f"{v.name}: {what} ({len(v.trace)} steps)", marked, v.cycle_from,
-                                  f"v{k + 1}")
+                                  f"v{k + 1}", end=v)
     return _section("verdicts", "Verdicts", inner)
 
 
@@ -397,18 +402,62 @@ def _marking_cell(text: str, shown: int = 6) -> str:
 
 
 def _trace_block(trace, r: Report, caption: str, marked: int | None, cycle_from: int | None, ident: str,
-                 with_caption: bool = False) -> str:
+                 with_caption: bool = False, end: Verdict | None = None) -> str:
+    """A trace's chart and its steps; with `end` (the verdict whose trace it is), then the marking the
+    trace leads to."""
+    after = _end_marking(trace, r, end) if end is not None else ""
     if not len(trace):
         return (f'<div class="trace" id="trace-{ident}"><h3>{S.esc(caption)}</h3>'
-                "<p>The initial marking itself: no step is needed.</p></div>")
+                f"<p>The initial marking itself: no step is needed.</p>{after}</div>")
     svg = draw_msc(trace, r.exploration, marked, caption if with_caption else "", cycle_from,
                    prefix=f"msc-{ident}")
     steps = "".join(f"<li><span class=mono>{S.esc(s.text)}</span>"
                     + (" <em>(the cycle starts here)</em>" if k == cycle_from else "") + "</li>"
                     for k, s in enumerate(trace.steps, 1))
     head = "" if with_caption else f"<h3>{S.esc(caption)}</h3>"
-    return (f'<div class="trace" id="trace-{ident}">{head}{_figure(svg)}'
+    return (f'<div class="trace" id="trace-{ident}">{head}{_figure(svg)}{after}'
             f'<details><summary>Steps as binding elements</summary><ol>{steps}</ol></details></div>')
+
+
+MARKING_ROWS: int = 8  # places of the marking after a trace shown before the rest is folded away
+
+
+def _end_marking(trace, r: Report, v: Verdict) -> str:
+    """The marking a verdict's trace leads to, as a table: the places the property reads first (marked,
+    even when empty), then the other marked places; model time and absolute time stamps, the trace
+    being fired again without time condensation when the search used it."""
+    from cpn.report.verdicts import _replay_absolute, end_marking
+
+    x = r.exploration
+    engine, state = x.engine, x.graph.states[trace.target]
+    if getattr(engine, "time_condensation", False) and len(trace):
+        replayed = _replay_absolute(engine, [s.be for s in trace.steps])
+        if replayed is not None:
+            engine, state = replayed[0], replayed[1][-1]
+    names = [p.name for p in engine.places]
+    reads = tuple(names.index(p) for p in v.places if p in names)
+    m = end_marking(engine, state, trace.target, reads)
+    what = {"violated": "Violating marking", "error": "The marking where the property failed"}.get(
+        str(v.status), "Marking reached")
+    at = f" at time {m['time']}" if "time" in m else ""
+    first = [p for p in m["reads"] if p in m["places"]]
+    order = first + [p for p in m["places"] if p not in first]
+    if not order:
+        return f'<div class="end-marking"><h4>{S.esc(what)} {m["state"]}{S.esc(at)}</h4><p>Every place is empty.</p></div>'
+
+    def row(p):
+        tag = ' <span class="pill">read by the property</span>' if p in first else ""
+        return (f'<tr{" class=read" if p in first else ""}><td>{S.esc(p)}{tag}</td>'
+                f'<td><span class="mono">{S.esc(m["places"][p])}</span></td></tr>')
+
+    head = "".join(row(p) for p in order[:MARKING_ROWS])
+    rest = "".join(row(p) for p in order[MARKING_ROWS:])
+    table = f"<table><tbody>{head}</tbody></table>"
+    if rest:
+        table += (f"<details><summary>{len(order) - MARKING_ROWS} more marked places</summary>"
+                  f"<table><tbody>{rest}</tbody></table></details>")
+    return f'<div class="end-marking"><h4>{S.esc(what)} {m["state"]}{S.esc(at)}</h4>{table}</div>'
+
 
 
 def _net(r: Report, occ: dict) -> str:
@@ -516,6 +565,8 @@ body.cpnv-page{margin:0;background:#fff}
 .cpnv .tools button{font:12px system-ui,sans-serif;border:1px solid var(--line);background:#fff;border-radius:5px;
  padding:2px 8px;cursor:pointer;color:var(--ink)}
 .cpnv .trace{margin-top:10px}
+.cpnv .end-marking h4{font-size:14px;margin:6px 0 4px}
+.cpnv .end-marking tr.read td{font-weight:600}
 .cpnv section,.cpnv .trace{scroll-margin-top:44px}
 .cpnv .headline{font-size:16px;margin:6px 0;padding:8px 12px;border-left:4px solid var(--bad);background:#fdf3f3}
 .cpnv details{margin:0 0 8px;font-size:14px}

@@ -5,13 +5,16 @@ module instance that takes part (for a net with a single instance: one per trans
 step of the trace is an event on the lifeline of its transition's instance; a token produced by a step
 of one instance and consumed by a later step of another instance is an arrow between the two events.
 Tokens are followed place by place, first in first out among equal values; a token that was in the
-initial marking has no sender and draws no arrow. For timed nets the vertical axis shows model time.
+initial marking has no sender and draws no arrow. A token taken by a step that puts no token anywhere
+(a lost or discarded frame) ends in a cross; a token still in its place at the end of the trace, in a
+place that another instance takes tokens from, is an open dashed arrow toward that instance (the one
+that could take it next, when one can). For timed nets the vertical axis shows model time.
 """
 
 from __future__ import annotations
 
 import weakref
-from collections import defaultdict, deque
+from collections import Counter, defaultdict, deque
 from dataclasses import dataclass, field
 
 from cpn.checks._common import untimed_multiset
@@ -39,10 +42,11 @@ class Event:
 @dataclass
 class Message:
     src: int  # step producing the token (1-based)
-    dst: int  # step consuming it
+    dst: int | None  # step consuming it; None: still in its place at the end of the trace
     src_line: int
     dst_line: int
     label: str  # "Place: value"
+    fate: str = "delivered"  # 'delivered', 'lost' (taken by a step that puts no token anywhere), 'pending'
 
 
 @dataclass
@@ -96,29 +100,72 @@ def build_chart(trace, exploration) -> Chart:
         used.add(key)
         sa, sb = g.states[step.source], g.states[step.target]
         ma, mb = engine.marking(sa), engine.marking(sb)
+        taken, put = [], []
         for p in range(len(net.places)):
             if ma[p] == mb[p]:
                 continue
             before, after = untimed_multiset(engine, p, ma[p]), untimed_multiset(engine, p, mb[p])
-            for v, n in before.items():
-                for _ in range(n - after.get(v, 0)):
-                    q = producers[(p, v)]
-                    if q:
-                        src, skey = q.popleft()
-                        if skey != key:
-                            messages.append((src, k, skey, key, f"{net.places[p].place}: {_value(net, p, v)}"))
-                            used.add(skey)
-            for v, n in after.items():
-                for _ in range(n - before.get(v, 0)):
-                    producers[(p, v)].append((k, key))
+            taken += [(p, v) for v, n in before.items() for _ in range(n - after.get(v, 0))]
+            put += [(p, v) for v, n in after.items() for _ in range(n - before.get(v, 0))]
+        for p, v in taken:
+            q = producers[(p, v)]
+            if q:
+                src, skey = q.popleft()
+                if skey != key:  # taken by a step that puts nothing back anywhere: lost on the way
+                    messages.append((src, k, skey, key, f"{net.places[p].place}: {_value(net, p, v)}",
+                                     "delivered" if put else "lost"))
+                    used.add(skey)
+        for p, v in put:
+            producers[(p, v)].append((k, key))
         events.append((k, key, t.transition, step.text or engine.format_binding_element(step.be),
                        times[k - 1] if times else None, step.changes))
+    if trace.steps:
+        messages += _pending(producers, engine, g.states[trace.steps[-1].target], of, len(trace.steps))
+        used.update(m[3] for m in messages)
     shown = [(key, a, b) for key, a, b in keyed if key in used]
     index = {key: i for i, (key, _a, _b) in enumerate(shown)}
     chart = Chart([(a, b) for _k, a, b in shown], timed=bool(times), by=by)
     chart.events = [Event(k, index[key], lab, text, time, ch) for k, key, lab, text, time, ch in events]
-    chart.messages = [Message(s, d, index[a], index[b], lab) for s, d, a, b, lab in messages]
+    chart.messages = [Message(s, d, index[a], index[b], lab, fate) for s, d, a, b, lab, fate in messages]
     return chart
+
+
+def _pending(producers: dict, engine, last, of: dict, n_steps: int) -> list:
+    """Messages for the tokens still in their places at the end of the trace, in places that another
+    lifeline takes tokens from: toward the lifeline of a binding element that could take the token next
+    (enabled at the last marking), else toward the first other lifeline with an arc that takes from the
+    place."""
+    net = engine.net
+    takers: dict = defaultdict(list)  # place -> lifeline keys of the transitions that take its tokens
+    for t in net.transitions:
+        for a in t.arcs:
+            if a.kind in ("in", "both", "reset") and of[t.index] not in takers[a.place]:
+                takers[a.place].append(of[t.index])
+    left = [(p, v, src, skey) for (p, v), q in producers.items() for src, skey in q
+            if any(key != skey for key in takers[p])]
+    if not left:
+        return []
+    next_taker: dict = {}  # (place, value) -> lifeline keys of enabled binding elements that take it
+    try:
+        m = engine.marking(last)
+        places = {p for p, _v, _s, _k in left}
+        for be, succ in engine.successors(last):
+            key = of[engine.binding_element(be).transition]
+            ms = engine.marking(succ)
+            for p in places:
+                if ms[p] == m[p]:
+                    continue
+                before, after = untimed_multiset(engine, p, m[p]), untimed_multiset(engine, p, ms[p])
+                for v, n in before.items():
+                    if n > after.get(v, 0):
+                        next_taker.setdefault((p, v), []).append(key)
+    except Exception:  # noqa: BLE001 - the successors cannot be computed here: the net's arcs decide
+        next_taker = {}
+    out = []
+    for p, v, src, skey in sorted(left, key=lambda item: item[2]):
+        keys = [k for k in next_taker.get((p, v), ()) if k != skey] or [k for k in takers[p] if k != skey]
+        out.append((src, None, skey, keys[0], f"{net.places[p].place}: {_value(net, p, v)}", "pending"))
+    return out
 
 
 _PLAIN: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()  # engine -> the same net without condensation
@@ -173,6 +220,8 @@ def render_chart(chart: Chart, marked_step: int | None = None, caption: str = ""
     n_lines = max(1, len(chart.lifelines))
     col = max([COLUMN] + [S.text_width(a, 13) + 34 for a, _ in chart.lifelines])
     width = LEFT + col * n_lines + 40
+    if caption:  # the title is bold 14 px: the chart is at least as wide
+        width = max(width, 1.1 * S.text_width(caption, 14) + 24)
     xs = [LEFT + col * i + col / 2 for i in range(n_lines)]
     top = HEAD + (22 if caption else 0)
     ys = {}
@@ -188,8 +237,13 @@ def render_chart(chart: Chart, marked_step: int | None = None, caption: str = ""
         ys[ev.step] = y
         last_time = ev.time
         y += ROW
-    height = y + 30
-    body = [S.arrow_defs(prefix, {"msg": S.ACCENT})]
+    pending = Counter(m.dst_line for m in chart.messages if m.dst is None)
+    pending_y = y - ROW + 22  # where the arrows of tokens still in their places end, below the last step
+    height = y + 30 + 9 * max(0, max(pending.values(), default=0) - 1)
+    body = [S.arrow_defs(prefix, {"msg": S.ACCENT}),
+            f'<defs><marker id="{prefix}-open" viewBox="0 0 10 10" refX="9" refY="5" markerWidth="8" '
+            f'markerHeight="8" orient="auto"><path d="M1,1 L9,5 L1,9" fill="none" stroke="{S.ACCENT}" '
+            'stroke-width="1.5"/></marker></defs>']
     if standalone:
         body.append(f'<rect width="{S.fmt(width)}" height="{S.fmt(height)}" fill="#fff"/>')
     if caption:
@@ -210,10 +264,18 @@ def render_chart(chart: Chart, marked_step: int | None = None, caption: str = ""
                     + S.text(12, ty + 4, f"t = {t}", 12, "start", fill=S.MUTED, weight="600"))
     widths = {ev.step: max(60, S.text_width(ev.label, 13) + 22) for ev in chart.events}  # bold 12 px
     taken: set = set()  # (step, side) where a message label already sits
+    open_ends: dict = defaultdict(int)  # lifeline -> pending messages that end on it so far
     for m in chart.messages:
-        x1, y1, x2, y2 = xs[m.src_line], ys[m.src], xs[m.dst_line], ys[m.dst]
+        x1, y1, x2 = xs[m.src_line], ys[m.src], xs[m.dst_line]
+        if m.dst is None:  # still in its place: open at the last step, below it
+            first_end = not open_ends[m.dst_line]
+            y2 = pending_y + 9 * open_ends[m.dst_line]
+            open_ends[m.dst_line] += 1
+        else:
+            y2 = ys[m.dst]
         sgn = 1 if x2 > x1 else -1
-        x1, x2 = x1 + sgn * 8, x2 - sgn * 10
+        # from under the sending event to the edge of the receiving one (an open end: to its lifeline)
+        x1, x2 = x1 + sgn * 8, x2 - sgn * (10 if m.dst is None else widths[m.dst] / 2 + 1)
         text = S.clip(m.label, MESSAGE_CHARS)
         # A row holds one event, so a label fits in the row of its sender (beside the sending event, toward
         # the receiver) or else in the row of its receiver (beside the receiving event, toward the sender).
@@ -221,15 +283,28 @@ def render_chart(chart: Chart, marked_step: int | None = None, caption: str = ""
             taken.add((m.src, sgn))
             label = S.text(xs[m.src_line] + sgn * (widths[m.src] / 2 + 6), y1 - 4, text, 12,
                            "start" if sgn > 0 else "end", mono=True, halo=True, fill=S.ACCENT)
-        elif (m.dst, -sgn) not in taken:
+        elif m.dst is not None and (m.dst, -sgn) not in taken:
             taken.add((m.dst, -sgn))
             label = S.text(xs[m.dst_line] - sgn * (widths[m.dst] / 2 + 6), y2 - 6, text, 12,
                            "end" if sgn > 0 else "start", mono=True, halo=True, fill=S.ACCENT)
         else:
             label = S.text((x1 + x2) / 2, (y1 + y2) / 2 - 5, text, 12, mono=True, halo=True, fill=S.ACCENT)
-        body.append(f'<g class="message">{S.title(m.label + f" (produced at step {m.src}, consumed at step {m.dst})")}'
-                    f'<line x1="{S.fmt(x1)}" y1="{S.fmt(y1)}" x2="{S.fmt(x2)}" y2="{S.fmt(y2)}" stroke="{S.ACCENT}" '
-                    f'stroke-width="1.6" marker-end="url(#{prefix}-msg)"/>' + label + "</g>")
+        line = f'x1="{S.fmt(x1)}" y1="{S.fmt(y1)}" x2="{S.fmt(x2)}" y2="{S.fmt(y2)}"'
+        if m.fate == "pending":
+            tip = f"{m.label}: still there at the end of the trace (produced at step {m.src})"
+            drawn = (f'<line {line} stroke="{S.ACCENT}" stroke-width="1.6" stroke-dasharray="6 4" '
+                     f'marker-end="url(#{prefix}-open)"/>'
+                     + (S.text(x2 - sgn * 4, y2 + 4, "pending", 11, "end" if sgn > 0 else "start",
+                               fill=S.MUTED, halo=True) if first_end else ""))
+        elif m.fate == "lost":
+            tip = f"{m.label} (produced at step {m.src}, lost at step {m.dst}: taken, and nothing put anywhere)"
+            drawn = (f'<line {line} stroke="{S.ACCENT}" stroke-width="1.6"/>'
+                     f'<path class="lost" d="M{S.fmt(x2 - sgn * 6 - 5)},{S.fmt(y2 - 5)} l10,10 m0,-10 l-10,10" '
+                     f'stroke="{S.BAD}" stroke-width="2.2"/>')
+        else:
+            tip = f"{m.label} (produced at step {m.src}, consumed at step {m.dst})"
+            drawn = f'<line {line} stroke="{S.ACCENT}" stroke-width="1.6" marker-end="url(#{prefix}-msg)"/>'
+        body.append(f'<g class="message {m.fate}">{S.title(tip)}{drawn}{label}</g>')
     for ev in chart.events:
         x, y = xs[ev.line], ys[ev.step]
         bad = ev.step == marked_step

@@ -17,8 +17,10 @@ SCHEMA = "cpn-verify/check-report/1"
 
 
 # ----------------------------------------------------------------------------- traces
-def trace_steps(engine, graph, evidence: Evidence | None) -> dict:
-    """{"steps": [...], "cycle": [...]}: the evidence as printable, replayable steps."""
+def trace_steps(engine, graph, evidence: Evidence | None, reads: tuple = ()) -> dict:
+    """{"steps": [...], "cycle": [...], "target": n, "marking": {...}}: the evidence as printable,
+    replayable steps, and the marking it leads to (where a lasso's cycle starts): "places" has every
+    non-empty place and the places in `reads` (indices: those the property reads, listed in "reads")."""
     if evidence is None:
         return {"steps": [], "cycle": []}
     pairs = list(zip(evidence.path, evidence.path[1:], evidence.arcs))
@@ -47,7 +49,22 @@ def trace_steps(engine, graph, evidence: Evidence | None) -> dict:
         tokens = arcs(engine.binding_element(be), shown.clock(states[i + 1]))
         out.append(_step(shown, states[i], states[i + 1], i + 1, u, v, text, tokens))
     n = len(evidence.path) - 1
-    return {"steps": out[:n], "cycle": out[n:], "target": evidence.path[-1] + 1}
+    return {"steps": out[:n], "cycle": out[n:], "target": evidence.path[-1] + 1,
+            "marking": end_marking(shown, states[n], evidence.path[-1], reads)}
+
+
+def end_marking(engine, state, sid: int, reads: tuple = ()) -> dict:
+    """{"state": 1-based id, "reads": [place names], "places": {name: multiset}} of one marking: every
+    non-empty place, and each place of `reads` (indices) even when empty; time stamps when timed."""
+    places = {}
+    for p, place in enumerate(engine.places):
+        text = engine.format_marking(state, p)
+        if p in reads or (text and text != "empty"):
+            places[place.name] = text or "empty"
+    doc = {"state": sid + 1, "reads": [engine.places[p].name for p in reads], "places": places}
+    if getattr(engine, "is_timed", False):
+        doc["time"] = engine.clock(state)
+    return doc
 
 
 def _replay_absolute(engine, bes: list[int]):
@@ -164,6 +181,33 @@ def render_steps(trace: dict, indent: str = "    ") -> list[str]:
         out.append(f"{indent}then forever, the cycle back to marking {cycle[-1]['to']}:")
         for s in cycle:
             out.extend(_render_step(s, indent + "  "))
+    if trace.get("marking"):
+        out.extend(render_marking(trace["marking"], indent, bool(cycle)))
+    return out
+
+
+MARKING_PLACES: int = 20  # places of a marking printed after a trace (the ones the property reads first)
+
+
+def render_marking(m: dict, indent: str = "    ", lasso: bool = False) -> list[str]:
+    """The marking at the end of a trace: the places the property reads first (even when empty), then the
+    other marked places, at most MARKING_PLACES in all, and how many more are marked."""
+    what = ("violating marking" if m.get("violating") else "the marking where the property failed"
+            if "violating" in m else "marking reached")
+    at = f" at time {m['time']}" if "time" in m else ""
+    where = " (where the cycle starts)" if lasso else ""
+    reads = [p for p in m.get("reads", []) if p in m["places"]]
+    if not m["places"]:
+        return [f"{indent}{what} {m['state']}{at}{where}: every place is empty"]
+    shown = reads + [p for p in m["places"] if p not in reads][:max(0, MARKING_PLACES - len(reads))]
+    said = f", the property reads {', '.join(reads)}" if reads else ""
+    out = [f"{indent}{what} {m['state']}{at}{where}{said}:"]
+    width = max(len(p) for p in shown)
+    out += [f"{indent}       {p:<{width}}  {m['places'][p]}" for p in shown]
+    others = len(m["places"]) - len(shown)
+    if others:
+        out.append(f"{indent}       (and {others} more marked place{'s' if others != 1 else ''}: all in the JSON "
+                   "report)")
     return out
 
 
@@ -198,7 +242,9 @@ def run_report(result, timings: bool = True) -> dict:
         if timings:
             doc["seconds"] = round(r.seconds, 4)
         if v.evidence is not None:
-            doc["trace"] = trace_steps(result.engine, g, v.evidence)
+            doc["trace"] = trace_steps(result.engine, g, v.evidence, getattr(r, "reads", ()))
+            if v.status.value != "holds":
+                doc["trace"]["marking"]["violating"] = v.status.value == "violated"
         if v.details:
             doc["details"] = v.details
         props.append(doc)
