@@ -35,6 +35,8 @@ __all__ = ["Origin", "Translation", "translate", "translate_file", "translate_te
 
 # CPN Tools' standard priorities (declared in the "Standard priorities" block of a new net).
 STANDARD_PRIORITIES = {"P_HIGH": "100", "P_NORMAL": "1000", "P_LOW": "10000"}
+# The colour set CPN Tools gives a place without a colour-set inscription.
+UNIT_NAME = "UNIT"
 PORT_KINDS = {"in": "in", "out": "out", "i/o": "io", "io": "io", "inout": "io", "general": "io"}
 
 
@@ -119,6 +121,9 @@ class _Translator(_Declarations):
         gb = cpnet.find("globbox")
         if gb is not None:
             self._decls(gb)
+        if UNIT_NAME not in self.declared and any(not p.type for p in self.places.values()):
+            self.out.raw(f"colset {UNIT_NAME} = unit;  (* for the places without a colour set, as in CPN Tools *)")
+            self.declared.add(UNIT_NAME)
         self.out.raw()
         emitted: set[str] = set()
         for r in roots:
@@ -342,16 +347,18 @@ class _Translator(_Declarations):
     def _place(self, p: _Place, ind: str) -> None:
         o = Origin(p.el.line, p.el.col, p.id, p.page.name, f"place '{p.name}'")
         if not p.type:
-            self.error(p.el, f"place '{p.name}' ({p.id}) on page '{p.page.name}' has no colour set",
-                       hint="Give the place a colour set, e.g. UNIT.")
-            return
+            # CPN Tools gives a place without a colour-set inscription the colour set UNIT
+            self.notes.append(f"place '{p.name}' ({p.id}) on page '{p.page.name}' has no colour set: "
+                              "UNIT, as in CPN Tools")
+            p.type = UNIT_NAME
         head = f"port {p.port} " if p.port else "place "
         parts: list[tuple[str, Origin | None]] = [
             (f"{head}{ml.quote(p.name)} : ", None),
-            (p.type, _text_origin(p.el.find("type"), p.id, p.page.name, f"colour set of place '{p.name}'")),
+            (p.type, _text_origin(p.el.find("type"), p.id, p.page.name, f"colour set of place '{p.name}'", owner=p.el)),
         ]
         if p.init:
-            io = _text_origin(p.el.find("initmark"), p.id, p.page.name, f"initial marking of place '{p.name}'")
+            io = _text_origin(p.el.find("initmark"), p.id, p.page.name, f"initial marking of place '{p.name}'",
+                              owner=p.el)
             init = self._inscription(p.init, io, f"the initial marking of place '{p.name}'")
             if p.type in self.timed_colsets:
                 init = _timed_literals(init)
@@ -367,17 +374,17 @@ class _Translator(_Declarations):
         what = f"transition '{t.name}' on page '{t.page.name}'"
         chan = _clean(t.el.child_text("channel"))
         if chan:
-            self.error(_text_origin(t.el.find("channel"), t.id, t.page.name, ""),
+            self.error(_text_origin(t.el.find("channel"), t.id, t.page.name, "", owner=t.el),
                        f"{what} has a synchronous channel inscription '{_short(chan)}'; synchronous channels "
                        "(CPN Tools 4 extensions) are not supported",
                        hint="Merge the transitions that synchronise into one transition.")
         code = _clean(t.el.child_text("code"))
         if code:
-            co = _text_origin(t.el.find("code"), t.id, t.page.name, f"code segment of '{t.name}'")
+            co = _text_origin(t.el.find("code"), t.id, t.page.name, f"code segment of '{t.name}'", owner=t.el)
             self._code_segment(t, code, co, what)
         guard = _clean(t.el.child_text("cond"))
         if guard:
-            go = _text_origin(t.el.find("cond"), t.id, t.page.name, f"guard of '{t.name}'")
+            go = _text_origin(t.el.find("cond"), t.id, t.page.name, f"guard of '{t.name}'", owner=t.el)
             guard = self._inscription(guard, go, f"the guard of {what}")
             if guard.startswith("[") and guard.endswith("]") and _balanced_outer(guard):
                 parts += [(" ", None), (guard, go)]
@@ -385,7 +392,7 @@ class _Translator(_Declarations):
                 parts += [(" [", None), (guard, go), ("]", None)]
         delay = _clean(t.el.child_text("time"))
         if delay:
-            do = _text_origin(t.el.find("time"), t.id, t.page.name, f"time inscription of '{t.name}'")
+            do = _text_origin(t.el.find("time"), t.id, t.page.name, f"time inscription of '{t.name}'", owner=t.el)
             delay = self._inscription(delay, do, f"the time inscription of {what}")
             if not delay.startswith("@+"):
                 self.error(do, f"{what} has the time inscription '{_short(delay)}'; expected '@+ delay'")
@@ -401,7 +408,7 @@ class _Translator(_Declarations):
                 parts += [(" ", None), (delay, do)]
         prio = _clean(t.el.child_text("priority"))
         if prio:
-            po = _text_origin(t.el.find("priority"), t.id, t.page.name, f"priority of '{t.name}'")
+            po = _text_origin(t.el.find("priority"), t.id, t.page.name, f"priority of '{t.name}'", owner=t.el)
             if prio in STANDARD_PRIORITIES and prio not in self.declared:
                 parts += [(f" priority {STANDARD_PRIORITIES[prio]}", None)]
             else:
@@ -506,7 +513,7 @@ class _Translator(_Declarations):
             return  # a socket arc of a substitution transition: drawn only; portsock carries the meaning
         annot = _clean(a.child_text("annot"))
         what = f"the inscription of the arc between '{p.name}' and '{t.name}' on page '{page.name}'"
-        ao = _text_origin(a.find("annot"), aid, page.name, f"arc inscription {p.name}/{t.name}")
+        ao = _text_origin(a.find("annot"), aid, page.name, f"arc inscription {p.name}/{t.name}", owner=a)
         o = Origin(a.line, a.col, aid, page.name, f"arc between '{p.name}' and '{t.name}'")
         if annot:
             annot = self._inscription(annot, ao, what)

@@ -131,8 +131,13 @@ def _clean(text: str) -> str:
     return text.replace("\r\n", "\n").replace("\r", "\n").strip()
 
 
-def _text_origin(el: Element, elem_id: str, page: str | None, what: str) -> Origin:
-    """Origin of the `<text>` of an inscription element (its character data, to the column)."""
+def _text_origin(el: Element | None, elem_id: str, page: str | None, what: str,
+                 owner: Element | None = None) -> Origin:
+    """Origin of the `<text>` of an inscription element (its character data, to the column); where the
+    element is missing (files written by other tools leave out an empty `<annot>`), its owner's start."""
+    if el is None:
+        where = owner if owner is not None else Origin(1, 1, elem_id, page, what)
+        return Origin(where.line, where.col, elem_id, page, what)
     t = el.find("text")
     if t is not None and t.text:
         # The char data starts where expat reported it; leading white space is stripped by _clean.

@@ -1,0 +1,78 @@
+"""CPN Tools models as people write them: forms that CPN Tools reads and that must load, or be refused
+with one positioned error, never a traceback. Each test writes the smallest `.cpn` file that shows it."""
+
+from __future__ import annotations
+
+import pytest
+
+import cpn
+from cpn.errors import ModelError
+from cpn.io.cpntools import translate_text
+from tests.io.test_cpntools import DECLS, arc, cpn_xml, page, place, trans
+from tests.io.test_cpntools_statespace import explore as bfs
+
+
+def arc_without_annot(aid, orient, tid, pid):
+    """An arc as some files write it: no `<annot>` element at all (not even an empty one)."""
+    return (f'<arc id="{aid}" orientation="{orient}" order="1"><transend idref="{tid}"/>'
+            f'<placeend idref="{pid}"/></arc>')
+
+
+def write(tmp_path, xml: str, name: str = "m.cpn") -> str:
+    path = tmp_path / name
+    path.write_text(xml)
+    return str(path)
+
+
+def load(tmp_path, xml: str, name: str = "m.cpn"):
+    return cpn.load(write(tmp_path, xml, name))
+
+
+def explore_counts(tmp_path, xml: str) -> tuple[int, int]:
+    """(nodes, arcs) of the complete state space of the net in `xml`."""
+    space = bfs(write(tmp_path, xml))
+    assert space.complete
+    return space.nodes, space.arcs
+
+
+# ------------------------------------------------------------------ arcs without <annot>
+
+
+def test_an_arc_without_annot_element_of_a_unit_place_is_one_unit_token(tmp_path):
+    body = (place("P1", "A", "UNIT", "2`()") + place("P2", "B", "UNIT") + trans("T1", "t")
+            + arc_without_annot("A1", "PtoT", "T1", "P1") + arc_without_annot("A2", "TtoP", "T1", "P2"))
+    # 2`() on A: t occurs twice, one token each time
+    assert explore_counts(tmp_path, cpn_xml(DECLS, page("PG1", "Top", body))) == (3, 2)
+
+
+def test_an_arc_without_annot_element_of_a_non_unit_place_is_one_positioned_error(tmp_path):
+    body = (place("P1", "A", "S", "1`0") + trans("T1", "t") + arc_without_annot("A1", "PtoT", "T1", "P1"))
+    xml = cpn_xml(DECLS, page("PG1", "Top", body))
+    with pytest.raises(ModelError) as info:
+        load(tmp_path, xml)
+    [d] = info.value.diagnostics
+    assert d.code == "E0301" and "has no inscription" in d.message
+    line = xml.splitlines()[d.span.line - 1]
+    assert line[d.span.col - 1:].startswith('<arc id="A1"')
+
+
+# ------------------------------------------------------------------ places without a colour set
+
+
+def test_a_place_without_colour_set_is_unit_as_in_cpn_tools(tmp_path):
+    # the globbox declares no UNIT: the translation declares it
+    decls = '<color id="C2"><id>INT</id><int/></color>'
+    body = (place("P1", "A", "", "1`()") + place("P2", "B", "") + trans("T1", "t")
+            + arc_without_annot("A1", "PtoT", "T1", "P1") + arc("A2", "TtoP", "T1", "P2", "()"))
+    xml = cpn_xml(decls, page("PG1", "Top", body))
+    t = translate_text(xml, "m.cpn")
+    assert "place A : UNIT = 1`();" in t.text and "colset UNIT = unit;" in t.text
+    assert any("has no colour set: UNIT" in n for n in t.notes)
+    assert explore_counts(tmp_path, xml) == (2, 1)
+
+
+def test_a_place_without_colour_set_uses_the_nets_own_unit(tmp_path):
+    body = place("P1", "A", "", "1`()") + trans("T1", "t") + arc_without_annot("A1", "PtoT", "T1", "P1")
+    t = translate_text(cpn_xml(DECLS, page("PG1", "Top", body)), "m.cpn")
+    assert t.text.count("colset UNIT") == 1  # DECLS declares it
+    assert explore_counts(tmp_path, cpn_xml(DECLS, page("PG1", "Top", body))) == (2, 1)
