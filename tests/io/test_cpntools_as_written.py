@@ -76,3 +76,13 @@ def test_a_place_without_colour_set_uses_the_nets_own_unit(tmp_path):
     t = translate_text(cpn_xml(DECLS, page("PG1", "Top", body)), "m.cpn")
     assert t.text.count("colset UNIT") == 1  # DECLS declares it
     assert explore_counts(tmp_path, cpn_xml(DECLS, page("PG1", "Top", body))) == (2, 1)
+
+
+def test_an_arc_to_a_transition_that_is_not_in_the_file_says_which_end():
+    body = place("P1", "A", "S", "1`0") + trans("T1", "t") + arc("A1", "PtoT", "T9", "P1", "x")
+    xml = cpn_xml(DECLS, page("PG1", "Top", body))
+    with pytest.raises(ModelError) as info:
+        translate_text(xml, "m.cpn")
+    [d] = info.value.diagnostics
+    assert "its transition end 'T9' is no transition of the file" in d.message and d.hint
+    assert xml.splitlines()[d.span.line - 1][d.span.col - 1:].startswith('<arc id="A1"')

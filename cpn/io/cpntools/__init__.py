@@ -507,7 +507,18 @@ class _Translator(_Declarations):
         t = self.transs.get(te.attrs.get("idref", "")) if te is not None else None
         p = self.places.get(pe.attrs.get("idref", "")) if pe is not None else None
         if t is None or p is None or t.page is not page or p.page is not page:
-            self.error(a, f"arc {aid} on page '{page.name}' does not connect a place and a transition of the page")
+            why = []
+            for end, found, kind in ((te, t, "transition"), (pe, p, "place")):
+                ref = end.attrs.get("idref", "") if end is not None else ""
+                if end is None:
+                    why.append(f"it has no <{kind[:5]}end>")
+                elif found is None:
+                    why.append(f"its {kind} end '{ref}' is no {kind} of the file")
+                elif found.page is not page:
+                    why.append(f"its {kind} '{found.name}' is on page '{found.page.name}'")
+            self.error(a, f"arc {aid} on page '{page.name}' does not connect a place and a transition of the page: "
+                       + "; ".join(why), hint="Delete the arc in CPN Tools, or draw it again between a place and a "
+                                              "transition of the page.")
             return
         if t.subpage is not None:
             return  # a socket arc of a substitution transition: drawn only; portsock carries the meaning
