@@ -119,14 +119,16 @@ class _Monitor:
         return violated or (self.only_witnesses and all(c.found is not None for c in self.checks))
 
 
-def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, progress=None) -> RunResult:
+def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, progress=None,
+                 model=None) -> RunResult:
     """Explore one run of a scenario and decide its properties.
 
     Raises ModelError (the model or a property text is wrong) and ConfigurationError (no model file).
     `overrides` replaces exploration options of the scenario (`max_states`, ...; `max_seconds = 0`: no
     time limit); `default_max_memory_mb` and `default_max_seconds` apply only where the scenario sets no
     such limit; `set` (the command line's constant values, already in `run.values`) is recorded in the
-    options, and a value the model refuses stays an error of the command line.
+    options, and a value the model refuses stays an error of the command line. `model`, a loaded model,
+    replaces the scenario's model file (a mutant of it, cpn.checks.mutation).
     """
     from cpn.model import load
 
@@ -143,7 +145,8 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     if opts.get("max_seconds") == 0:  # `--max-seconds 0`: no time limit, whatever the scenario says
         opts["max_seconds"] = None
     try:
-        model = load(scenario.model, set=run.values)
+        if model is None:
+            model = load(scenario.model, set=run.values)
     except ModelError as exc:
         raise _at_scenario(exc, scenario) from None
     except ConfigurationError as exc:
