@@ -64,6 +64,7 @@ CODES: dict[str, str] = {
     "E0704": "bad parameter table",
     # warnings
     "W0101": "unbound port",
+    "W0102": "delay without effect",
     "W0103": "empty model",
     "W0701": "scenario states no property",
 }

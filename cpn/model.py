@@ -249,6 +249,9 @@ def load(path: str | os.PathLike, set: dict | None = None) -> Model:  # noqa: A0
                 raise
             # a --set value that does not fit names the constant's declaration in the file the user has
             raise usage_error(problems, lambda span: _original_position(span, translation)) from None
+        # a warning keeps its place in the translated text (model.source) and names the element it comes from
+        model.warnings = importer.remap_error(ModelError(model.warnings), translation, generated,
+                                              keep_generated_span=True).diagnostics
         model.path = path
         model.translation = translation
         return model

@@ -190,7 +190,7 @@ class PageChecks:
                 if t is None:
                     ok = False
                 else:
-                    self.unify(t, T.INT, d.delay.span, f"the delay of transition '{d.name}' (an integer)")
+                    ok = self.unify(t, T.INT, d.delay.span, f"the delay of transition '{d.name}' (an integer)") and ok
                     d.delay = _replace_ran(d.delay)
         finally:
             self.ran_sink = None
@@ -250,8 +250,8 @@ class PageChecks:
         info.free = free
 
     def _check_delay_has_effect(self, page: PageInfo, info: TransInfo) -> None:
-        """A transition delay applies to the tokens put on timed places (as in CPN Tools); with no timed
-        output place it has no effect, which is an error as in CPN Tools rather than a silent no-op."""
+        """A transition delay applies to the tokens put on timed places. With no timed output place it has
+        no effect: CPN Tools accepts it (its check only type-checks the delay), and so do we, with a warning."""
         d = info.decl
         outputs = [a for a in info.arcs if a.kind in ("out", "both")]
         colsets = [self.colsets.get(page.places[a.place].colset) for a in outputs]
@@ -260,10 +260,10 @@ class PageChecks:
         places = sorted({f"'{a.place}' ({page.places[a.place].colset})" for a in outputs})
         found = ("it has no output arcs" if not places else f"its output place {places[0]} is not timed"
                  if len(places) == 1 else f"its output places {', '.join(places)} are not timed")
-        self.error("E0301", f"transition '{d.name}' has a delay, but {found}: the delay has no effect",
-                   d.delay.span, hint="A delay gives the tokens put on timed places a later time stamp: declare the "
-                   "colour set of an output place timed ('colset C = ... timed;'), or remove the '@+'.",
-                   transition=d.name)
+        self.warn("W0102", f"transition '{d.name}' has a delay, but {found}: the delay has no effect "
+                  "(CPN Tools accepts it too)", d.delay.span,
+                  hint="A delay gives the tokens put on timed places a later time stamp: declare the colour set "
+                  "of an output place timed ('colset C = ... timed;'), or remove the '@+'.", transition=d.name)
 
     def _first_use(self, info: TransInfo, v: str) -> Span:
         for a in info.arcs:

@@ -86,3 +86,42 @@ def test_an_arc_to_a_transition_that_is_not_in_the_file_says_which_end():
     [d] = info.value.diagnostics
     assert "its transition end 'T9' is no transition of the file" in d.message and d.hint
     assert xml.splitlines()[d.span.line - 1][d.span.col - 1:].startswith('<arc id="A1"')
+
+
+# ------------------------------------------------------------------ a delay whose output places are untimed
+
+
+def test_a_transition_delay_with_untimed_outputs_is_accepted_as_in_cpn_tools(tmp_path):
+    # the CPN book's 10-19TimedStateSpaces.cpn has such a transition: CPN Tools type-checks the delay only
+    body = (place("P1", "A", "S", "1`0") + trans("T1", "t", cond="[x &lt; 3]", time="@+7")
+            + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P1", "(x + 1) mod 4"))
+    xml = cpn_xml(DECLS, page("PG1", "Top", body))
+    model = load(tmp_path, xml)
+    [w] = model.warnings
+    assert w.code == "W0102" and "the delay has no effect" in w.message
+    # the warning names the time inscription, not the guard written before it on the same line
+    assert any("time inscription of 't'" in n for n in w.notes), w.notes
+    assert explore_counts(tmp_path, xml) == (4, 3)  # x = 0, 1, 2, 3: the delay changes nothing
+
+
+def test_a_delay_that_is_not_an_integer_is_still_an_error_at_the_time_inscription(tmp_path):
+    body = (place("P1", "A", "S", "1`0") + trans("T1", "t", cond="[x &lt; 3]", time="@+true")
+            + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P1", "x"))
+    xml = cpn_xml(DECLS, page("PG1", "Top", body))
+    with pytest.raises(ModelError) as info:
+        load(tmp_path, xml)
+    [d] = info.value.diagnostics
+    assert d.code == "E0301" and "the delay of transition 't'" in d.message
+    assert xml.splitlines()[d.span.line - 1][d.span.col - 1:].startswith("true</text></time>")
+
+
+def test_locate_picks_the_element_that_starts_last_on_a_line():
+    body = place("P1", "A", "S", "1`0") + trans("T1", "t", cond="[x = 1]", time="@+ 5", prio="P_LOW")
+    body += arc("A1", "PtoT", "T1", "P1", "x")
+    xml = cpn_xml(DECLS, page("PG1", "Top", body))
+    t = translate_text(xml, "m.cpn")
+    lines = t.text.splitlines()
+    n = next(i for i, s in enumerate(lines, 1) if s.startswith("trans t"))
+    for needle, rest in (("x = 1", "]</text></cond>"), ("5", "</text></time>")):
+        span, origin = t.locate(n, lines[n - 1].index(needle) + 1)
+        assert xml.splitlines()[span.line - 1][span.col - 1:].startswith(needle + rest), needle

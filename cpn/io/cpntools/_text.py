@@ -58,9 +58,12 @@ class Translation:
         best = None
         for p in self.pieces:
             if p.gen_line <= line < p.gen_line + p.n_lines:
-                if line == p.gen_line and col < p.gen_col and not p.exact:
+                if line == p.gen_line and col < p.gen_col:
                     continue
-                if best is None or (p.exact and not best.exact) or p.gen_line > best.gen_line:
+                # the verbatim text of an element before the statement; of two, the one that starts last
+                # (a guard and a delay on one line: a position in the delay is the delay's)
+                if (best is None or (p.exact and not best.exact)
+                        or (p.exact == best.exact and (p.gen_line, p.gen_col) > (best.gen_line, best.gen_col))):
                     best = p
         if best is None:
             return None

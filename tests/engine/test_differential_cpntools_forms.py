@@ -1,0 +1,32 @@
+"""The compiled engine against the reference interpreter on the forms of CPN ML and of nets that CPN Tools
+models use and that the front end accepts as CPN Tools does (docs/cpntools.md, docs/cpnml.md)."""
+
+import pytest
+
+import cpn
+from tests.engine.test_differential import _compare
+
+CASES = {
+    # a transition delay whose only output place is untimed: accepted, without effect (W0102); in a timed net
+    "delay_untimed_outputs": """
+colset C = int with 0..3;
+colset TC = int with 0..3 timed;
+var x : C;
+place P : C = 1`0;
+place Q : TC = 1`1;
+trans T [x < 3] @+ 7;
+arc P -> T : x;
+arc T -> P : (x + 1) mod 4;
+trans U @+ 2;
+arc Q -> U : x;
+arc U -> Q : (x + 1) mod 4;
+""",
+}
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_engines_agree(name):
+    model = cpn.loads(CASES[name], f"{name}.cpnet")
+    _compare(model, condensation=False, limit=80)
+    if model.net.is_timed and not model.engine().reads_clock:
+        _compare(model, condensation=True, limit=80)
