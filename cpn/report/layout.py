@@ -8,6 +8,7 @@ It takes a few milliseconds for a few hundred nodes and needs no system tool.
 
 from __future__ import annotations
 
+import math
 from collections import defaultdict
 from dataclasses import dataclass, field
 
@@ -227,3 +228,141 @@ def pack_rows(sizes: list[tuple[float, float]], max_width: float, gap: float = 1
         row_h = max(row_h, h)
         width = max(width, x - gap)
     return corners, width, (y + row_h if sizes else 0.0)
+
+
+# --------------------------------------------------------------------------------- routing around boxes
+
+def segment_hits_box(a: tuple, b: tuple, box: tuple) -> bool:
+    """Whether the segment a-b meets the box (x0, y0, x1, y1) (Liang-Barsky clipping)."""
+    x0, y0, x1, y1 = box
+    if max(a[0], b[0]) < x0 or min(a[0], b[0]) > x1 or max(a[1], b[1]) < y0 or min(a[1], b[1]) > y1:
+        return False
+    dx, dy = b[0] - a[0], b[1] - a[1]
+    t0, t1 = 0.0, 1.0
+    for p, q in ((-dx, a[0] - x0), (dx, x1 - a[0]), (-dy, a[1] - y0), (dy, y1 - a[1])):
+        if p == 0:
+            if q < 0:
+                return False
+            continue
+        t = q / p
+        if p < 0:
+            if t > t1:
+                return False
+            t0 = max(t0, t)
+        else:
+            if t < t0:
+                return False
+            t1 = min(t1, t)
+    return t0 <= t1
+
+
+def boxes_overlap(a: tuple, b: tuple) -> bool:
+    return a[0] < b[2] and b[0] < a[2] and a[1] < b[3] and b[1] < a[3]
+
+
+class Router:
+    """Paths between points that keep `margin` px away from a set of boxes (the nodes of a drawing).
+
+    `boxes` maps a key to (x0, y0, x1, y1). A path is a polyline through corners of the boxes grown by
+    the margin: a shortest path (A*) in the graph of those corners in which two points are joined when
+    the segment between them is clear and not longer than `reach` (the end is always tried), then
+    straightened (a corner is skipped wherever the segment past it is clear). Segments are tested
+    against the boxes of the grid cells they cover.
+    """
+
+    def __init__(self, boxes: dict, margin: float = 8.0, cell: float = 200.0, reach: float = 480.0):
+        self.margin, self.cell, self.reach = margin, cell, reach
+        self.keys = list(boxes)
+        self.grown = [(x0 - margin, y0 - margin, x1 + margin, y1 + margin) for x0, y0, x1, y1 in boxes.values()]
+        grid: dict = defaultdict(list)
+        for i, b in enumerate(self.grown):
+            for cx in range(int(b[0] // cell), int(b[2] // cell) + 1):
+                for cy in range(int(b[1] // cell), int(b[3] // cell) + 1):
+                    grid[(cx, cy)].append(i)
+        self.grid = dict(grid)
+        e = 0.5  # corners lie just outside the grown boxes
+        self.corners = [p for x0, y0, x1, y1 in self.grown
+                        for p in ((x0 - e, y0 - e), (x1 + e, y0 - e), (x1 + e, y1 + e), (x0 - e, y1 + e))
+                        if not self._blocked(p, p, ())]
+
+    def blocked(self, a: tuple, b: tuple, skip=(), shrink: float = 0.0) -> bool:
+        """Whether the segment a-b meets a box (grown by the margin less `shrink`) whose key is not in
+        `skip`."""
+        skip_i = {i for i, k in enumerate(self.keys) if k in skip} if skip and not isinstance(skip, frozenset) else skip
+        return self._blocked(a, b, skip_i, shrink)
+
+    def _blocked(self, a: tuple, b: tuple, skip_i, shrink: float = 0.0) -> bool:
+        lo_x, hi_x = (a[0], b[0]) if a[0] < b[0] else (b[0], a[0])
+        lo_y, hi_y = (a[1], b[1]) if a[1] < b[1] else (b[1], a[1])
+        c = self.cell
+        grown, grid = self.grown, self.grid
+        for cx in range(int(lo_x // c), int(hi_x // c) + 1):
+            for cy in range(int(lo_y // c), int(hi_y // c) + 1):
+                for i in grid.get((cx, cy), ()):
+                    x0, y0, x1, y1 = grown[i]
+                    if hi_x < x0 + shrink or lo_x > x1 - shrink or hi_y < y0 + shrink or lo_y > y1 - shrink:
+                        continue
+                    if i in skip_i:
+                        continue
+                    if segment_hits_box(a, b, (x0 + shrink, y0 + shrink, x1 - shrink, y1 - shrink)):
+                        return True
+        return False
+
+    def path_blocked(self, points: list, skip=(), shrink: float = 0.0) -> bool:
+        skip_i = frozenset(i for i, k in enumerate(self.keys) if k in skip)
+        return any(self._blocked(a, b, skip_i, shrink) for a, b in zip(points, points[1:]))
+
+    def route(self, a: tuple, b: tuple, skip=()) -> list | None:
+        """The points of a clear path from a to b (both included), or None when there is none."""
+        skip_i = frozenset(i for i, k in enumerate(self.keys) if k in skip)
+        if not self._blocked(a, b, skip_i):
+            return [a, b]
+        found = self._search([a, *self.corners, b], skip_i)
+        if found is None:
+            return None
+        out = [found[0]]  # straightened: from each point, on to the farthest one in sight
+        i = 0
+        while i < len(found) - 1:
+            j = len(found) - 1
+            while j > i + 1 and self._blocked(found[i], found[j], skip_i):
+                j -= 1
+            out.append(found[j])
+            i = j
+        return out
+
+    def _search(self, pts: list, skip_i) -> list | None:
+        import heapq
+
+        goal = len(pts) - 1
+        reach = self.reach
+        near: dict = defaultdict(list)  # the points by grid cell of side `reach`
+        for j in range(1, goal):
+            near[(int(pts[j][0] // reach), int(pts[j][1] // reach))].append(j)
+
+        def dist(i, j):
+            return ((pts[i][0] - pts[j][0]) ** 2 + (pts[i][1] - pts[j][1]) ** 2) ** 0.5
+
+        best = {0: 0.0}
+        back: dict = {}
+        heap = [(2 * dist(0, goal), 0.0, 0)]
+        done: set = set()
+        while heap:
+            _f, g, i = heapq.heappop(heap)
+            if i in done:
+                continue
+            if i == goal:
+                out = [goal]
+                while out[-1] != 0:
+                    out.append(back[out[-1]])
+                return [pts[k] for k in reversed(out)]
+            done.add(i)
+            cx, cy = int(pts[i][0] // reach), int(pts[i][1] // reach)
+            for j in [goal, *(j for dx in (-1, 0, 1) for dy in (-1, 0, 1) for j in near.get((cx + dx, cy + dy), ()))]:
+                if j in done:
+                    continue
+                ng = g + dist(i, j) + 4.0  # a little per corner: fewer corners among equal lengths
+                if ng < best.get(j, math.inf) and not self._blocked(pts[i], pts[j], skip_i):
+                    best[j] = ng
+                    back[j] = i
+                    heapq.heappush(heap, (ng + 2 * dist(j, goal), ng, j))  # weighted: fewer points tried
+        return None

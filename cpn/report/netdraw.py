@@ -5,6 +5,8 @@ marked.
 Imports `cpn.net` (with `cpn.net.pretty`) and the report's `svg` and `layout` helpers. A place bound to a
 port, or fused with places of other instances, is drawn once, in the box of the instance that owns it
 (the socket's instance, the first member of the fusion set); arcs from other instances cross the boxes.
+An arc that would run through a node it does not join is routed around the nodes (`layout.Router`),
+and inscriptions are put where they cover no node.
 """
 
 from __future__ import annotations
@@ -14,7 +16,7 @@ from dataclasses import dataclass, field
 
 from cpn.net import pretty
 from cpn.report import svg as S
-from cpn.report.layout import layered_layout, pack_rows
+from cpn.report.layout import Router, boxes_overlap, layered_layout, pack_rows
 
 PLACE_H = 40
 TRANS_H = 34
@@ -318,7 +320,10 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
     hidden = {("p", i) for k in collapsed for i in _all(units, k, "places")} | \
              {("t", i) for k in collapsed for i in _all(units, k, "transitions")}
     nodes = {n: node for n, node in nodes.items() if n not in hidden}
-    arcs, right = _arcs(net, nodes, {e: [(x, y) for _, x, y in sorted(pts)] for e, pts in routes.items()})
+    titles = [(x + 10, y + 4, x + 10 + S.text_width(_box_title(units[key]), 13), y + 22)
+              for key, (x, y, _w, _h, _depth, _lines) in offset.items()]  # inscriptions keep off them too
+    arcs, right = _arcs(net, nodes, {e: [(x, y) for _, x, y in sorted(pts)] for e, pts in routes.items()},
+                        titles)
     body += arcs
     for node in nodes.values():
         if node.kind == "place":
@@ -500,16 +505,49 @@ def _transition(t, node: _Node, is_dead: bool, occ) -> str:
     return "".join(out)
 
 
-def _arcs(net, nodes: dict, routes: dict) -> tuple[list[str], float]:
+ROUTE_MARGIN = 8.0  # px an arc routed around other nodes keeps from them
+CLEARANCE = 2.0  # px an arc drawn as laid out must keep from other nodes, else it is routed around them
+
+
+def _node_box(node: _Node) -> tuple:
+    """The box a node takes with its labels (under the shape, or at its right), and room for a badge
+    (a place's bound, a transition's "dead") above it."""
+    if node.side:
+        w, h = node.side_size()
+        x0 = node.x - node.shape_w / 2
+        return (x0, node.y - h / 2 - 9, x0 + w, node.y + h / 2)
+    top = node.y - node.shape_h / 2
+    return (node.x - node.w / 2, top - 9, node.x + node.w / 2, top + node.h)
+
+
+@dataclass
+class _Drawn:
+    """One arc's geometry: its path data, its points (curves sampled), where its inscription goes."""
+
+    a: object
+    transition: int
+    d: str
+    points: list
+    start: tuple
+    end: tuple
+    label: tuple | None  # the laid-out place of the inscription: (x, y, steep)
+
+
+def _arcs(net, nodes: dict, routes: dict, titles: list = ()) -> tuple[list[str], float]:
     """The arcs as SVG, and the rightmost x any inscription reaches.
 
-    routes: (from node, to node) -> bend points of a laid-out edge that spans several layers."""
+    routes: (from node, to node) -> bend points of a laid-out edge that spans several layers; titles:
+    boxes of the module boxes' titles. An arc drawn as laid out that would cross another node (its shape
+    or its labels) is routed around the nodes instead (layout.Router), and each inscription goes to the
+    first place along its arc where it covers no node, no title and no other inscription, inside the
+    drawing."""
     pairs: dict = {}
     for t in net.transitions:
         for a in t.arcs:
             pairs.setdefault((a.place, t.index), []).append(a)
-    out = []
-    right = 0.0
+    boxes = {n: _node_box(node) for n, node in nodes.items()}
+    router = Router(boxes, ROUTE_MARGIN)
+    drawn: list[_Drawn] = []
     for (p, ti), arcs in pairs.items():
         if ("p", p) not in nodes or ("t", ti) not in nodes:  # an end inside a collapsed instance
             continue
@@ -521,17 +559,34 @@ def _arcs(net, nodes: dict, routes: dict) -> tuple[list[str], float]:
         dist = ((pn.x - tn.x) ** 2 + (pn.y - tn.y) ** 2) ** 0.5
         base = min(120.0, 0.12 * dist + 16) if cross else 0.0
         keys = [(("t", ti), ("p", p)) if a.kind == "out" else (("p", p), ("t", ti)) for a in arcs]
+        skip = {("p", p), ("t", ti)}
+        laid = []
         for k, a in enumerate(arcs):
             bend = base + (k - (len(arcs) - 1) / 2) * 34
             # an arc alone in its direction between the two nodes follows the layout's bend points
             route = routes.get(keys[k]) if keys.count(keys[k]) == 1 and not cross else None
-            svg, r = _arc(net, a, pn, tn, bend, trans.name, route)
-            out.append(svg)
-            right = max(right, r)
+            laid.append(_laid_out(a, pn, tn, bend, route))
+        around = [k for k, g in enumerate(laid)
+                  if router.path_blocked(g.points, skip, shrink=ROUTE_MARGIN - CLEARANCE)]
+        detour = router.route((pn.x, pn.y), (tn.x, tn.y), skip) if around else None
+        for j, k in enumerate(around):
+            if detour:
+                spacing = min(8.0, 2 * (ROUTE_MARGIN - 3) / max(1, len(around) - 1))
+                laid[k] = _routed(arcs[k], pn, tn, detour, (j - (len(around) - 1) / 2) * spacing)
+        drawn += laid
+    out = []
+    right = 0.0
+    taken: list = []
+    node_boxes = list(boxes.values()) + list(titles)
+    for g in drawn:
+        svg, r = _arc_svg(net, g, node_boxes, taken)
+        out.append(svg)
+        right = max(right, r)
     return out, right
 
 
-def _arc(net, a, pn: _Node, tn: _Node, bend: float, tname: str, route: list | None = None) -> tuple[str, float]:
+def _laid_out(a, pn: _Node, tn: _Node, bend: float, route: list | None) -> _Drawn:
+    """The arc as the layout draws it: straight, bent by `bend` px, or through the layout's bend points."""
     (px, py), (tx, ty) = (pn.x, pn.y), (tn.x, tn.y)
     dx, dy = tx - px, ty - py
     dist = max(1.0, (dx * dx + dy * dy) ** 0.5)
@@ -541,6 +596,80 @@ def _arc(net, a, pn: _Node, tn: _Node, bend: float, tname: str, route: list | No
     bx, by = S.boundary_point(tx, ty, tn.shape_w / 2, tn.shape_h / 2, mx, my, "rect")
     if a.kind == "out":
         (ax, ay), (bx, by) = (bx, by), (ax, ay)
+    d = (f"M{S.fmt(ax)},{S.fmt(ay)} L{S.fmt(bx)},{S.fmt(by)}" if bend == 0 else
+         f"M{S.fmt(ax)},{S.fmt(ay)} Q{S.fmt(mx)},{S.fmt(my)} {S.fmt(bx)},{S.fmt(by)}")
+    lx = (ax + bx) / 2 + (nx * bend / 2 if bend else 0)
+    ly = (ay + by) / 2 + (ny * bend / 2 if bend else 0)
+    label = (lx, ly, abs(by - ay) > 1.5 * abs(bx - ax))
+    if route:  # through the bend points the layout left between the nodes of the layers it crosses
+        (sn, ss), (en, es) = ((tn, "rect"), (pn, "ellipse")) if a.kind == "out" else ((pn, "ellipse"), (tn, "rect"))
+        ax, ay = S.boundary_point(sn.x, sn.y, sn.shape_w / 2, sn.shape_h / 2, route[0][0], route[0][1], ss)
+        bx, by = S.boundary_point(en.x, en.y, en.shape_w / 2, en.shape_h / 2, route[-1][0], route[-1][1], es)
+        pts = [(ax, ay), *route, (bx, by)]
+        d = S.smooth_path(pts)
+        m = len(pts) // 2
+        (x0, y0), (x1, y1) = pts[m - 1], pts[m + 1] if m + 1 < len(pts) else pts[m]
+        label = (pts[m][0], pts[m][1], abs(y1 - y0) > 1.5 * abs(x1 - x0))
+    return _Drawn(a, tn.index, d, S.path_points(d), (ax, ay), (bx, by), label)
+
+
+def _routed(a, pn: _Node, tn: _Node, detour: list, offset: float) -> _Drawn:
+    """The arc along `detour` (place centre to transition centre, around the other nodes), its corners
+    shifted `offset` px sideways (arcs between the same two nodes side by side), rounded."""
+    (px, py), (tx, ty) = detour[0], detour[-1]
+    inner = list(detour[1:-1]) or [((px + tx) / 2, (py + ty) / 2)]
+    if offset:
+        dist = max(1.0, ((tx - px) ** 2 + (ty - py) ** 2) ** 0.5)
+        nx, ny = -(ty - py) / dist, (tx - px) / dist
+        inner = [(x + nx * offset, y + ny * offset) for x, y in inner]
+    elif not detour[1:-1]:
+        inner = []
+    first, last = inner[0] if inner else (tx, ty), inner[-1] if inner else (px, py)
+    ax, ay = S.boundary_point(px, py, pn.shape_w / 2, pn.shape_h / 2, first[0], first[1], "ellipse")
+    bx, by = S.boundary_point(tx, ty, tn.shape_w / 2, tn.shape_h / 2, last[0], last[1], "rect")
+    pts = [(ax, ay), *inner, (bx, by)]
+    if a.kind == "out":
+        pts.reverse()
+    d = S.rounded_path(pts, ROUTE_MARGIN - 2)
+    return _Drawn(a, tn.index, d, S.path_points(d), pts[0], pts[-1], None)
+
+
+def _label_boxes(lines: list[str], x: float, top: float, anchor: str) -> tuple:
+    w = max(S.text_width(line, 12, True) for line in lines)
+    x0 = x - w / 2 if anchor == "middle" else x - w if anchor == "end" else x
+    return (x0, top, x0 + w, top + 14 * len(lines) - 1)
+
+
+def _label_candidates(g: _Drawn, n: int):
+    """Where an inscription of n lines may go: (x, top of its first line, anchor), the laid-out place
+    first, then beside the arc at points along it (the middle first)."""
+    if g.label is not None:
+        lx, ly, steep = g.label
+        yield (lx + 7, ly + 4 - 7 * (n - 1) - 10, "start") if steep else (lx, ly - 4 - 14 * (n - 1) - 10, "middle")
+    pts = g.points
+    lengths = [((b[0] - a[0]) ** 2 + (b[1] - a[1]) ** 2) ** 0.5 for a, b in zip(pts, pts[1:])]
+    total = sum(lengths)
+    for f in (0.5, 0.38, 0.62, 0.26, 0.74, 0.15, 0.85):
+        at, i = f * total, 0
+        while i < len(lengths) - 1 and at > lengths[i]:
+            at -= lengths[i]
+            i += 1
+        (x0, y0), (x1, y1) = pts[i], pts[i + 1]
+        s = at / lengths[i] if lengths[i] else 0.0
+        x, y = x0 + (x1 - x0) * s, y0 + (y1 - y0) * s
+        if abs(y1 - y0) > 1.5 * abs(x1 - x0):  # steep: at its side
+            yield (x + 7, y - 7 * n, "start")
+            yield (x - 7, y - 7 * n, "end")
+        else:
+            yield (x, y - 3 - 14 * n, "middle")
+            yield (x, y + 3, "middle")
+
+
+def _arc_svg(net, g: _Drawn, node_boxes: list, taken: list) -> tuple[str, float]:
+    """One arc as SVG with its inscription, and the rightmost x it reaches; `taken` collects the boxes
+    of the inscriptions placed so far."""
+    a = g.a
+    bx, by = g.end
     label = inscription(net, a.expr)
     dash = ""
     m_end = 'marker-end="url(#na-line)"'
@@ -554,40 +683,32 @@ def _arc(net, a, pn: _Node, tn: _Node, bend: float, tname: str, route: list | No
     elif a.kind == "reset":
         dash = ' stroke-dasharray="7 3"'
         label = ("reset " + label).strip()
-    d = (f"M{S.fmt(ax)},{S.fmt(ay)} L{S.fmt(bx)},{S.fmt(by)}" if bend == 0 else
-         f"M{S.fmt(ax)},{S.fmt(ay)} Q{S.fmt(mx)},{S.fmt(my)} {S.fmt(bx)},{S.fmt(by)}")
-    label_at = None
-    if route:  # through the bend points the layout left between the nodes of the layers it crosses
-        (sn, ss), (en, es) = ((tn, "rect"), (pn, "ellipse")) if a.kind == "out" else ((pn, "ellipse"), (tn, "rect"))
-        ax, ay = S.boundary_point(sn.x, sn.y, sn.shape_w / 2, sn.shape_h / 2, route[0][0], route[0][1], ss)
-        bx, by = S.boundary_point(en.x, en.y, en.shape_w / 2, en.shape_h / 2, route[-1][0], route[-1][1], es)
-        pts = [(ax, ay), *route, (bx, by)]
-        d = S.smooth_path(pts)
-        m = len(pts) // 2
-        label_at = (pts[m], pts[m - 1], pts[m + 1] if m + 1 < len(pts) else pts[m])
-    tip = f"{a.kind} arc {net.places[a.place].name} – {tname}" + (f": {label}" if label else "")
-    out = [f'<g class="arc">{S.title(tip)}<path d="{d}" fill="none" stroke="{S.LINE}" stroke-width="1.4"'
+    tip = f"{a.kind} arc {net.places[a.place].name} – {net.transitions[g.transition].name}" + (f": {label}" if label else "")
+    out = [f'<g class="arc">{S.title(tip)}<path d="{g.d}" fill="none" stroke="{S.LINE}" stroke-width="1.4"'
            f'{dash} {m_start} {m_end}/>']
     if a.kind == "inhibitor":
         out.append(f'<circle cx="{S.fmt(bx)}" cy="{S.fmt(by)}" r="4" fill="#fff" stroke="{S.LINE}"/>')
-    right = max(ax, bx)
+    right = max(x for x, _ in g.points)
     if label:
-        lx = (ax + bx) / 2 + (nx * bend / 2 if bend else 0)
-        ly = (ay + by) / 2 + (ny * bend / 2 if bend else 0)
-        steep = abs(by - ay) > 1.5 * abs(bx - ax)
-        if label_at is not None:
-            (lx, ly), (x0, y0), (x1, y1) = label_at
-            steep = abs(y1 - y0) > 1.5 * abs(x1 - x0)
         lines = wrap(label)
-        if steep:  # a steep arc: the inscription goes beside it
-            for k, line in enumerate(lines):
-                out.append(S.text(lx + 7, ly + 4 + 14 * (k - (len(lines) - 1) / 2), line, 12, "start",
-                                  mono=True, halo=True, cls="inscription"))
-                right = max(right, lx + 7 + S.text_width(line, 12, True))
-        else:
-            for k, line in enumerate(lines):
-                out.append(S.text(lx, ly - 4 - 14 * (len(lines) - 1 - k), line, 12, mono=True, halo=True,
-                                  cls="inscription"))
-                right = max(right, lx + S.text_width(line, 12, True) / 2)
+        choice = first_free = None
+        for x, top, anchor in _label_candidates(g, len(lines)):
+            box = _label_boxes(lines, x, top, anchor)
+            if box[0] < 1 or box[1] < 1 or any(boxes_overlap(box, b) for b in node_boxes):
+                continue
+            if first_free is None:
+                first_free = (x, top, anchor, box)
+            if not any(boxes_overlap(box, b) for b in taken):
+                choice = (x, top, anchor, box)
+                break
+        choice = choice or first_free
+        if choice is None:
+            x, top, anchor = next(_label_candidates(g, len(lines)))
+            choice = (x, top, anchor, _label_boxes(lines, x, top, anchor))
+        x, top, anchor, box = choice
+        taken.append(box)
+        for k, line in enumerate(lines):
+            out.append(S.text(x, top + 10 + 14 * k, line, 12, anchor, mono=True, halo=True, cls="inscription"))
+        right = max(right, box[2])
     out.append("</g>")
     return "".join(out), right

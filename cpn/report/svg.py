@@ -125,3 +125,51 @@ def smooth_path(points: list[tuple[float, float]]) -> str:
         c2 = (p2[0] - (p3[0] - p1[0]) / 6, p2[1] - (p3[1] - p1[1]) / 6)
         d.append(f"C{fmt(c1[0])},{fmt(c1[1])} {fmt(c2[0])},{fmt(c2[1])} {fmt(p2[0])},{fmt(p2[1])}")
     return " ".join(d)
+
+
+def rounded_path(points: list[tuple[float, float]], radius: float = 8.0) -> str:
+    """Path data for a polyline whose corners are rounded (each by at most `radius`, and at most half of
+    the segments that meet there), so the curve stays within `radius` of the corner."""
+    pts = list(points)
+    d = [f"M{fmt(pts[0][0])},{fmt(pts[0][1])}"]
+    for i in range(1, len(pts) - 1):
+        (x0, y0), (x1, y1), (x2, y2) = pts[i - 1], pts[i], pts[i + 1]
+        l1, l2 = math.hypot(x1 - x0, y1 - y0), math.hypot(x2 - x1, y2 - y1)
+        r = min(radius, l1 / 2, l2 / 2)
+        if r < 0.5:
+            d.append(f"L{fmt(x1)},{fmt(y1)}")
+            continue
+        ax, ay = x1 - (x1 - x0) * r / l1, y1 - (y1 - y0) * r / l1
+        bx, by = x1 + (x2 - x1) * r / l2, y1 + (y2 - y1) * r / l2
+        d.append(f"L{fmt(ax)},{fmt(ay)} Q{fmt(x1)},{fmt(y1)} {fmt(bx)},{fmt(by)}")
+    d.append(f"L{fmt(pts[-1][0])},{fmt(pts[-1][1])}")
+    return " ".join(d)
+
+
+def path_points(d: str, samples: int = 12) -> list[tuple[float, float]]:
+    """The points of path data made of absolute M, L, Q and C commands, curves sampled `samples` times."""
+    import re
+
+    tokens = re.findall(r"[MLQC]|-?\d+(?:\.\d+)?(?:e-?\d+)?", d)
+    out: list[tuple[float, float]] = []
+    cmd, i = "M", 0
+    while i < len(tokens):
+        if tokens[i] in "MLQC":
+            cmd = tokens[i]
+            i += 1
+            continue
+        n = {"M": 2, "L": 2, "Q": 4, "C": 6}[cmd]
+        v = [float(t) for t in tokens[i:i + n]]
+        i += n
+        if cmd in "ML" or not out:
+            out.append((v[-2], v[-1]))
+            continue
+        p0 = out[-1]
+        ctrl = [(v[k], v[k + 1]) for k in range(0, n, 2)]
+        for k in range(1, samples + 1):
+            s = k / samples
+            ps = [p0, *ctrl]
+            while len(ps) > 1:  # de Casteljau
+                ps = [(a[0] + (b[0] - a[0]) * s, a[1] + (b[1] - a[1]) * s) for a, b in zip(ps, ps[1:])]
+            out.append(ps[0])
+    return out
