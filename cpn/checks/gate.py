@@ -16,6 +16,7 @@ from cpn.checks.properties import Check, DeadlockFree, GraphView, Reachable, bui
 from cpn.checks.reduction import stubborn_plan
 from cpn.checks.scenario import PropertySpec, Run, Scenario
 from cpn.checks.symmetry import symmetry_plan
+from cpn.checks.vacuity import vacuity
 from cpn.checks.verdict import Status, Verdict, evidence_to
 from cpn.diagnostics import Diagnostic
 from cpn.errors import ConfigurationError, ModelError
@@ -28,6 +29,7 @@ class PropertyResult:
     verdict: Verdict
     seconds: float
     reads: tuple = ()  # the place instances the property's texts read (indices), for the reports
+    warnings: list = field(default_factory=list)  # why it holds vacuously (cpn.checks.vacuity)
 
     @property
     def as_expected(self) -> bool:
@@ -217,7 +219,11 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
         except PredicateError as exc:
             ev = evidence_to(x.graph, exc.state_id) if exc.state_id is not None else None
             verdict = Verdict(Status.ERROR, str(exc), ev)
-        results.append(PropertyResult(c.spec, verdict, time.perf_counter() - t, _places_read(c)))
+        try:
+            warnings = vacuity(c, view, verdict) if x.reduction is None else []
+        except PredicateError:  # a premise alone fails in a marking where the whole text does not
+            warnings = []
+        results.append(PropertyResult(c.spec, verdict, time.perf_counter() - t, _places_read(c), warnings))
     return RunResult(scenario, run, x, engine, results, explore_seconds, time.perf_counter() - t1, opts)
 
 

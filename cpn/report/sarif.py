@@ -12,6 +12,7 @@ from cpn.report.verdicts import render_steps
 
 SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 LEVELS = {"violated": "error", "error": "error", "unknown": "warning"}
+VACUITY_RULE = "cpn/vacuity"  # a property that holds vacuously: a warning
 
 
 def render_sarif(docs: list[dict], version: str, base: str | None = None) -> dict:
@@ -20,12 +21,24 @@ def render_sarif(docs: list[dict], version: str, base: str | None = None) -> dic
     kinds = sorted({p["kind"] for d in docs for p in d["properties"]})
     rules = [{"id": f"cpn/{k}", "name": k.replace("_", " "),
               "shortDescription": {"text": f"a '{k}' property of a scenario (docs/specs.md)"}} for k in kinds]
+    if any(p.get("warnings") for d in docs for p in d["properties"]):
+        rules.append({"id": VACUITY_RULE, "name": "vacuity", "shortDescription": {
+            "text": "a property that holds vacuously (docs/mutation.md, 'Vacuity')"}})
     results = []
     for d in docs:
         uri = os.path.relpath(d["file"], base).replace(os.sep, "/")
         for p in d["properties"]:
             gate = p.get("gate", p["verdict"])
             level = LEVELS.get(gate)
+            for w in p.get("warnings", ()) if level is None else ():
+                results.append({
+                    "ruleId": VACUITY_RULE, "ruleIndex": len(rules) - 1, "level": "warning",
+                    "message": {"text": f"{d['run']}: property '{p['name']}' {w}"},
+                    "locations": [{"physicalLocation": {
+                        "artifactLocation": {"uri": uri},
+                        "region": {"startLine": max(1, p["line"]), "startColumn": max(1, p["column"])}}}],
+                    "properties": {"scenario": d["run"], "verdict": p["verdict"]},
+                })
             if level is None:
                 continue
             text = f"{d['run']}: property '{p['name']}' is {p['verdict']}: {p['message']}"
