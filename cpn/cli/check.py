@@ -406,7 +406,8 @@ def _write_html_page(folder: str, result, stem: str):
     for r in result.results:
         v = r.verdict
         expect = "" if r.spec.expect == "holds" else f" (expected: {r.spec.expect})"
-        verdicts.append(Verdict(r.spec.name, v.status, v.message + expect, v.evidence))
+        verdicts.append(Verdict(r.spec.name, v.status, v.message + expect, v.evidence,
+                                places=tuple(result.engine.places[p].name for p in r.reads)))
     return write_run_page(folder, stem, result.run.name, report, verdicts, status=result.status.value)
 
 

@@ -278,7 +278,7 @@ def _content(r: Report, verdicts: list, heading: str | None = None) -> str:
         parts.insert(1, f'<nav aria-label="sections">{links}</nav>')
         return "".join(parts)
     occ = _occurrences(r)
-    parts.append(_statistics(r, levels))
+    parts.append(_statistics(r))
     nav.append(("statistics", "Statistics"))
     dead_traces = dead_marking_traces(r)
     parts.append(_dead_markings(r, dead_traces, levels))
@@ -336,11 +336,11 @@ def _verdicts(r: Report, verdicts: list, failed: list) -> str:
     return _section("verdicts", "Verdicts", inner)
 
 
-def _statistics(r: Report, levels: list[int]) -> str:
+def _statistics(r: Report) -> str:
     x = r.exploration
     status = "Full" if x.complete else f"Partial: stopped because {x.stop_reason.describe(x.options)}"
     ss = [["Nodes", f"{x.n_states:,}"], ["Arcs", f"{x.n_arcs:,}"], ["Seconds", f"{x.seconds:.3f}"],
-          ["Status", S.esc(status)], ["BFS levels", f"{max(levels, default=0) + 1:,}"],
+          ["Status", S.esc(status)], ["BFS depth", f"{x.levels:,}"],
           ["Peak memory", f"{x.peak_memory_mb:,.0f} MiB"]]
     if not x.complete:
         ss.append(["Unexpanded nodes", f"{x.unexpanded:,}"])

@@ -127,7 +127,9 @@ def test_check_html_pages_show_the_marking_after_each_counterexample(tmp_path, c
                  "--html", str(tmp_path / "h")]) == 1
     page = (tmp_path / "h" / "twice.html").read_text(encoding="utf-8")
     assert page.index('class="drawing msc"') < page.index('class="end-marking"')
-    assert "Twice&#x27;Answers 1</td><td><span class=\"mono\">2`2@8" in page
+    # the place the property reads comes first, marked as read
+    assert ('<tr class=read><td>Twice&#x27;Answers 1 <span class="pill">read by the property</span></td>'
+            '<td><span class="mono">2`2@8') in page
 
 
 def test_a_standalone_chart_is_as_wide_as_its_title(tmp_path, capsys):
