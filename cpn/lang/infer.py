@@ -367,8 +367,18 @@ class TypeInference:
         for node in spine:
             op = node.op
             a, b, r = self._op_types(op, node)
+            rt = self.infer(node.right, env)
+            if op in ("::", "@", "^^"):
+                # a multiset where a list is expected: CPN Tools' multisets are lists (``x :: 1`y``)
+                pl, pr = T.prune(t), T.prune(rt)
+                if op != "::" and isinstance(pl, T.TCon) and pl.name == "ms":
+                    node.left = self.ms_as_list(node.left, pl)
+                    t = T.lst(pl.args[0])
+                if isinstance(pr, T.TCon) and pr.name == "ms":
+                    node.right = self.ms_as_list(node.right, pr)
+                    rt = T.lst(pr.args[0])
             self.must(t, a, node.left.span, f"the left operand of '{op}'")
-            self.must(self.infer(node.right, env), b, node.right.span, f"the right operand of '{op}'")
+            self.must(rt, b, node.right.span, f"the right operand of '{op}'")
             node.ty = t = r
         return t
 

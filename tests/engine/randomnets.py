@@ -71,7 +71,7 @@ def random_net(seed: int) -> str:
             if k == "TC" and rng.random() < 0.5:
                 v = f"{v} @+ {rng.randint(0, 3)}"
             if rng.random() < 0.2:
-                v = f"if b then 1`{value(k)} else empty"
+                v = f"if b then 1`({value(k)}) else empty"
             lines.append(f"arc t{t} -> {name} : {v};")
         if not any(k == "TC" for _, k in outs):
             delay = ""  # a transition delay without a timed output place is an error (E0301)
@@ -171,9 +171,9 @@ def random_timed_net(seed: int) -> str:
             timed = k in TIMED_KINDS
             r = rng.random()
             if r < 0.15:
-                v = f"if b then 1`{value(k)} else empty"
+                v = f"if b then 1`({value(k)}) else empty"
             elif r < 0.25 and timed:
-                v = f"1`{value(k)} ++ 1`{value(k)}"
+                v = f"1`({value(k)}) ++ 1`({value(k)})"
             if timed and rng.random() < 0.6:
                 v = f"({v}) @+ {delay()}"
             lines.append(f"arc t{t} -> {name} : {v};")

@@ -21,6 +21,19 @@ trans U @+ 2;
 arc Q -> U : x;
 arc U -> Q : (x + 1) mod 4;
 """,
+    # `n`e` at CPN Tools' precedence (infix 8) and a multiset consed onto: ``x :: 1`((x+1) mod 4)`` is two tokens
+    "backquote_infix8": """
+colset C = int with 0..3;
+var x, y : C;
+place P : C = 1`0;
+place Q : C;
+trans T [x < 2];
+arc P -> T : x;
+arc T -> P : 1`(x+1);
+arc T -> Q : x :: 1`((x+1) mod 4) @ 2`y;
+trans U;
+arc Q -> U : 2`y;
+""",
 }
 
 
