@@ -406,6 +406,8 @@ class ArcDecl(Decl):
     dst: str
     dst_span: Span
     expr: Expr | None
+    src_kind: str | None = None  # 'place' or 'trans' where the arc says which (`arc place X -> trans X`)
+    dst_kind: str | None = None
 
 
 @dataclass(slots=True, eq=False)

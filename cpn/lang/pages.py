@@ -89,9 +89,21 @@ class PageChecks:
         if kind.endswith("?"):
             self.error("E0203", f"{kind[:-1]} arcs are written with '->' from the place to the transition", d.span)
             return
-        src_p, dst_p = d.src in page.places, d.dst in page.places
-        src_t, dst_t = d.src in page.transitions, d.dst in page.transitions
-        for nm, sp, known in ((d.src, d.src_span, src_p or src_t), (d.dst, d.dst_span, dst_p or dst_t)):
+        # `arc place X -> trans X` says which of a place and a transition that share a name it joins
+        src_p = d.src in page.places and d.src_kind != "trans"
+        dst_p = d.dst in page.places and d.dst_kind != "trans"
+        src_t = d.src in page.transitions and d.src_kind != "place"
+        dst_t = d.dst in page.transitions and d.dst_kind != "place"
+        for nm, sp, known, nkind in ((d.src, d.src_span, src_p or src_t, d.src_kind),
+                                     (d.dst, d.dst_span, dst_p or dst_t, d.dst_kind)):
+            if not known and nkind is not None:
+                other = "transition" if nkind == "place" else "place"
+                exists = nm in (page.transitions if nkind == "place" else page.places)
+                self.error("E0201", f"unknown {'transition' if nkind == 'trans' else 'place'} '{nm}' on page "
+                           f"'{page.name}'" + (f" ('{nm}' is a {other})" if exists else ""), sp,
+                           hint=f"Write '{'trans' if other == 'transition' else 'place'} {nm}', or leave out the "
+                                f"'{nkind}'." if exists else "Declare it, or check the spelling.", name=nm)
+                return
             if not known:
                 cands = {n: f"the transition '{n}' (declared at {self._where(t.decl.name_span)})"
                          for n, t in page.transitions.items()}
@@ -111,7 +123,8 @@ class PageChecks:
         elif src_p and dst_t and src_t and dst_p:
             self.error("E0203", f"the arc '{d.src}' -> '{d.dst}' is ambiguous: both names are a place and a "
                        f"transition on page '{page.name}'", d.span,
-                       hint="Rename the place or the transition so that the direction of the arc is clear.")
+                       hint=f"Say which end is the place: 'arc place {d.src} -> trans {d.dst}' or 'arc trans "
+                            f"{d.src} -> place {d.dst}'.")
             return
         elif src_p and dst_t:
             place, trans, ak = d.src, d.dst, ArcKind.IN

@@ -200,9 +200,11 @@ def decl(d: A.Decl, indent: str = "") -> str:
         return f"{indent}trans {name(d.name)}{guard}{delay}{prio};"
     if isinstance(d, A.ArcDecl):
         ins = f" : {expr(d.expr)}" if d.expr is not None else ""
+        src = (f"{d.src_kind} " if d.src_kind else "") + name(d.src)
+        dst = (f"{d.dst_kind} " if d.dst_kind else "") + name(d.dst)
         if d.kind not in ("->", "<->"):  # a keyword arc: inhibitor, reset
-            return f"{indent}{d.kind} {name(d.src)} -> {name(d.dst)}{ins};"
-        return f"{indent}arc {name(d.src)} {d.kind} {name(d.dst)}{ins};"
+            return f"{indent}{d.kind} {src} -> {dst}{ins};"
+        return f"{indent}arc {src} {d.kind} {dst}{ins};"
     if isinstance(d, A.ModuleDecl):
         params = ", ".join(f"{n} : {c}" for n, c, _ in d.params)
         body = "\n".join(decl(x, indent + "  ") for x in d.body)

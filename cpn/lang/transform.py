@@ -305,21 +305,31 @@ class ToAst(Transformer_NonRecursive):
     def priority(self, items):
         return items[0]
 
+    def arc_end(self, items):
+        """(name, span, 'place' / 'trans' / None) of one end of an arc."""
+        if len(items) == 1 and isinstance(items[0], tuple):
+            return (*items[0], None)
+        kind = items[0]
+        if len(items) == 1:  # a bare `place` or `trans`: the element of that name
+            return (str(kind), self.tspan(kind), None)
+        return (*items[1], str(kind))
+
     @v_args(meta=True)
     def arc_decl(self, meta, items):
-        (src, sspan), arrow, (dst, dspan), expr = items
-        return A.ArcDecl(self.span(meta), str(arrow), src, sspan, dst, dspan, expr)
+        (src, sspan, skind), arrow, (dst, dspan, dkind), expr = items
+        return A.ArcDecl(self.span(meta), str(arrow), src, sspan, dst, dspan, expr, skind, dkind)
 
     @v_args(meta=True)
     def inhibitor_decl(self, meta, items):
-        (src, sspan), arrow, (dst, dspan), expr = items
+        (src, sspan, skind), arrow, (dst, dspan, dkind), expr = items
         return A.ArcDecl(self.span(meta), "inhibitor" if str(arrow) == "->" else "inhibitor?", src, sspan, dst,
-                         dspan, expr)
+                         dspan, expr, skind, dkind)
 
     @v_args(meta=True)
     def reset_decl(self, meta, items):
-        (src, sspan), arrow, (dst, dspan) = items
-        return A.ArcDecl(self.span(meta), "reset" if str(arrow) == "->" else "reset?", src, sspan, dst, dspan, None)
+        (src, sspan, skind), arrow, (dst, dspan, dkind) = items
+        return A.ArcDecl(self.span(meta), "reset" if str(arrow) == "->" else "reset?", src, sspan, dst, dspan, None,
+                         skind, dkind)
 
     @v_args(meta=True)
     def module_decl(self, meta, items):

@@ -34,6 +34,18 @@ arc T -> Q : x :: 1`((x+1) mod 4) @ 2`y;
 trans U;
 arc Q -> U : 2`y;
 """,
+    # a place and a transition that share a name, the arcs saying which end is which
+    "shared_names": """
+colset C = int with 0..3;
+var x : C;
+place job : C = 1`0 ++ 1`2;
+place done : C;
+trans job [x < 3];
+arc place job -> trans job : x;
+arc trans job -> place job : x + 1;
+arc trans job -> place done : x;
+inhibitor place done -> trans job : 2`2;
+""",
 }
 
 

@@ -125,3 +125,18 @@ def test_locate_picks_the_element_that_starts_last_on_a_line():
     for needle, rest in (("x = 1", "]</text></cond>"), ("5", "</text></time>")):
         span, origin = t.locate(n, lines[n - 1].index(needle) + 1)
         assert xml.splitlines()[span.line - 1][span.col - 1:].startswith(needle + rest), needle
+
+
+# ------------------------------------------------------------------ a place and a transition of one name
+
+
+def test_an_arc_between_a_place_and_a_transition_of_one_name(tmp_path):
+    body = (place("P1", "job", "S", "1`0") + place("P2", "done", "S") + trans("T1", "job", cond="[x &lt; 3]")
+            + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P1", "x + 1")
+            + arc("A3", "TtoP", "T1", "P2", "x") + arc("A4", "Inhibitor", "T1", "P2", "3"))
+    xml = cpn_xml(DECLS, page("PG1", "Top", body))
+    text = translate_text(xml, "m.cpn").text
+    assert "arc place job -> trans job : x;" in text and "arc trans job -> place job : x + 1;" in text
+    assert "inhibitor place done -> trans job : 3;" in text
+    # job: 0 -> 1 -> 2 -> 3, the guard stops it; done collects 0, 1, 2
+    assert explore_counts(tmp_path, xml) == (4, 3)

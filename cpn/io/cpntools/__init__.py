@@ -529,6 +529,10 @@ class _Translator(_Declarations):
         if annot:
             annot = self._inscription(annot, ao, what)
         pq, tq = ml.quote(p.name), ml.quote(t.name)
+        if (p.name in {x.name for x in page.transs if x.subpage is None}
+                or t.name in {x.name for x in page.places}):
+            # a place and a transition that share a name (CPN Tools allows it): the arc says which end is which
+            pq, tq = f"place {pq}", f"trans {tq}"
         if orient == "ptot":
             head = f"arc {pq} -> {tq}"
         elif orient == "ttop":
