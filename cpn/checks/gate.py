@@ -15,6 +15,7 @@ from cpn.checks.predicates import PredicateError, PropertyLanguage
 from cpn.checks.properties import Check, DeadlockFree, GraphView, Reachable, build_checks
 from cpn.checks.reduction import stubborn_plan
 from cpn.checks.scenario import PropertySpec, Run, Scenario
+from cpn.checks.structure import structural
 from cpn.checks.symmetry import symmetry_plan
 from cpn.checks.vacuity import vacuity
 from cpn.checks.verdict import Status, Verdict, evidence_to
@@ -220,7 +221,7 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
             ev = evidence_to(x.graph, exc.state_id) if exc.state_id is not None else None
             verdict = Verdict(Status.ERROR, str(exc), ev)
         try:
-            warnings = vacuity(c, view, verdict) if x.reduction is None else []
+            warnings = vacuity(c, view, verdict) + structural(c, view, verdict) if x.reduction is None else []
         except PredicateError:  # a premise alone fails in a marking where the whole text does not
             warnings = []
         results.append(PropertyResult(c.spec, verdict, time.perf_counter() - t, _places_read(c), warnings))

@@ -12,7 +12,7 @@ from cpn.report.verdicts import render_steps
 
 SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 LEVELS = {"violated": "error", "error": "error", "unknown": "warning"}
-VACUITY_RULE = "cpn/vacuity"  # a property that holds vacuously: a warning
+VACUITY_RULE = "cpn/vacuity"  # a property that holds vacuously or by structure alone: a warning
 
 
 def render_sarif(docs: list[dict], version: str, base: str | None = None) -> dict:
@@ -23,7 +23,7 @@ def render_sarif(docs: list[dict], version: str, base: str | None = None) -> dic
               "shortDescription": {"text": f"a '{k}' property of a scenario (docs/specs.md)"}} for k in kinds]
     if any(p.get("warnings") for d in docs for p in d["properties"]):
         rules.append({"id": VACUITY_RULE, "name": "vacuity", "shortDescription": {
-            "text": "a property that holds vacuously (docs/mutation.md, 'Vacuity')"}})
+            "text": "a property that holds vacuously, or by the net's structure alone (docs/mutation.md, 'Vacuity')"}})
     results = []
     for d in docs:
         uri = os.path.relpath(d["file"], base).replace(os.sep, "/")

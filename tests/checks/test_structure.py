@@ -1,0 +1,80 @@
+"""An invariant that follows from the net's structure (a place invariant of the incidence matrix of token
+counts) is warned about; one that holds only because of how the net behaves is not."""
+
+import cpn
+from cpn.checks.structure import is_place_invariant, token_count
+
+MODEL = """net S;
+colset U = unit;
+colset N = int with 0..3;
+var n : N;
+place A : U = 1`();
+place C : U;
+place D : N = 1`0;
+trans move;
+arc A -> move : ();
+arc move -> C : ();
+trans back;
+arc C -> back : ();
+arc back -> A : ();
+trans drop [1 = 2];
+arc A -> drop : ();
+trans count [n < 3];
+arc D -> count : n;
+arc count -> D : if n = 0 then 1`(n + 1) else empty;
+"""
+
+SCENARIO = """model = "s.cpnet"
+[[property]]
+name = "one token in A or C"
+kind = "invariant"
+expr = "size (S'A 1) + size (S'C 1) = 1"
+
+[[property]]
+name = "A and C, conjunctions and multiples"
+kind = "invariant"
+expr = "2 * size (S'A 1) = 2 - 2 * size (S'C 1) andalso size (S'C 1) + size (S'A 1) <= 1"
+
+[[property]]
+name = "at most one A"
+kind = "invariant"
+expr = "size (S'A 1) <= 1"
+"""
+
+STRUCTURAL = ("follows from the net's structure: the weighted sum of token counts it compares is a place "
+              "invariant (the same in every reachable marking of any initial marking), so no guard, token "
+              "value or order of occurrences can break it")
+
+
+def results(tmp_path, model=MODEL):
+    (tmp_path / "s.cpnet").write_text(model, encoding="utf-8")
+    (tmp_path / "s.toml").write_text(SCENARIO, encoding="utf-8")
+    (run,) = cpn.check(str(tmp_path / "s.toml"))
+    assert run.status.value == "holds"
+    return {r.spec.name: r.warnings for r in run.results}
+
+
+def test_a_property_that_only_the_behaviour_keeps_is_not_structural(tmp_path):
+    # 'drop' takes from A and puts nothing, but its guard is never true: A + C = 1 holds, not by structure
+    w = results(tmp_path)
+    assert w == {"one token in A or C": [], "A and C, conjunctions and multiples": [], "at most one A": []}
+
+
+def test_a_place_invariant_is_reported(tmp_path):
+    w = results(tmp_path, MODEL.replace("trans drop [1 = 2];\narc A -> drop : ();\n", ""))
+    assert w["one token in A or C"] == [STRUCTURAL]
+    assert w["A and C, conjunctions and multiples"] == [STRUCTURAL]
+    # size (S'A 1) alone is no invariant: 'move' takes its token
+    assert w["at most one A"] == []
+
+
+def test_token_counts_of_inscriptions():
+    net = cpn.loads(MODEL).net
+    count = net.transition("S'count 1")
+    assert [token_count(a.expr) for a in count.arcs] == [1, None]  # the 'if' puts one token or none
+    a, c, d = (net.place(f"S'{x} 1").index for x in "ACD")
+    assert not is_place_invariant(net, {a: 1, c: 1})  # 'drop'
+    assert not is_place_invariant(net, {d: 1})  # 'count', whose output depends on the binding
+    without_drop = cpn.loads(MODEL.replace("trans drop [1 = 2];\narc A -> drop : ();\n", "")).net
+    assert is_place_invariant(without_drop, {a: 1, c: 1}) and is_place_invariant(without_drop, {a: 3, c: 3})
+    assert not is_place_invariant(without_drop, {a: 1, c: 2})
