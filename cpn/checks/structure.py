@@ -3,7 +3,8 @@ token counts, `k1 * size (P1) + k2 * size (P2) + ...`, with a constant, where th
 invariant of the net's incidence matrix (token counts: what each transition takes from and puts on each
 place). Such a sum is the same in every marking reachable from any initial marking, whatever the
 guards, the values of the tokens and the order of occurrences: the property cannot catch a mistake in
-any of them.
+any of them. Likewise a `bound` of one place that its semi-positive place invariants (Farkas's
+algorithm) and the initial marking imply.
 
 Imports `cpn.net`, `cpn.lang.ast` and `cpn.checks` only.
 """
@@ -11,7 +12,7 @@ Imports `cpn.net`, `cpn.lang.ast` and `cpn.checks` only.
 from __future__ import annotations
 
 from cpn.arcs import ArcKind
-from cpn.checks.properties import Invariant
+from cpn.checks.properties import Bound, Invariant
 from cpn.checks.verdict import Status
 from cpn.lang import ast as A
 from cpn.net import expr as E
@@ -21,7 +22,11 @@ _COMPARISONS = {"=", "<>", "<", "<=", ">", ">="}
 
 def structural(check, view, verdict) -> list[str]:
     """Why a property that holds follows from the structure of the net (one sentence), or nothing."""
-    if verdict.status is not Status.HOLDS or not isinstance(check, Invariant):
+    if verdict.status is not Status.HOLDS:
+        return []
+    if isinstance(check, Bound):
+        return _bound(check, view.lang)
+    if not isinstance(check, Invariant):
         return []
     lang = view.lang
     weights = []
@@ -149,3 +154,118 @@ def token_count(e) -> int | None:
     if isinstance(e, E.Name) and e.name == "empty":
         return 0
     return None
+
+
+# ---------------------------------------------------------------------------------------------- bounds
+
+# Farkas's algorithm can produce exponentially many rows: past this many, no bound is claimed
+MAX_ROWS = 2_000
+
+
+def _bound(check, lang) -> list[str]:
+    """A bound of one place whose every integer limit follows from the place invariants and the initial
+    marking: `at_most k` (the structural bound is at most k), `upper_equals k` (the same, and the initial
+    marking has k tokens there), `lower_equals k` and `at_least k` (the place's token count never changes)."""
+    if check.multiset_limits or not check.limits:
+        return []
+    if check.places is not None:
+        if len(check.places) != 1:
+            return []
+        p = check.places[0]
+    else:
+        w = _linear(check.fn.expr, lang)
+        if w is None or len(w) != 1 or next(iter(w.values())) != 1:
+            return []
+        p = next(iter(w))
+    net = lang.net
+    upper, constant = structural_bound(net, p)
+    m0 = initial_count(net, p)
+    for key, want in check.limits.items():
+        if key == "at_most" and not (upper is not None and upper <= want):
+            return []
+        if key == "upper_equals" and not (upper is not None and upper <= want and m0 == want):
+            return []
+        if key == "lower_equals" and not (constant and m0 == want):
+            return []
+        if key == "at_least" and not (constant and m0 >= want):
+            return []
+    return [f"follows from the net's structure: place invariants of the incidence matrix and the initial marking "
+            f"give the bound ({'the token count never changes' if constant else f'at most {upper}'}), so no "
+            f"guard, token value or order of occurrences can break it"]
+
+
+def initial_count(net, p: int) -> int:
+    return sum(net.places[p].initial.values())
+
+
+def structural_bound(net, p: int) -> tuple[int | None, bool]:
+    """(the smallest upper bound of place p's token count that a minimal semi-positive place invariant and
+    the initial marking give, or None; whether some invariant is p alone: its count never changes)."""
+    invariants = semi_positive_invariants(net)
+    if invariants is None:
+        return None, False
+    m0 = [initial_count(net, q) for q in range(len(net.places))]
+    best = None
+    constant = False
+    for y in invariants:
+        k = y.get(p, 0)
+        if not k:
+            continue
+        if set(y) == {p}:
+            constant = True
+        b = sum(w * m0[q] for q, w in y.items()) // k
+        best = b if best is None else min(best, b)
+    return best, constant
+
+
+def semi_positive_invariants(net) -> list[dict] | None:
+    """The minimal-support semi-positive place invariants (place -> weight) of the incidence matrix of
+    token counts, by Farkas's algorithm; places an arc of binding-dependent size or a reset arc touches
+    take no part. None when the computation grows past MAX_ROWS rows."""
+    from math import gcd
+
+    n = len(net.places)
+    excluded = set()
+    columns = []
+    for t in net.transitions:
+        col: dict[int, int] = {}
+        for a in t.arcs:
+            if a.kind in (ArcKind.BOTH, ArcKind.INHIBITOR):
+                continue
+            size = None if a.kind is ArcKind.RESET else token_count(a.expr)
+            if size is None:
+                excluded.add(a.place)
+                continue
+            col[a.place] = col.get(a.place, 0) + (size if a.kind is ArcKind.OUT else -size)
+        columns.append(col)
+    rows = [({}, {p: 1}) for p in range(n) if p not in excluded]  # (C part by column, weights)
+    for p_row in rows:
+        p = next(iter(p_row[1]))
+        for j, col in enumerate(columns):
+            if col.get(p):
+                p_row[0][j] = col[p]
+    for j in range(len(columns)):
+        pos = [r for r in rows if r[0].get(j, 0) > 0]
+        neg = [r for r in rows if r[0].get(j, 0) < 0]
+        new = [r for r in rows if not r[0].get(j, 0)]
+        for a in pos:
+            for b in neg:
+                ka, kb = -b[0][j], a[0][j]
+                c = {i: ka * a[0].get(i, 0) + kb * b[0].get(i, 0) for i in set(a[0]) | set(b[0])}
+                y = {q: ka * a[1].get(q, 0) + kb * b[1].get(q, 0) for q in set(a[1]) | set(b[1])}
+                g = 0
+                for v in list(c.values()) + list(y.values()):
+                    g = gcd(g, v)
+                g = g or 1
+                new.append(({i: v // g for i, v in c.items() if v}, {q: v // g for q, v in y.items() if v}))
+        # keep minimal supports only
+        new.sort(key=lambda r: len(r[1]))
+        kept: list = []
+        for r in new:
+            support = set(r[1])
+            if not any(set(k[1]) <= support for k in kept):
+                kept.append(r)
+        if len(kept) > MAX_ROWS:
+            return None
+        rows = kept
+    return [y for c, y in rows if not c]

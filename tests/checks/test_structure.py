@@ -78,3 +78,63 @@ def test_token_counts_of_inscriptions():
     without_drop = cpn.loads(MODEL.replace("trans drop [1 = 2];\narc A -> drop : ();\n", "")).net
     assert is_place_invariant(without_drop, {a: 1, c: 1}) and is_place_invariant(without_drop, {a: 3, c: 3})
     assert not is_place_invariant(without_drop, {a: 1, c: 2})
+
+
+BOUNDS = """model = "s.cpnet"
+[[property]]
+name = "A at most one"
+kind = "bound"
+place = "S'A 1"
+at_most = 1
+
+[[property]]
+name = "A: upper 1, lower 0"
+kind = "bound"
+place = "S'A 1"
+upper_equals = 1
+lower_equals = 0
+
+[[property]]
+name = "A at most one, as an expression"
+kind = "bound"
+expr = "size (S'A 1)"
+at_most = 1
+
+[[property]]
+name = "D at most one"
+kind = "bound"
+place = "S'D 1"
+at_most = 1
+"""
+
+STRUCTURAL_BOUND = ("follows from the net's structure: place invariants of the incidence matrix and the initial "
+                    "marking give the bound (at most 1), so no guard, token value or order of occurrences can "
+                    "break it")
+
+
+def test_bounds_that_place_invariants_give(tmp_path):
+    (tmp_path / "s.cpnet").write_text(MODEL.replace("trans drop [1 = 2];\narc A -> drop : ();\n", ""),
+                                      encoding="utf-8")
+    (tmp_path / "s.toml").write_text(BOUNDS, encoding="utf-8")
+    (run,) = cpn.check(str(tmp_path / "s.toml"))
+    w = {r.spec.name: r.warnings for r in run.results}
+    assert run.status.value == "holds"
+    assert w["A at most one"] == [STRUCTURAL_BOUND]  # A + C = 1
+    assert w["A at most one, as an expression"] == [STRUCTURAL_BOUND]
+    assert w["A: upper 1, lower 0"] == []  # the lower bound 0 needs a marking where A is empty: behaviour
+    assert w["D at most one"] == []  # 'count' puts one token or none on D: no invariant covers D
+    (tmp_path / "s.cpnet").write_text(MODEL, encoding="utf-8")  # with 'drop', A + C is no invariant
+    (run,) = cpn.check(str(tmp_path / "s.toml"))
+    assert all(not r.warnings for r in run.results)
+
+
+def test_farkas_finds_the_minimal_invariants():
+    from cpn.checks.structure import semi_positive_invariants, structural_bound
+
+    net = cpn.loads(MODEL.replace("trans drop [1 = 2];\narc A -> drop : ();\n", "")).net
+    a, c, d = (net.place(f"S'{x} 1").index for x in "ACD")
+    assert semi_positive_invariants(net) == [{a: 1, c: 1}]
+    assert structural_bound(net, a) == (1, False) and structural_bound(net, d) == (None, False)
+    ring = cpn.loads("colset N = int with 0..3; var n : N; place P : N = 1`0 ++ 1`1; trans t; arc P -> t : n;"
+                     " arc t -> P : (n + 1) mod 4;").net
+    assert structural_bound(ring, 0) == (2, True)  # one token in, one out: the count never changes
