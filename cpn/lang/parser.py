@@ -40,10 +40,22 @@ _STMT_START = re.compile(
 _lexed = threading.local()
 
 
+# Statement keywords that no CPN ML name may be (`cpn.io.cpntools._ml.KEYWORDS`): one at the start of a line
+# inside an expression is the next statement after a missing ';', not an argument or a type
+_LINE_START_KEYWORDS: frozenset[str] = frozenset(
+    "colset place trans arc inhibitor reset module instance".split())
+
+
 def _note_name(tok: Token) -> Token:
-    """Lexer callback: remember the names that are reserved words (for the messages of a failed parse)."""
+    """Lexer callback: remember the names that are reserved words (for the messages of a failed parse); a
+    statement keyword first on its line is that keyword (`val x = 1` without ';' before `place A : INT;`)."""
     if tok.value in RESERVED_WORDS:
         _lexed_reserved().append(tok)
+    elif tok.value in _LINE_START_KEYWORDS:
+        text = getattr(_lexed, "text", "")
+        start = text.rfind("\n", 0, tok.start_pos) + 1
+        if text[start:tok.start_pos].strip() == "":
+            return Token.new_borrow_pos(tok.value.upper(), tok.value, tok)
     return tok
 
 
@@ -195,12 +207,15 @@ def _non_ascii_hint(text: str, pos: int) -> str | None:
     stmt_end = len(text) if stmt_end < 0 else stmt_end + 1
     quoted = text[stmt_start:start] + f'"{word}"' + text[start + len(word):stmt_end]
     at = start - stmt_start
+    outer = getattr(_lexed, "text", "")
+    _lexed.text = quoted
     try:
         tree = _parser().parse(quoted)
     except UnexpectedInput:
         tree = None
     finally:
         _lexed_reserved().clear()
+        _lexed.text = outer
     if tree is None or not any(sub.data == "name" and isinstance(tok, Token) and tok.start_pos == at
                                for sub in tree.iter_subtrees() for tok in sub.children):
         parts = ["".join(x for x in unicodedata.normalize("NFKD", c) if x.isascii()) for c in word]
@@ -386,6 +401,7 @@ def parse(text: str, filename: str = "<string>") -> A.Model:
     seen_lines: set[int] = set()
     while True:
         _lexed_reserved().clear()
+        _lexed.text = work
         try:
             tree = parser.parse(work)
             break

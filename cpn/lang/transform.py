@@ -489,6 +489,8 @@ class ToAst(Transformer_NonRecursive):
         decls = [i for i in items if isinstance(i, A.Decl)]
         exprs = [i for i in items if not isinstance(i, A.Decl)]
         body = exprs[0] if len(exprs) == 1 else A.Seq(self.span(meta), exprs)
+        if not decls:  # `let in e end`, which CPN Tools accepts: e
+            return body
         return A.Let(self.span(meta), decls, body)
 
     @v_args(meta=True)

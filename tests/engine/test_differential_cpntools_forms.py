@@ -46,6 +46,21 @@ arc trans job -> place job : x + 1;
 arc trans job -> place done : x;
 inhibitor place done -> trans job : 2`2;
 """,
+    # typed expressions without parentheses, an empty let
+    "typed_and_empty_let": """
+colset C = int with 0..3;
+colset L = list C;
+var x : C;
+val none = [] : L;
+fun next (y : C) = let in (y + 1) mod 4 : C end;
+place P : C = 1`0 ++ 1`1;
+place Q : L = 1`none;
+trans T [x < 3 andalso (x :: [] : L) <> none];
+arc P -> T : x;
+arc T -> P : next x : C;
+arc Q -> T : none;
+arc T -> Q : x :: none : L;
+""",
 }
 
 

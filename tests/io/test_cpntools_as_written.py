@@ -140,3 +140,31 @@ def test_an_arc_between_a_place_and_a_transition_of_one_name(tmp_path):
     assert "inhibitor place done -> trans job : 3;" in text
     # job: 0 -> 1 -> 2 -> 3, the guard stops it; done collects 0, 1, 2
     assert explore_counts(tmp_path, xml) == (4, 3)
+
+
+# ------------------------------------------------------------------ declarations as CPN Tools reads them
+
+
+def test_colour_set_names_with_primes_and_declarations_without_semicolons(tmp_path):
+    decls = (DECLS + '<color id="C7"><id>L&apos;S</id><list><id>S</id></list></color>'
+             '<var id="V2"><type><id>L&apos;S</id></type><id>l&apos;s</id></var>'
+             # two declarations without ';' between them (SML allows it), the second with a comment after its ';'
+             '<ml id="M2">fun l&apos;val (x : S) : L&apos;S = [x]\n\nfun twice (l : L&apos;S) = l ^^ l; (* [\n]; *)</ml>')
+    body = (place("P1", "A", "S", "1`0") + place("P2", "B", "L&apos;S") + trans("T1", "t")
+            + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P2", "twice (l&apos;val x)"))
+    xml = cpn_xml(decls, page("PG1", "Top", body))
+    text = translate_text(xml, "m.cpn").text
+    assert "colset L'S = list S;" in text
+    model = load(tmp_path, xml)
+    e = model.engine()
+    [(_be, s1)] = list(e.successors(e.initial_state()))
+    assert e.format_marking(s1, 1) == "1`[0,0]"
+
+
+def test_an_empty_let_and_a_typed_expression_in_a_cpn_file(tmp_path):
+    decls = (DECLS + '<color id="C7"><id>L</id><list><id>S</id></list></color>'
+             '<ml id="M2">fun next (x : S) = let\nin (x + 1) mod 4 : S\nend</ml>'
+             '<ml id="M3">val none = [] : L</ml>')
+    body = (place("P1", "A", "S", "1`0") + place("P2", "B", "L", "1`none") + trans("T1", "t", cond="[x &lt; 2]")
+            + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P1", "next x"))
+    assert explore_counts(tmp_path, cpn_xml(decls, page("PG1", "Top", body))) == (3, 2)

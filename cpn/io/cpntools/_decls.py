@@ -246,7 +246,7 @@ class _Declarations:
         if el.find("declare") is not None:
             extra = ", ".join(d.text.strip() for d in el.find("declare").findall("id"))
             self.out.raw(f"(* colour set {name}: 'declare {extra}' generates I/O functions; ignored *)")
-        self.out.stmt([(f"colset {ml.quote(name)} = {body};", None)], origin)
+        self.out.stmt([(f"colset {ml.ml_ident(name)} = {body};", None)], origin)
 
     def _color_body(self, el: Element) -> str | None:
         """The CPN ML text of a structured colour set, or None if its kind is not recognised."""
@@ -365,8 +365,8 @@ class _Declarations:
         for name, _ in ml.declared_functions(text):
             self.declared.add(name)
         self._check_globref_use(text, origin, f"the declaration {origin.element}")
-        text = self._rewrite_globrefs(text)
-        if not text.rstrip().endswith(";"):
+        text = ml.separate_declarations(self._rewrite_globrefs(text))
+        if not ml.strip_comments(text).rstrip().endswith(";"):  # `val x = 1; (* ... *)` has its ';'
             text += ";"
         self.out.stmt([(text, origin)], origin)
 

@@ -10,6 +10,8 @@ import re
 
 # A name that can be written without quotes in `.cpnet`.
 IDENT_RE = re.compile(r"[A-Za-z][A-Za-z0-9_]*\Z")
+# A CPN ML name (a colour set, a variable, a function): letters, digits, '_' and primes (`L'RNG`)
+ML_IDENT_RE = re.compile(r"[A-Za-z][A-Za-z0-9_']*\Z")
 
 # Words that cannot be bare names: SML reserved words and the `.cpnet` structure keywords.
 KEYWORDS: frozenset[str] = frozenset(
@@ -135,7 +137,8 @@ def declared_functions(text: str) -> list[tuple[str, str]]:
     clean = strip_comments(text)
     heads = []
     blocks: list[str] = []  # the open let/local/struct/sig blocks; 'local-in' once a local's 'in' is read
-    for m in re.finditer(r'"(?:[^"\\]|\\.)*"|\b(let|local|struct|sig|in|end)\b|\b(fun|val|and|exception)\b'
+    for m in re.finditer(r'"(?:[^"\\]|\\.)*"|(?<![\w\'])(let|local|struct|sig|in|end)(?![\w\'])'
+                         r"|(?<![\w'])(fun|val|and|exception)(?![\w'])"
                          r"(?:\s+(?:\(\s*)?(?:op\s+)?(?!(?:fun|val|and|in|end|local|let)\b)([A-Za-z][A-Za-z0-9_']*))?",
                          clean):
         kw = m.group(1) or m.group(2)
@@ -157,6 +160,38 @@ def declared_functions(text: str) -> list[tuple[str, str]]:
     return out
 
 
+def separate_declarations(text: str) -> str:
+    """Put the ';' that SML lets a file leave out between two top-level declarations (`fun f x = ..` and
+    `fun g y = ..` on the next lines) at the end of the line before the second one, so that every other
+    character keeps its line and column."""
+    clean = strip_comments(text)
+    blocks: list[str] = []
+    inserts: list[int] = []
+    for m in re.finditer(r'"(?:[^"\\]|\\.)*"|(?<![\w\'])(let|local|struct|sig|in|end|fun|val|exception)(?![\w\'])',
+                         clean):
+        kw = m.group(1)
+        if kw in ("let", "local", "struct", "sig"):
+            if kw == "local" and not blocks:
+                before = clean[:m.start()].rstrip()
+                if before and not before.endswith(";"):
+                    inserts.append(len(before))
+            blocks.append(kw)
+        elif kw == "in":
+            if blocks and blocks[-1] == "local":
+                blocks[-1] = "local-in"
+        elif kw == "end":
+            if blocks:
+                blocks.pop()
+        elif kw in ("fun", "val", "exception") and not blocks:
+            before = clean[:m.start()].rstrip()
+            # `val` after `fun ... =` is no declaration (`val` only starts one); `op val` cannot occur
+            if before and not before.endswith(";") and not before.endswith("="):
+                inserts.append(len(before))
+    for at in reversed(inserts):
+        text = text[:at] + ";" + text[at:]
+    return text
+
+
 def ml_name(text: str) -> str:
     """The name CPN Tools gives an element in ML and in its reports.
 
@@ -165,6 +200,11 @@ def ml_name(text: str) -> str:
     in the sample nets' saved queries; cpncheck documents the same rule, checked against CPN Tools 4.0.1).
     """
     return re.sub(r"[^A-Za-z0-9_']", "_", text.strip())
+
+
+def ml_ident(name: str) -> str:
+    """A CPN ML name as written in `.cpnet`: as it is when it is one (primes included), else quoted."""
+    return name if ML_IDENT_RE.match(name) and name not in KEYWORDS else quote(name)
 
 
 def quote(name: str) -> str:
