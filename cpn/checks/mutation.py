@@ -126,7 +126,8 @@ def mutate(scenarios: list, *, seed: int = 0, max_mutants: int | None = None, ma
     same seed); `max_seconds` bounds the whole run (mutants not started by then are counted as not run);
     `workers` processes run mutants side by side. `overrides` are the scenario options of `run_scenario`
     for the original runs. `on_outcome(model, outcome)` is called as each mutant is decided.
-    Raises what `run_scenario` raises for the original model (ModelError, ConfigurationError).
+    A model that cannot be read, or whose original runs fail to load or evaluate, is reported with its
+    `problem` and not mutated.
     """
     t0 = time.perf_counter()
     deadline = None if max_seconds is None else t0 + max_seconds
@@ -144,19 +145,32 @@ def mutate(scenarios: list, *, seed: int = 0, max_mutants: int | None = None, ma
 def _mutate_model(model_path, group, seed, max_mutants, deadline, workers, overrides, mutant_max_states,
                   on_outcome) -> ModelMutation:
     from cpn.checks.gate import run_scenario
+    from cpn.errors import ConfigurationError, EvaluationError, ModelError
     from cpn.lang.parser import parse
     from cpn.model import importer_for, source_of
 
     t0 = time.perf_counter()
     runs = [(s, r) for s in group for r in s.runs]
     shown = os.path.relpath(model_path) if not os.path.relpath(model_path).startswith("..") else model_path
-    source = source_of(model_path)
+    try:
+        source = source_of(model_path)
+    except (ModelError, ConfigurationError, OSError) as exc:
+        result = ModelMutation(shown, "", [s.path for s in group], len(runs), 0, 0)
+        result.problem = f"the model cannot be read: {exc.render() if hasattr(exc, 'render') else exc}"
+        result.problem_status = "error"
+        return result
     filename = f"{shown} (as .cpnet)" if importer_for(model_path) is not None else shown
     result = ModelMutation(shown, source, [s.path for s in group], len(runs), 0, 0,
                            property_names={s.path: [p.name for p in s.properties] for s in group})
     originals = []
     for s, r in runs:
-        rr = run_scenario(s, r, overrides)
+        try:
+            rr = run_scenario(s, r, overrides)
+        except (ModelError, ConfigurationError, EvaluationError) as exc:
+            result.problem = f"the original model cannot be checked: run '{r.name}' of {s.path}: {exc.render()}"
+            result.problem_status = "error"
+            result.seconds = time.perf_counter() - t0
+            return result
         originals.append(rr)
         x = rr.exploration
         result.original.append({"scenario": s.path, "run": r.name, "states": x.graph.n_states if x.graph else None,

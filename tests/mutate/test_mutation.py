@@ -138,3 +138,14 @@ def test_workers_give_the_same_outcomes():
 
     serial = outcomes(1)
     assert len(serial) == 8 and outcomes(2) == serial
+
+
+def test_a_model_that_does_not_load_is_reported_and_the_others_run(tmp_path, capsys):
+    (tmp_path / "bad.cpnet").write_text("colset U = unit; place A : U = 1`(); trans t; arc A -> t : 1;\n",
+                                        encoding="utf-8")
+    bad = tmp_path / "bad.toml"
+    bad.write_text('model = "bad.cpnet"\n[[property]]\nname = "d"\nkind = "deadlock_free"\n', encoding="utf-8")
+    code, out, err = cli([str(bad), WEAK], capsys)
+    assert code == 65
+    assert "the original model cannot be checked" in err and "bad.cpnet:1:" in err
+    assert "tests/mutate/counter.cpnet (1 scenario, 1 run)" in out and "27 mutants" in out
