@@ -189,7 +189,7 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
                              detect_time_growth=bool(opts.get("detect_time_growth", True)),
                              until_time=opts.get("until_time"),
                              reduction=reduction, visible_places=visible, symmetry=scalars,
-                             workers=opts.get("workers"), ray=opts.get("ray"))
+                             workers=opts.get("workers"), ray=opts.get("ray"), backend=opts.get("backend", "auto"))
     t0 = time.perf_counter()
     x = Explorer(watch if watch is not None else engine, options, progress=progress).run()
     explore_seconds = time.perf_counter() - t0

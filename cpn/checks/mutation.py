@@ -31,6 +31,10 @@ STATES_FACTOR = 10
 STATES_FLOOR = 1_000
 SECONDS_FACTOR = 10
 SECONDS_FLOOR = 10.0
+# a mutant's search runs in Python where the original has at most this many states: building the native
+# search of each mutant's net takes a compiler run (2.5 s for DP(5), whose 82 states Python searches in
+# milliseconds); larger state spaces repay it
+PYTHON_SEARCH_STATES = 20_000
 
 
 @dataclass
@@ -192,8 +196,9 @@ def _mutate_model(model_path, group, seed, max_mutants, deadline, workers, overr
     for rr in originals:
         x = rr.exploration
         states = mutant_max_states or (STATES_FACTOR * x.graph.n_states + STATES_FLOOR if x.graph else None)
-        limits.append({"max_states": states,
-                       "max_seconds": max(SECONDS_FACTOR * rr.explore_seconds, SECONDS_FLOOR)})
+        small = x.graph is not None and x.graph.n_states <= PYTHON_SEARCH_STATES
+        limits.append({"max_states": states, "max_seconds": max(SECONDS_FACTOR * rr.explore_seconds, SECONDS_FLOOR),
+                       "backend": "python" if small else "auto"})
     job = _Job(filename, source, runs, limits, [_counts(rr) for rr in originals],
                overrides.get("default_max_memory_mb") or overrides.get("max_memory_mb"), workers > 1)
     digests: dict[int, str] = {}
