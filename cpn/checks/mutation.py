@@ -200,7 +200,7 @@ def _mutate_model(model_path, group, seed, max_mutants, deadline, workers, overr
         limits.append({"max_states": states, "max_seconds": max(SECONDS_FACTOR * rr.explore_seconds, SECONDS_FLOOR),
                        "backend": "python" if small else "auto"})
     job = _Job(filename, source, runs, limits, [_counts(rr) for rr in originals],
-               overrides.get("default_max_memory_mb") or overrides.get("max_memory_mb"), workers > 1)
+               overrides.get("default_max_memory_mb") or overrides.get("max_memory_mb"))
     digests: dict[int, str] = {}
 
     def finish(outcome: Outcome, got: list | None) -> None:
@@ -276,7 +276,6 @@ class _Job:
     limits: list  # per run: max_states, max_seconds
     counts: list  # per run: the original's (states, arcs, dead states), or None
     max_memory_mb: float | None
-    one_process: bool
 
     def evaluate(self, mutant: Mutant, remaining: float | None) -> tuple[Outcome, list | None]:
         """The mutant's outcome, and the digests of its state spaces (run index, digest) when every run
@@ -295,8 +294,6 @@ class _Job:
                 limits["max_seconds"] = min(limits["max_seconds"], remaining)
             if self.max_memory_mb is not None:
                 limits["max_memory_mb"] = self.max_memory_mb
-            if self.one_process:
-                limits["workers"] = 1
             try:
                 model = loads(text, self.filename, set=run.values)
             except (ModelError, ConfigurationError) as exc:
