@@ -133,6 +133,9 @@ class Evaluator:
 
     def _csop(self, csname, op):
         cs = self.colsets[csname]
+        if op.startswith("set_") and cs.kind == "record":  # CS.set_<field> r v (cpn.lang.builtins)
+            i = cs.labels.index(op[4:])
+            return lambda r: lambda v: r[:i] + (v,) + r[i + 1:]
         if op == "all":
             def all_(_u):
                 vals = cs.values()

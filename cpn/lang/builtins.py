@@ -114,6 +114,17 @@ TYPES: dict[str, str] = {
     "String.size": "string -> int",
     "String.concat": "string list -> string",
     "String.substring": "string * int * int -> string",
+    "substring": "string * int * int -> string",
+    "String.isPrefix": "string -> string -> bool",
+    "String.isSuffix": "string -> string -> bool",
+    "String.isSubstring": "string -> string -> bool",
+    # characters (#"a") are strings of one character here
+    "String.tokens": "(string -> bool) -> string -> string list",
+    "String.explode": "string -> string list",
+    "explode": "string -> string list",
+    "String.implode": "string list -> string",
+    "implode": "string list -> string",
+    "List.partition": "('a -> bool) -> 'a list -> 'a list * 'a list",
     "real": "int -> real",
     "Real.fromInt": "int -> real",
     "floor": "real -> int",
@@ -147,4 +158,21 @@ COLSET_OPS: dict[str, str] = {
     "mult": "cs1 ms * cs2 ms -> cs ms",
 }
 
-__all__ = ["BUILTINS", "COLSET_OPS", "MLError", "MultisetError", "parse_type", "TIME_BUILTINS"]
+
+
+def record_setter(cs, op: str) -> str | None:
+    """The field that `CS.set_<field>` sets, where `cs` is a record colour set with that field (CPN Tools
+    declares `set_<field> : cs -> field -> cs` for every record colour set): else None."""
+    if op.startswith("set_") and getattr(cs, "kind", None) == "record" and op[4:] in cs.labels:
+        return op[4:]
+    return None
+
+
+def set_field(labels: list[str], label: str):
+    """The curried setter of field `label` of a record value (a tuple in the order of `labels`)."""
+    i = labels.index(label)
+    return lambda r: lambda v: r[:i] + (v,) + r[i + 1:]
+
+
+__all__ = ["BUILTINS", "COLSET_OPS", "MLError", "MultisetError", "parse_type", "record_setter", "set_field",
+           "TIME_BUILTINS"]

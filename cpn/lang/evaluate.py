@@ -13,7 +13,7 @@ from cpn._util.deep import left_spine
 from cpn._util.deep import run_deep as _run_deep
 from cpn._util.deep import run_deep_again as _run_deep_again
 from cpn.lang import ast as A
-from cpn.lang.builtins import BUILTINS, MLError
+from cpn.lang.builtins import BUILTINS, MLError, record_setter, set_field
 from cpn.values.builtins import MLRaise, binop
 from cpn.values.multiset import Multiset, TimedMultiset
 
@@ -122,6 +122,8 @@ class Evaluator:
 
     def _csop(self, csname, op):
         cs = self.colsets[csname]
+        if record_setter(cs, op):
+            return set_field(cs.labels, op[4:])
         if op == "all":
             def all_(_u):
                 vals = cs.values()

@@ -142,6 +142,9 @@ class TypeInference:
         if sym.kind == "csop":
             cs, op = sym.data
             cst = self.cstypes[cs]
+            if op.startswith("set_"):  # CS.set_<field> r v: r with the field set to v, as in CPN Tools
+                rt = T.prune(cst)
+                return T.TFun(cst, T.TFun(dict(rt.fields)[op[4:]], cst))
             if op == "mult":
                 comps = T.prune(cst)
                 if not isinstance(comps, T.TTuple):

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 from cpn._util import did_you_mean
 from cpn.diagnostics import Diagnostic, Span
-from cpn.lang.builtins import COLSET_OPS
+from cpn.lang.builtins import COLSET_OPS, record_setter
 from cpn.lang.checked import Env
 from cpn.lang.symbols import Symbol
 from cpn.values import colours as C
@@ -80,7 +80,7 @@ class NameResolution:
             return self.builtin_syms[name]
         if "." in name:
             cs, _, op = name.rpartition(".")
-            if cs in self.colsets and op in COLSET_OPS:
+            if cs in self.colsets and (op in COLSET_OPS or record_setter(self.colsets[cs], op)):
                 return Symbol(name, "csop", None, span, (cs, op))
         return None
 
@@ -92,8 +92,10 @@ class NameResolution:
             if cs in self.failed_names or ("colset", cs) in self.unknown_reported:
                 return
             if cs in self.colsets:
-                hint = suggestion(op, {o: f"'{cs}.{o}'" for o in COLSET_OPS}) or \
-                    f"Colour sets have the functions {', '.join(sorted(COLSET_OPS))}."
+                ops = list(COLSET_OPS) + [f"set_{label}" for label in getattr(self.colsets[cs], "labels", [])]
+                hint = suggestion(op, {o: f"'{cs}.{o}'" for o in ops}) or \
+                    f"Colour sets have the functions {', '.join(sorted(COLSET_OPS))}" + \
+                    (", and record colour sets set_<field>." if op.startswith("set_") else ".")
             else:
                 hint = suggestion(name, {n: f"the library function '{n}'" for n in self.builtin_syms}) or \
                     "This library function is not supported (docs/cpnml.md)."

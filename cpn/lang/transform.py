@@ -442,6 +442,8 @@ class ToAst(Transformer_NonRecursive):
         name = str(items[0])
         if name in ("true", "false"):
             return A.Const(self.span(meta), name == "true", "bool")
+        if name == "nil":  # SML's name of the empty list
+            return A.ListE(self.span(meta), [])
         return A.Name(self.span(meta), name)
 
     @v_args(meta=True)
@@ -554,6 +556,8 @@ class ToAst(Transformer_NonRecursive):
         name = str(items[0])
         if name in ("true", "false"):
             return A.PConst(self.span(meta), name == "true", "bool")
+        if name == "nil":  # SML's name of the empty list
+            return A.PList(self.span(meta), [])
         return A.PVar(self.span(meta), name)
 
     @v_args(meta=True)

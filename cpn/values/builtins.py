@@ -121,6 +121,21 @@ def _substring(arg):
     return s[i:i + n]
 
 
+def _tokens(is_sep):
+    """SML's String.tokens: the non-empty runs of characters between separators."""
+    def split(s):
+        out, cur = [], ""
+        for c in s:
+            if is_sep(c):
+                if cur:
+                    out.append(cur)
+                cur = ""
+            else:
+                cur += c
+        return tuple(out + [cur] if cur else out)
+    return split
+
+
 def _int_to_string(n):
     return f"~{-n}" if n < 0 else str(n)
 
@@ -240,6 +255,16 @@ FUNCTIONS: dict[str, Any] = {
     "String.size": len,
     "String.concat": lambda lst: "".join(lst),
     "String.substring": _substring,
+    "substring": _substring,
+    "String.isPrefix": lambda a: lambda b: b.startswith(a),
+    "String.isSuffix": lambda a: lambda b: b.endswith(a),
+    "String.isSubstring": lambda a: lambda b: a in b,
+    "String.tokens": _tokens,
+    "String.explode": tuple,
+    "explode": tuple,
+    "String.implode": lambda cs: "".join(cs),
+    "implode": lambda cs: "".join(cs),
+    "List.partition": lambda f: lambda lst: (tuple(x for x in lst if f(x)), tuple(x for x in lst if not f(x))),
     "real": float,
     "Real.fromInt": float,
     "floor": _floor,

@@ -61,6 +61,27 @@ arc T -> P : next x : C;
 arc Q -> T : none;
 arc T -> Q : x :: none : L;
 """,
+    # record field setters, nil, List.partition, String.tokens, substring
+    "library": """
+colset C = int with 0..3;
+colset S = string;
+colset R = record n : C * s : S;
+colset CL = list C;
+var r : R;
+var x : C;
+fun bump (q : R) = R.set_n q ((#n q + 1) mod 4);
+fun parts nil = 0 | parts (l : CL) = length (#1 (List.partition (fn v => v > 1) l));
+place P : R = 1`{n = 0, s = "a,b"};
+place Q : CL = 1`[];
+trans T [#n r < 3];
+arc P -> T : r;
+arc T -> P : R.set_s (bump r) (substring (#s r ^ "xy", 0, 3));
+arc Q -> T : nil;
+arc T -> Q : [#n r, length (String.tokens (fn c => c = #",") (#s r)), parts [#n r, 2]];
+trans U;
+arc Q -> U : [x, 2, 1];
+arc U -> Q : nil;
+""",
 }
 
 

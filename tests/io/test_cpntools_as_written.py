@@ -168,3 +168,13 @@ def test_an_empty_let_and_a_typed_expression_in_a_cpn_file(tmp_path):
     body = (place("P1", "A", "S", "1`0") + place("P2", "B", "L", "1`none") + trans("T1", "t", cond="[x &lt; 2]")
             + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P1", "next x"))
     assert explore_counts(tmp_path, cpn_xml(decls, page("PG1", "Top", body))) == (3, 2)
+
+
+def test_a_code_segment_without_semicolon_before_action_is_read_as_cpn_tools_reads_it():
+    body = (place("P1", "A", "S", "1`0") + trans("T1", "t", code="input(x)\naction\nprint(Int.toString x)")
+            + trans("T2", "u", code="input (x)\noutput (y)\naction\nx + 1") + place("P2", "B", "S")
+            + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P2", "x")
+            + arc("A3", "PtoT", "T2", "P2", "x") + arc("A4", "TtoP", "T2", "P1", "y"))
+    t = translate_text(cpn_xml(DECLS, page("PG1", "Top", body)), "m.cpn")
+    assert any("code segment of transition 't'" in n and "not executed" in n for n in t.notes)
+    assert "arc u -> A : (let val y = x + 1 in y end);" in t.text

@@ -421,8 +421,9 @@ class _Translator(_Declarations):
         dropped (with a note); a pure action that binds output variables becomes a `let` around the output
         arc inscriptions and the time inscription that use them. Everything else is refused."""
         clean = ml.strip_comments(code)
-        m = re.match(r"\s*(?:input\s*(?P<inp>\([^)]*\)|[A-Za-z][\w']*)\s*;)?\s*"
-                     r"(?:output\s*(?P<out>\([^)]*\)|[A-Za-z][\w']*)\s*;)?\s*action\b(?P<act>.*)\Z", clean, re.S)
+        # CPN Tools reads the ';' after the input and output patterns as optional (`input (c)` newline `action`)
+        m = re.match(r"\s*(?:input\s*(?P<inp>\([^)]*\)|[A-Za-z][\w']*)\s*;?)?\s*"
+                     r"(?:output\s*(?P<out>\([^)]*\)|[A-Za-z][\w']*)\s*;?)?\s*action\b(?P<act>.*)\Z", clean, re.S)
         if not m:
             self.error(origin, f"{what} has a code segment that is not 'input (..); output (..); action e'",
                        hint="Rewrite the code segment, or move its computation into arc inscriptions.")
