@@ -288,6 +288,7 @@ class _Job:
         text = mutant.apply(self.source)
         undecided = None
         digests: list | None = []
+        loaded: dict = {}
         for i, (scenario, run) in enumerate(self.runs):
             limits = dict(self.limits[i])
             if remaining is not None:
@@ -295,7 +296,11 @@ class _Job:
             if self.max_memory_mb is not None:
                 limits["max_memory_mb"] = self.max_memory_mb
             try:
-                model = loads(text, self.filename, set=run.values)
+                # runs with the same values share the parse, type check and lowering of the mutant
+                key = tuple(sorted((k, str(v)) for k, v in run.values.items()))
+                model = loaded.get(key)
+                if model is None:
+                    model = loaded[key] = loads(text, self.filename, set=run.values)
             except (ModelError, ConfigurationError) as exc:
                 return Outcome(mutant, NOT_LOADABLE, reason=_first_line(exc),
                                seconds=time.perf_counter() - t0), None
