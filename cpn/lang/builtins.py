@@ -125,6 +125,8 @@ TYPES: dict[str, str] = {
     "String.implode": "string list -> string",
     "implode": "string list -> string",
     "List.partition": "('a -> bool) -> 'a list -> 'a list * 'a list",
+    "ListMergeSort.sort": "('a * 'a -> bool) -> 'a list -> 'a list",
+    "sort": "('a * 'a -> bool) -> 'a list -> 'a list",
     "real": "int -> real",
     "Real.fromInt": "int -> real",
     "floor": "real -> int",
@@ -156,6 +158,7 @@ COLSET_OPS: dict[str, str] = {
     "legal": "cs -> bool",
     "mkstr": "cs -> string",
     "mult": "cs1 ms * cs2 ms -> cs ms",
+    "lt": "cs * cs -> bool",
 }
 
 

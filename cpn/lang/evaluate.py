@@ -153,6 +153,8 @@ class Evaluator:
             return col
         if op == "legal":
             return cs.contains
+        if op == "lt":  # CS.lt (a, b): a before b in the colour set's order
+            return lambda ab: cs.sort_key(ab[0]) < cs.sort_key(ab[1])
         if op == "mkstr":
             return cs.format
         if op == "mult":

@@ -153,7 +153,7 @@ class TypeInference:
                 return T.TFun(T.TTuple([T.ms(c) for c in comps.items]), T.ms(cst))
             return {"all": T.TFun(T.UNIT, T.ms(cst)), "size": T.TFun(T.UNIT, T.INT), "ran": T.TFun(T.UNIT, cst),
                     "ord": T.TFun(cst, T.INT), "col": T.TFun(T.INT, cst), "legal": T.TFun(cst, T.BOOL),
-                    "mkstr": T.TFun(cst, T.STRING)}[op]
+                    "mkstr": T.TFun(cst, T.STRING), "lt": T.TFun(T.TTuple([cst, cst]), T.BOOL)}[op]
         t = sym.type
         return t.instantiate() if isinstance(t, T.Scheme) else t
 

@@ -136,6 +136,22 @@ def _tokens(is_sep):
     return split
 
 
+def _merge_sort(gt):
+    """SML/NJ's ListMergeSort.sort: ascending by the greater-than `gt`, equal elements in their order."""
+    import functools
+
+    key = functools.cmp_to_key(lambda a, b: 1 if gt((a, b)) else (-1 if gt((b, a)) else 0))
+    return lambda lst: tuple(sorted(lst, key=key))
+
+
+def _lt_sort(lt):
+    """CPN Tools' sort: ascending by the less-than `lt`, equal elements in their order."""
+    import functools
+
+    key = functools.cmp_to_key(lambda a, b: -1 if lt((a, b)) else (1 if lt((b, a)) else 0))
+    return lambda lst: tuple(sorted(lst, key=key))
+
+
 def _int_to_string(n):
     return f"~{-n}" if n < 0 else str(n)
 
@@ -264,6 +280,8 @@ FUNCTIONS: dict[str, Any] = {
     "explode": tuple,
     "String.implode": lambda cs: "".join(cs),
     "implode": lambda cs: "".join(cs),
+    "ListMergeSort.sort": _merge_sort,
+    "sort": _lt_sort,
     "List.partition": lambda f: lambda lst: (tuple(x for x in lst if f(x)), tuple(x for x in lst if not f(x))),
     "real": float,
     "Real.fromInt": float,

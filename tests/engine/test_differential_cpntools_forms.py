@@ -61,7 +61,7 @@ arc T -> P : next x : C;
 arc Q -> T : none;
 arc T -> Q : x :: none : L;
 """,
-    # record field setters, nil, List.partition, String.tokens, substring
+    # record field setters, nil, List.partition, String.tokens, substring, sort and CS.lt
     "library": """
 colset C = int with 0..3;
 colset S = string;
@@ -70,16 +70,16 @@ colset CL = list C;
 var r : R;
 var x : C;
 fun bump (q : R) = R.set_n q ((#n q + 1) mod 4);
-fun parts nil = 0 | parts (l : CL) = length (#1 (List.partition (fn v => v > 1) l));
+fun parts nil = 0 | parts (l : CL) = length (#1 (List.partition (fn v => v > 1) (ListMergeSort.sort (fn (a, b) => a > b) l)));
 place P : R = 1`{n = 0, s = "a,b"};
 place Q : CL = 1`[];
 trans T [#n r < 3];
 arc P -> T : r;
 arc T -> P : R.set_s (bump r) (substring (#s r ^ "xy", 0, 3));
 arc Q -> T : nil;
-arc T -> Q : [#n r, length (String.tokens (fn c => c = #",") (#s r)), parts [#n r, 2]];
+arc T -> Q : sort C.lt [#n r, length (String.tokens (fn c => c = #",") (#s r)), parts [#n r, 2]];
 trans U;
-arc Q -> U : [x, 2, 1];
+arc Q -> U : [x, 1, 2];
 arc U -> Q : nil;
 """,
 }

@@ -1,6 +1,6 @@
 """Library names CPN Tools models use: record colour sets' `CS.set_<field>`, `nil`, `substring`,
-`String.tokens`, `String.isPrefix`/`isSuffix`/`isSubstring`, `explode`/`implode`, `List.partition`
-(docs/cpnml.md)."""
+`String.tokens`, `String.isPrefix`/`isSuffix`/`isSubstring`, `explode`/`implode`, `List.partition`,
+`sort`, `ListMergeSort.sort`, `CS.lt` (docs/cpnml.md)."""
 
 from __future__ import annotations
 
@@ -42,6 +42,10 @@ def test_record_field_setters(value, expected):
     ('#2 (List.partition (fn x => x > 1) [1, 2, 3])', "IL", "1`[1]"),
     ('if String.isPrefix "ab" "abc" andalso String.isSuffix "bc" "abc" andalso String.isSubstring "b" "abc" '
      'andalso not (String.isPrefix "c" "abc") then [1] else []', "IL", "1`[1]"),
+    ("sort (fn (a, b) => a < b) [3, 1, 2]", "IL", "1`[1,2,3]"),
+    ("ListMergeSort.sort (fn (a, b) => a > b) [3, 1, 2]", "IL", "1`[1,2,3]"),
+    ("sort INT.lt [2, ~1, 0]", "IL", "1`[~1,0,2]"),
+    ('sort STRING.lt ["b", "a"]', "SL", '1`["a","b"]'),
     ("case nil : IL of nil => [1] | _ => [2]", "IL", "1`[1]"),
     ("case [3] of nil => [1] | _ => [2]", "IL", "1`[2]"),
 ])
