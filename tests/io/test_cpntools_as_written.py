@@ -178,3 +178,21 @@ def test_a_code_segment_without_semicolon_before_action_is_read_as_cpn_tools_rea
     t = translate_text(cpn_xml(DECLS, page("PG1", "Top", body)), "m.cpn")
     assert any("code segment of transition 't'" in n and "not executed" in n for n in t.notes)
     assert "arc u -> A : (let val y = x + 1 in y end);" in t.text
+
+
+# ------------------------------------------------------------------ messages
+
+
+def test_a_recursive_function_that_draws_names_the_distribution_once():
+    decls = DECLS + ('<ml id="M2">fun localize 0 = 0\n  | localize n = localize (n - 1) + floor (uniform (0.0, 1.0))'
+                     '</ml><ml id="M3">fun place2 n = localize n + 1</ml>')
+    body = (place("P1", "A", "S", "1`0") + trans("T1", "t") + arc("A1", "PtoT", "T1", "P1", "x")
+            + arc("A2", "TtoP", "T1", "P1", "localize x") + trans("T2", "u") + arc("A3", "PtoT", "T2", "P1", "x")
+            + arc("A4", "TtoP", "T2", "P1", "place2 x"))
+    with pytest.raises(ModelError) as info:
+        translate_text(cpn_xml(decls, page("PG1", "Top", body)), "m.cpn")
+    msgs = [d.message for d in info.value.diagnostics]
+    assert len(msgs) == 2
+    assert "'localize' calls 'uniform', a random distribution function" in msgs[0]
+    assert "'place2' calls 'localize', which calls 'uniform', a random distribution function" in msgs[1]
+    assert all(m.count("localize") <= 2 for m in msgs)

@@ -58,14 +58,16 @@ class _Declarations:
             m = re.fullmatch(r"\s*\(\s*\)\s*=\s*([A-Za-z][\w']*\.ran)\s*\(\s*\)\s*;?\s*", body)
             if m:
                 self.ran_aliases[name] = m.group(1) + "()"
+        library = set(self.impure)
         changed = True
         while changed:  # transitive closure: a function that calls a random one is random
             changed = False
             for name, body in funs:
-                used = {n for n, _ in ml.names(body)}
+                used = {n for n, _ in ml.names(body)} - {name}  # a recursive call names no new cause
                 if name not in self.impure and used & self.impure:
+                    # the distribution itself where the function calls one, else a function that does
+                    self.impure_via[name] = sorted(used & library)[0] if used & library else sorted(used & self.impure)[0]
                     self.impure.add(name)
-                    self.impure_via[name] = sorted(used & self.impure)[0]
                     changed = True
 
     def _needed_declarations(self, gb: Element | None) -> None:
