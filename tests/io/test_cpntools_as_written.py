@@ -196,3 +196,24 @@ def test_a_recursive_function_that_draws_names_the_distribution_once():
     assert "'localize' calls 'uniform', a random distribution function" in msgs[0]
     assert "'place2' calls 'localize', which calls 'uniform', a random distribution function" in msgs[1]
     assert all(m.count("localize") <= 2 for m in msgs)
+
+
+def test_an_error_in_a_used_sml_file_is_reported_in_that_file(tmp_path):
+    # declarations without ';' between them, an error on line 5 of the .sml file
+    (tmp_path / "lib.sml").write_text("\n\nfun twice x = 2 * x\n\nfun bad y = y + true\n")
+    decls = DECLS + '<use id="U1"><ml>"lib.sml"</ml></use>'
+    model = tmp_path / "m.cpn"
+    model.write_text(cpn_xml(decls, page("PG1", "Top", place("P1", "A", "S", "1`(twice 1)"))))
+    with pytest.raises(ModelError) as info:
+        cpn.load(str(model))
+    [d] = info.value.diagnostics
+    assert d.span.file == str(tmp_path / "lib.sml") and (d.span.line, d.span.col) == (5, 17)
+    assert "fun bad y = y + true" in info.value.render()
+
+
+def test_a_used_sml_file_without_semicolons_between_declarations_loads(tmp_path):
+    (tmp_path / "lib.sml").write_text("fun twice x = 2 * x\nval one = 1\n")
+    decls = DECLS + '<use id="U1"><ml>"lib.sml"</ml></use>'
+    model = tmp_path / "m.cpn"
+    model.write_text(cpn_xml(decls, page("PG1", "Top", place("P1", "A", "S", "1`(twice one)"))))
+    assert cpn.load(str(model)).net.places[0].initial == {2: 1}

@@ -628,4 +628,10 @@ def remap_error(error: ModelError, translation: Translation, generated_name: str
                 sources[translation.path] = f.read()
         except OSError:
             pass
+        for path in {d.span.file for d in out if d.span is not None} - set(sources) - {translation.path}:
+            try:  # a `use`d file that a diagnostic points into
+                with open(path, encoding="utf-8", errors="replace") as f:
+                    sources[path] = f.read()
+            except OSError:
+                pass
     return type(error)(out, sources)

@@ -339,7 +339,7 @@ class _Declarations:
             return
         self.out.stmt([(f"var {', '.join(names)} : {tname};", None)], origin)
 
-    def _ml(self, el: Element, text: str | None = None) -> None:
+    def _ml(self, el: Element, text: str | None = None, at: Origin | None = None) -> None:
         pruned = text is None and id(el) not in self.needed_ml
         own = text is None  # the element's own text: positions in it are positions in the file
         text = _clean(el.text if text is None else text)
@@ -358,12 +358,15 @@ class _Declarations:
                          "net, left out *)")
             return
         origin = self._origin(el, None, "declaration")
-        if el.text:
+        if at is not None:  # the text of a `use`d file, from its start
+            origin = at
+        elif el.text:
             origin = Origin(el.text_line, el.text_col, origin.element, None, origin.what)
             raw = el.text.replace("\r\n", "\n")
             lead = raw[: len(raw) - len(raw.lstrip())]
             if lead:
                 origin = _text_origin_from(el.text_line, el.text_col, lead, origin)
+
         for name, _ in ml.declared_functions(text):
             self.declared.add(name)
         self._check_globref_use(text, origin, f"the declaration {origin.element}")
@@ -404,6 +407,10 @@ class _Declarations:
                        hint=f"Put '{fname}' next to the model ({full}).")
             return
         self.out.raw(f"(* from use \"{fname}\" ({origin.element}) *)")
-        self._ml(el, content)
+        # positions in the file's text are positions in that file (its name as the model's path gives it)
+        content = content.replace("\r\n", "\n")
+        shown = os.path.join(os.path.dirname(self.path), fname)
+        start = Origin(1, 1, origin.element, None, f"'use \"{fname}\"'", file=shown)
+        self._ml(el, content, _text_origin_from(1, 1, content[: len(content) - len(content.lstrip())], start))
 
     # -- pages -----------------------------------------------------------------------------------

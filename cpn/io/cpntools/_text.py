@@ -23,10 +23,12 @@ class Origin:
     element: str  # XML id, e.g. "ID1234"
     page: str | None  # page name, None for the globbox
     what: str  # e.g. "arc inscription of 'Send Packet'"
+    file: str | None = None  # the file the text is in, where it is not the `.cpn` file (a `use`d `.sml` file)
 
     def describe(self) -> str:
         where = f" on page '{self.page}'" if self.page else ""
-        return f"{self.what} ({self.element}{where}) at line {self.line}"
+        in_file = f" of {self.file}" if self.file else ""
+        return f"{self.what} ({self.element}{where}) at line {self.line}{in_file}"
 
 
 @dataclass(slots=True)
@@ -68,12 +70,15 @@ class Translation:
         if best is None:
             return None
         o = best.origin
+        if best.exact and o.file is not None:  # the text of another file, as it is: no entities
+            dl = line - best.gen_line
+            return Span(o.file, o.line + dl, (o.col + max(col - best.gen_col, 0)) if dl == 0 else col), o
         if best.exact:
             dl = line - best.gen_line
             if dl == 0:
                 return Span(self.path, o.line, self._raw_col(o.line, o.col, max(col - best.gen_col, 0))), o
             return Span(self.path, o.line + dl, self._raw_col(o.line + dl, 1, col - 1)), o
-        return Span(self.path, o.line, o.col), o
+        return Span(o.file or self.path, o.line, o.col), o
 
     def _raw_col(self, line: int, col: int, chars: int) -> int:
         """The column `chars` characters of element text after (line, col) of the file: an entity or
@@ -155,8 +160,8 @@ def _text_origin(el: Element | None, elem_id: str, page: str | None, what: str,
 def _text_origin_from(line: int, col: int, lead: str, origin: Origin) -> Origin:
     if "\n" in lead:
         return Origin(line + lead.count("\n"), len(lead.rsplit("\n", 1)[-1]) + 1, origin.element, origin.page,
-                      origin.what)
-    return Origin(line, col + len(lead), origin.element, origin.page, origin.what)
+                      origin.what, origin.file)
+    return Origin(line, col + len(lead), origin.element, origin.page, origin.what, origin.file)
 
 
 def _balanced_outer(text: str) -> bool:
