@@ -142,6 +142,14 @@ class TypeInference:
         if sym.kind == "csop":
             cs, op = sym.data
             cst = self.cstypes[cs]
+            if op == "ran":
+                # an application CS.ran() in an output arc inscription or a delay never gets here (_i_App):
+                # anywhere else it would be one random draw, which no state space holds
+                self.error("E0206", f"'{e.name}()' draws a random value here: it is a choice of every value of "
+                           f"{cs} only where it is called in an output arc inscription or a transition delay",
+                           e.span, hint=f"Call {e.name}() in the output arc inscription or the delay, and pass the "
+                           "value to the function as an argument.", name=e.name)
+                raise Abort()
             if op.startswith("set_"):  # CS.set_<field> r v: r with the field set to v, as in CPN Tools
                 rt = T.prune(cst)
                 return T.TFun(cst, T.TFun(dict(rt.fields)[op[4:]], cst))

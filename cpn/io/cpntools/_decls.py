@@ -351,6 +351,15 @@ class _Declarations:
                                    self._origin(el, None, "declaration"))
             if self._unclosed(text, at):
                 return
+        alias = re.fullmatch(r"\s*fun\s+([A-Za-z][\w']*)\s*\(\s*\)\s*=\s*[A-Za-z][\w']*\.ran\s*\(\s*\)\s*;?\s*",
+                             ml.strip_comments(text))
+        if alias and alias.group(1) in self.ran_aliases:
+            # `fun DEL() = NetDelay.ran()`: every call is written NetDelay.ran() (a choice of every value where
+            # it is one); the function itself would be one random draw
+            self.declared.add(alias.group(1))
+            self.out.raw(f"(* declaration {el.attrs.get('id', '?')} ({alias.group(1)}() = "
+                         f"{self.ran_aliases[alias.group(1)]}) at line {el.line}: written out where it is called *)")
+            return
         if pruned:
             heads = [name for name, _ in ml.declared_functions(text)]
             what = ", ".join(heads) if heads else _short(text, 30)
@@ -370,6 +379,8 @@ class _Declarations:
         for name, _ in ml.declared_functions(text):
             self.declared.add(name)
         self._check_globref_use(text, origin, f"the declaration {origin.element}")
+        for name, ran in self.ran_aliases.items():
+            text = re.sub(r"(?<![\w'.])" + re.escape(name) + r"\s*\(\s*\)", ran, text)
         text = ml.separate_declarations(self._rewrite_globrefs(text))
         if not ml.strip_comments(text).rstrip().endswith(";"):  # `val x = 1; (* ... *)` has its ';'
             text += ";"
