@@ -217,3 +217,32 @@ def test_a_used_sml_file_without_semicolons_between_declarations_loads(tmp_path)
     model = tmp_path / "m.cpn"
     model.write_text(cpn_xml(decls, page("PG1", "Top", place("P1", "A", "S", "1`(twice one)"))))
     assert cpn.load(str(model)).net.places[0].initial == {2: 1}
+
+
+def test_a_use_that_names_its_file_by_an_expression_is_found_beside_the_model(tmp_path):
+    # `use (libpath^"config/lib.sml")` with libpath a folder of the author's machine
+    (tmp_path / "config").mkdir()
+    (tmp_path / "config" / "lib.sml").write_text("fun twice x = 2 * x;\n")
+    decls = DECLS + ('<ml id="M2">val libpath = "c:/work/git/project/";</ml>'
+                     '<use id="U1"><ml>(libpath^"config/lib.sml")</ml></use>')
+    model = tmp_path / "m.cpn"
+    model.write_text(cpn_xml(decls, page("PG1", "Top", place("P1", "A", "S", "1`(twice 1)"))))
+    assert cpn.load(str(model)).net.places[0].initial == {2: 1}
+    # only the file itself beside the model
+    (tmp_path / "config" / "lib.sml").rename(tmp_path / "lib.sml")
+    assert cpn.load(str(model)).net.places[0].initial == {2: 1}
+    (tmp_path / "lib.sml").unlink()
+    with pytest.raises(ModelError) as info:
+        cpn.load(str(model))
+    [d] = info.value.diagnostics
+    assert "cannot read the ML file 'c:/work/git/project/config/lib.sml'" in d.message
+    assert "'lib.sml' next to the model" in d.hint
+
+
+def test_declarations_the_design_cpn_converter_left_unconverted_are_one_clear_error():
+    decls = '<errordecl>val n = 5;\ncolor PH = index ph with 1..n declare ms;\nvar p : PH;</errordecl>'
+    body = place("P1", "Think", "PH", "PH") + trans("T1", "t") + arc("A1", "PtoT", "T1", "P1", "p")
+    with pytest.raises(ModelError) as info:
+        translate_text(cpn_xml(decls, page("PG1", "Top", body)), "m.cpn")
+    [d] = info.value.diagnostics
+    assert d.code == "E0502" and "written for Design/CPN" in d.message and "'val n = 5;'" in d.message

@@ -210,6 +210,13 @@ class _Declarations:
                 self._globref(c)
             elif c.tag == "use":
                 self._use(c)
+            elif c.tag == "errordecl":
+                # the Design/CPN converter's declarations it could not convert: CPN Tools cannot check them
+                first = _clean(c.text).split("\n", 1)[0]
+                self.error(c, f"the declarations were written for Design/CPN and not converted ('{_short(first)}' "
+                           "in <errordecl>): CPN Tools cannot check them either",
+                           hint="Open the net in CPN Tools and rewrite the declarations in CPN ML ('color' becomes "
+                                "'colset', 'declare' clauses go), then save it.")
 
     def _origin(self, el: Element, page: str | None, what: str) -> Origin:
         return Origin(el.line, el.col, el.attrs.get("id", "?"), page, what)
@@ -404,19 +411,65 @@ class _Declarations:
         self.out.raw(f"(* globref {name} = {_short(expr)} ({origin.element}): a reference variable, not translated "
                      f"because {why}; any inscription that reads it is refused *)")
 
+    def _string_vals(self) -> dict[str, str]:
+        """The string constants of the globbox (`val buildpath = "c:/work/";`), for `use (buildpath^"x.sml")`."""
+        found: dict[str, str] = {}
+        gb = self.cpnet.find("globbox")
+        for el in self._all_decl_elements(gb) if gb is not None else []:
+            if el.tag == "ml":
+                for m in re.finditer(r'\bval\s+([A-Za-z][\w\']*)\s*=\s*((?:"[^"\\]*"|[A-Za-z][\w\']*)'
+                                     r'(?:\s*\^\s*(?:"[^"\\]*"|[A-Za-z][\w\']*))*)\s*;', ml.strip_comments(el.text)):
+                    value = self._string_expr(m.group(2), found)
+                    if value is not None:
+                        found[m.group(1)] = value
+        return found
+
+    @staticmethod
+    def _string_expr(text: str, vals: dict[str, str]) -> str | None:
+        """The value of `"a" ^ name ^ "b"` over the string constants `vals`, or None."""
+        out = ""
+        for part in re.split(r"\s*\^\s*", text.strip().strip("()").strip()):
+            if part.startswith('"') and part.endswith('"') and len(part) >= 2:
+                out += part[1:-1]
+            elif part in vals:
+                out += vals[part]
+            else:
+                return None
+        return out
+
     def _use(self, el: Element) -> None:
         mlel = el.find("ml")
         raw = _clean(mlel.text if mlel is not None else el.text)
-        fname = raw.strip().strip(";").strip().strip('"')
+        written = raw.strip().strip(";").strip()
+        fname = written.strip('"')
+        here = os.path.dirname(os.path.abspath(self.path))
+        candidates = [os.path.join(here, fname)]
+        if not (written.startswith('"') and written.endswith('"')):
+            # `use (buildpath^"session/logging.sml")`: the path the constants give (often a folder of the
+            # author's machine), else the literal part, else the file name, beside the model
+            value = self._string_expr(written, self._string_vals())
+            literal = "".join(re.findall(r'"([^"\\]*)"', written))
+            fname = value if value is not None else literal or written
+            candidates = [os.path.join(here, fname)] + [os.path.join(here, p) for p in
+                                                        (literal.lstrip("/"), os.path.basename(literal)) if p]
         origin = self._origin(el, None, f"use \"{fname}\"")
-        full = os.path.join(os.path.dirname(os.path.abspath(self.path)), fname)
-        try:
-            with open(full, encoding="utf-8", errors="replace") as f:
-                content = f.read()
-        except OSError as exc:
-            self.error(el, f"cannot read the ML file '{fname}' named by a 'use' declaration: {exc.strerror}",
-                       hint=f"Put '{fname}' next to the model ({full}).")
+        content = None
+        for full in dict.fromkeys(candidates):
+            try:
+                with open(full, encoding="utf-8", errors="replace") as f:
+                    content = f.read()
+                break
+            except OSError as exc:
+                why = exc.strerror
+        if content is None:
+            base = os.path.basename(fname)
+            tried = "; tried " + ", ".join(f"'{os.path.relpath(c, here)}'" for c in dict.fromkeys(candidates)) \
+                if len(candidates) > 1 else ""
+            what = f"'{fname}'" if written.strip('"') == fname else f"'{fname}' ({written})"
+            self.error(el, f"cannot read the ML file {what} named by a 'use' declaration: {why}{tried}",
+                       hint=f"Put '{base}' next to the model ({here}).")
             return
+        fname = os.path.relpath(full, here)
         self.out.raw(f"(* from use \"{fname}\" ({origin.element}) *)")
         # positions in the file's text are positions in that file (its name as the model's path gives it)
         content = content.replace("\r\n", "\n")
