@@ -177,7 +177,7 @@ def decl(d: A.Decl, indent: str = "") -> str:
         return f"{indent}var {', '.join(n for n, _ in d.names)} : {d.colset};"
     if isinstance(d, A.ValDecl):
         annot = f" : {ty(d.type_expr)}" if d.type_expr is not None else ""
-        return f"{indent}val {d.name}{annot} = {expr(d.expr)};"
+        return f"{indent}val {d.name if d.name is not None else pat(d.pat)}{annot} = {expr(d.expr)};"
     if isinstance(d, A.FunDecl):
         return indent + _clauses(d) + ";"
     if isinstance(d, A.ExceptionDecl):

@@ -256,6 +256,12 @@ class ToAst(Transformer_NonRecursive):
         return A.SymmetryDecl(self.span(meta), names, str(items[-1]), self.tspan(items[-1]))
 
     @v_args(meta=True)
+    def val_wild(self, meta, items):
+        """`val _ = e`: e is checked and evaluated, and names nothing."""
+        ty, expr = items
+        return A.ValDecl(self.span(meta), A.PWild(self.span(meta)), expr, ty)
+
+    @v_args(meta=True)
     def val_decl(self, meta, items):
         name, ty, expr = items
         return A.ValDecl(self.span(meta), A.PVar(self.tspan(name), str(name)), expr, ty)
