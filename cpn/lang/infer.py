@@ -22,6 +22,10 @@ def _not_plain(node: A.BinOp) -> bool:
     return node.op in _MS_OPS
 
 
+# The library functions on multisets that CPN Tools models also give a list (a multiset is a list there)
+LIST_AS_MS_FUNCTIONS: frozenset[str] = frozenset({"ms_to_list", "ms_to_col", "size"})
+
+
 class TypeInference:
     """Inference of expressions, patterns and annotations (mixed into the Checker)."""
 
@@ -219,6 +223,20 @@ class TypeInference:
                 # a multiset where a list is expected: CPN Tools' multisets are lists (`List.map f (CS.all())`)
                 e.arg = self.ms_as_list(e.arg, pt)
                 at = T.lst(pt.args[0])
+            elif (isinstance(pa, T.TCon) and pa.name == "ms" and isinstance(pt, T.TCon) and pt.name == "list"
+                    and isinstance(e.fn, A.Name) and e.fn.name in LIST_AS_MS_FUNCTIONS):
+                # a list given to a multiset function: CPN Tools' multisets are lists (`size [a, b]`)
+                el = pt.args[0]
+                if e.fn.name == "ms_to_list":
+                    # the list itself, in its order, as in CPN Tools: List.concat [l]
+                    self.must(pa, T.ms(el), e.arg.span, f"the argument of {self._fn_name(e.fn)}")
+                    self.must(pf.res, r, e.span, "an application")
+                    fn = A.Name(e.fn.span, "List.concat", ty=T.TFun(T.lst(T.lst(el)), T.lst(el)))
+                    fn.ref = self.builtin_syms["List.concat"]
+                    e.fn, e.arg = fn, A.ListE(e.arg.span, [e.arg], ty=T.lst(T.lst(el)))
+                    return r
+                e.arg = self.list_as_multiset(e.arg, el)
+                at = T.ms(el)
             self.must(at, pf.arg, e.arg.span, f"the argument of {self._fn_name(e.fn)}")
             self.must(pf.res, r, e.span, "an application")
         else:

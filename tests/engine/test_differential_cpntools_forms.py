@@ -75,11 +75,11 @@ place P : R = 1`{n = 0, s = "a,b"};
 place Q : CL = 1`[];
 trans T [#n r < 3];
 arc P -> T : r;
-arc T -> P : R.set_s (bump r) (substring (#s r ^ "xy", 0, 3));
+arc T -> P : R.set_s (bump r) (substring (#s r ^ "xy", 0, 3 - size [x] + 1));
 arc Q -> T : nil;
 arc T -> Q : sort C.lt [#n r, length (String.tokens (fn c => c = #",") (#s r)), parts [#n r, 2]];
 trans U;
-arc Q -> U : [x, 1, 2];
+arc Q -> U : ms_to_list [x, 1, 2];
 arc U -> Q : nil;
 """,
 }

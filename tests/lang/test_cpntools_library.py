@@ -1,6 +1,6 @@
 """Library names CPN Tools models use: record colour sets' `CS.set_<field>`, `nil`, `substring`,
 `String.tokens`, `String.isPrefix`/`isSuffix`/`isSubstring`, `explode`/`implode`, `List.partition`,
-`sort`, `ListMergeSort.sort`, `CS.lt` (docs/cpnml.md)."""
+`sort`, `ListMergeSort.sort`, `CS.lt`; `ms_to_list`, `size` and `ms_to_col` of a list (docs/cpnml.md)."""
 
 from __future__ import annotations
 
@@ -46,6 +46,9 @@ def test_record_field_setters(value, expected):
     ("ListMergeSort.sort (fn (a, b) => a > b) [3, 1, 2]", "IL", "1`[1,2,3]"),
     ("sort INT.lt [2, ~1, 0]", "IL", "1`[~1,0,2]"),
     ('sort STRING.lt ["b", "a"]', "SL", '1`["a","b"]'),
+    ("ms_to_list [2, 0, 2]", "IL", "1`[2,0,2]"),
+    ("ms_to_list (1`2 ++ 1`0 ++ 1`2)", "IL", "1`[0,2,2]"),
+    ("[size [1, 1, 2], ms_to_col [3]]", "IL", "1`[3,3]"),
     ("case nil : IL of nil => [1] | _ => [2]", "IL", "1`[1]"),
     ("case [3] of nil => [1] | _ => [2]", "IL", "1`[2]"),
 ])
