@@ -438,10 +438,10 @@ class _Translator(_Declarations):
             self.notes.append(note)
             self.out.raw(f"(* note: {note} *)")
             return
-        if self._refuse_random(act, origin, f"the code segment of {what}"):
+        if self._refuse_random(act, origin, f"the code segment of {what}", effects=False):
             return
         effects = sorted({n for n, _ in ml.names(act) if n.split(".")[0] in ml.SIDE_EFFECT_NAMES
-                          or n in ml.SIDE_EFFECT_NAMES})
+                          or n in ml.SIDE_EFFECT_NAMES or self._side_effect_via(n)})
         if effects or ":=" in ml.strip_comments(act) or re.search(r"!\s*[A-Za-z(]", ml.strip_comments(act)):
             used = ", ".join(effects) if effects else "a reference variable"
             self.error(origin, f"{what} has a code segment that binds the output variable(s) {', '.join(outs)} "

@@ -59,6 +59,14 @@ class _Declarations:
             if m:
                 self.ran_aliases[name] = m.group(1) + "()"
         library = set(self.impure)
+        # the SML/NJ random generator (`Random.randRange (1, 36) gen`) and the libraries that talk to other
+        # programs or files (`ConnManagementLayer.openConnection`): the functions that use them cannot be
+        # part of a state space either
+        for _name, body in funs:
+            for n, _ in ml.names(body):
+                if n.split(".")[0] in ml.RANDOM_STRUCTURES or n.split(".")[0] in ml.SIDE_EFFECT_NAMES:
+                    library.add(n)
+        self.impure |= library
         changed = True
         while changed:  # transitive closure: a function that calls a random one is random
             changed = False
@@ -120,16 +128,36 @@ class _Declarations:
                     needed |= used
                     changed = True
 
-    def _refuse_random(self, text: str, origin: Origin, what: str) -> bool:
-        """Refuse text that draws random values from a distribution; True if refused."""
+    def _impure_chain(self, n: str) -> list[str]:
+        """`n`, the function it calls that makes it impure, and so on to the library function."""
+        chain = [n]
+        while chain[-1] in self.impure_via and len(chain) < 10:
+            chain.append(self.impure_via[chain[-1]])
+        return chain
+
+    def _side_effect_via(self, n: str) -> bool:
+        """True if declared function `n` has a side effect through the functions it calls."""
+        return n in self.impure_via and self._impure_chain(n)[-1].split(".")[0] in ml.SIDE_EFFECT_NAMES
+
+    def _refuse_random(self, text: str, origin: Origin, what: str, effects: bool = True) -> bool:
+        """Refuse text that draws random values from a distribution, or (with `effects`) calls a function with
+        side effects; True if refused."""
         for n, _ in ml.names(text):
             if n in self.impure:
-                chain = [n]
-                while chain[-1] in self.impure_via and len(chain) < 10:
-                    chain.append(self.impure_via[chain[-1]])
-                why = (f"'{n}' draws a random value" if len(chain) == 1
-                       else f"'{n}' calls " + ", which calls ".join(f"'{c}'" for c in chain[1:])
-                       + ", a random distribution function")
+                chain = self._impure_chain(n)
+                effect = chain[-1].split(".")[0] in ml.SIDE_EFFECT_NAMES
+                if effect and not effects:
+                    continue
+                kind = ("a side effect (input, output or communication with other programs)" if effect
+                        else "SML/NJ's random generator" if chain[-1].split(".")[0] in ml.RANDOM_STRUCTURES
+                        else "a random distribution function")
+                why = ((f"'{n}' is {kind}" if effect else f"'{n}' draws a random value") if len(chain) == 1
+                       else f"'{n}' calls " + ", which calls ".join(f"'{c}'" for c in chain[1:]) + f", {kind}")
+                if effect:
+                    self.error(origin, f"{what} uses {n}: {why}; its value is not a function of the marking",
+                               hint="Compute the value with pure CPN ML, or keep the side effect in a code segment "
+                                    "that binds no output variable (it is then left out).")
+                    return True
                 self.error(origin, f"{what} uses {n}: {why}; a net that does has no deterministic state space",
                            hint="Replace the distribution by a finite choice, e.g. a colour set "
                                 "'colset D = int with 1..5;' and 'D.ran()', which becomes a choice of every value.")

@@ -30,11 +30,15 @@ RANDOM_FUNCTIONS: frozenset[str] = frozenset(
     discrete bernoulli binomial poisson""".split()
 )
 
-# Names (or the first part of qualified names) of side effects: I/O, monitors, charts, communication.
+# Names (or the first part of qualified names) of side effects: I/O, monitors, charts, communication
+# (Comms/CPN's ConnManagementLayer).
 SIDE_EFFECT_NAMES: frozenset[str] = frozenset(
     """TextIO print MSC OS Posix Unix send_to_applet acceptConnection openConnection closeConnection
-    send receive""".split()
+    send receive ConnManagementLayer Comms""".split()
 )
+
+# Structures whose functions draw random values (SML/NJ's random generator: `Random.randRange (1, 36) gen`).
+RANDOM_STRUCTURES: frozenset[str] = frozenset({"Random"})
 
 _TOKEN_RE = re.compile(
     r"""(?P<comment>\(\*)|(?P<string>"(?:[^"\\]|\\.)*")|(?P<name>[A-Za-z][A-Za-z0-9_']*(?:\.[A-Za-z][A-Za-z0-9_']*)*)
