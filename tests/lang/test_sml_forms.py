@@ -63,3 +63,10 @@ def test_val_wildcard_is_checked_and_evaluated_and_names_nothing():
     with pytest.raises(ModelError) as info:
         cpn.loads(DECLS + "val _ = 1 div 0;\nval _ = true + 1;\n", "t.cpnet")
     assert [(d.code, d.span.line) for d in info.value.diagnostics] == [("E0401", 5), ("E0301", 6)]
+
+
+def test_a_design_cpn_coefficient_hints_at_the_backquote():
+    with pytest.raises(ModelError) as info:
+        cpn.loads(DECLS + "place P : C = 1'2;\n", "t.cpnet")
+    [d] = info.value.diagnostics
+    assert d.code == "E0101" and "n`e" in d.hint and (d.span.line, d.span.col) == (5, 16)
