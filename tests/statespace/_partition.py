@@ -75,7 +75,7 @@ def report_figures(x) -> dict:
     def name(i):
         return repr(canonical(e, g.states[i - 1]))  # the report numbers nodes from 1
 
-    for key in ("report_seconds", "report_part_seconds", "notes"):
+    for key in ("report_seconds", "report_part_seconds", "notes", "backend_notes"):
         r.pop(key, None)
     st = r["statespace"]
     for key in ("seconds", "peak_memory_mb"):
