@@ -10,7 +10,12 @@ from __future__ import annotations
 
 from cpn.lang import ast as A
 from cpn.lang import types as T
+from cpn.lang.binding import all_vars
+from cpn.lang.builtins import MLError
 from cpn.lang.checked import Abort, Env
+from cpn.lang.evaluate import run_deep
+from cpn.lang.symbols import Symbol
+from cpn.values import colours as C
 
 
 def _is_ms(t) -> bool:
@@ -92,8 +97,48 @@ class MultisetInference:
         fn.ref = self.builtin_syms["ms_to_list"]
         return A.App(e.span, fn, e, ty=lt)
 
+    def time_interval(self, e: A.ListE, env: Env) -> A.Expr:
+        """CPN Tools 4's time interval `@+[a,b]` (a transition delay or an output arc's): the delay is chosen
+        in the binding, one binding element per integer of a..b, as a free variable over a..b (`CS.ran()`'s
+        mechanism). The bounds are constants."""
+        what = f"the time interval '@+[...]' at {e.span.line}:{e.span.col}"
+        if self.ran_sink is None:
+            self.error("E0206", f"{what} is allowed only as a transition delay or on an output arc", e.span)
+            raise Abort()
+        bounds = []
+        for b in e.items:
+            self.must(self.infer(b, env), T.INT, b.span, "a bound of a time interval (an integer)")
+            if all_vars(b):
+                self.error("E0206", f"the bounds of {what} are constants; this one depends on the binding",
+                           b.span, hint="Write the bounds with numbers and 'val' constants.")
+                raise Abort()
+            try:
+                bounds.append(run_deep(self.ev.eval, b, {}))
+            except (MLError, RecursionError) as exc:
+                self.error("E0401", f"evaluating a bound of {what} failed: {exc}", b.span)
+                raise Abort() from None
+        lo, hi = bounds
+        if not 0 <= lo <= hi:
+            self.error("E0301", f"{what} is [{lo},{hi}]: the bounds must satisfy 0 <= a <= b", e.span)
+            raise Abort()
+        name = f"@+[{lo},{hi}]"  # no colour-set name can be written so
+        if name not in self.colsets:
+            self.colsets[name] = C.IntCS(name, lo, hi)
+            self.cstypes[name] = T.INT
+        self.ran_counter += 1
+        vsym = Symbol(f"{name}#{self.ran_counter}", "var", T.INT, e.span, name)
+        self.ran_sink.append((vsym.name, name, vsym))
+        fn = A.Name(e.span, "ignore", ty=T.TFun(T.UNIT, T.UNIT))
+        fn.ref = self.builtin_syms["ignore"]
+        node = A.App(e.span, fn, A.Const(e.span, (), "unit", ty=T.UNIT), ty=T.INT)
+        node.ran_var = vsym
+        return node
+
     def infer_delay(self, e: A.BinOp, env: Env) -> None:
-        """The delay d of `tokens @+ d`: an integer."""
+        """The delay d of `tokens @+ d`: an integer, or a time interval `[a, b]`."""
+        if isinstance(e.right, A.ListE) and len(e.right.items) == 2:
+            e.right = self.time_interval(e.right, env)
+            return
         dt = self.infer(e.right, env)
         if not self.unify(dt, T.INT, e.right.span, "a time delay (it must be an integer)"):
             if isinstance(e.right, A.BinOp) and e.right.op in ("++", "--"):

@@ -198,7 +198,15 @@ class PageChecks:
         sink: list = []
         self.ran_sink = sink  # CS.ran() in the delay is a choice of every value, as on output arcs
         try:
-            if d.delay is not None:
+            interval = isinstance(d.delay, A.ListE) and len(d.delay.items) == 2
+            if interval:  # a time interval @+[a,b]
+                try:
+                    d.delay = _replace_ran(self.time_interval(d.delay, env))
+                    self.resolve_pending()
+                except Abort:
+                    self.pending.clear()
+                    ok = False
+            if d.delay is not None and not interval:
                 t = self.infer_top(d.delay, env)
                 if t is None:
                     ok = False

@@ -82,6 +82,24 @@ trans U;
 arc Q -> U : ms_to_list [x, 1, 2];
 arc U -> Q : nil;
 """,
+    # CPN Tools 4's time intervals on a transition and on an output arc: one binding element per delay
+    "time_intervals": """
+colset C = int with 0..3 timed;
+colset U = unit timed;
+var x : C;
+val HI = 2;
+place P : C = 1`0;
+place Q : U = 1`();
+place R : C;
+trans T [x < 3] @+[1, HI];
+arc P -> T : x;
+arc T -> P : x + 1;
+arc T -> R : x @+[0, 1];
+trans V [x < 2];
+arc Q -> V : ();
+arc R -> V : x;
+arc V -> Q : () @+[1, 3];
+""",
 }
 
 

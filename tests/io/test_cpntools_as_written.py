@@ -260,3 +260,16 @@ def test_functions_that_talk_to_other_programs_or_use_the_sml_random_generator_a
     assert len(msgs) == 2 and all(d.code == "E0502" for d in info.value.diagnostics)
     assert "'conn' calls 'ConnManagementLayer.openConnection', a side effect" in msgs[0]
     assert "'pick' calls 'Random." in msgs[1] and "SML/NJ's random generator" in msgs[1]
+
+
+def test_time_intervals_on_a_transition_and_an_output_arc(tmp_path):
+    decls = ('<color id="C7"><id>TS</id><timed/><int><with><ml>0</ml><ml>3</ml></with></int></color>'
+             '<var id="V1"><type><id>TS</id></type><id>x</id></var>')
+    body = (place("P1", "A", "TS", "1`0") + place("P2", "B", "TS") + trans("T1", "t", cond="[x &lt; 2]", time="@+[1,2]")
+            + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P2", "x@+[0,1]"))
+    xml = cpn_xml(decls, page("PG1", "Top", body))
+    model = load(tmp_path, xml)
+    e = model.engine()
+    # delays 1 + 0, 1 + 1, 2 + 0, 2 + 1: four binding elements, three different successors
+    succ = list(e.successors(e.initial_state()))
+    assert len(succ) == 4 and len({s for _, s in succ}) == 3

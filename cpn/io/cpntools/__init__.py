@@ -396,10 +396,6 @@ class _Translator(_Declarations):
             delay = self._inscription(delay, do, f"the time inscription of {what}")
             if not delay.startswith("@+"):
                 self.error(do, f"{what} has the time inscription '{_short(delay)}'; expected '@+ delay'")
-            elif delay.startswith("@+[") or re.match(r"@\+\s*\[", delay):
-                self.error(do, f"{what} has the time interval '{_short(delay)}'; time intervals are not "
-                           "supported by the model language yet",
-                           hint="Split the transition into one transition per delay, or use a fixed delay.")
             elif t.id in self.code_outputs:
                 rest = delay[2:]
                 do2 = Origin(do.line, do.col + 2 + len(rest) - len(rest.lstrip()), do.element, do.page, do.what)
