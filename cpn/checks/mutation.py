@@ -122,14 +122,16 @@ def _score(killed: int, survived: int) -> float | None:
 
 def mutate(scenarios: list, *, seed: int = 0, max_mutants: int | None = None, max_seconds: float | None = None,
            workers: int = 1, overrides: dict | None = None, mutant_max_states: int | None = None,
-           on_outcome=None) -> MutationReport:
+           all_runs: bool = False, on_outcome=None) -> MutationReport:
     """Mutation testing of the models the scenarios check.
 
     Scenarios that check the same model form one gate: a mutant of the model is killed when a run of any
     of them fails. `max_mutants` draws that many mutants per model with `seed` (the same mutants for the
     same seed); `max_seconds` bounds the whole run (mutants not started by then are counted as not run);
     `workers` processes run mutants side by side. `overrides` are the scenario options of `run_scenario`
-    for the original runs. `on_outcome(model, outcome)` is called as each mutant is decided.
+    for the original runs. A killed mutant stops at the first run that catches it; with `all_runs` it goes
+    on through every run, so that every property that catches it is known. `on_outcome(model, outcome)`
+    is called as each mutant is decided.
     A model that cannot be read, or whose original runs fail to load or evaluate, is reported with its
     `problem` and not mutated.
     """
@@ -141,13 +143,13 @@ def mutate(scenarios: list, *, seed: int = 0, max_mutants: int | None = None, ma
         groups.setdefault(s.model, []).append(s)
     for model_path, group in groups.items():
         report.models.append(_mutate_model(model_path, group, seed, max_mutants, deadline, workers,
-                                           dict(overrides or {}), mutant_max_states, on_outcome))
+                                           dict(overrides or {}), mutant_max_states, all_runs, on_outcome))
     report.seconds = time.perf_counter() - t0
     return report
 
 
 def _mutate_model(model_path, group, seed, max_mutants, deadline, workers, overrides, mutant_max_states,
-                  on_outcome) -> ModelMutation:
+                  all_runs, on_outcome) -> ModelMutation:
     from cpn.checks.gate import run_scenario
     from cpn.errors import ConfigurationError, EvaluationError, ModelError
     from cpn.lang.parser import parse
@@ -200,7 +202,7 @@ def _mutate_model(model_path, group, seed, max_mutants, deadline, workers, overr
         limits.append({"max_states": states, "max_seconds": max(SECONDS_FACTOR * rr.explore_seconds, SECONDS_FLOOR),
                        "backend": "python" if small else "auto"})
     job = _Job(filename, source, runs, limits, [_counts(rr) for rr in originals],
-               overrides.get("default_max_memory_mb") or overrides.get("max_memory_mb"))
+               overrides.get("default_max_memory_mb") or overrides.get("max_memory_mb"), all_runs)
     digests: dict[int, str] = {}
 
     def finish(outcome: Outcome, got: list | None) -> None:
@@ -276,6 +278,7 @@ class _Job:
     limits: list  # per run: max_states, max_seconds
     counts: list  # per run: the original's (states, arcs, dead states), or None
     max_memory_mb: float | None
+    all_runs: bool = False  # a killed mutant goes on through every run (what each property catches)
 
     def evaluate(self, mutant: Mutant, remaining: float | None) -> tuple[Outcome, list | None]:
         """The mutant's outcome, and the digests of its state spaces (run index, digest) when every run
@@ -289,6 +292,8 @@ class _Job:
         undecided = None
         digests: list | None = []
         loaded: dict = {}
+        caught: list[Killer] = []
+        failed = ""  # the first run-time error of the mutant, when it killed it
         for i, (scenario, run) in enumerate(self.runs):
             limits = dict(self.limits[i])
             if remaining is not None:
@@ -302,20 +307,28 @@ class _Job:
                 if model is None:
                     model = loaded[key] = loads(text, self.filename, set=run.values)
             except (ModelError, ConfigurationError) as exc:
+                if caught or failed:
+                    continue
                 return Outcome(mutant, NOT_LOADABLE, reason=_first_line(exc),
                                seconds=time.perf_counter() - t0), None
             try:
                 rr = run_scenario(scenario, run, limits, model=model)
             except EvaluationError as exc:
-                return Outcome(mutant, KILLED, reason=f"run '{run.name}': the model fails: {_first_line(exc)}",
-                               seconds=time.perf_counter() - t0), None
+                failed = failed or f"run '{run.name}': the model fails: {_first_line(exc)}"
+                if not self.all_runs:
+                    break
+                continue
             except (ModelError, ConfigurationError) as exc:
+                if caught or failed:
+                    continue
                 return Outcome(mutant, NOT_LOADABLE, reason=_first_line(exc),
                                seconds=time.perf_counter() - t0), None
-            killers = [Killer(scenario.path, run.name, p.spec.name, p.verdict.status.value, _steps(p.verdict))
+            caught += [Killer(scenario.path, run.name, p.spec.name, p.verdict.status.value, _steps(p.verdict))
                        for p in rr.results if p.gate_status in (Status.VIOLATED, Status.ERROR)]
-            if killers:
-                return Outcome(mutant, KILLED, killers, seconds=time.perf_counter() - t0), None
+            if (caught or failed) and not self.all_runs:
+                break
+            if caught or failed:
+                continue
             if rr.status is Status.UNKNOWN and undecided is None:
                 x = rr.exploration
                 undecided = (f"run '{run.name}': the search stopped ({x.stop_reason.value}) after "
@@ -325,6 +338,8 @@ class _Job:
             else:
                 digests = None
         seconds = time.perf_counter() - t0
+        if caught or failed:
+            return Outcome(mutant, KILLED, caught, reason=failed, seconds=seconds), None
         if undecided is not None:
             return Outcome(mutant, UNDECIDED, reason=undecided, seconds=seconds), None
         return Outcome(mutant, SURVIVED, seconds=seconds), digests

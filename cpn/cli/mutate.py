@@ -58,6 +58,9 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    help="stop each mutant's search after N states (default: 10 times the original's states "
                    "plus 1,000); a mutant stopped before any property fails is undecided")
     p.add_argument("--workers", type=int, default=1, metavar="N", help="run N mutants at a time, in N processes")
+    p.add_argument("--all-runs", action="store_true",
+                   help="run a killed mutant through every run of its gate too (slower), so that every property "
+                   "that catches it is counted, not only those of the first run that does")
     p.add_argument("--fail-under", type=float, metavar="PERCENT",
                    help="exit with status 1 if the mutation score is below PERCENT")
     add_output_option(p, "--json", "the JSON report")
@@ -101,7 +104,7 @@ def run(args) -> int:
     progress = _Progress() if (not args.quiet and sys.stderr.isatty()) else None
     try:
         report = mutate(scenarios, seed=args.seed, max_mutants=args.max_mutants, max_seconds=args.max_seconds,
-                        workers=args.workers, mutant_max_states=args.max_states,
+                        workers=args.workers, mutant_max_states=args.max_states, all_runs=args.all_runs,
                         overrides=_original_limits(sets), on_outcome=progress)
     except (ModelError, EvaluationError) as err:
         print(err.render(), file=sys.stderr)

@@ -121,6 +121,8 @@ def _killers_text(mut: dict) -> str:
         steps = "" if k["steps"] is None else f", {k['steps']} step{'s' if k['steps'] != 1 else ''}"
         how = "" if k["verdict"] == "violated" else f", {k['verdict']}"
         out.append(f"'{k['property']}' ({k['run']}{how}{steps})")
+    if mut["reason"]:  # a run-time error of the mutant in another run (--all-runs)
+        out.append(mut["reason"])
     return "; ".join(out)
 
 

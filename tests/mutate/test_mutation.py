@@ -149,3 +149,22 @@ def test_a_model_that_does_not_load_is_reported_and_the_others_run(tmp_path, cap
     assert code == 65
     assert "the original model cannot be checked" in err and "bad.cpnet:1:" in err
     assert "tests/mutate/counter.cpnet (1 scenario, 1 run)" in out and "27 mutants" in out
+
+
+def test_all_runs_credits_every_property_that_catches_a_mutant():
+    both = [load_scenario(WEAK), load_scenario(STRONG)]  # one gate: both check counter.cpnet
+
+    def killers(model):
+        dropped = outcome_of(model, "token-dropped", "place Count : N;")
+        return [(pathlib.Path(k.scenario).name, k.prop) for k in dropped.killers]
+
+    first = mutate(both).models[0]
+    assert first.scenarios == [WEAK, STRONG] and first.runs == 2
+    assert killers(first) == [("weak.toml", "one count")]  # the first run that catches it
+    every = mutate(both, all_runs=True).models[0]
+    assert killers(every) == [("weak.toml", "one count"), ("strong.toml", "one count"),
+                              ("strong.toml", "the count never passes Max"), ("strong.toml", "it stops at Max")]
+    assert [o.outcome for o in every.outcomes] == [o.outcome for o in first.outcomes]
+    # the off-by-one guard passes the weak scenario and is caught by the strong one
+    assert [k.prop for k in outcome_of(first, "comparison-changed", "trans inc [n <= Max];").killers] == [
+        "the count never passes Max", "it stops at Max"]
