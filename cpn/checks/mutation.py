@@ -207,8 +207,10 @@ def _mutate_model(model_path, group, seed, max_mutants, deadline, workers, overr
 
     def finish(outcome: Outcome, got: list | None) -> None:
         if got is not None:  # same counts in every run: equivalent if the labelled graphs are the same
-            same = all(d == digests.setdefault(i, graph_digest(originals[i].exploration)) for i, d in got)
-            outcome.outcome = EQUIVALENT if same else SURVIVED
+            for i, _ in got:
+                if i not in digests:  # the original's digest, once per run
+                    digests[i] = graph_digest(originals[i].exploration)
+            outcome.outcome = EQUIVALENT if all(d == digests[i] for i, d in got) else SURVIVED
         result.outcomes.append(outcome)
         if on_outcome is not None:
             on_outcome(result, outcome)
