@@ -168,3 +168,20 @@ def test_all_runs_credits_every_property_that_catches_a_mutant():
     # the off-by-one guard passes the weak scenario and is caught by the strong one
     assert [k.prop for k in outcome_of(first, "comparison-changed", "trans inc [n <= Max];").killers] == [
         "the count never passes Max", "it stops at Max"]
+
+
+def test_the_digest_compares_labelled_graphs():
+    import cpn
+    from cpn.checks.mutation import graph_digest
+    from cpn.statespace import ExploreOptions, Explorer
+
+    def digest(text):
+        x = Explorer(cpn.loads(text).engine(), ExploreOptions()).run()
+        return (x.graph.n_states, x.graph.n_arcs), graph_digest(x)
+
+    ring = "colset N = int with 0..3; var n : N; place P : N = 1`{}; trans t; arc P -> t : n; arc t -> P : {};"
+    a = digest(ring.format(0, "(n + 1) mod 4"))
+    assert a == digest(ring.format(0, "(n + 1) mod 4"))
+    # the same markings and arcs from another initial marking, and the same counts the other way round
+    b, c = digest(ring.format(1, "(n + 1) mod 4")), digest(ring.format(0, "(n + 3) mod 4"))
+    assert a[0] == b[0] == c[0] and len({a[1], b[1], c[1]}) == 3
