@@ -66,6 +66,7 @@ CODES: dict[str, str] = {
     "W0101": "unbound port",
     "W0102": "delay without effect",
     "W0103": "empty model",
+    "W0104": "random draw explored as a choice",
     "W0701": "scenario states no property",
 }
 

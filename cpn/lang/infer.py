@@ -22,6 +22,9 @@ def _not_plain(node: A.BinOp) -> bool:
     return node.op in _MS_OPS
 
 
+# CPN Tools' random draws over finitely many integers, explored as a choice of every value where CS.ran() is one
+FINITE_DRAWS: frozenset[str] = frozenset({"discrete", "bernoulli"})
+
 # The library functions on multisets that CPN Tools models also give a list (a multiset is a list there)
 LIST_AS_MS_FUNCTIONS: frozenset[str] = frozenset({"ms_to_list", "ms_to_col", "size"})
 
@@ -198,6 +201,9 @@ class TypeInference:
             if self.pending and self.pending[-1][0] is e.fn and self._try_select(*self.pending[-1]):
                 self.pending.pop()
             return T.prune(ft).res
+        if (isinstance(e.fn, A.Name) and e.fn.name in FINITE_DRAWS
+                and self.resolve_name(e.fn.name, env, e.fn.span) is None):
+            return self.finite_draw(e, env)  # discrete(a, b), bernoulli(p): a choice, as CS.ran()
         if isinstance(e.fn, A.Name) and e.fn.name.endswith(".ran") and self.ran_sink is not None:
             sym = self.resolve_name(e.fn.name, env, e.fn.span)
             if sym is not None and sym.kind == "csop":

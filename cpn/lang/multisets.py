@@ -121,18 +121,71 @@ class MultisetInference:
         if not 0 <= lo <= hi:
             self.error("E0301", f"{what} is [{lo},{hi}]: the bounds must satisfy 0 <= a <= b", e.span)
             raise Abort()
-        name = f"@+[{lo},{hi}]"  # no colour-set name can be written so
+        fn = A.Name(e.span, "ignore", ty=T.TFun(T.UNIT, T.UNIT))
+        node = A.App(e.span, fn, A.Const(e.span, (), "unit", ty=T.UNIT), ty=T.INT)
+        self.choice_variable(node, f"@+[{lo},{hi}]", lo, hi)  # no colour-set name can be written so
+        return node
+
+    def choice_variable(self, node: A.App, name: str, lo: int, hi: int) -> None:
+        """Make App `node` stand for a free variable over the integers lo..hi (colour set `name`, made here):
+        every value is one binding element (CS.ran()'s mechanism; `_replace_ran` puts the variable in)."""
         if name not in self.colsets:
             self.colsets[name] = C.IntCS(name, lo, hi)
             self.cstypes[name] = T.INT
         self.ran_counter += 1
-        vsym = Symbol(f"{name}#{self.ran_counter}", "var", T.INT, e.span, name)
+        vsym = Symbol(f"{name}#{self.ran_counter}", "var", T.INT, node.span, name)
         self.ran_sink.append((vsym.name, name, vsym))
-        fn = A.Name(e.span, "ignore", ty=T.TFun(T.UNIT, T.UNIT))
-        fn.ref = self.builtin_syms["ignore"]
-        node = A.App(e.span, fn, A.Const(e.span, (), "unit", ty=T.UNIT), ty=T.INT)
+        node.fn = A.Name(node.span, "ignore", ty=T.TFun(T.UNIT, T.UNIT))
+        node.fn.ref = self.builtin_syms["ignore"]
+        node.arg = A.Const(node.span, (), "unit", ty=T.UNIT)
         node.ran_var = vsym
-        return node
+
+    def finite_draw(self, e: A.App, env: Env) -> T.Type:
+        """`discrete(a, b)` and `bernoulli(p)`, CPN Tools' random draws over finitely many integers, where
+        `CS.ran()` would be a choice (an output arc inscription, a transition delay): a choice of every value,
+        our extension (CPN Tools' state space tool cannot analyse random distribution functions)."""
+        fname = e.fn.name
+        if self.ran_sink is None:
+            self.error("E0206", f"'{fname}' draws a random value here: it is a choice of every value only where it "
+                       "is called in an output arc inscription or a transition delay", e.span,
+                       hint=f"Call {fname} in the output arc inscription or the delay, and pass the value to the "
+                            "function as an argument.", name=fname)
+            raise Abort()
+        args = e.arg.items if isinstance(e.arg, A.TupleE) else [e.arg]
+        want = (T.INT, T.INT) if fname == "discrete" else (T.REAL,)
+        if len(args) != len(want):
+            self.error("E0301", f"'{fname}' takes {'(a, b), two integers' if fname == 'discrete' else 'a real p'}",
+                       e.arg.span)
+            raise Abort()
+        values = []
+        for a, t in zip(args, want):
+            self.must(self.infer(a, env), t, a.span, f"the argument of '{fname}'")
+            if all_vars(a):
+                self.error("E0206", f"the arguments of '{fname}' explored as a choice are constants; this one "
+                           "depends on the binding", a.span, hint="Write them with numbers and 'val' constants.")
+                raise Abort()
+            try:
+                values.append(run_deep(self.ev.eval, a, {}))
+            except (MLError, RecursionError) as exc:
+                self.error("E0401", f"evaluating the argument of '{fname}' failed: {exc}", a.span)
+                raise Abort() from None
+        if fname == "discrete":
+            lo, hi = values
+            if lo > hi:
+                self.error("E0301", f"discrete({lo}, {hi}) has no value: a > b", e.span)
+                raise Abort()
+        else:
+            p = values[0]
+            if not 0.0 <= p <= 1.0:
+                self.error("E0301", f"bernoulli({p}): p is a probability, from 0.0 to 1.0", e.span)
+                raise Abort()
+            lo, hi = (0 if p < 1.0 else 1), (1 if p > 0.0 else 0)  # 1 with probability p, else 0
+        self.choice_variable(e, f"{fname}({lo},{hi})", lo, hi)
+        self.warn("W0104", f"{fname}{'(' + ', '.join(map(str, values)) + ')'} is explored as a choice of every value "
+                  f"({lo}..{hi}), one binding element each; simulate draws one", e.span,
+                  hint="CPN Tools' state space tool cannot analyse random distribution functions: this reading is "
+                       "cpn-verify's (docs/semantics.md).", name=fname)
+        return T.INT
 
     def infer_delay(self, e: A.BinOp, env: Env) -> None:
         """The delay d of `tokens @+ d`: an integer, or a time interval `[a, b]`."""

@@ -100,6 +100,15 @@ arc Q -> V : ();
 arc R -> V : x;
 arc V -> Q : () @+[1, 3];
 """,
+    # discrete and bernoulli explored as a choice of every value (W0104), in a delay and on an output arc
+    "finite_draws": """
+colset C = int with 0..5 timed;
+var x : C;
+place P : C = 1`0;
+trans T [x < 3] @+ discrete(0, 1);
+arc P -> T : x;
+arc T -> P : x + bernoulli(0.5) + 1;
+""",
 }
 
 

@@ -273,3 +273,17 @@ def test_time_intervals_on_a_transition_and_an_output_arc(tmp_path):
     # delays 1 + 0, 1 + 1, 2 + 0, 2 + 1: four binding elements, three different successors
     succ = list(e.successors(e.initial_state()))
     assert len(succ) == 4 and len({s for _, s in succ}) == 3
+
+
+def test_discrete_on_an_output_arc_is_a_choice_and_inside_a_function_still_refused(tmp_path):
+    body = (place("P1", "A", "S", "1`0") + place("P2", "B", "INT") + trans("T1", "t", cond="[x = 0]")
+            + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P2", "discrete(1, 3)"))
+    model = load(tmp_path, cpn_xml(DECLS, page("PG1", "Top", body)))
+    assert [w.code for w in model.warnings] == ["W0104"]
+    e = model.engine()
+    assert len(list(e.successors(e.initial_state()))) == 3
+    decls = DECLS + '<ml id="M2">fun roll () = discrete(1, 6)</ml>'
+    body = body.replace("discrete(1, 3)", "roll ()")
+    with pytest.raises(ModelError) as info:
+        translate_text(cpn_xml(decls, page("PG1", "Top", body)), "m.cpn")
+    assert "'roll' calls 'discrete'" in info.value.diagnostics[0].message

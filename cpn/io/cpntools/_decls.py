@@ -139,10 +139,14 @@ class _Declarations:
         """True if declared function `n` has a side effect through the functions it calls."""
         return n in self.impure_via and self._impure_chain(n)[-1].split(".")[0] in ml.SIDE_EFFECT_NAMES
 
-    def _refuse_random(self, text: str, origin: Origin, what: str, effects: bool = True) -> bool:
+    def _refuse_random(self, text: str, origin: Origin, what: str, effects: bool = True,
+                       finite: bool = False) -> bool:
         """Refuse text that draws random values from a distribution, or (with `effects`) calls a function with
-        side effects; True if refused."""
+        side effects; True if refused. With `finite`, a direct call of `discrete` or `bernoulli` is left to the
+        front end, which explores it as a choice where it can (an output arc, a delay)."""
         for n, _ in ml.names(text):
+            if finite and n in ml.FINITE_DRAWS and n not in self.impure_via:
+                continue
             if n in self.impure:
                 chain = self._impure_chain(n)
                 effect = chain[-1].split(".")[0] in ml.SIDE_EFFECT_NAMES
@@ -209,7 +213,7 @@ class _Declarations:
         """Check and prepare one inscription (guard, arc, delay, initial marking)."""
         if self._unclosed(text, origin):
             return text
-        self._refuse_random(text, origin, what)
+        self._refuse_random(text, origin, what, finite=True)
         if "@++" in text:
             self.error(origin, f"{what} uses '@++', a real-valued delay ('{_short(text)}'): a state space "
                        "needs integer model time",

@@ -37,6 +37,9 @@ SIDE_EFFECT_NAMES: frozenset[str] = frozenset(
     send receive ConnManagementLayer Comms""".split()
 )
 
+# Random draws over finitely many integers: a choice of every value where CS.ran() is one (cpn.lang.infer)
+FINITE_DRAWS: frozenset[str] = frozenset({"discrete", "bernoulli"})
+
 # Structures whose functions draw random values (SML/NJ's random generator: `Random.randRange (1, 36) gen`).
 RANDOM_STRUCTURES: frozenset[str] = frozenset({"Random"})
 
