@@ -110,8 +110,8 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
             self.var_decl(d)
             self.failed_names.update(n for n, _ in d.names if n not in self.variables)
         elif isinstance(d, A.ValDecl):
-            if isinstance(d.pat, A.PWild):
-                self.val_wild(d)
+            if isinstance(d.pat, A.PWild):  # `val _ = e`: checked and evaluated, naming nothing (SML)
+                self.val_decl(d)
                 return
             if d.name is None:
                 self.error("E0206", "a 'val' with a pattern is only supported inside 'let'", d.span,
@@ -214,7 +214,7 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
                 self.variables[name] = sym
 
     def val_decl(self, d: A.ValDecl) -> None:
-        name = d.name
+        name = d.name if d.name is not None else "_"
         given = None
         if name in self.overrides:
             self.used_overrides.add(name)
@@ -235,25 +235,12 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
             except (MLError, RecursionError) as exc:
                 self.error("E0401", f"evaluating 'val {name}' failed: {exc}", expr.span)
                 return
+        if d.name is None:
+            return
         sym = Symbol(name, "val", T.Scheme(T.free_vars(t), t), d.pat.span)
         self._declare_global(sym)
         d.pat.ref = sym
         self.ev.globals[sym.uid] = value
-
-    def val_wild(self, d: A.ValDecl) -> None:
-        """`val _ = e` (SML; CPN Tools models write it): e is type-checked and evaluated, as SML evaluates it,
-        and names nothing."""
-        t = self.infer_top(d.expr)
-        if t is None:
-            return
-        if d.type_expr is not None:
-            at = self.type_of_annotation(d.type_expr)
-            if at is not None and not self.unify(t, at, d.expr.span, "the value of 'val _'"):
-                return
-        try:
-            run_deep(self.ev.eval, d.expr, {})
-        except (MLError, RecursionError) as exc:
-            self.error("E0401", f"evaluating 'val _' failed: {exc}", d.expr.span)
 
     def fun_decl(self, d: A.FunDecl, env: Env | None = None) -> Symbol | None:
         outer = env or self.genv
