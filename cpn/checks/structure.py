@@ -11,6 +11,8 @@ Imports `cpn.net`, `cpn.lang.ast` and `cpn.checks` only.
 
 from __future__ import annotations
 
+import weakref
+
 from cpn.arcs import ArcKind
 from cpn.checks.properties import Bound, Invariant
 from cpn.checks.verdict import Status
@@ -221,7 +223,21 @@ def structural_bound(net, p: int) -> tuple[int | None, bool]:
 def semi_positive_invariants(net) -> list[dict] | None:
     """The minimal-support semi-positive place invariants (place -> weight) of the incidence matrix of
     token counts, by Farkas's algorithm; places an arc of binding-dependent size or a reset arc touches
-    take no part. None when the computation grows past MAX_ROWS rows."""
+    take no part. None when the computation grows past MAX_ROWS rows. Computed once per net."""
+    try:
+        return _INVARIANTS[net]
+    except KeyError:
+        pass
+    except TypeError:  # a net that cannot be weakly referenced: no cache
+        return _farkas(net)
+    got = _INVARIANTS[net] = _farkas(net)
+    return got
+
+
+_INVARIANTS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _farkas(net) -> list[dict] | None:
     from math import gcd
 
     n = len(net.places)
@@ -238,34 +254,37 @@ def semi_positive_invariants(net) -> list[dict] | None:
                 continue
             col[a.place] = col.get(a.place, 0) + (size if a.kind is ArcKind.OUT else -size)
         columns.append(col)
-    rows = [({}, {p: 1}) for p in range(n) if p not in excluded]  # (C part by column, weights)
-    for p_row in rows:
-        p = next(iter(p_row[1]))
-        for j, col in enumerate(columns):
-            if col.get(p):
-                p_row[0][j] = col[p]
+    # a row: (the incidence part by column, the weights by place, the support as a bit mask)
+    rows = [({j: col[p] for j, col in enumerate(columns) if col.get(p)}, {p: 1}, 1 << p)
+            for p in range(n) if p not in excluded]
     for j in range(len(columns)):
         pos = [r for r in rows if r[0].get(j, 0) > 0]
         neg = [r for r in rows if r[0].get(j, 0) < 0]
+        if not pos and not neg:
+            continue
         new = [r for r in rows if not r[0].get(j, 0)]
+        if not pos or not neg:  # the rows that meet column j go; the others stay minimal
+            rows = new
+            continue
         for a in pos:
             for b in neg:
                 ka, kb = -b[0][j], a[0][j]
-                c = {i: ka * a[0].get(i, 0) + kb * b[0].get(i, 0) for i in set(a[0]) | set(b[0])}
-                y = {q: ka * a[1].get(q, 0) + kb * b[1].get(q, 0) for q in set(a[1]) | set(b[1])}
+                c = {i: ka * a[0].get(i, 0) + kb * b[0].get(i, 0) for i in a[0].keys() | b[0].keys()}
+                y = {q: ka * a[1].get(q, 0) + kb * b[1].get(q, 0) for q in a[1].keys() | b[1].keys()}
                 g = 0
-                for v in list(c.values()) + list(y.values()):
+                for v in (*c.values(), *y.values()):
                     g = gcd(g, v)
                 g = g or 1
-                new.append(({i: v // g for i, v in c.items() if v}, {q: v // g for q, v in y.items() if v}))
+                new.append(({i: v // g for i, v in c.items() if v}, {q: v // g for q, v in y.items() if v},
+                            a[2] | b[2]))
         # keep minimal supports only
         new.sort(key=lambda r: len(r[1]))
         kept: list = []
         for r in new:
-            support = set(r[1])
-            if not any(set(k[1]) <= support for k in kept):
+            m = r[2]
+            if not any(k[2] | m == m for k in kept):
                 kept.append(r)
         if len(kept) > MAX_ROWS:
             return None
         rows = kept
-    return [y for c, y in rows if not c]
+    return [y for c, y, _ in rows if not c]
