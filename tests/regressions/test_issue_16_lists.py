@@ -45,7 +45,8 @@ def test_list_functions_take_a_multiset(reference):
 
 
 def test_a_multiset_is_not_taken_where_a_list_of_lists_is_expected():
-    # only the argument of a function that expects a list is converted, and only from a multiset
+    # a multiset given to a function that expects a list of lists stays a type error (a list given to size,
+    # ms_to_col or ms_to_list is a multiset, as in CPN Tools: tests/lang/test_cpntools_library.py)
     with pytest.raises(cpn.ModelError) as info:
-        cpn.loads("colset C = int; val n = size [1, 2];", "m.cpnet")
+        cpn.loads("colset C = int; val n = List.concat (1`1 ++ 1`2);", "m.cpnet")
     assert info.value.diagnostics[0].code == "E0301"
