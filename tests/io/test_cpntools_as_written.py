@@ -287,3 +287,13 @@ def test_discrete_on_an_output_arc_is_a_choice_and_inside_a_function_still_refus
     with pytest.raises(ModelError) as info:
         translate_text(cpn_xml(decls, page("PG1", "Top", body)), "m.cpn")
     assert "'roll' calls 'discrete'" in info.value.diagnostics[0].message
+
+
+def test_a_reference_declared_with_val_and_read_by_an_inscription_is_refused_at_the_read():
+    decls = DECLS + '<ml id="M2">val delay = ref 0;</ml>'
+    body = (place("P1", "A", "S", "1`0") + trans("T1", "t", code="input (x)\naction\ndelay := x")
+            + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P1", "(!delay)"))
+    with pytest.raises(ModelError) as info:
+        translate_text(cpn_xml(decls, page("PG1", "Top", body)), "m.cpn")
+    [d] = info.value.diagnostics
+    assert d.code == "E0502" and "reads the reference variable 'delay' ('val delay = ref ...'" in d.message

@@ -46,6 +46,11 @@ class _Declarations:
                 elif el.tag == "var":
                     user_names |= {c.text.strip() for c in el.findall("id")}
         funs = [f for t in decl_texts for f in ml.declared_functions(t)]
+        # `val x = ref 0;` in a declaration: a reference variable like a globref, set by code segments
+        for el in self._all_decl_elements(gb) if gb is not None else []:
+            if el.tag == "ml":
+                for m in re.finditer(r"\bval\s+([A-Za-z][\w']*)\s*=\s*ref\b", ml.strip_comments(el.text)):
+                    self.globrefs_refused[m.group(1)] = el
         self._needed_declarations(gb)
         user_names |= {name for name, _ in funs}
         # A user's own 'normal' or 'uniform' (an enumeration constant, say) is not the library function.
@@ -174,9 +179,10 @@ class _Declarations:
         return text
 
     def _check_globref_use(self, text: str, origin: Origin, what: str) -> None:
-        for name in self.globrefs_refused:
+        for name, el in self.globrefs_refused.items():
             if re.search(r"!\s*" + re.escape(name) + r"\b", ml.strip_comments(text)):
-                self.error(origin, f"{what} reads the reference variable '{name}' (globref), whose value "
+                kind = "globref" if el.tag == "globref" else f"'val {name} = ref ...' at line {el.line}"
+                self.error(origin, f"{what} reads the reference variable '{name}' ({kind}), whose value "
                            "is not part of the marking",
                            hint="Make it a constant ('val') or a token on a place.")
 
