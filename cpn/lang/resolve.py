@@ -97,8 +97,12 @@ class NameResolution:
                     f"Colour sets have the functions {', '.join(sorted(COLSET_OPS))}" + \
                     (", and record colour sets set_<field>." if op.startswith("set_") else ".")
             else:
-                hint = suggestion(name, {n: f"the library function '{n}'" for n in self.builtin_syms}) or \
-                    "This library function is not supported (docs/cpnml.md)."
+                struct = name.split(".")[0]
+                known = {n.split(".")[0] for n in self.builtin_syms if "." in n}
+                hint = suggestion(name, {n: f"the library function '{n}'" for n in self.builtin_syms}) or (
+                    "This library function is not supported (docs/cpnml.md)." if struct in known else
+                    f"'{struct}' is neither a structure of the CPN ML library nor declared by the model: it comes "
+                    "from an extension or a file the model does not load.")
             self._unknown("name", name, span, f"unknown name '{name}'", hint)
             return
         cands: dict[str, str] = {n: f"the library function '{n}'" for n in self.builtin_syms}

@@ -68,3 +68,13 @@ def test_a_setter_of_a_colour_set_that_is_no_record_is_unknown():
     with pytest.raises(ModelError) as info:
         cpn.loads(DECLS + "val r = INT.set_a 1 2;", "t.cpnet")
     assert [d.code for d in info.value.diagnostics] == ["E0201"]
+
+
+def test_a_name_of_a_structure_nobody_declares_says_so():
+    with pytest.raises(ModelError) as info:
+        cpn.loads(DECLS + "val v = LA.typeEquals (1, 2);", "t.cpnet")
+    [d] = info.value.diagnostics
+    assert d.code == "E0201" and "'LA' is neither a structure of the CPN ML library nor declared" in d.hint
+    with pytest.raises(ModelError) as info:
+        cpn.loads(DECLS + "val v = List.zipp [1];", "t.cpnet")
+    assert "not supported" in info.value.diagnostics[0].hint or "Did you mean" in info.value.diagnostics[0].hint
