@@ -183,8 +183,8 @@ def _diagnose(exc: UnexpectedInput, text: str, filename: str) -> Diagnostic:
         hint = _non_ascii_hint(text, exc.pos_in_stream) or "Remove it, or put it inside a string or a comment."
         pos = exc.pos_in_stream
         if text[pos:pos + 1] == "'" and text[:pos].rstrip()[-1:].isdigit():
-            # `1'x`, Design/CPN's multiset coefficient
-            hint = "n copies of e are written n`e in CPN ML, with a backquote (Design/CPN wrote n'e)."
+            # `1'x`: the backquote of a multiset coefficient, as printed in books, typed as a quote
+            hint = "n copies of e are written n`e in CPN ML, with a backquote, not a quote."
         return Diagnostic("E0101", f"unexpected character {found}", span, hint=hint, params={"found": found})
     expected = _expected_text(exc)
     msg = ("unexpected end of the file" if found == "the end of the file" else f"unexpected {found}") \

@@ -65,7 +65,7 @@ def test_val_wildcard_is_checked_and_evaluated_and_names_nothing():
     assert [(d.code, d.span.line) for d in info.value.diagnostics] == [("E0401", 5), ("E0301", 6)]
 
 
-def test_a_design_cpn_coefficient_hints_at_the_backquote():
+def test_a_coefficient_written_with_a_quote_hints_at_the_backquote():
     with pytest.raises(ModelError) as info:
         cpn.loads(DECLS + "place P : C = 1'2;\n", "t.cpnet")
     [d] = info.value.diagnostics
