@@ -32,6 +32,10 @@ class PropertyResult:
     reads: tuple = ()  # the place instances the property's texts read (indices), for the reports
     warnings: list = field(default_factory=list)  # why it holds vacuously (cpn.checks.vacuity)
 
+    def __repr__(self) -> str:  # short: the property, its verdict, how many warnings (not their text)
+        return (f"PropertyResult(spec={self.spec!r}, verdict={self.verdict!r}, seconds={self.seconds:.3g}, "
+                f"warnings={len(self.warnings)})")
+
     @property
     def as_expected(self) -> bool:
         return self.verdict.status.value == self.spec.expect
