@@ -1,7 +1,11 @@
-"""Issue 11 item 5: every mutant of specs/modbus/mutants/ is caught by `check`, by the property its bug must
-break (and by no other property of its file), with a shortest counterexample."""
+"""Issue 11 item 5 and issue 23 item 6: every mutant of specs/modbus/mutants/ is caught by `check`, by the
+properties its file marks (and by no other property of its file), with a shortest counterexample. The
+MODBUS mutants are the bug catalogue of bench/modbus.py (MUTANTS), each run against the full, unchanged
+property set of a thesis scenario; the Modbus-A ones are the fault variants of MODBUS.md 4.5."""
 
+import importlib.util
 import os
+import tomllib
 from collections import deque
 
 import pytest
@@ -12,17 +16,12 @@ from cpn.checks.verdict import Status
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 MUTANTS = os.path.join(ROOT, "specs", "modbus", "mutants")
+_spec = importlib.util.spec_from_file_location("bench_modbus", os.path.join(ROOT, "bench", "modbus.py"))
+bench = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(bench)
 
-# file -> the MODBUS.md properties its bug breaks (issue 11 item 5 and MODBUS.md 4.5)
-BROKEN = {
-    "slave_answers_broadcast": {"S-P4"},
-    "slave_answers_broadcast_alone": {"S-P4"},
-    "master_sends_early": {"S-P2"},
-    "superslave_sends_after_tw": {"SS-P3"},
-    "superslave_unicast_reply": {"SS-P2"},
-    "t3_shorter_than_tw_tbc": {"SS-P5", "S-P9"},
-    "slow_slave_collides": {"S-P9"},
-    "overlapping_addresses": {"M-P4", "S-P3"},
+# Modbus-A file -> the MODBUS.md properties its fault breaks (issue 11 item 5 and MODBUS.md 4.5)
+BROKEN_MA = {
     "ma_forward_config": {"MA3"},
     "ma_E1_reset_race": {"MA2", "MA3"},
     "ma_E2_config_lost": {"MA2"},
@@ -35,6 +34,12 @@ BROKEN = {
     "ma_E6_hung": {"MA2"},
     "ma_E6_mute": {"MA2"},
 }
+# catalogue bugs without a file (findings, reports/README.md): no property catches the first; the second is
+# caught in the table's bounded searches, but its state space is too large for a complete search in the gate
+NOT_CAUGHT = {"super-window-long"}
+CAUGHT_ON_PARTIAL_SEARCHES_ONLY = {"bcast-reply"}
+CATALOGUE = [m for m, _, _ in bench.MUTANTS]
+FILES = sorted(f[:-5] for f in os.listdir(MUTANTS) if f.endswith(".toml"))
 
 
 def _distances(g):
@@ -51,18 +56,41 @@ def _distances(g):
 
 
 def test_every_mutant_file_is_listed():
-    files = {f[:-5] for f in os.listdir(MUTANTS) if f.endswith(".toml")}
-    assert files == set(BROKEN)
+    assert set(FILES) == set(BROKEN_MA) | (set(CATALOGUE) - NOT_CAUGHT - CAUGHT_ON_PARTIAL_SEARCHES_ONLY)
+    assert len(CATALOGUE) >= 30
 
 
-@pytest.mark.parametrize("name", sorted(BROKEN))
-def test_mutant_is_caught_by_the_property_it_breaks(name):
+def _violated(name):
     scenario = load_scenario(os.path.join(MUTANTS, name + ".toml"))
     (run,) = scenario.runs
     result = run_scenario(scenario, run)
     assert result.exploration.complete
-    violated = [r for r in result.results if r.verdict.status is Status.VIOLATED]
-    assert {r.spec.name.split(" ")[0].rstrip(":") for r in violated} == BROKEN[name]
+    return result, [r for r in result.results if r.verdict.status is Status.VIOLATED]
+
+
+@pytest.mark.parametrize("name", sorted(set(FILES) - set(BROKEN_MA)))
+def test_catalogue_mutant_runs_a_thesis_scenario_with_its_full_property_set(name):
+    with open(os.path.join(MUTANTS, name + ".toml"), "rb") as fh:
+        mutant = tomllib.load(fh)
+    thesis_name = mutant["name"].split(" mutant ")[0]
+    # a thesis scenario, or (exc-order, whose bug needs a frame with two faults) an extra configuration
+    (stem,) = [stem for n, stem, *_ in bench.SCENARIOS + bench.EXTRAS if n == thesis_name]
+    with open(os.path.join(ROOT, "specs", "modbus", stem + ".toml"), "rb") as fh:
+        thesis = tomllib.load(fh)
+    strip = [{k: v for k, v in p.items() if k != "expect"} for p in mutant["property"]]
+    assert strip == thesis["property"]  # the thesis's properties, unchanged
+    values = {k: v for k, v in mutant["set"].items() if k != "MUTANT"}
+    changed = {k for k in set(values) | set(thesis["set"]) if values.get(k) != thesis["set"].get(k)}
+    assert changed <= set(bench.PARAM_MUTANTS.get(name, {}))
+    assert mutant["set"].get("MUTANT", f'"{name}"') == f'"{name}"'
+
+
+@pytest.mark.parametrize("name", FILES)
+def test_mutant_is_caught_by_the_property_it_breaks(name):
+    result, violated = _violated(name)
+    if name in BROKEN_MA:
+        assert {r.spec.name.split(" ")[0].rstrip(":") for r in violated} == BROKEN_MA[name]
+    assert violated
     # every violation is one the file expects (the gate passes), and nothing else fails
     assert all(r.spec.expect == "violated" for r in violated)
     assert result.status is Status.HOLDS
@@ -72,20 +100,9 @@ def test_mutant_is_caught_by_the_property_it_breaks(name):
             continue
         ev = r.verdict.evidence
         assert ev is not None and ev.path[0] == 0, r.spec.name
-        dist = dist or _distances(result.exploration.graph)
-        assert len(ev.path) - 1 == dist[ev.path[-1]], r.spec.name  # shortest to the bad marking
-
-
-def test_a_reply_to_a_broadcast_is_caught_as_soon_as_it_is_sent():
-    # S-P4 flags the slave's reply itself, not only the collision two replies make
-    scenario = load_scenario(os.path.join(MUTANTS, "slave_answers_broadcast_alone.toml"))
-    result = run_scenario(scenario, scenario.runs[0])
-    (r,) = [r for r in result.results if r.spec.name.startswith("S-P4")]
-    assert r.verdict.status is Status.VIOLATED
-    ev = r.verdict.evidence
-    last = result.engine.binding_element(ev.arcs[-1]).transition
-    assert result.engine.transitions[last].name == "Slave'EndBroadcast 1"
-    assert len(ev.path) - 1 == 6
+        if r.spec.kind in ("invariant", "bound"):  # decided on the fly: the shortest trace to a bad marking
+            dist = dist or _distances(result.exploration.graph)
+            assert len(ev.path) - 1 == dist[ev.path[-1]], r.spec.name
 
 
 def test_modbus_a_properties_evaluate_on_long_chains():

@@ -19,9 +19,11 @@ MODBUS = os.path.join(ROOT, "models", "modbus", "modbus.cpnet")
 MODBUS_A = os.path.join(ROOT, "models", "modbus", "modbus_a.cpnet")
 SPECS = os.path.join(ROOT, "specs", "modbus")
 
-# record fields in value order (sorted by label): adr, exc, fc, id, ok, reg, src
-ADR, EXC, FC, ID, OK, REG, SRC = range(7)
-A2 = {"CONFIG": '"A"', "ADRS": "[0,3,5,6]", "FCS": "[1,7,20]", "PO": "2"}
+# record fields in value order (sorted by label): adr, exc, fc, id, ok, qty, reg, src
+ADR, EXC, FC, ID, OK, QTY, REG, SRC = range(8)
+# union constructors in declaration order: OUT = Answer | NoAnswer | Sent; MST = Idle | Ready | ... | ProcError
+ANSWER, NO_ANSWER, SENT = range(3)
+A2 = {"CONFIG": '"A"', "ADRS": "[0,3,5,6]", "FCS": "[1,7,20]", "PO": "2", "CRC": "1"}
 D2 = {"CONFIG": '"D"', "ADRS": "[3,5]", "FCS": "[1,7,20,65]", "PO": "2"}
 
 
@@ -66,8 +68,13 @@ class Explored:
         return any(self.engine.transitions[t].name == transition for t in names)
 
 
+def _waiting_reply(state, sends=None):
+    """The master's state is WaitReply {f, sends} (the fourth constructor of MST), with that many sends."""
+    return isinstance(state, tuple) and state[0] == 3 and (sends is None or state[1][1] == sends)
+
+
 def slave_frames(e, s):
-    return [f for name in ("Modbus's2b 1", "Bus'Line 1", "Modbus'b2m 1") for f in e.view(s, name) if f[SRC] != 0]
+    return [f for name in ("Modbus's2b 1", "Modbus'b2m 1") for f in e.view(s, name) if f[SRC] != 0]
 
 
 @pytest.fixture(scope="module")
@@ -76,61 +83,112 @@ def a2():
 
 
 def test_a2_key_figures(a2):
-    # python -m cpn explore models/modbus/modbus.cpnet --time-condensation --set ADRS='[0,3,5,6]' --set FCS='[1,7,20]'
-    assert (a2.g.n_states, a2.g.n_arcs, len(a2.g.dead_states())) == (145, 149, 1)
+    # python -m cpn explore models/modbus/modbus.cpnet --time-condensation --set 'ADRS=[0,3,5,6]' \
+    #   --set 'FCS=[1,7,20]' --set CRC=1
+    assert (a2.g.n_states, a2.g.n_arcs, len(a2.g.dead_states())) == (1042, 1289, 3)
 
 
-def test_a2_claims_1_2_3_and_the_bus(a2):
+def test_a2_claims_and_the_protocol_rules(a2):
     frames = [(0, c) for c in (1, 7, 20)] + [(a, c) for a in (3, 5, 6) for c in (1, 7, 20)]
-    owners = {3: [1], 5: [2], 6: []}
-    broadcast_delivered = False
+    adrs = {1: {3}, 2: {5}}
     for s in a2.states():
-        # claim 1: one master state, every slave busy with at most one request
+        # claim 1: one master state, every slave in one state of Fig. 8
         assert sum(a2.view(s, "Master'State 1").values()) == 1
         for k in (1, 2):
             busy = sum(sum(a2.view(s, f"Slave'{p} {k}").values())
                        for p in ("Idle", "Processing", "FormatNormal", "FormatError", "WaitEvent"))
             assert busy == 1
+            # S2: a slave acts only on a good frame for its address or a broadcast
+            for name in ("Processing", "FormatNormal", "FormatError"):
+                for (who, f) in a2.view(s, f"Slave'{name} {k}"):
+                    assert who == k and f[OK] and (f[ADR] == 0 or f[ADR] in adrs[k])
         # claim 2: nothing is fetched or sent before the previous transaction is closed
-        closed = a2.only(s, "Master'LastClosed 1")
-        assert a2.only(s, "Master'NextId 1") - 1 <= closed + 1
-        assert all(f[ID] <= closed + 1 for f in a2.view(s, "Modbus'm2b 1"))
-        # claim 3: unicast to its owner only (none if absent), broadcast to both slaves
-        i, adr, recipients = a2.only(s, "Bus'Delivered 1")
-        if i:
-            assert list(recipients) == ([1, 2] if adr == 0 else owners[adr])
-            broadcast_delivered |= adr == 0
-        # S-P4: no reply to a broadcast; S-P5: replies from the requested address
+        done = sum(a2.view(s, "Master'Done 1").values())
+        assert a2.only(s, "Master'NextId 1") - 1 <= done + 1
+        assert all(f[ID] <= done + 1 for f in a2.view(s, "Modbus'm2b 1"))
+        # S-P4: no reply to a broadcast; replies carry the requested address
         for f in slave_frames(a2, s):
             adr_req, fc_req = frames[f[ID] - 1]
-            assert adr_req != 0 and f[ADR] == adr_req
-            assert f[FC] in (fc_req, fc_req + 128)
-        # S-P9: one frame on the line at a time
-        assert sum(a2.view(s, "Bus'Line 1").values()) <= 1
-    assert broadcast_delivered
+            assert adr_req != 0 and f[ADR] == adr_req and f[FC] in (fc_req, fc_req + 128)
+        # the master delivers only good replies that answer the request
+        for (kind, v) in a2.view(s, "Master'Done 1"):
+            if kind == ANSWER:
+                i, p = v
+                assert p[OK] and p[ID] == i and (p[ADR], p[FC] & 127) == frames[i - 1]
+        # one frame on the line
+        assert sum(a2.view(s, "Modbus'm2b 1").values()) + sum(a2.view(s, "Modbus's2b 1").values()) <= 1
 
 
-def test_a2_claim_4_one_dead_marking_and_no_cycle(a2):
-    assert a2.dead_modulo_time() == 1
-    (d,) = a2.dead()
-    assert a2.only(d, "Master'LastClosed 1") == 12
-    assert a2.view(d, "Master'Queue 1") == {(): 1}
-    for name in ("Modbus'm2b 1", "Modbus'b2m 1", "Modbus's2b 1", "Modbus'b2s 1", "Bus'Line 1", "Master'Timer 1"):
-        assert not a2.view(d, name)
+def test_every_frame_reaches_every_slave_and_each_filters_it(a2):
+    # issue 23 item 2: before, the bus gave a copy only to the owner, so S2 (not for this slave) was dead
+    assert a2.fired("Slave'Discard 1") and a2.fired("Slave'Discard 2")
+    rounds = {tuple(ks) for s in a2.states() for (ks, f) in a2.view(s, "Modbus'b2s 1") if f[SRC] == 0 and f[ID] > 3}
+    assert (1, 2) in rounds  # a unicast frame's round starts at slave 1 whatever its address
+
+
+def test_late_slave_races_the_timeout_and_the_retry(a2):
+    # issue 23 item 1: slave 1 may take TLATE > RESP_TO: the time-out, the retry (lost by the busy slave)
+    # and a reply arriving during the retry are all reachable
+    assert a2.fired("Master'ResponseTimeout 1") and a2.fired("Master'Retry 1")
+    assert a2.fired("Slave'Lost 1")
+    late_answer = any(
+        _waiting_reply(a2.only(s, "Master'State 1"), sends=2) and any(f[SRC] == 1 for f in a2.view(s, "Modbus'b2m 1"))
+        for s in a2.states())
+    assert late_answer
+
+
+def test_stale_reply_during_the_next_transaction_is_not_the_answer():
+    # PO 0: the master gives up on slave 1's late frame and moves on; the late reply arrives while it waits
+    # for the next frame's reply (M4 unexpected), and is never delivered as that frame's answer
+    e = Explored(MODBUS, {**A2, "PO": "0"})
+    assert e.fired("Master'ReplyUnexpected 1")
+    stale = False
+    for s in e.states():
+        st = e.only(s, "Master'State 1")
+        if _waiting_reply(st):
+            pending = st[1][0]
+            stale |= any(f[SRC] != 0 and f[ID] != pending[ID] for f in e.view(s, "Modbus'b2m 1"))
+        for (kind, v) in e.view(s, "Master'Done 1"):
+            assert kind != ANSWER or v[1][ADR] == [0, 0, 0, 3, 3, 3, 5, 5, 5, 6, 6, 6][v[0] - 1]
+    assert stale
+
+
+def test_corrupted_frames_are_discarded_by_slaves_and_frame_errors_at_the_master(a2):
+    # issue 23 item 3: a corrupted frame reaches every slave (each discards it) and the master (M8)
+    assert a2.fired("Bus'CorruptMaster 1") and a2.fired("Bus'CorruptSlave 1")
+    assert a2.fired("Master'FrameError 1")
+    seen = {k for s in a2.states() for (ks, f) in a2.view(s, "Modbus'b2s 1") if not f[OK] for k in ks}
+    assert seen == {1, 2}
+
+
+def test_retries_matter_timed_states_and_dead_markings_grow_with_po():
+    # issue 23 item 1: the thesis's trend A.3 (PO 0) < A.2 (PO 2) < A.4 (PO 5), in states and dead markings,
+    # on the timed state space (CPN Tools' figures); the old model had 221 / 311 / 446 states and 3 dead
+    # markings each
+    figures = []
+    for po in (0, 2, 5):
+        e = Explored(MODBUS, {**A2, "PO": str(po)}, time_condensation=False)
+        figures.append((e.g.n_states, len(e.g.dead_states())))
+    assert figures == [(2960, 61), (11560, 106), (19543, 118)]
+    assert figures[0] < figures[1] < figures[2] and figures[0][1] < figures[1][1] < figures[2][1]
+
+
+def test_a2_claim_4_every_dead_marking_is_the_end_and_no_cycle(a2):
+    for d in a2.dead():
+        assert sum(a2.view(d, "Master'Done 1").values()) == 12
+        assert {(v if k != ANSWER else v[0]) for (k, v) in a2.view(d, "Master'Done 1")} == set(range(1, 13))
+        assert a2.view(d, "Master'Queue 1") == {(): 1}
+        for name in ("Modbus'm2b 1", "Modbus'b2m 1", "Modbus's2b 1", "Modbus'b2s 1", "Master'Timer 1"):
+            assert not a2.view(d, name)
     assert not a2.has_cycle()
     # adr 6 has no slave: 1 + PO sends, then the error path
-    assert a2.fired("Master'GiveUp 1") and not a2.fired("Master'ReplyUnexpected 1")
-
-
-def test_time_stamps_only_multiply_dead_markings():
-    e = Explored(MODBUS, A2, time_condensation=False)
-    assert e.dead_modulo_time() == 1 and len(e.dead()) == 3
+    assert a2.fired("Master'GiveUp 1")
 
 
 def test_reference_interpreter_agrees_on_a1():
-    sets = {"ADRS": "[3,5]", "FCS": "[4,5,7]"}
+    sets = {"ADRS": "[3,5]", "FCS": "[4,5,7]", "CRC": "1"}
     compiled, reference = Explored(MODBUS, sets), Explored(MODBUS, sets, reference=True)
-    assert (compiled.g.n_states, compiled.g.n_arcs) == (reference.g.n_states, reference.g.n_arcs) == (79, 81)
+    assert (compiled.g.n_states, compiled.g.n_arcs) == (reference.g.n_states, reference.g.n_arcs) == (821, 1076)
 
 
 def test_multislave_answers_with_the_requested_address():
@@ -139,33 +197,41 @@ def test_multislave_answers_with_the_requested_address():
     assert replies == {(1, 3), (2, 5), (2, 6)}
 
 
-def test_superslave_answers_by_broadcast_within_its_window():
+def test_superslave_answers_by_broadcast_within_its_window_and_the_others_process_it():
     e = Explored(MODBUS, D2)
     super_frames = set()
     for s in e.states():
         assert sum(e.view(s, "Slave'WaitEvent 1").values()) == sum(e.view(s, "Slave'Window 1").values())
-        assert sum(e.view(s, "Bus'Line 1").values()) <= 1
         super_frames |= {(f[SRC], f[ADR]) for f in slave_frames(e, s) if f[FC] in (65, 65 + 128)}
     assert super_frames == {(1, 0), (2, 5)}  # SuperSlave: broadcast; standard slave: exception (SS-P7)
-    assert e.fired("Slave'WindowExpired 1") and e.fired("Master'SuperAnswer 1")
-    assert e.dead_modulo_time() == 1 and not e.has_cycle()
+    assert e.fired("Slave'WindowExpired 1") and e.fired("Master'SuperAnswer 1") and e.fired("Master'T2Expired 1")
+    assert e.fired("Slave'AcceptBroadcast 2")  # slave 2 processes the SuperSlave's broadcast (SS-P6)
+    assert not e.has_cycle()
 
 
 @pytest.mark.parametrize("sets,broken", [
-    ({**D2, "T3": "TW + TBC - 1"}, "collision"),
-    ({**A2, "BCAST_ANY": "true", "MUTANT": '"bcast-reply"'}, "reply to broadcast"),
+    ({**D2, "MUTANT": '"super-no-t2"'}, "frame to a slave processing a broadcast"),
+    ({"ADRS": "[0,3]", "FCS": "[1]", "MUTANT": '"bcast-reply"', "BCAST_ANY": "true"}, "reply to broadcast"),
     ({"ADRS": "[3,5]", "FCS": "[4]", "MUTANT": '"early-send"'}, "early send"),
+    ({"ADRS": "[3,5]", "FCS": "[4]", "CRC": "1", "MUTANT": '"no-address-filter"'}, "foreign frame"),
+    ({"ADRS": "[3,5]", "FCS": "[4]", "CRC": "1", "MUTANT": '"slave-ignores-crc"'}, "foreign frame"),
 ])
 def test_mutants_are_caught(sets, broken):
     e = Explored(MODBUS, sets)
     found = set()
+    cfg = {1: {3}, 2: {5}}
     for s in e.states():
-        if sum(e.view(s, "Bus'Line 1").values()) > 1:
-            found.add("collision")
         if any(f[ADR] == 0 and f[SRC] != 0 and f[FC] != 65 for f in slave_frames(e, s)):
             found.add("reply to broadcast")
-        if e.only(s, "Master'NextId 1") - 1 > e.only(s, "Master'LastClosed 1") + 1:
+        if e.only(s, "Master'NextId 1") - 1 > sum(e.view(s, "Master'Done 1").values()) + 1:
             found.add("early send")
+        for k in (1, 2):
+            for place in ("Processing", "FormatNormal", "FormatError"):
+                if any(not f[OK] or (f[ADR] != 0 and f[ADR] not in cfg[k]) for (_, f) in e.view(s, f"Slave'{place} {k}")):
+                    found.add("foreign frame")
+        bcast = {k for k in (1, 2) for (_, f) in e.view(s, f"Slave'Processing {k}") if f[ADR] == 0}
+        if any(f[SRC] == 0 and set(ks) & bcast for (ks, f) in e.view(s, "Modbus'b2s 1")):
+            found.add("frame to a slave processing a broadcast")
     assert broken in found
 
 
@@ -230,28 +296,28 @@ def test_modbus_a_42_slaves_reproduces_the_papers_checkpoints():
     assert max(configured_after) == 44
 
 
-def test_exceptions_01_02_04():
-    e = Explored(MODBUS, {"EXTRA": "[(3, 3, 99), (5, 4, 1)]", "FAIL_FCS": "[4]"})
+def test_exceptions_01_02_03_04_in_the_specs_order():
+    e = Explored(MODBUS, {"EXTRA": "[(3, 3, 99, 1), (3, 3, 1, 200), (5, 1, 1, 1), (5, 4, 6, 1)]", "FAIL_FCS": "[4]",
+                          "LATE": "[]"})
     replies = {(f[ADR], f[FC], f[EXC]) for s in e.states() for f in e.view(s, "Modbus'b2m 1")}
     assert replies == {(3, 133, 1), (3, 135, 1), (5, 133, 1),   # unsupported codes 5, 7
-                       (3, 131, 2), (5, 132, 2),                # registers 99 and 1 are not theirs
+                       (3, 131, 2),                             # register 99 is not Slave1's
+                       (3, 131, 3),                             # quantity 200 > 125
+                       (5, 129, 1),                             # code 1 and register 1: the code first
                        (3, 132, 4), (5, 132, 4),                # code 4 fails while processing (S7)
                        (5, 7, 0)}
 
 
 def test_frames_in_any_order_each_sent_once():
-    # issue 11: the other reading of the thesis's generator (MODBUS.md 3.6 item 14), the timed state space
-    # python -m cpn explore models/modbus/modbus.cpnet --set 'ADRS=[3,5]' --set 'FCS=[4,5,7]' --set 'ORDER="any"'
-    e = Explored(MODBUS, {"ADRS": "[3,5]", "FCS": "[4,5,7]", "ORDER": '"any"'}, time_condensation=False)
-    assert (e.g.n_states, e.g.n_arcs, len(e.dead())) == (14812, 16020, 24)
-    orders = set()
+    # the other reading of the thesis's generator (MODBUS.md 3.6 item 14), the timed state space
+    # python -m cpn explore models/modbus/modbus.cpnet --set 'ADRS=[3,5]' --set 'FCS=[4,7]' --set 'ORDER="any"'
+    e = Explored(MODBUS, {"ADRS": "[3,5]", "FCS": "[4,7]", "ORDER": '"any"'}, time_condensation=False)
+    assert (e.g.n_states, e.g.n_arcs, len(e.dead())) == (3777, 4313, 31)
     for d in e.dead():
-        assert not e.view(d, "Master'Pending 1") and e.only(d, "Master'NextId 1") == 7
+        assert not e.view(d, "Master'Pending 1") and sum(e.view(d, "Master'Done 1").values()) == 4
         assert e.view(d, "Master'State 1") == {0: 1}  # Idle
-        for name in ("Modbus'm2b 1", "Modbus'b2m 1", "Modbus's2b 1", "Modbus'b2s 1", "Bus'Line 1"):
+        for name in ("Modbus'm2b 1", "Modbus'b2m 1", "Modbus's2b 1", "Modbus'b2s 1"):
             assert not e.view(d, name)
-        orders.add(e.only(d, "Master'LastClosed 1"))
-    assert orders == {1, 2, 3, 4, 5, 6}  # any frame can be the last one
     assert not e.has_cycle()
 
 

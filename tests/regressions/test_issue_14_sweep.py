@@ -40,14 +40,14 @@ def test_explore_sweep_line_text_report(capsys):
 
 
 def test_explore_progress_measure_under_time_condensation(tmp_path, capsys):
-    # the MODBUS scenarios are condensed: the clock is no measure there, the master's last closed
-    # transaction is one (it never decreases), and the counts are those of the full condensed search
+    # the MODBUS scenarios are condensed: the clock is no measure there, the number of frames the master
+    # has done is one (it never decreases), and the counts are those of the full condensed search
     assert main(["explore", MODBUS, *B8, "--time-condensation", "-q", "--json", str(tmp_path / "f.json")]) == 0
     assert main(["explore", MODBUS, *B8, "--time-condensation", "-q", "--progress",
-                 "ms_to_col (Master'LastClosed 1)", "--json", str(tmp_path / "s.json")]) == 0
+                 "size (Master'Done 1)", "--json", str(tmp_path / "s.json")]) == 0
     full = json.loads((tmp_path / "f.json").read_text(encoding="utf-8"))["statespace"]
     sweep = json.loads((tmp_path / "s.json").read_text(encoding="utf-8"))["statespace"]
-    assert (sweep["states"], sweep["arcs"], sweep["regress_arcs"]) == (full["states"], full["arcs"], 0) == (377, 1151, 0)
+    assert (sweep["states"], sweep["arcs"], sweep["regress_arcs"]) == (full["states"], full["arcs"], 0) == (883, 1042, 0)
     assert sweep["peak_states"] < sweep["states"]
 
 
@@ -88,12 +88,12 @@ lower = 1
 [[property]]
 name = "one frame on the line"
 kind = "invariant"
-expr = "size (Bus'Line 1) <= 1"
+expr = "size (Modbus'm2b 1) + size (Modbus's2b 1) <= 1"
 
 [[property]]
 name = "a frame on the line"
 kind = "reachable"
-expr = "size (Bus'Line 1) = 1"
+expr = "size (Modbus'm2b 1) + size (Modbus's2b 1) = 1"
 
 [[property]]
 name = "one dead marking"
@@ -125,7 +125,7 @@ def _runs(tmp_path, extra):
 
 def test_scenario_sweep_line_decides_what_it_can(tmp_path):
     full = _runs(tmp_path, "")
-    sweep = _runs(tmp_path, "sweep_line = true\nprogress = \"ms_to_col (Master'LastClosed 1)\"")
+    sweep = _runs(tmp_path, "sweep_line = true\nprogress = \"size (Master'Done 1)\"")
     x = sweep.exploration
     assert (x.states, x.arcs, x.exact, len(x.dead)) == (full.exploration.n_states, full.exploration.n_arcs, True, 1)
     got = [r.verdict.status.value for r in sweep.results]
@@ -138,7 +138,7 @@ def test_scenario_sweep_line_decides_what_it_can(tmp_path):
 def test_check_cli_sweep_line_report(tmp_path, capsys):
     path = tmp_path / "s.toml"
     path.write_text(SCENARIO.format(model=MODBUS, extra=""), encoding="utf-8")
-    status = main(["check", str(path), "--sweep-line", "--progress", "ms_to_col (Master'LastClosed 1)",
+    status = main(["check", str(path), "--sweep-line", "--progress", "size (Master'Done 1)",
                    "--reports", str(tmp_path / "r"), "--no-timings"])
     assert status == 1  # the property that is wrong on purpose
     doc = json.loads((tmp_path / "r" / "s.json").read_text(encoding="utf-8"))
@@ -211,6 +211,6 @@ def test_random_timed_nets_verdicts_equal_the_full_search(tmp_path):
 def test_check_html_skips_the_page_of_a_sweep_line_run(tmp_path, capsys):
     path = tmp_path / "s.toml"
     path.write_text(SCENARIO.format(model=MODBUS, extra=""), encoding="utf-8")
-    status = main(["check", str(path), "--sweep-line", "--progress", "ms_to_col (Master'LastClosed 1)",
+    status = main(["check", str(path), "--sweep-line", "--progress", "size (Master'Done 1)",
                    "--no-reports", "--html", str(tmp_path / "h")])
     assert status == 1 and (tmp_path / "h").is_dir()

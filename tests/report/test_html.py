@@ -581,7 +581,7 @@ def test_check_html_writes_a_page_per_run_and_an_index(tmp_path, capsys):
 
 def test_check_html_of_a_mutant_whose_violation_is_expected(tmp_path, capsys):
     out = tmp_path / "pages"
-    spec = ROOT / "specs/modbus/mutants/slave_answers_broadcast.toml"
+    spec = ROOT / "specs/modbus/mutants/slave-ignores-crc.toml"
     assert main(["check", str(spec), "--no-reports", "--quiet", "--html", str(out)]) == 0
     (page,) = [p for p in out.iterdir() if p.name != "index.html"]
     text = page.read_text(encoding="utf-8")
