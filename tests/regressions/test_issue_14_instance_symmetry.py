@@ -228,37 +228,35 @@ def modbus_variant(ns: int) -> str:
 @pytest.mark.parametrize("ns,adrs", [(2, "[0]"), (3, "[0]"), (4, "[0,0]"), (5, "[0]"), (3, "[0,7,0]")])
 def test_modbus_broadcasts_quotient_against_the_full_modbus_model(ns, adrs):
     """On broadcast frames (and a frame to an absent address), the variant whose slaves are module
-    instances permuted by symmetry has modbus.cpnet's state space (scenario B, the same NS, frames, PO):
-    its full graph, and the full counts computed from the quotient's orbits, equal modbus.cpnet's, with
-    the same dead markings modulo time and the same verdict on every property that names no slave."""
+    instances permuted by symmetry: the full counts computed from the quotient's orbits equal its full
+    graph's, with the same dead markings modulo time and the same bounds of the master's and the bus's
+    places. (It was built as a copy of modbus.cpnet's broadcasts; modbus.cpnet now explores the slaves'
+    receptions in slave order, which a permutation of the slaves does not preserve, so the two state
+    spaces are no longer compared.)"""
     from cpn.statespace import ExploreOptions, Explorer
 
     values = {"ADRS": adrs, "FCS": "[1]", "PO": "1"}
-    full = cpn.load(MODBUS, set={"CONFIG": '"B"', "NS": str(ns), **values})
-    ef = full.engine(time_condensation=True)
-    xf = Explorer(ef, ExploreOptions()).run()
     var = cpn.loads(modbus_variant(ns), "modbus_bcast_sym.cpnet", set=values)
     ev = var.engine(time_condensation=True)
     xv = Explorer(ev, ExploreOptions()).run()
     xq = Explorer(ev, ExploreOptions(reduction="symmetry", symmetry=var.symmetry())).run()
-    assert (xv.n_states, xv.n_arcs) == (xf.n_states, xf.n_arcs)
     st = xq.reduction_stats
-    assert (st["full_states"], st["full_arcs"]) == (xf.n_states, xf.n_arcs)
-    assert xq.n_states < xf.n_states
-    dead_f = {ef.untimed(xf.graph.states[i]) for i in xf.graph.dead_states()}
-    assert len(dead_f) == 1 == len({ev.untimed(xq.graph.states[i]) for i in xq.graph.dead_states()})
+    assert (st["full_states"], st["full_arcs"]) == (xv.n_states, xv.n_arcs)
+    assert xq.n_states < xv.n_states
+    dead_v = {ev.untimed(xv.graph.states[i]) for i in xv.graph.dead_states()}
+    assert len(dead_v) == 1 == len({ev.untimed(xq.graph.states[i]) for i in xq.graph.dead_states()})
     from cpn.report import build_report
 
     rq = build_report(xq, trace_to_dead=False)
-    assert rq.full_dead_count == len(xf.graph.dead_states())
-    names = {t.name for t in ef.transitions}
-    master_bus = [p.name for p in ef.places if p.page in ("Master", "Bus", "Modbus")]
-    rf = build_report(xf, trace_to_dead=False)
-    bounds_f = {b.place: (b.upper, b.lower) for b in rf.bounds.places}
+    assert rq.full_dead_count == len(xv.graph.dead_states())
+    names = {t.name for t in ev.transitions}
+    master_bus = [p.name for p in ev.places if p.page in ("Master", "Bus", "Modbus")]
+    rv = build_report(xv, trace_to_dead=False)
+    bounds_v = {b.place: (b.upper, b.lower) for b in rv.bounds.places}
     bounds_q = {b.place: (b.upper, b.lower) for b in rq.bounds.places}
-    assert all(bounds_f[p] == bounds_q[p] for p in master_bus)
+    assert all(bounds_v[p] == bounds_q[p] for p in master_bus)
     # the master's and the bus's transitions that never occur are the same in both
-    dead_mb = {t for t in rf.dead_transitions if t.split("'")[0] in ("Master", "Bus")}
+    dead_mb = {t for t in rv.dead_transitions if t.split("'")[0] in ("Master", "Bus")}
     assert dead_mb == {t for t in rq.dead_transitions if t.split("'")[0] in ("Master", "Bus")} and dead_mb < names
 
 
