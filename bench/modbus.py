@@ -810,7 +810,8 @@ def spec_text(name: str, sets: dict, description: str, model: str = MODEL_REL, m
     sets = {**DEFAULTS, **sets}
     if mutant:
         sets["MUTANT"] = f'"{mutant}"'
-    lines = [f"# {name}: written by `python bench/modbus.py --write-specs` (do not edit by hand).",
+    how = "--mutants --write-mutants" if mutant or "mutant" in name else "--write-specs"
+    lines = [f"# {name}: written by `python bench/modbus.py {how}` (do not edit by hand).",
              "# Choices where the seed is silent (MODBUS.md 3.6) are in models/modbus/modbus.cpnet; here:",
              "# frames every pair address x code in list order (register: the first of the owner, quantity 1);",
              "# RESP_TO 1000, TURNAROUND 200, TPROC {1, 50} ms and TLATE 1010 ms (beyond the time-out) for the",
