@@ -133,6 +133,22 @@ def assigned_refs(text: str) -> set[str]:
     return set(re.findall(r"([A-Za-z][A-Za-z0-9_']*)\s*:=", clean))
 
 
+def _nest(kw: str | None, blocks: list[str]) -> bool:
+    """Follow SML's nesting of blocks at keyword `kw`: `blocks` is the stack of open let/local/struct/sig
+    blocks, a `local` marked 'local-in' once its `in` is read. Whether `kw` was a block keyword."""
+    if kw in ("let", "local", "struct", "sig"):
+        blocks.append(kw)
+    elif kw == "in":
+        if blocks and blocks[-1] == "local":
+            blocks[-1] = "local-in"
+    elif kw == "end":
+        if blocks:
+            blocks.pop()
+    else:
+        return False
+    return True
+
+
 def declared_functions(text: str) -> list[tuple[str, str]]:
     """(name, body text) for each top-level `fun NAME` / `val NAME` of an ML declaration text.
 
@@ -149,16 +165,9 @@ def declared_functions(text: str) -> list[tuple[str, str]]:
                          r"(?:\s+(?:\(\s*)?(?:op\s+)?(?!(?:fun|val|and|in|end|local|let)\b)([A-Za-z][A-Za-z0-9_']*))?",
                          clean):
         kw = m.group(1) or m.group(2)
-        if kw in ("let", "local", "struct", "sig"):
-            blocks.append(kw)
-        elif kw == "in":
-            if blocks and blocks[-1] == "local":
-                blocks[-1] = "local-in"
-        elif kw == "end":
-            if blocks:
-                blocks.pop()
-        elif kw in ("fun", "val", "and", "exception") and m.group(3) \
-                and all(b == "local-in" for b in blocks):
+        if _nest(kw, blocks):
+            continue
+        if kw in ("fun", "val", "and", "exception") and m.group(3) and all(b == "local-in" for b in blocks):
             heads.append((m.group(3), m.start(), m.end()))
     out = []
     for i, (name, _start, end) in enumerate(heads):
@@ -177,19 +186,13 @@ def separate_declarations(text: str) -> str:
     for m in re.finditer(r'"(?:[^"\\]|\\.)*"|(?<![\w\'])(let|local|struct|sig|in|end|fun|val|exception)(?![\w\'])',
                          clean):
         kw = m.group(1)
-        if kw in ("let", "local", "struct", "sig"):
-            if kw == "local" and not blocks:
-                before = clean[:m.start()].rstrip()
-                if before and not before.endswith(";"):
-                    inserts.append(len(before))
-            blocks.append(kw)
-        elif kw == "in":
-            if blocks and blocks[-1] == "local":
-                blocks[-1] = "local-in"
-        elif kw == "end":
-            if blocks:
-                blocks.pop()
-        elif kw in ("fun", "val", "exception") and not blocks:
+        if kw == "local" and not blocks:
+            before = clean[:m.start()].rstrip()
+            if before and not before.endswith(";"):
+                inserts.append(len(before))
+        if _nest(kw, blocks):
+            continue
+        if kw in ("fun", "val", "exception") and not blocks:
             before = clean[:m.start()].rstrip()
             # `val` after `fun ... =` is no declaration (`val` only starts one); `op val` cannot occur
             if before and not before.endswith(";") and not before.endswith("="):
