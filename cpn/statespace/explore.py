@@ -165,8 +165,7 @@ class Explorer:
         levels = 0
         self._backend = "python"
         self._notes = [parallel_note] if parallel_note else []
-        # what `auto` chose and why goes to backend_notes; what `--backend c` was refused, to notes
-        self._backend_notes = self._notes if opts.backend == "c" else []
+        self._backend_notes = []  # which search ran and why (`Exploration.backend_notes`)
         if stop is StopReason.COMPLETE:
             s0 = self._queue[0]
             why = self._python_only() or native.unavailable(self.engine, opts, s0)
@@ -486,6 +485,7 @@ class Explorer:
             self.progress(Progress(len(g.states), len(g.dst), len(g.states) - g.expanded, seconds,
                                    current_rss_mb()))
         notes = list(self._reduction_notes)
+        asked_c = self.options.backend == "c"
         if self._reads_clock and self.options.detect_time_growth and stop is not StopReason.COMPLETE:
             engine = self.engine
             read = engine.clock_reads[min(engine.clock_reads)]
@@ -497,8 +497,9 @@ class Explorer:
             peak_memory_mb=peak_rss_mb(), predicate_state=predicate_state,
             untimed_states=len(watcher.untimed) if watcher is not None else None,
             time_growth=watcher.evidence() if stop is StopReason.TIME_GROWS else None,
-            levels=levels, notes=self._notes + notes, backend=self._backend,
-            backend_notes=[] if self._backend_notes is self._notes else list(self._backend_notes),
+            # what `--backend c` was refused is a note; what `auto` chose and why, a backend note
+            levels=levels, notes=self._notes + (self._backend_notes if asked_c else []) + notes,
+            backend=self._backend, backend_notes=[] if asked_c else list(self._backend_notes),
             reduction=self.options.reduction if self._reduced is not None else None,
             reduction_stats=None if self._reduced is None else g.symmetry.stats(g) if g.symmetry is not None else {
                 "reduced_states": self._reduced.reduced, "fully_expanded_states": self._reduced.full_expansions,
