@@ -190,18 +190,20 @@ class _Writer:
         out += ['    <page id="page0">'] + [f"      {x}" for x in page] + ["    </page>", "  </net>", "</pnml>"]
         return "\n".join(out) + "\n"
 
-    def node_ids(self) -> dict[str, str]:
-        table = {}
-        for d in self.places + self.transitions:
-            table[d.name] = self.xml_id(d.name)
-        return table
+    def node_ids(self) -> tuple[dict[str, str], dict[str, str]]:
+        """The XML ids of the places and of the transitions, apart: a place and a transition may share a
+        name (CPN Tools allows it), and each still gets an id of its own."""
+        places = {p.name: self.xml_id(p.name) for p in self.places}
+        transitions = {t.name: self.xml_id(t.name) for t in self.transitions}
+        return places, transitions
 
     def arc_list(self):
         """(place, transition, direction 'in'/'out', kind, expr, decl) for every arc, double arcs split."""
         pnames = {p.name for p in self.places}
         out = []
         for a in self.arcs:
-            src_is_place = a.src in pnames
+            src_is_place = a.src_kind == "place" if a.src_kind else (
+                a.dst_kind == "trans" if a.dst_kind else a.src in pnames)
             place, trans = (a.src, a.dst) if src_is_place else (a.dst, a.src)
             if a.kind in ("inhibitor", "reset"):
                 out.append((place, trans, "in", a.kind, a.expr, a))
@@ -232,7 +234,7 @@ class _Writer:
         raise _Unsupported(f"{what} is not a constant number of tokens", e)
 
     def pt_net(self) -> str:
-        ids = self.node_ids()
+        pid, tid = self.node_ids()
         page = []
         for p in self.places:
             try:
@@ -241,13 +243,13 @@ class _Writer:
                 self.fail(exc.node or p, str(exc))
                 m = 0
             mark = f"<initialMarking><text>{m}</text></initialMarking>" if m else ""
-            page.append(f"<place id={quoteattr(ids[p.name])}><name><text>{escape(p.name)}</text></name>"
+            page.append(f"<place id={quoteattr(pid[p.name])}><name><text>{escape(p.name)}</text></name>"
                         f"{mark}</place>")
         for t in self.transitions:
-            page.append(f"<transition id={quoteattr(ids[t.name])}><name><text>{escape(t.name)}</text></name>"
+            page.append(f"<transition id={quoteattr(tid[t.name])}><name><text>{escape(t.name)}</text></name>"
                         f"</transition>")
         for k, (place, trans, direction, kind, expr, decl) in enumerate(self.arc_list()):
-            src, dst = (ids[place], ids[trans]) if direction == "in" else (ids[trans], ids[place])
+            src, dst = (pid[place], tid[trans]) if direction == "in" else (tid[trans], pid[place])
             w = 1
             if kind != "reset":
                 try:
@@ -344,7 +346,7 @@ class _Writer:
                 decls.append(f'<variabledecl id="var_{v}" name="{v}">{self.sort_xml(cs, None)}</variabledecl>')
             except _Unsupported as exc:
                 self.fail(exc.node, str(exc))
-        ids = self.node_ids()
+        pid, tid = self.node_ids()
         page = []
         sort_of_place = {}
         for p in self.places:
@@ -354,7 +356,7 @@ class _Writer:
                 init = ""
                 if p.init is not None:
                     init = f"<hlinitialMarking><structure>{self.ms(p.init, cs)}</structure></hlinitialMarking>"
-                page.append(f"<place id={quoteattr(ids[p.name])}><name><text>{escape(p.name)}</text></name>"
+                page.append(f"<place id={quoteattr(pid[p.name])}><name><text>{escape(p.name)}</text></name>"
                             f"<type><structure>{self.sort_xml(cs, p)}</structure></type>{init}</place>")
             except _Unsupported as exc:
                 self.fail(exc.node or p, f"the initial marking of place '{p.name}': {exc}")
@@ -368,10 +370,10 @@ class _Writer:
                     cond = f"<condition><structure>{inner}</structure></condition>"
             except _Unsupported as exc:
                 self.fail(exc.node or t, f"the guard of transition '{t.name}': {exc}")
-            page.append(f"<transition id={quoteattr(ids[t.name])}><name><text>{escape(t.name)}</text></name>"
+            page.append(f"<transition id={quoteattr(tid[t.name])}><name><text>{escape(t.name)}</text></name>"
                         f"{cond}</transition>")
         for k, (place, trans, direction, kind, expr, decl) in enumerate(self.arc_list()):
-            src, dst = (ids[place], ids[trans]) if direction == "in" else (ids[trans], ids[place])
+            src, dst = (pid[place], tid[trans]) if direction == "in" else (tid[trans], pid[place])
             cs = sort_of_place.get(place)
             insc = ""
             try:
