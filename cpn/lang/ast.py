@@ -432,3 +432,27 @@ class Model:
     file: str
     source: str
     decls: list[Decl]
+
+
+@dataclass(slots=True, eq=False)
+class InstanceFamilyDecl(InstanceDecl):
+    """`instance Slave[i : 1..MAXS] = Slave(me = i) { ... };`: one instance per value of `var`, named `name`
+    followed by the value (Slave1, Slave2, ...), `var` standing for the value in the arguments. The values
+    are the integers `low..high` (constant expressions) or those of the colour set `colset`."""
+
+    var: str = ""
+    var_span: Span | None = None
+    low: Expr | None = None
+    high: Expr | None = None
+    colset: str | None = None
+    colset_span: Span | None = None
+
+
+@dataclass(slots=True, eq=False)
+class FamilyMember(InstanceDecl):
+    """One instance of an `InstanceFamilyDecl`, made by the type checker: the family's variable has the
+    value `value`; `env` maps its symbol's uid to the value, for evaluating the arguments."""
+
+    family: InstanceFamilyDecl | None = None
+    value: Any = None
+    env: dict = field(default_factory=dict)
