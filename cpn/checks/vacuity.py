@@ -17,6 +17,21 @@ from cpn.checks.properties import Ctl, DeadMarkings, Invariant, _slice
 from cpn.checks.verdict import Status
 from cpn.lang import ast as A
 
+# the diagnostic codes of the two kinds of warning a property that holds can get (cpn.diagnostics.CODES)
+VACUOUS = "W0702"  # it holds vacuously (this module)
+STRUCTURAL = "W0703"  # it follows from the net's structure (cpn.checks.structure)
+# every warning of cpn.checks.structure starts with these words, every warning of this module with others
+STRUCTURAL_WORDS = "follows from the net's structure"
+
+
+def warning_code(text: str) -> str:
+    """The code of a warning that `vacuity` or `cpn.checks.structure.structural` wrote.
+
+    >>> warning_code("holds vacuously: there is no dead marking, so its predicate is never tested")
+    'W0702'
+    """
+    return STRUCTURAL if text.startswith(STRUCTURAL_WORDS) else VACUOUS
+
 
 def vacuity(check, view, verdict) -> list[str]:
     """Why a property that holds on a complete state space holds vacuously (one sentence each); empty

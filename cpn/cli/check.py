@@ -161,9 +161,6 @@ def run(args) -> int:
                 if display is not None:
                     display.close()
             doc = run_report(result, timings=timings)
-            for prop, pr in zip(doc["properties"], result.results):
-                if pr.warnings:  # it holds vacuously (cpn.checks.vacuity)
-                    prop["warnings"] = list(pr.warnings)
             docs.append(doc)
             if not stdout_taken:  # --quiet keeps results: where a property fails, and its trace
                 _print_run(doc, args.trace_format)
@@ -287,12 +284,12 @@ def _no_property(scenario):
 
 
 def _print_run(doc: dict, trace_format: str) -> None:
-    from cpn.report.verdicts import label, render_steps
+    from cpn.report.verdicts import label, property_warnings, render_steps
 
     for p in doc["properties"]:
         where = f"{os.path.relpath(doc['file'])}:{p['line']}:{p['column']}"
-        for w in p.get("warnings", ()):
-            print(f"{where}: warning: {doc['run']}: '{p['name']}' ({p['kind']}) {w}", file=sys.stderr)
+        for code, w in property_warnings(p):
+            print(f"{where}: warning[{code}]: {doc['run']}: '{p['name']}' ({p['kind']}) {w}", file=sys.stderr)
         if p.get("gate", p["verdict"]) == "holds":
             continue
         print(f"{where}: {label(p)}: {doc['run']}: '{p['name']}' ({p['kind']}): {p['message']}")

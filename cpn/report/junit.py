@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import xml.etree.ElementTree as ET
 
-from cpn.report.verdicts import render_steps
+from cpn.report.verdicts import property_warnings, render_steps
 
 
 def _gate(p: dict) -> str:
@@ -49,8 +49,9 @@ def render_junit(docs: list[dict], timings: bool = True) -> str:
                 ET.SubElement(case, "error", message=p["message"], type="evaluation")
             elif p["verdict"] == "unknown":
                 ET.SubElement(case, "skipped", message=f"unknown: {p['message']}")
-            if p.get("warnings"):  # it holds, but vacuously (cpn.checks.vacuity): JUnit has no warning element
-                ET.SubElement(case, "system-out").text = "\n".join(f"warning: {w}" for w in p["warnings"])
+            if p.get("warnings"):  # it holds, but vacuously or by structure alone: JUnit has no warning element
+                ET.SubElement(case, "system-out").text = "\n".join(f"warning[{code}]: {w}"
+                                                                   for code, w in property_warnings(p))
         for k in totals:
             totals[k] += counts[k]
     for k, v in totals.items():

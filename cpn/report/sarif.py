@@ -8,11 +8,19 @@ from __future__ import annotations
 
 import os
 
-from cpn.report.verdicts import render_steps
+from cpn.report.verdicts import property_warnings, render_steps
 
 SARIF_SCHEMA = "https://json.schemastore.org/sarif-2.1.0.json"
 LEVELS = {"violated": "error", "error": "error", "unknown": "warning"}
-VACUITY_RULE = "cpn/vacuity"  # a property that holds vacuously or by structure alone: a warning
+# a property that holds vacuously, or by the net's structure alone: a warning, one rule per diagnostic code
+WARNING_RULES = {
+    "W0702": ("holds vacuously", "a property that holds vacuously: an implication whose premise is never true, a "
+              "dead-marking predicate with no dead marking, a CTL sub-formula that constrains nothing "
+              "(docs/mutation.md, 'Vacuity')"),
+    "W0703": ("follows from the net's structure", "a property that follows from the net's structure: a place "
+              "invariant or bound of the incidence matrix that no guard, token value or order of occurrences "
+              "can break (docs/mutation.md, 'Vacuity')"),
+}
 
 
 def render_sarif(docs: list[dict], version: str, base: str | None = None) -> dict:
@@ -21,23 +29,25 @@ def render_sarif(docs: list[dict], version: str, base: str | None = None) -> dic
     kinds = sorted({p["kind"] for d in docs for p in d["properties"]})
     rules = [{"id": f"cpn/{k}", "name": k.replace("_", " "),
               "shortDescription": {"text": f"a '{k}' property of a scenario (docs/specs.md)"}} for k in kinds]
-    if any(p.get("warnings") for d in docs for p in d["properties"]):
-        rules.append({"id": VACUITY_RULE, "name": "vacuity", "shortDescription": {
-            "text": "a property that holds vacuously, or by the net's structure alone (docs/mutation.md, 'Vacuity')"}})
+    warned = sorted({code for d in docs for p in d["properties"] for code, _ in property_warnings(p)})
+    first_warning = len(rules)
+    for code in warned:
+        name, text = WARNING_RULES.get(code, ("warning", "a warning about a property"))
+        rules.append({"id": f"cpn/{code}", "name": name, "shortDescription": {"text": text}})
     results = []
     for d in docs:
         uri = os.path.relpath(d["file"], base).replace(os.sep, "/")
         for p in d["properties"]:
             gate = p.get("gate", p["verdict"])
             level = LEVELS.get(gate)
-            for w in p.get("warnings", ()) if level is None else ():
+            for code, w in property_warnings(p) if level is None else ():
                 results.append({
-                    "ruleId": VACUITY_RULE, "ruleIndex": len(rules) - 1, "level": "warning",
-                    "message": {"text": f"{d['run']}: property '{p['name']}' {w}"},
+                    "ruleId": f"cpn/{code}", "ruleIndex": first_warning + warned.index(code), "level": "warning",
+                    "message": {"text": f"warning[{code}]: {d['run']}: property '{p['name']}' {w}"},
                     "locations": [{"physicalLocation": {
                         "artifactLocation": {"uri": uri},
                         "region": {"startLine": max(1, p["line"]), "startColumn": max(1, p["column"])}}}],
-                    "properties": {"scenario": d["run"], "verdict": p["verdict"]},
+                    "properties": {"scenario": d["run"], "verdict": p["verdict"], "code": code},
                 })
             if level is None:
                 continue

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 
+from cpn.checks.vacuity import warning_code
 from cpn.checks.verdict import Evidence
 from cpn.values.colours import format_multiset
 
@@ -247,6 +248,9 @@ def run_report(result, timings: bool = True) -> dict:
                 doc["trace"]["marking"]["violating"] = v.status.value == "violated"
         if v.details:
             doc["details"] = v.details
+        if getattr(r, "warnings", None):  # it holds vacuously, or by the net's structure alone
+            doc["warnings"] = list(r.warnings)
+            doc["warning_codes"] = [warning_code(w) for w in r.warnings]
         props.append(doc)
     sweep = getattr(x, "method", None) == "sweep-line"  # no graph: its own dead markings and bounds
     dead = x.dead if sweep else g.dead_states()
@@ -329,6 +333,14 @@ def _reduced_words(st: dict) -> str:
     return f" (one per orbit under the symmetry {', '.join(st.get('symmetry') or [])}{full})"
 
 
+def property_warnings(p: dict) -> list[tuple[str, str]]:
+    """(code, text) of each warning of a property of a report: W0702 it holds vacuously, W0703 it follows
+    from the net's structure (a report written before the codes were kept gets them from the text)."""
+    texts = p.get("warnings") or []
+    codes = p.get("warning_codes") or [warning_code(w) for w in texts]
+    return list(zip(codes, texts))
+
+
 def render_text(doc: dict) -> str:
     st = doc["statespace"]
     out = [f"Scenario {doc['run']}  ({os.path.relpath(doc['file'])})",
@@ -346,6 +358,8 @@ def render_text(doc: dict) -> str:
         out.append(f"  {label(p):<9} {p['name']}  [{p['kind']}]")
         if p["message"]:
             out.append(f"            {p['message']}")
+        for code, w in property_warnings(p):
+            out.append(f"            warning[{code}]: {w}")
         if p["verdict"] != "holds" or "trace" in p:
             out.append(f"            at {_where(doc, p)}")
         if "trace" in p:
@@ -385,6 +399,10 @@ def render_markdown(doc: dict) -> str:
     for p in doc["properties"]:
         msg = p["message"].replace("|", "\\|")
         out.append(f"| {p['name']} | {p['kind']} | {label(p)} | {msg} |")
+    warned = [(p, code, w) for p in doc["properties"] for code, w in property_warnings(p)]
+    if warned:
+        out += ["", "## Warnings", ""]
+        out += [f"- {p['name']} (`{_where(doc, p)}`): warning[{code}]: {w}" for p, code, w in warned]
     for p in doc["properties"]:
         if "trace" in p and p["verdict"] != "holds":
             out += ["", f"## {p['name']}: counterexample", "", "```"]

@@ -38,16 +38,16 @@ def test_warnings_reach_the_output_junit_and_sarif(tmp_path, capsys):
     code = main(["check", RING, "--reports", str(tmp_path / "r"), "--junit", str(junit), "--sarif", str(sarif)])
     err = capsys.readouterr().err
     assert code == 0
-    assert "ring.toml:11:8: warning: ring: 'never two' (invariant) holds vacuously: the premise" in err
+    assert "ring.toml:11:8: warning[W0702]: ring: 'never two' (invariant) holds vacuously: the premise" in err
     assert "ring.toml:16:8" not in err  # 'one at three'
     doc = json.loads((tmp_path / "r" / "ring.json").read_text(encoding="utf-8"))
     assert [p["name"] for p in doc["properties"] if p.get("warnings")] == [
         "dead markings at 0", "never two", "if two", "two leads to three", "never reached premise"]
     xml = junit.read_text(encoding="utf-8")
-    assert xml.count("<system-out>warning: holds vacuously") == 5 and 'failures="0"' in xml
+    assert xml.count("<system-out>warning[W0702]: holds vacuously") == 5 and 'failures="0"' in xml
     log = json.loads(sarif.read_text(encoding="utf-8"))
     results = log["runs"][0]["results"]
-    assert {r["ruleId"] for r in results} == {"cpn/vacuity"} and {r["level"] for r in results} == {"warning"}
+    assert {r["ruleId"] for r in results} == {"cpn/W0702"} and {r["level"] for r in results} == {"warning"}
     assert len(results) == 7
     rules = log["runs"][0]["tool"]["driver"]["rules"]
     assert all(rules[r["ruleIndex"]]["id"] == r["ruleId"] for r in results)
