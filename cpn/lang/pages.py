@@ -7,16 +7,22 @@ Imports `cpn.lang.*`, `cpn.values` and layer 0.
 
 from __future__ import annotations
 
+import re
+
 from cpn._util import did_you_mean
 from cpn.arcs import ArcKind
 from cpn.diagnostics import Span
 from cpn.lang import ast as A
 from cpn.lang import types as T
 from cpn.lang.binding import all_vars, children, guard_binder, guard_conjuncts, pattern_vars
+from cpn.lang.builtins import MLError
 from cpn.lang.checked import Abort, ArcInfo, Env, PageInfo, TransInfo
+from cpn.lang.evaluate import run_deep
 from cpn.lang.resolve import suggestion
 from cpn.lang.symbols import Symbol
 from cpn.values import colours as C
+
+_NAME_PART = re.compile(r"[A-Za-z0-9_']*")
 
 
 class PageChecks:
@@ -297,72 +303,192 @@ class PageChecks:
         return info.decl.span
 
     def check_instances(self, page: PageInfo, pages: dict[str, PageInfo]) -> None:
-        seen = {}
+        """Check the instances of a page, and replace each family of instances by its members."""
+        seen: dict[str, A.InstanceDecl] = {}
+        expanded: list[A.InstanceDecl] = []
         for inst in page.instances:
-            if inst.name in seen:
-                self.error("E0202", f"instance '{inst.name}' is declared twice on page '{page.name}'",
-                           inst.name_span, notes=[f"first declared at {self._where(seen[inst.name])}"])
+            if not isinstance(inst, A.InstanceFamilyDecl):
+                if inst.name in seen:
+                    self._instance_clash(page, inst.name, inst, seen[inst.name])
+                    continue
+                seen[inst.name] = inst
+                expanded.append(inst)
+                self._check_instance(page, pages, inst, page.env)
                 continue
-            seen[inst.name] = inst.span
-            mod = pages.get(inst.module)
-            if mod is None:
-                cand = did_you_mean(inst.module, pages)
-                self.error("E0201", f"unknown module '{inst.module}'", inst.module_span,
-                           hint=f"Did you mean '{cand}'?" if cand else "Declare it with 'module NAME { ... }'.",
-                           name=inst.module)
+            sym = Symbol(inst.var, "param", T.INT, inst.var_span, "INT")
+            members = self._family_members(page, inst, sym)
+            self._check_instance(page, pages, inst, page.env.child({inst.var: sym}))
+            for member in members:
+                if member.name in seen:
+                    self._instance_clash(page, member.name, member, seen[member.name])
+                    continue
+                seen[member.name] = member
+                expanded.append(member)
+        page.instances = expanded
+
+    def _instance_clash(self, page: PageInfo, name: str, inst: A.InstanceDecl, first: A.InstanceDecl) -> None:
+        def what(d):
+            if isinstance(d, A.FamilyMember):
+                return f"the instance {d.family.var} = {d.value} of the family '{d.family.name}' at " \
+                       f"{self._where(d.family.name_span)}"
+            return f"the instance at {self._where(d.name_span)}"
+        family = inst.family if isinstance(inst, A.FamilyMember) else None
+        self.error("E0202", f"instance '{name}' is declared twice on page '{page.name}'"
+                   + (f" ({family.var} = {inst.value} of the family '{family.name}')" if family else ""),
+                   inst.name_span, notes=[f"first declared as {what(first)}"],
+                   hint="Instance names must be unique within a page: a family names its instances by its name "
+                   "followed by the value (Slave1, Slave2, ...); rename the family or the other instance.",
+                   name=name)
+
+    def _family_members(self, page: PageInfo, fam: A.InstanceFamilyDecl, sym: Symbol) -> list[A.FamilyMember]:
+        """The instances of a family, one per value of its domain (none after an error). The bounds of a
+        range are integer constants, evaluated with the values given by --set."""
+        where = f"the family '{_head(fam, self.model.source)}'"
+        if fam.colset is not None:
+            cs = self.lookup_colset(fam.colset, fam.colset_span)
+            if cs is None:
+                return []
+            sym.type, sym.data = self.cstypes.get(fam.colset, T.TVar()), fam.colset
+            values = cs.values()
+            if values is None:
+                self.error("E0204", f"colour set '{fam.colset}' of {where} is too large to enumerate",
+                           fam.colset_span, hint="A family ranges over a small colour set ('int with 1..MAXS', "
+                           "an enumeration) or over a range of integers: 'instance S[i : 1..MAXS] = ...'.")
+                return []
+            shown = fam.colset
+            span = fam.colset_span
+        else:
+            bounds = []
+            for which, e in (("lower", fam.low), ("upper", fam.high)):
+                t = self.infer_top(e, page.env)
+                if t is None or not self.unify(t, T.INT, e.span, f"the {which} bound of {where} (an integer)"):
+                    return []
+                culprit = _not_constant(e)
+                if culprit is not None:
+                    kind = "a parameter of module" if culprit.ref.kind == "param" else "a variable"
+                    self.error("E0204", f"the {which} bound of {where} is not a constant: '{culprit.name}' is "
+                               f"{kind}{f' {page.name!r}' if culprit.ref.kind == 'param' else ''}", culprit.span,
+                               hint="The instances of a family are fixed before the net runs: write its bounds "
+                               "with literals and 'val' constants (which --set and a scenario's [set] may "
+                               "change), as in 'instance Slave[i : 1..MAXS] = ...'.", name=culprit.name)
+                    return []
+                try:
+                    bounds.append(run_deep(self.ev.eval, e, {}))
+                except (MLError, ArithmeticError, RecursionError) as exc:
+                    self.error("E0401", f"evaluating the {which} bound of {where} failed: {exc}", e.span)
+                    return []
+            low, high = bounds
+            values = list(range(low, high + 1))
+            shown = f"{C.format_int(low)}..{C.format_int(high)}"
+            span = Span(fam.low.span.file, fam.low.span.line, fam.low.span.col, fam.high.span.end_line,
+                        fam.high.span.end_col)
+            cs = None
+        if not values:
+            self.error("E0204", f"{where} has no instance: {shown} is empty", span,
+                       hint="A family needs at least one value: check the bounds (and the values given with "
+                       "--set or a scenario's [set]), or remove the family.")
+            return []
+        members = []
+        for v in values:
+            text = cs.format(v) if cs is not None else C.format_int(v)
+            if not _NAME_PART.fullmatch(text):
+                self.error("E0204", f"the value {text} of {where} does not make an instance name "
+                           f"('{fam.name}{text}')", span,
+                           hint="Instance names of a family are its name followed by the value: use a range "
+                           "of non-negative integers or an enumeration.")
+                return []
+            members.append(A.FamilyMember(fam.span, f"{fam.name}{text}", fam.name_span, fam.module,
+                                          fam.module_span, fam.args, fam.binds, family=fam, value=v,
+                                          env={sym.uid: v}))
+        return members
+
+    def _check_instance(self, page: PageInfo, pages: dict[str, PageInfo], inst: A.InstanceDecl, env: Env) -> None:
+        """The module, arguments and port bindings of one instance (of a family: `env` binds its variable)."""
+        mod = pages.get(inst.module)
+        if mod is None:
+            cand = did_you_mean(inst.module, pages)
+            self.error("E0201", f"unknown module '{inst.module}'", inst.module_span,
+                       hint=f"Did you mean '{cand}'?" if cand else "Declare it with 'module NAME { ... }'.",
+                       name=inst.module)
+            return
+        given = {}
+        for aname, expr, span in inst.args:
+            if aname in given:
+                self.error("E0204", f"parameter '{aname}' is given twice", span)
                 continue
-            given = {}
-            for aname, expr, span in inst.args:
-                if aname in given:
-                    self.error("E0204", f"parameter '{aname}' is given twice", span)
-                    continue
-                given[aname] = expr
-                psym = next((p for p in mod.params if p.name == aname), None)
-                if psym is None:
-                    cand = did_you_mean(aname, [p.name for p in mod.params])
-                    self.error("E0204", f"module '{mod.name}' has no parameter '{aname}'", span,
-                               hint=f"Did you mean '{cand}'?" if cand else
-                               f"Its parameters are: {', '.join(p.name for p in mod.params) or 'none'}.")
-                    continue
-                t = self.infer_top(expr, page.env)
-                if t is not None:
-                    self.unify(t, psym.type, expr.span, f"parameter '{aname}' of instance '{inst.name}'")
-            for p in mod.params:
-                if p.name not in given:
-                    self.error("E0204", f"instance '{inst.name}' does not give parameter '{p.name}' of module "
-                               f"'{mod.name}'", inst.span, hint=f"Add '{p.name} = VALUE' in the parentheses.")
-            bound_ports = set()
-            for port, pspan, sock, sspan in inst.binds:
-                pd = mod.places.get(port)
-                if pd is None or pd.port is None:
-                    ports = [n for n, x in mod.places.items() if x.port]
-                    cand = did_you_mean(port, ports)
-                    self.error("E0204", f"module '{mod.name}' has no port '{port}'", pspan,
-                               hint=f"Did you mean '{cand}'?" if cand else f"Its ports are: {', '.join(ports) or 'none'}.")
-                    continue
-                if port in bound_ports:
-                    self.error("E0204", f"port '{port}' is bound twice", pspan)
-                    continue
-                bound_ports.add(port)
-                sd = page.places.get(sock)
-                if sd is None:
-                    cand = did_you_mean(sock, page.places)
-                    self.error("E0201", f"unknown socket place '{sock}' on page '{page.name}'", sspan,
-                               hint=f"Did you mean '{cand}'?" if cand else "Sockets are places of the page that "
-                               "holds the instance.", name=sock)
-                    continue
-                if sd.colset != pd.colset and (sd.colset in self.colsets and pd.colset in self.colsets):
-                    a, b = self.colsets[sd.colset], self.colsets[pd.colset]
-                    base = lambda c: c.base if isinstance(c, C.AliasCS) else c  # noqa: E731
-                    if base(a) is not base(b):
-                        self.error("E0301", f"port '{port}' has colour set {pd.colset} but its socket '{sock}' has "
-                                   f"{sd.colset}", sspan, hint="A port and its socket must have the same colour set.")
-            for n, pd in mod.places.items():
-                if pd.port and n not in bound_ports:
-                    self.warn("W0101", f"port '{n}' of module '{mod.name}' is not bound in instance '{inst.name}'; "
-                              "it is an ordinary place of the instance", inst.span)
+            given[aname] = expr
+            psym = next((p for p in mod.params if p.name == aname), None)
+            if psym is None:
+                cand = did_you_mean(aname, [p.name for p in mod.params])
+                self.error("E0204", f"module '{mod.name}' has no parameter '{aname}'", span,
+                           hint=f"Did you mean '{cand}'?" if cand else
+                           f"Its parameters are: {', '.join(p.name for p in mod.params) or 'none'}.")
+                continue
+            t = self.infer_top(expr, env)
+            if t is not None:
+                self.unify(t, psym.type, expr.span, f"parameter '{aname}' of {_label(inst)}")
+        for p in mod.params:
+            if p.name not in given:
+                self.error("E0204", f"{_label(inst)} does not give parameter '{p.name}' of module "
+                           f"'{mod.name}'", inst.span, hint=f"Add '{p.name} = VALUE' in the parentheses.")
+        bound_ports = set()
+        for port, pspan, sock, sspan in inst.binds:
+            pd = mod.places.get(port)
+            if pd is None or pd.port is None:
+                ports = [n for n, x in mod.places.items() if x.port]
+                cand = did_you_mean(port, ports)
+                self.error("E0204", f"module '{mod.name}' has no port '{port}'", pspan,
+                           hint=f"Did you mean '{cand}'?" if cand else f"Its ports are: {', '.join(ports) or 'none'}.")
+                continue
+            if port in bound_ports:
+                self.error("E0204", f"port '{port}' is bound twice", pspan)
+                continue
+            bound_ports.add(port)
+            sd = page.places.get(sock)
+            if sd is None:
+                cand = did_you_mean(sock, page.places)
+                self.error("E0201", f"unknown socket place '{sock}' on page '{page.name}'", sspan,
+                           hint=f"Did you mean '{cand}'?" if cand else "Sockets are places of the page that "
+                           "holds the instance.", name=sock)
+                continue
+            if sd.colset != pd.colset and (sd.colset in self.colsets and pd.colset in self.colsets):
+                a, b = self.colsets[sd.colset], self.colsets[pd.colset]
+                base = lambda c: c.base if isinstance(c, C.AliasCS) else c  # noqa: E731
+                if base(a) is not base(b):
+                    self.error("E0301", f"port '{port}' has colour set {pd.colset} but its socket '{sock}' has "
+                               f"{sd.colset}", sspan, hint="A port and its socket must have the same colour set.")
+        for n, pd in mod.places.items():
+            if pd.port and n not in bound_ports:
+                self.warn("W0101", f"port '{n}' of module '{mod.name}' is not bound in {_label(inst)}; "
+                          "it is an ordinary place of the instance", inst.span)
 
 
+def _head(fam: A.InstanceFamilyDecl, source: str) -> str:
+    """`Slave[i : 1..MAXS]`, as written (on one line) or shortened."""
+    start, end = fam.name_span, fam.colset_span if fam.colset is not None else fam.high.span
+    if start.line == end.line and start.file == end.file and 0 < start.line <= source.count("\n") + 1:
+        line = source.splitlines()[start.line - 1]
+        text = line[start.col - 1:end.end_col]
+        if text.startswith(fam.name):
+            return text + "]"
+    return f"{fam.name}[{fam.var} : ...]"
+
+
+def _label(inst: A.InstanceDecl) -> str:
+    if isinstance(inst, A.InstanceFamilyDecl):
+        return f"the family of instances '{inst.name}[{inst.var} : ...]'"
+    return f"instance '{inst.name}'"
+
+
+def _not_constant(e: A.Expr) -> A.Name | None:
+    """The first name in e that is a module parameter or a transition variable (None: e is a constant)."""
+    stack = [e]
+    while stack:
+        x = stack.pop()
+        if isinstance(x, A.Name) and x.ref is not None and x.ref.kind in ("param", "var"):
+            return x
+        stack.extend(reversed(children(x)))
+    return None
 
 
 def _has_delay(e) -> bool:

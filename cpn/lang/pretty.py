@@ -212,7 +212,10 @@ def decl(d: A.Decl, indent: str = "") -> str:
     if isinstance(d, A.InstanceDecl):
         args = ", ".join(f"{n} = {expr(e)}" for n, e, _ in d.args)
         binds = ", ".join(f"{name(p)} = {name(s)}" for p, _, s, _ in d.binds)
-        return f"{indent}instance {name(d.name)} = {d.module}({args})" + (f" {{ {binds} }}" if binds else "") + ";"
+        head = name(d.name)
+        if isinstance(d, A.InstanceFamilyDecl):  # instance Slave[i : 1..MAXS] = ...
+            head = f"{d.name}[{d.var} : {d.colset or _atom(d.low) + '..' + _atom(d.high)}]"
+        return f"{indent}instance {head} = {d.module}({args})" + (f" {{ {binds} }}" if binds else "") + ";"
     raise TypeError(f"cannot print {type(d).__name__}")
 
 

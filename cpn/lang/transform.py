@@ -365,6 +365,20 @@ class ToAst(Transformer_NonRecursive):
                 binds.append(it[1:])
         return A.InstanceDecl(self.span(meta), name, nspan, str(mod), self.tspan(mod), args, binds)
 
+    @v_args(meta=True)
+    def instance_family(self, meta, items):
+        name, var, (low, high, cs, cspan), mod = items[:4]
+        args = [it[1:] for it in items[4:] if it is not None and it[0] == "arg"]
+        binds = [it[1:] for it in items[4:] if it is not None and it[0] == "bind"]
+        return A.InstanceFamilyDecl(self.span(meta), str(name), self.tspan(name), str(mod), self.tspan(mod), args,
+                                    binds, str(var), self.tspan(var), low, high, cs, cspan)
+
+    def family_range(self, items):
+        return (items[0], items[1], None, None)
+
+    def family_colset(self, items):
+        return (None, None, str(items[0]), self.tspan(items[0]))
+
     def arg(self, items):
         return ("arg", str(items[0]), items[1], self.tspan(items[0]))
 

@@ -127,12 +127,13 @@ class _Lowerer:
                            hint="Module instances must form a tree.")
                 continue
             cparams = {}
+            env = {**params, **inst.env} if isinstance(inst, A.FamilyMember) else params  # the family's variable
             for aname, expr, _span in inst.args:
                 psym = next((p for p in child.params if p.name == aname), None)
                 if psym is None:
                     continue
                 try:
-                    cparams[psym.uid] = self.cm.evaluator.eval(expr, params)
+                    cparams[psym.uid] = self.cm.evaluator.eval(expr, env)
                 except (MLError, ArithmeticError) as exc:
                     self.error("E0401", f"evaluating parameter '{aname}' failed: {exc}", expr.span)
                     continue

@@ -108,3 +108,35 @@ def test_random_nets_native_search(chunk, monkeypatch):
             _same_search(model, limit=150)
         except AssertionError:
             raise AssertionError(f"native and Python searches differ on random net {seed}:\n{text}") from None
+
+
+FAMILY = """
+val N = 3;
+colset INT = int;
+colset TINT = int timed;
+colset K = int with 1..N;
+var x, c : INT;
+place go : TINT = 1`1 ++ 1`2 @+ 1;
+place done : INT;
+module Stage(me : K) {
+  port io Tok : TINT;
+  port out Out : INT;
+  place Count : INT = 1`0;
+  trans pass [x = me orelse x = me + N, c < 2] @+ me;
+  arc Tok -> pass : x;
+  arc Count -> pass : c;
+  arc pass -> Count : c + 1;
+  arc pass -> Tok : (if x < N then 1`(x + 1) else empty) @+ c;
+  arc pass -> Out : if x >= N then 1`x else empty;
+}
+instance Stage[i : 1..N] = Stage(me = i) { Tok = go, Out = done };
+"""
+
+
+@pytest.mark.parametrize("n", ["1", "3"])
+def test_instance_family(n):
+    """A family of module instances (`instance Stage[i : 1..N] = ...`, the bound set from outside)."""
+    model = cpn.loads(FAMILY, "family.cpnet", set={"N": n})
+    assert len([t for t in model.net.transitions if t.page == "Stage"]) == int(n)
+    _compare(model, condensation=True)
+    _compare(model, condensation=False)
