@@ -21,6 +21,7 @@ from cpn.engine.codegen import ExprCompiler, Namespace, Unsupported
 from cpn.engine.evaluate import Evaluator
 from cpn.engine.runtime import RUNTIME
 from cpn.errors import ModelError
+from cpn.expr import nodes as E
 from cpn.lang import ast as A
 from cpn.lang import types as T
 from cpn.lang.builtins import MLError, parse_type
@@ -28,7 +29,6 @@ from cpn.lang.checked import Env
 from cpn.lang.parser import parse
 from cpn.lang.symbols import Symbol
 from cpn.lang.typecheck import Checker
-from cpn.net import expr as E
 from cpn.net.translate import Translator
 from cpn.values.multiset import Multiset, MultisetError
 

@@ -16,8 +16,8 @@ import weakref
 from cpn.arcs import ArcKind
 from cpn.checks.properties import Bound, Invariant
 from cpn.checks.verdict import Status
+from cpn.expr import nodes as E
 from cpn.lang import ast as A
-from cpn.net import expr as E
 
 _COMPARISONS = {"=", "<>", "<", "<=", ">", ">="}
 

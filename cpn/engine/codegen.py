@@ -5,7 +5,7 @@ it reads: nested loops over the distinct tokens that input-arc patterns match, e
 as soon as its variables are bound, then the consumed and produced tokens. Every generated line that
 evaluates a model expression is recorded in a blame table (line -> model element and span), so that an
 error raised inside generated code names the model element. Model text is never executed as Python: the
-source is built from the net's expressions (`cpn.net.expr`), identifiers are mangled, constants are
+source is built from the net's expressions (`cpn.expr.nodes`), identifiers are mangled, constants are
 `repr`s of checked values. The order of the loops and tests is the binding plan of `cpn.engine.plan`.
 """
 
@@ -16,8 +16,8 @@ from typing import Any
 
 from cpn._util.deep import left_spine
 from cpn.engine import plan
+from cpn.expr import nodes as A
 from cpn.net import binding as B
-from cpn.net import expr as A
 from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS
 
 _PY_BINOPS = {"+": "+", "-": "-", "*": "*", "^": "+", "^^": "+", "@": "+", "=": "==", "<>": "!=",

@@ -16,7 +16,7 @@ from cpn.engine.evaluate import FUNCTION_FILE, run_deep_again
 from cpn.engine.runtime import RUNTIME
 from cpn.engine.timedsuccessors import NEG_INF, TimedSuccessors, ready_time
 from cpn.errors import EvaluationError
-from cpn.net import expr as E
+from cpn.expr import nodes as E
 from cpn.values.builtins import MLError
 from cpn.values.colours import format_multiset, outside
 from cpn.values.multiset import MultisetError

@@ -6,7 +6,7 @@ against.
 
 Examples
 --------
->>> from cpn.net import expr as E
+>>> from cpn.expr import nodes as E
 >>> ev = Evaluator({})
 >>> ev.eval(E.BinOp(None, "+", E.Const(None, 1, "int"), E.Const(None, 2, "int")), {})
 3
@@ -19,7 +19,7 @@ from typing import Any
 from cpn._util.deep import left_spine
 from cpn._util.deep import run_deep as _run_deep
 from cpn._util.deep import run_deep_again as _run_deep_again
-from cpn.net import expr as A
+from cpn.expr import nodes as A
 from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS, MLError, MLRaise, binop
 from cpn.values.multiset import Multiset, TimedMultiset
 

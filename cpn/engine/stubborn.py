@@ -56,7 +56,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from cpn.arcs import ArcKind
-from cpn.net import expr as E
+from cpn.expr import nodes as E
 
 
 def takes_a_token(e) -> bool:

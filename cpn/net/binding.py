@@ -7,15 +7,15 @@ enumerate, by trying every value (a free variable, as CPN Tools does).
 
 Examples
 --------
->>> from cpn.net.expr import Const, Name, Ref, TupleE
->>> e = TupleE(None, [Name(None, "x", Ref("x", "var", 7, "INT")), Const(None, 1, "int")])
+>>> from cpn.expr.nodes import Const, Name, Ref, TupleE
+>>> e = TupleE(None, [Name(None, "x", ref=Ref("x", "var", 7, "INT")), Const(None, 1, "int")])
 >>> sorted(all_vars(e)), is_pattern(e)
 (['x'], True)
 """
 
 from __future__ import annotations
 
-from cpn.net import expr as E
+from cpn.expr import nodes as E
 
 
 def is_var(e: E.Expr) -> bool:

@@ -1,5 +1,5 @@
 """Lowering a checked model to a `Net`: instantiate modules, bind ports to sockets, merge fusion sets,
-evaluate initial markings, translate inscriptions to `cpn.net.expr`. With `cpn.net.translate`, the only
+evaluate initial markings, translate inscriptions to `cpn.expr.nodes`. With `cpn.net.translate`, the only
 place where `cpn.net` touches `cpn.lang`.
 """
 

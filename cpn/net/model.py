@@ -1,7 +1,7 @@
 """`Net`: a checked model lowered to place and transition instances with dense integer indices.
 
 A `Net` is everything an engine needs: its colour sets, variables, global constants and functions, and
-its guards and inscriptions in the closed expression form of `cpn.net.expr`.
+its guards and inscriptions in the closed expression form of `cpn.expr.nodes`.
 """
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ from typing import Any
 
 from cpn.arcs import ArcKind
 from cpn.diagnostics import Span
-from cpn.net import expr as E
+from cpn.expr import nodes as E
 from cpn.values.colours import ColourSet
 
 

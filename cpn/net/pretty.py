@@ -13,8 +13,8 @@ Examples
 from __future__ import annotations
 
 from cpn._util.deep import left_spine
+from cpn.expr import nodes as E
 from cpn.lang.pretty import const
-from cpn.net import expr as E
 
 
 def expr(e: E.Expr) -> str:

@@ -22,7 +22,7 @@ import dataclasses
 from dataclasses import dataclass
 
 from cpn.diagnostics import Diagnostic
-from cpn.net import expr as E
+from cpn.expr import nodes as E
 from cpn.values import colours as C
 
 PERMUTATIONS: str = "permutations"

@@ -1,4 +1,4 @@
-"""The typed syntax tree of `cpn.lang` to the closed expression form of `cpn.net.expr`.
+"""The typed syntax tree of `cpn.lang` to the closed form a net holds (`cpn.expr.nodes`).
 
 With `cpn.net.lower`, the only place where `cpn.net` reads `cpn.lang`: every name becomes a `Ref` (shared
 per declared symbol), type annotations are dropped, record patterns keep the labels of their colour set.
@@ -9,9 +9,9 @@ from __future__ import annotations
 from typing import Any
 
 from cpn._util.deep import left_spine
+from cpn.expr import nodes as E
 from cpn.lang import ast as A
 from cpn.lang.symbols import ConInfo, Symbol
-from cpn.net import expr as E
 
 
 class Translator:
@@ -52,10 +52,10 @@ class Translator:
         return E.Const(e.span, e.value, e.kind)
 
     def _x_Name(self, e):
-        return E.Name(e.span, e.name, self.ref(e.ref))
+        return E.Name(e.span, e.name, ref=self.ref(e.ref))
 
     def _x_Select(self, e):
-        return E.Select(e.span, e.index, e.label)
+        return E.Select(e.span, e.label, index=e.index)
 
     def _x_TupleE(self, e):
         return E.TupleE(e.span, self.exprs(e.items))
@@ -116,7 +116,7 @@ class Translator:
         if isinstance(p, A.PWild):
             return E.PWild(p.span)
         if isinstance(p, A.PVar):
-            return E.PVar(p.span, p.name, self.ref(p.ref))
+            return E.PVar(p.span, p.name, ref=self.ref(p.ref))
         if isinstance(p, A.PConst):
             return E.PConst(p.span, p.value, p.kind)
         if isinstance(p, A.PTuple):
@@ -126,11 +126,12 @@ class Translator:
         if isinstance(p, A.PCons):
             return E.PCons(p.span, self.pat(p.head), self.pat(p.tail))
         if isinstance(p, A.PCon):
-            return E.PCon(p.span, p.name, self.pat(p.arg), self.ref(p.ref))
+            return E.PCon(p.span, p.name, self.pat(p.arg), ref=self.ref(p.ref))
         if isinstance(p, A.PRecord):
-            return E.PRecord(p.span, [(label, self.pat(q)) for label, q in p.fields], list(p.ty_labels))
+            return E.PRecord(p.span, [(label, self.pat(q)) for label, q in p.fields], p.flexible,
+                             ty_labels=list(p.ty_labels))
         if isinstance(p, A.PAs):
-            return E.PAs(p.span, p.name, self.pat(p.pat), self.ref(p.ref))
+            return E.PAs(p.span, p.name, self.pat(p.pat), ref=self.ref(p.ref))
         if isinstance(p, A.PAnnot):
             return self.pat(p.pat)
         raise TypeError(f"unknown pattern {type(p).__name__}")
@@ -145,7 +146,7 @@ class Translator:
 
     def fun(self, d: A.FunDecl) -> E.FunDecl:
         clauses = [E.Clause(c.span, [self.pat(p) for p in c.params], self.expr(c.body)) for c in d.clauses]
-        return E.FunDecl(d.span, d.name, clauses, self.ref(d.ref))
+        return E.FunDecl(d.span, d.name, clauses, ref=self.ref(d.ref))
 
     def globals(self, model: A.Model, values: dict[int, Any]) -> E.Globals:
         """The global constants and functions of a checked model; `values` maps the uid of each checked

@@ -7,7 +7,7 @@ import pytest
 
 import cpn
 from cpn.engine.evaluate import Evaluator
-from cpn.net import expr as E
+from cpn.expr import nodes as E
 from cpn.values.builtins import FUNCTIONS, MLError, binop
 from tests.engine._explore import graph
 

@@ -571,7 +571,7 @@ class _FlatPTWriter:
     def run(self) -> str:
         net = self.net
         helper = _Writer.__new__(_Writer)  # only for unit_count and the document layout
-        from cpn.net import expr as E
+        from cpn.expr import nodes as E
 
         helper.A, helper.net_id, helper.ids = E, self.net_id, set()
         pids, tids, page = {}, {}, []

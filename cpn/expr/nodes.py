@@ -1,10 +1,9 @@
-"""The closed expression form of a `Net`: guards, arc inscriptions, delays, priorities and functions.
+"""The one expression tree of CPN ML: expressions, patterns, type annotations and the declarations of a `let`.
 
-What the engines compile and interpret. It mirrors the typed CPN ML syntax tree of `cpn.lang.ast` node
-for node, without the types and the type annotations, and every name is resolved to a `Ref`: a transition
-variable, a module parameter, a global constant or function, a constructor, a library function or a
-colour-set function. Nothing here points back into the language, so a back end needs only this module,
-`cpn.net.model` and `cpn.values` (docs/internals.md).
+The language's parser builds it and its type checker annotates it in place (`ty`, `op_ty`, `ref` as a
+Symbol); the net holds it in closed form (`cpn.net.lower`: every name resolved to a `Ref`, annotations
+dropped), which the engines compile and interpret. Nothing here points into the language or the engine,
+so every layer above `cpn.values` may use it (docs/internals.md).
 
 Values follow docs/internals.md: a record is a tuple of its fields in the alphabetical order of their
 labels, an enumeration constant is its position, a union value with data is ``(position, value)``.
@@ -14,7 +13,7 @@ Examples
 The inscription ``(x, 1)`` over a variable ``x`` of colour set ``INT``:
 
 >>> x = Ref("x", "var", uid=7, data="INT")
->>> TupleE(None, [Name(None, "x", x), Const(None, 1, "int")]).items[0].ref.kind
+>>> TupleE(None, [Name(None, "x", ref=x), Const(None, 1, "int")]).items[0].ref.kind
 'var'
 """
 
@@ -25,7 +24,7 @@ from typing import Any
 
 from cpn.diagnostics import Span
 
-# ----------------------------------------------------------------------------- references
+# ----------------------------------------------------------------------------- references of a net
 
 
 @dataclass(slots=True, frozen=True)
@@ -40,7 +39,7 @@ class Constructor:
 
 @dataclass(slots=True, eq=False)
 class Ref:
-    """What a name denotes.
+    """What a name of a net denotes (the language's `Symbol` without the front end's annotations).
 
     kind: 'var' (transition variable; data is its colour set's name), 'param' (module parameter), 'val'
     (global constant), 'fun' (global function), 'local' (bound by a pattern, a `let` or a `fn`), 'con'
@@ -66,55 +65,68 @@ class Expr:
 class Const(Expr):
     value: Any  # int, str, bool, float or () for unit
     kind: str  # 'int' 'string' 'bool' 'unit' 'real'
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
 class Name(Expr):
+    """An identifier: variable, constant, function, constructor, or library name (`Int.toString`)."""
+
     name: str
-    ref: Ref
+    ty: Any = None
+    ref: Any = None  # a Symbol of the language (set by the type checker), a Ref in a net
 
 
 @dataclass(slots=True, eq=False)
 class Select(Expr):
-    """`#label`: the function selecting component `index` of a record or tuple value."""
+    """`#label`, a function selecting a record field or tuple component (`index` in the value)."""
 
-    index: int
-    label: str = ""
+    label: str
+    ty: Any = None
+    index: int | None = None  # position in the record/tuple value, set by the type checker
 
 
 @dataclass(slots=True, eq=False)
 class TupleE(Expr):
     items: list[Expr]
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
 class RecordE(Expr):
-    fields: list[tuple[str, Expr]]  # in the order written; the value orders them by label
+    fields: list[tuple[str, Expr]]
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
 class ListE(Expr):
     items: list[Expr]
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
 class App(Expr):
     fn: Expr
     arg: Expr
+    ty: Any = None
+    ran_var: Any = None  # for CS.ran() in a transition: the free variable that replaces it
 
 
 @dataclass(slots=True, eq=False)
 class BinOp(Expr):
-    """Infix operators: + - * / div mod ^ :: ^^ @ = <> < > <= >= andalso orelse ++ -- +++ ` @+."""
+    """Infix operators: + - * / div mod ^ :: ^^ @ = <> < > <= >= andalso orelse ++ -- +++ ` @+ @@."""
 
     op: str
     left: Expr
     right: Expr
+    ty: Any = None
+    op_ty: Any = None  # operand type, for overloaded operators
 
 
 @dataclass(slots=True, eq=False)
 class Neg(Expr):
     operand: Expr
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
@@ -122,17 +134,20 @@ class If(Expr):
     cond: Expr
     then: Expr
     else_: Expr
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
 class Case(Expr):
     subject: Expr
     rules: list[tuple[Pat, Expr]]
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
 class Fn(Expr):
     rules: list[tuple[Pat, Expr]]
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
@@ -140,6 +155,7 @@ class Raise(Expr):
     """`raise e`: e is an exception value (the tag ``"E#uid"`` of its constructor, or ``(tag, argument)``)."""
 
     expr: Expr
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
@@ -148,24 +164,35 @@ class Handle(Expr):
 
     expr: Expr
     rules: list[tuple[Pat, Expr]]
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
 class Let(Expr):
-    decls: list[ValDecl | FunDecl]
+    decls: list[Decl]
     body: Expr
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
 class Seq(Expr):
     items: list[Expr]
+    ty: Any = None
+
+
+@dataclass(slots=True, eq=False)
+class Annot(Expr):
+    expr: Expr
+    type_expr: TypeExpr
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
 class ToMs(Expr):
-    """A single value used where a multiset is expected: ``1`value``."""
+    """A single value used where a multiset is expected: ``1`value`` (inserted by the type checker)."""
 
     expr: Expr
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
@@ -173,6 +200,8 @@ class OpFun(Expr):
     """`op +`: an infix operator used as a function of a pair."""
 
     op: str
+    ty: Any = None
+    op_ty: Any = None
 
 
 # ----------------------------------------------------------------------------- patterns
@@ -185,37 +214,42 @@ class Pat:
 
 @dataclass(slots=True, eq=False)
 class PWild(Pat):
-    pass
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
 class PVar(Pat):
-    """A variable bound by the pattern (`ref.kind == 'local'`) or a constant constructor (`'con'`)."""
+    """A name in a pattern: a variable, unless the type checker finds it is a constant constructor."""
 
     name: str
-    ref: Ref
+    ty: Any = None
+    ref: Any = None  # Symbol of the bound variable, or of the constructor when it is one
 
 
 @dataclass(slots=True, eq=False)
 class PConst(Pat):
     value: Any
     kind: str
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
 class PTuple(Pat):
     items: list[Pat]
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
 class PList(Pat):
     items: list[Pat]
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
 class PCons(Pat):
     head: Pat
     tail: Pat
+    ty: Any = None
 
 
 @dataclass(slots=True, eq=False)
@@ -224,32 +258,78 @@ class PCon(Pat):
 
     name: str
     arg: Pat
-    ref: Ref
+    ty: Any = None
+    ref: Any = None
 
 
 @dataclass(slots=True, eq=False)
 class PRecord(Pat):
     fields: list[tuple[str, Pat]]
-    ty_labels: list[str]  # every label of the record's colour set, in value order
+    flexible: bool
+    ty: Any = None
+    ty_labels: list[str] | None = None  # every label of the record's colour set in value order (type checker)
 
 
 @dataclass(slots=True, eq=False)
 class PAs(Pat):
     name: str
     pat: Pat
-    ref: Ref
-
-
-# ----------------------------------------------------------------------------- declarations
+    ty: Any = None
+    ref: Any = None
 
 
 @dataclass(slots=True, eq=False)
-class ValDecl:
-    """`val pat = expr` (inside `let`), or a global constant whose value the front end could not give."""
+class PAnnot(Pat):
+    pat: Pat
+    type_expr: TypeExpr
+    ty: Any = None
 
+
+# ----------------------------------------------------------------------------- type expressions
+
+
+@dataclass(slots=True, eq=False)
+class TypeExpr:
     span: Span | None
+
+
+@dataclass(slots=True, eq=False)
+class TName(TypeExpr):
+    name: str
+
+
+@dataclass(slots=True, eq=False)
+class TPost(TypeExpr):
+    """`INT list`, `PH ms`."""
+
+    arg: TypeExpr
+    name: str
+
+
+@dataclass(slots=True, eq=False)
+class TTuple(TypeExpr):
+    items: list[TypeExpr]
+
+
+# ----------------------------------------------------------------------------- declarations of a let
+
+
+@dataclass(slots=True, eq=False)
+class Decl:
+    span: Span | None
+
+
+@dataclass(slots=True, eq=False)
+class ValDecl(Decl):
+    """`val x = e` at top level (`pat` is a PVar) or `val pat = e` inside `let`."""
+
     pat: Pat
     expr: Expr
+    type_expr: TypeExpr | None = None
+
+    @property
+    def name(self) -> str | None:
+        return self.pat.name if isinstance(self.pat, PVar) else None
 
 
 @dataclass(slots=True, eq=False)
@@ -257,16 +337,26 @@ class Clause:
     span: Span | None
     params: list[Pat]
     body: Expr
+    result_type: TypeExpr | None = None
 
 
 @dataclass(slots=True, eq=False)
-class FunDecl:
+class FunDecl(Decl):
     """A function: global (`ref.kind == 'fun'`) or local to a `let` (`'local'`)."""
 
-    span: Span | None
     name: str
     clauses: list[Clause]
-    ref: Ref
+    ty: Any = None
+    ref: Any = None
+
+
+@dataclass(slots=True, eq=False)
+class ExceptionDecl(Decl):
+    """`exception E` or `exception E of T`: a new exception constructor."""
+
+    name: str
+    type_expr: TypeExpr | None = None
+    ref: Any = None
 
 
 @dataclass(eq=False)
