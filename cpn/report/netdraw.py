@@ -2,7 +2,7 @@
 box nested in the box of the instance that contains it, place bounds and dead transition instances
 marked.
 
-Imports `cpn.net` (with `cpn.net.pretty`) and the report's `svg` and `layout` helpers. A place bound to a
+Imports `cpn.net` (with `cpn.expr.pretty`) and the report's `svg` and `layout` helpers. A place bound to a
 port, or fused with places of other instances, is drawn once, in the box of the instance that owns it
 (the socket's instance, the first member of the fusion set); arcs from other instances cross the boxes.
 An arc that would run through a node it does not join is routed around the nodes (`layout.Router`),
@@ -14,7 +14,7 @@ from __future__ import annotations
 import re
 from dataclasses import dataclass, field
 
-from cpn.net import pretty
+from cpn.expr import pretty
 from cpn.report import svg as S
 from cpn.report.layout import Router, boxes_overlap, layered_layout, pack_rows
 

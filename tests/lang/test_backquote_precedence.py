@@ -8,7 +8,7 @@ import pytest
 
 import cpn
 from cpn.errors import ModelError
-from cpn.lang import pretty
+from cpn.expr import pretty
 from cpn.lang.parser import parse
 
 

@@ -7,7 +7,8 @@ import pytest
 
 import cpn
 from cpn.errors import ModelError
-from cpn.lang import pretty
+from cpn.expr import pretty
+from cpn.lang import pretty as lang_pretty
 from cpn.lang.parser import parse
 
 DECLS = """colset C = int with 0..3;
@@ -59,7 +60,7 @@ def test_a_missing_semicolon_before_a_statement_is_still_a_syntax_error_at_the_s
 def test_val_wildcard_is_checked_and_evaluated_and_names_nothing():
     model = cpn.loads(DECLS + "val _ = 1 + 2;\nval _ : int = 4;\nval n = 2;\nplace P : C = 1`n;\n", "t.cpnet")
     assert model.net.places[0].initial == {2: 1}
-    assert "val _ = (1 + 2);" in pretty.pretty(parse("val _ = 1 + 2;", "t.cpnet"))
+    assert "val _ = (1 + 2);" in lang_pretty.pretty(parse("val _ = 1 + 2;", "t.cpnet"))
     with pytest.raises(ModelError) as info:
         cpn.loads(DECLS + "val _ = 1 div 0;\nval _ = true + 1;\n", "t.cpnet")
     assert [(d.code, d.span.line) for d in info.value.diagnostics] == [("E0401", 5), ("E0301", 6)]

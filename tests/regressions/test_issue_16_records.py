@@ -3,8 +3,8 @@
 import pytest
 
 import cpn
+from cpn.expr.pretty import pat as pretty_pat
 from cpn.lang.parser import parse
-from cpn.lang.pretty import pat as pretty_pat
 from tests.regressions._issue_16 import figures
 
 
