@@ -6,7 +6,7 @@ import importlib
 import pytest
 
 PUBLIC = [
-    "cpn", "cpn.model", "cpn.arcs", "cpn.io", "cpn.expr.pretty", "cpn.values.colours", "cpn.values.multiset", "cpn.net.model", "cpn.expr.nodes", "cpn.net.binding", "cpn.values.builtins",
+    "cpn", "cpn.model", "cpn.arcs", "cpn.io", "cpn.expr.pretty", "cpn.values.colours", "cpn.values.multiset", "cpn.net.model", "cpn.expr.nodes", "cpn.expr.binding", "cpn.values.builtins",
     "cpn.engine", "cpn.engine.protocol", "cpn.engine.plan", "cpn.engine.evaluate", "cpn.statespace.explore",
     "cpn.statespace.scc", "cpn.checks.mcc", "cpn.report.model", "cpn.report.json", "cpn.report.text",
 ]

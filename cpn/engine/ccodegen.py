@@ -35,8 +35,8 @@ from __future__ import annotations
 from cpn._util.resources import ResourceMissing
 from cpn.engine import plan
 from cpn.engine.ctables import CDEF, Layout, NativeCode, NotNative, S, Tp, layout, runtime
+from cpn.expr import binding as B
 from cpn.expr import nodes as A
-from cpn.net import binding as B
 
 #: a transition whose variables have more bindings than this is left to Python (one slot each)
 MAX_BINDINGS: int = 1 << 22

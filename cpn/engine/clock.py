@@ -13,7 +13,7 @@ from dataclasses import dataclass
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import ConfigurationError
 from cpn.expr import nodes as A
-from cpn.net.binding import children
+from cpn.expr.binding import children
 from cpn.values.builtins import TIME_BUILTINS
 
 

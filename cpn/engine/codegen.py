@@ -16,8 +16,8 @@ from typing import Any
 
 from cpn._util.deep import left_spine
 from cpn.engine import plan
+from cpn.expr import binding as B
 from cpn.expr import nodes as A
-from cpn.net import binding as B
 from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS
 
 _PY_BINOPS = {"+": "+", "-": "-", "*": "*", "^": "+", "^^": "+", "@": "+", "=": "==", "<>": "!=",

@@ -27,8 +27,8 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+from cpn.expr import binding as B
 from cpn.expr import nodes as A
-from cpn.net import binding as B
 
 
 @dataclass

@@ -12,8 +12,8 @@ import itertools
 from cpn.engine.api import P_NORMAL, EngineAPI
 from cpn.engine.evaluate import run_deep_again
 from cpn.errors import EvaluationError
+from cpn.expr import binding as B
 from cpn.expr import nodes as A
-from cpn.net import binding as B
 from cpn.values.builtins import MLError
 from cpn.values.colours import format_multiset
 from cpn.values.multiset import Multiset, MultisetError, TimedMultiset

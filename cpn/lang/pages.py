@@ -12,9 +12,9 @@ import re
 from cpn._util import did_you_mean
 from cpn.arcs import ArcKind
 from cpn.diagnostics import Span
+from cpn.expr.binding import all_vars, children, guard_binder, guard_conjuncts, pattern_vars
 from cpn.lang import ast as A
 from cpn.lang import types as T
-from cpn.lang.binding import all_vars, children, guard_binder, guard_conjuncts, pattern_vars
 from cpn.lang.builtins import MLError
 from cpn.lang.checked import Abort, ArcInfo, Env, PageInfo, TransInfo
 from cpn.lang.evaluate import run_deep

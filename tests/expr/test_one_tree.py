@@ -51,3 +51,23 @@ def test_the_printed_inscription_parses_back_to_the_same_text():
     text = pretty.expr(out)
     decl = parse(f"val it = {text};", "t.cpnet").decls[0]
     assert pretty.expr(decl.expr) == text
+
+
+@pytest.mark.parametrize("gone", ["cpn.net.binding", "cpn.lang.binding"])
+def test_the_duplicate_binding_analyses_are_gone(gone):
+    with pytest.raises(ModuleNotFoundError):
+        importlib.import_module(gone)
+
+
+def test_one_binding_analysis_reads_the_typed_tree_and_the_net():
+    from cpn.expr import binding
+
+    text = ("colset N = int with 0..3; colset NN = product N * N; var x, y : N; place P : NN;"
+            " trans t [y = x + 1]; arc P -> t : (x, 2);")
+    typed = parse(text, "t.cpnet").decls
+    arc = next(d for d in typed if isinstance(d, A.ArcDecl))
+    # before typing no name is resolved: nothing is a variable yet
+    assert binding.pattern_vars(arc.expr) == set()
+    t = cpn.loads(text).net.transitions[0]
+    assert binding.pattern_vars(t.arcs[0].expr) == {"x"}
+    assert binding.guard_binder(binding.guard_conjuncts(t.guards)[0], {"x"})[0].name == "y"
