@@ -7,7 +7,7 @@ import pytest
 
 PUBLIC = [
     "cpn", "cpn.model", "cpn.arcs", "cpn.io", "cpn.expr.pretty", "cpn.values.colours", "cpn.values.multiset", "cpn.net.model", "cpn.expr.nodes", "cpn.expr.binding", "cpn.values.builtins",
-    "cpn.engine", "cpn.engine.protocol", "cpn.engine.plan", "cpn.engine.evaluate", "cpn.statespace.explore",
+    "cpn.engine", "cpn.engine.protocol", "cpn.engine.plan", "cpn.expr.evaluate", "cpn.statespace.explore",
     "cpn.statespace.scc", "cpn.checks.mcc", "cpn.report.model", "cpn.report.json", "cpn.report.text",
 ]
 

@@ -18,10 +18,10 @@ from collections.abc import Callable
 from cpn._util import did_you_mean
 from cpn.diagnostics import Diagnostic, Span
 from cpn.engine.codegen import ExprCompiler, Namespace, Unsupported
-from cpn.engine.evaluate import Evaluator
 from cpn.engine.runtime import RUNTIME
 from cpn.errors import ModelError
 from cpn.expr import nodes as E
+from cpn.expr.evaluate import Evaluator
 from cpn.lang import ast as A
 from cpn.lang import types as T
 from cpn.lang.builtins import MLError, parse_type

@@ -6,7 +6,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from cpn.engine.clock import clock_reads, refuse_condensation
-from cpn.engine.evaluate import Evaluator
+from cpn.expr.evaluate import Evaluator
 from cpn.values.colours import format_multiset
 
 #: the priority of a transition without one (CPN Tools' P_NORMAL)

@@ -12,11 +12,11 @@ from itertools import chain
 
 from cpn.engine import codegen
 from cpn.engine.api import P_NORMAL, EngineAPI
-from cpn.engine.evaluate import FUNCTION_FILE, run_deep_again
 from cpn.engine.runtime import RUNTIME
 from cpn.engine.timedsuccessors import NEG_INF, TimedSuccessors, ready_time
 from cpn.errors import EvaluationError
 from cpn.expr import nodes as E
+from cpn.expr.evaluate import FUNCTION_FILE, run_deep_again
 from cpn.values.builtins import MLError
 from cpn.values.colours import format_multiset, outside
 from cpn.values.multiset import MultisetError

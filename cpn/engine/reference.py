@@ -10,10 +10,10 @@ from __future__ import annotations
 import itertools
 
 from cpn.engine.api import P_NORMAL, EngineAPI
-from cpn.engine.evaluate import run_deep_again
 from cpn.errors import EvaluationError
 from cpn.expr import binding as B
 from cpn.expr import nodes as A
+from cpn.expr.evaluate import run_deep_again
 from cpn.values.builtins import MLError
 from cpn.values.colours import format_multiset
 from cpn.values.multiset import Multiset, MultisetError, TimedMultiset

@@ -1,6 +1,6 @@
 """The result of checking a model: checked pages, transitions and arcs, and the scopes of the checker.
 
-Imports `cpn.lang.ast`, `cpn.lang.evaluate`, `cpn.values` and layer 0.
+Imports `cpn.lang.ast`, `cpn.expr.evaluate`, `cpn.values` and layer 0.
 """
 
 from __future__ import annotations
@@ -9,9 +9,9 @@ from dataclasses import dataclass, field
 
 from cpn.arcs import ArcKind
 from cpn.diagnostics import Diagnostic
+from cpn.expr.evaluate import Evaluator
 from cpn.lang import ast as A
 from cpn.lang import types as T
-from cpn.lang.evaluate import Evaluator
 from cpn.lang.symbols import Symbol
 from cpn.values import colours as C
 

@@ -9,11 +9,11 @@ Imports `cpn.lang.*` and layer 0.
 from __future__ import annotations
 
 from cpn.expr.binding import all_vars
+from cpn.expr.evaluate import run_deep
 from cpn.lang import ast as A
 from cpn.lang import types as T
 from cpn.lang.builtins import MLError
 from cpn.lang.checked import Abort, Env
-from cpn.lang.evaluate import run_deep
 from cpn.lang.symbols import Symbol
 from cpn.values import colours as C
 

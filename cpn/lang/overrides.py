@@ -15,10 +15,10 @@ from typing import Any, Callable
 from cpn._util import did_you_mean
 from cpn.diagnostics import Span
 from cpn.errors import ConfigurationError, ModelError
+from cpn.expr.evaluate import run_deep
 from cpn.lang import ast as A
 from cpn.lang import types as T
 from cpn.lang.builtins import MLError
-from cpn.lang.evaluate import run_deep
 from cpn.lang.parser import parse
 
 _NAME = re.compile(r"[A-Za-z][A-Za-z0-9_']*\Z")

@@ -13,11 +13,11 @@ from cpn._util import did_you_mean
 from cpn.arcs import ArcKind
 from cpn.diagnostics import Span
 from cpn.expr.binding import all_vars, children, guard_binder, guard_conjuncts, pattern_vars
+from cpn.expr.evaluate import run_deep
 from cpn.lang import ast as A
 from cpn.lang import types as T
 from cpn.lang.builtins import MLError
 from cpn.lang.checked import Abort, ArcInfo, Env, PageInfo, TransInfo
-from cpn.lang.evaluate import run_deep
 from cpn.lang.resolve import suggestion
 from cpn.lang.symbols import Symbol
 from cpn.values import colours as C

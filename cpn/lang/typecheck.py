@@ -11,12 +11,12 @@ from __future__ import annotations
 
 from cpn.diagnostics import Diagnostic, Severity, Span
 from cpn.errors import ModelError
+from cpn.expr.evaluate import Evaluator, run_deep
 from cpn.lang import ast as A
 from cpn.lang import types as T
 from cpn.lang.builtins import BUILTINS, MLError, parse_type
 from cpn.lang.checked import Abort, ArcInfo, CheckedModel, Env, PageInfo, TransInfo
 from cpn.lang.colsets import ColourSetConstruction
-from cpn.lang.evaluate import Evaluator, run_deep
 from cpn.lang.infer import TypeInference
 from cpn.lang.multisets import MultisetInference
 from cpn.lang.overrides import OverrideChecks, parse_overrides

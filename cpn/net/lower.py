@@ -10,9 +10,9 @@ from collections import defaultdict
 from cpn.arcs import ArcKind
 from cpn.diagnostics import Diagnostic
 from cpn.errors import ModelError
+from cpn.expr.evaluate import run_deep
 from cpn.lang import ast as A
 from cpn.lang.builtins import MLError
-from cpn.lang.evaluate import run_deep
 from cpn.lang.typecheck import CheckedModel, PageInfo
 from cpn.net.model import ArcInstance, Net, PageInstance, PlaceInstance, TransitionInstance
 from cpn.net.translate import Translator

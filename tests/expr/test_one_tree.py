@@ -71,3 +71,32 @@ def test_one_binding_analysis_reads_the_typed_tree_and_the_net():
     t = cpn.loads(text).net.transitions[0]
     assert binding.pattern_vars(t.arcs[0].expr) == {"x"}
     assert binding.guard_binder(binding.guard_conjuncts(t.guards)[0], {"x"})[0].name == "y"
+
+
+@pytest.mark.parametrize("gone", ["cpn.engine.evaluate", "cpn.lang.evaluate"])
+def test_the_duplicate_evaluators_are_gone(gone):
+    with pytest.raises(ModuleNotFoundError):
+        importlib.import_module(gone)
+
+
+# one expression, computed by the checker for a constant and by the engines for an output arc
+EXPR = ("let fun f 0 = 1 | f k = if k < 0 then raise Neg k else k * f (k - 1) "
+        "in (f 3, R.set_b {a = 1, b = 2} 3, (f (~1)) handle Neg k => k) end")
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_the_checker_and_the_engines_evaluate_alike(reference):
+    from cpn.expr.evaluate import Evaluator
+    from cpn.lang.typecheck import check
+
+    text = (f"colset N = int; colset R = record a : N * b : N; colset T = product N * R * N; exception Neg of N;"
+            f" val C = {EXPR};"
+            f" place P : T; place U : N = 1`0; trans t; arc U -> t : 0; arc t -> P : {EXPR};")
+    checked = check(parse(text, "t.cpnet"))
+    assert type(checked.evaluator) is Evaluator
+    m = cpn.loads(text)
+    (c,) = [d for d in m.net.globals.decls if isinstance(d, N.ValDecl) and d.pat.name == "C"]
+    assert m.net.globals.constants[c.pat.ref.uid] == (6, (1, 3), -1)
+    e = m.engine(reference=reference)
+    ((_, s1),) = e.successors(e.initial_state())
+    assert list(e.marking(s1)[0]) == [(6, (1, 3), -1)]

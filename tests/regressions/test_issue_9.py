@@ -6,8 +6,8 @@ import pathlib
 import pytest
 
 import cpn
-from cpn.engine.evaluate import Evaluator
 from cpn.expr import nodes as E
+from cpn.expr.evaluate import Evaluator
 from cpn.values.builtins import FUNCTIONS, MLError, binop
 from tests.engine._explore import graph
 

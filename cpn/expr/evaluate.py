@@ -1,8 +1,11 @@
-"""A tree-walking evaluator of the net's expressions (`cpn.net.expr`).
+"""The one tree-walking evaluator of CPN ML expressions (`cpn.expr.nodes`).
 
-Used by the reference interpreter and, for the expressions the compiler leaves to it (`let`, `case`,
-`fn`), by the compiled engine. Slow and plain on purpose: it is the oracle the compiled engine is tested
-against.
+The language evaluates declarations with it while checking (`val`, colour-set bounds and predicates) and
+initial markings and module parameters while lowering, on the typed tree whose names are Symbols; the
+reference interpreter evaluates the net's inscriptions with it, and the compiled engine the expressions
+its compiler leaves (`let`, `case`, `fn`), on the net's tree whose names are Refs. Slow and plain on
+purpose: it is the oracle the compiled engine is tested against. The operators and the library have the
+meaning of `cpn.values.builtins`.
 
 Examples
 --------
@@ -80,15 +83,18 @@ def run_deep_again(fn, *args):
 class Evaluator:
     """Evaluates expressions; `globals` maps symbol uids of vals and functions to values."""
 
-    def __init__(self, colsets: dict, globals_: A.Globals | None = None):
+    def __init__(self, colsets: dict, globals_: A.Globals | dict[int, Any] | None = None):
+        """`globals_`: a net's `Globals` (its functions are declared here), or the language's own table of
+        values by uid, which the evaluator then shares (the checker fills it as it goes)."""
         self.colsets = colsets  # name -> ColourSet
-        self.globals: dict[int, Any] = {}  # uid -> value of a global constant or function
         self.time = 0
-        if globals_ is not None:
-            self.globals.update(globals_.constants)
-            for d in globals_.decls:
-                if not (isinstance(d, A.ValDecl) and d.pat.ref.uid in globals_.constants):
-                    self.declare(d, self.globals)
+        if globals_ is None or isinstance(globals_, dict):
+            self.globals: dict[int, Any] = {} if globals_ is None else globals_
+            return
+        self.globals = dict(globals_.constants)  # uid -> value of a global constant or function
+        for d in globals_.decls:
+            if not (isinstance(d, A.ValDecl) and d.pat.ref.uid in globals_.constants):
+                self.declare(d, self.globals)
 
     # ------------------------------------------------------------------ expressions
     def eval(self, e: A.Expr, env: dict) -> Any:
@@ -133,7 +139,7 @@ class Evaluator:
 
     def _csop(self, csname, op):
         cs = self.colsets[csname]
-        if op.startswith("set_") and cs.kind == "record":  # CS.set_<field> r v (cpn.lang.builtins)
+        if op.startswith("set_") and cs.kind == "record" and op[4:] in cs.labels:  # CS.set_<field> r v
             i = cs.labels.index(op[4:])
             return lambda r: lambda v: r[:i] + (v,) + r[i + 1:]
         if op == "all":
@@ -248,6 +254,9 @@ class Evaluator:
             v = self.eval(x, env)
         return v
 
+    def _e_Annot(self, e, env):
+        return self.eval(e.expr, env)
+
     def _e_ToMs(self, e, env):
         v = self.eval(e.expr, env)
         return v if isinstance(v, (Multiset, TimedMultiset)) else Multiset.of(v)
@@ -276,8 +285,8 @@ class Evaluator:
                 v = binop(op, v, self.eval(node.right, env))
         return v
 
-    # ------------------------------------------------------------------ declarations
-    def declare(self, d: A.ValDecl | A.FunDecl, env: dict) -> None:
+    # ------------------------------------------------------------------ declarations (global, in let)
+    def declare(self, d: A.Decl, env: dict) -> None:
         if isinstance(d, A.ValDecl):
             v = self.eval(d.expr, env)
             if not self.match(d.pat, v, env):
@@ -321,5 +330,7 @@ class Evaluator:
             return all(self.match(q, v[labels.index(label)], env) for label, q in p.fields)
         if isinstance(p, A.PAs):
             env[p.ref.uid] = v
+            return self.match(p.pat, v, env)
+        if isinstance(p, A.PAnnot):
             return self.match(p.pat, v, env)
         raise MLError(f"unsupported pattern {type(p).__name__}")
