@@ -1,7 +1,8 @@
 """Modbus-A past the reserved IDs: with 100 slaves the ID counter passes RESET_ID = 98 and CONFIG_ID = 99,
 which no slave may get and the master never polls (a frame for ID 98 is a reset); MA2 and MA7 follow the
-allocation sequence 1, 2, ..., 97, 100, 101, ... (specs/modbus/modbus_a_100.toml), and the mutant whose
-counter hands out 98 and 99 breaks them (specs/modbus/mutants/ma_reserved_ids.toml)."""
+allocation sequence 1, 2, ..., 97, 100, 101, ... (specs/modbus/modbus_a_100.toml). The mutant whose counter
+hands out the reserved IDs gives slaves 98 and 99 those IDs; the gate catches it on a chain of 6 with the
+reserved IDs 4 and 5 (specs/modbus/mutants/ma_reserved_ids.toml, tests/modbus/test_issue_11_mutants.py)."""
 
 import os
 
