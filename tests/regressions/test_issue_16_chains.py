@@ -19,8 +19,12 @@ def test_a_long_multiset_sum_in_an_initial_marking_is_read(op, n):
     model = cpn.loads(src, "m.cpnet")
     e = model.engine()
     s0 = e.initial_state()
-    # one binding element per token, each enabled once
-    assert len(list(e.successors(s0))) == n
+    # every term is one token of its own value
+    assert e.format_marking(s0, 0) == "++".join(f"1`{i}" for i in range(n)) and e.token_counts(s0) == (n, 0)
+    if n <= 600:
+        # one binding element per token, each enabled once (with 5,000 tokens the successors alone took
+        # 29 s of the suite, each a new marking of 4,999 tokens; the chain is read before them)
+        assert len(list(e.successors(s0))) == n
 
 
 @pytest.mark.parametrize("reference", [False, True])
