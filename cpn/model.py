@@ -130,7 +130,7 @@ def _components(places):
         stack.extend(c for _, c in (getattr(cs, "constructors", ()) or ()) if c is not None)
 
 
-def _normalise_overrides(values) -> dict[str, str]:
+def normalise_overrides(values) -> dict[str, str]:
     out = {}
     for k, v in (values or {}).items():
         out[str(k)] = v if isinstance(v, str) else _ml_literal(v)
@@ -189,7 +189,7 @@ def loads(text: str, filename: str = "<string>", set: dict | None = None) -> Mod
     >>> m.net.places[0].initial
     {(): 3}
     """
-    overrides = parse_overrides(_normalise_overrides(set))  # once, before checking: a bad value is a usage error
+    overrides = parse_overrides(normalise_overrides(set))  # once, before checking: a bad value is a usage error
     model = None
     try:
         model = _parse(text, filename)

@@ -71,6 +71,85 @@ def _problems(mod: str, own: str, source: str, allowed: dict[str, set[str]]) -> 
     return out
 
 
+def _is_private(name: str) -> bool:
+    return name.startswith("_") and not name.startswith("__")
+
+
+def _private_uses(mod: str, own: str, source: str) -> list[str]:
+    """What module `mod` of part `own` uses of another part's private names: a private name imported from
+    it, a private member of a module, class or object that comes from it (an engine made by
+    `compile_net`, a module such as `cpn.engine.clock`), and `getattr(engine, "_...")`."""
+    tree = ast.parse(source)
+    foreign: set[str] = set()  # local names (and `self.x` paths) of modules, classes and objects of other parts
+    out = []
+    for node in ast.walk(tree):
+        if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            other = _part(node.module)
+            if other is None or other == own:
+                continue
+            for a in node.names:
+                if _is_private(a.name):
+                    out.append(f"{mod}:{node.lineno} imports the private {node.module}.{a.name}")
+                foreign.add(a.asname or a.name)
+        elif isinstance(node, ast.Import):
+            for a in node.names:
+                other = _part(a.name)
+                if other is not None and other != own:
+                    foreign.add(a.asname or a.name.split(".")[0])
+    assigns = [n for n in ast.walk(tree) if isinstance(n, ast.Assign)]
+    grew = True
+    while grew:  # what a foreign name makes or is copied to is foreign too
+        grew = False
+        for n in assigns:
+            v = n.value.func if isinstance(n.value, ast.Call) else n.value
+            if isinstance(v, ast.Attribute | ast.Name) and ast.unparse(v).split(".")[0] in foreign \
+                    or ast.unparse(v) in foreign:
+                for t in n.targets:
+                    if isinstance(t, ast.Name | ast.Attribute) and ast.unparse(t) not in foreign:
+                        foreign.add(ast.unparse(t))
+                        grew = True
+    engine_like = own != "engine"
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Attribute) and _is_private(node.attr):
+            owner = ast.unparse(node.value)
+            if owner in foreign or owner.split(".")[0] in foreign - {"self"} \
+                    or engine_like and (owner == "engine" or owner.endswith(".engine")):
+                out.append(f"{mod}:{node.lineno} reads the private member {ast.unparse(node)} of another package")
+        elif isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in (
+                "getattr", "hasattr", "setattr") and len(node.args) >= 2 and isinstance(node.args[1], ast.Constant) \
+                and isinstance(node.args[1].value, str) and _is_private(node.args[1].value):
+            owner = ast.unparse(node.args[0])
+            if engine_like and (owner == "engine" or owner.endswith(".engine")) or owner in foreign:
+                out.append(f"{mod}:{node.lineno} probes {ast.unparse(node)}: declare it in the engine's protocol")
+    return out
+
+
+def test_no_module_reaches_into_another_packages_private_members():
+    problems = []
+    for path in sorted(ROOT.rglob("*.py")):
+        rel = path.relative_to(ROOT.parent).with_suffix("")
+        problems += _private_uses(".".join(rel.parts), rel.parts[1], path.read_text(encoding="utf-8"))
+    assert not problems, "\n".join(problems)
+
+
+def test_private_member_access_across_packages_fails():
+    def bad(source, own="statespace"):
+        return _private_uses(f"cpn.{own}.x", own, source)
+
+    assert bad('plan = getattr(engine, "_plan", None)\n')
+    assert bad('memo = getattr(self.engine, "_fire_memo", None)\n')
+    assert bad("engine._plan.clear()\n")
+    assert bad("from cpn.engine import clock\nclock._global_readers([])\n", "checks")
+    assert bad("from cpn.model import _normalise_overrides\n", "checks")
+    assert bad("from cpn.engine import compile_net\n"
+               "class P:\n    def __init__(self, net):\n        self.ref = compile_net(net, reference=True)\n"
+               "    def go(self, t, b):\n        ref = self.ref\n        return ref._env(t, b)\n", "report")
+    # the public face, and a package's own private names, are fine
+    assert not bad('groups = getattr(engine, "successor_groups", None)\nengine.forget_memo()\n')
+    assert not bad("from cpn.statespace.store import _CDEF\nself._memo = {}\n")
+    assert not bad("engine._plan.clear()\n", "engine")
+
+
 def test_every_module_imports_only_what_its_layer_allows():
     problems = []
     for path in sorted(ROOT.rglob("*.py")):

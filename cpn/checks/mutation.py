@@ -362,10 +362,10 @@ def _load_parsed(tree, text: str, filename: str, values: dict):
     from cpn.lang.nesting import too_deep
     from cpn.lang.overrides import parse_overrides
     from cpn.lang.typecheck import check
-    from cpn.model import Model, _normalise_overrides
+    from cpn.model import Model, normalise_overrides
     from cpn.net.lower import lower
 
-    overrides = parse_overrides(_normalise_overrides(values))
+    overrides = parse_overrides(normalise_overrides(values))
     try:
         checked = check(copy.deepcopy(tree), overrides)
         net = lower(checked)

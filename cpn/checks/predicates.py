@@ -282,12 +282,12 @@ class PropertyLanguage:
         from cpn.engine import clock
 
         if self._clock_readers is None:
-            self._clock_readers = clock._global_readers(self.net.globals.decls)
+            self._clock_readers = clock.global_readers(self.net.globals.decls)
         translated = self._tr.expr(expr)
-        span = clock._first_read(translated, self._clock_readers)
+        span = clock.first_read(translated, self._clock_readers)
         if span is None:
             return
-        via = clock._called_reader(translated, self._clock_readers)
+        via = clock.called_reader(translated, self._clock_readers)
         self._checker.diags.append(Diagnostic(
             "E0601",
             f"time condensation cannot be used: {what} reads the model clock, and time condensation sets the "
@@ -416,8 +416,8 @@ class PropertyLanguage:
         from cpn.engine import clock
 
         if self._clock_readers is None:
-            self._clock_readers = clock._global_readers(self.net.globals.decls)
-        return clock._first_read(self._tr.expr(expr), self._clock_readers) is not None
+            self._clock_readers = clock.global_readers(self.net.globals.decls)
+        return clock.first_read(self._tr.expr(expr), self._clock_readers) is not None
 
     def constant(self, text: str, origin, fallback: Span, want: T.Type, what: str):
         """The value of a text that reads no marking (an expected bound: `N`, `ADDR.all()`)."""

@@ -205,8 +205,8 @@ def _bound(check: Bound, x, monitor: SweepMonitor, engine, reason: str | None) -
             upper = key in ("upper_multiset_equals", "at_most_multiset")
             got = Multiset((x.multiset_upper if upper else x.multiset_lower)[p] or {})
             broken = not got <= want if upper else not want <= got
-            outcome, text = judge_multiset_limit(key, engine.format_multiset(p, dict(want._d)),
-                                                 engine.format_multiset(p, dict(got._d)), broken, got == want,
+            outcome, text = judge_multiset_limit(key, engine.format_multiset(p, dict(want.items())),
+                                                 engine.format_multiset(p, dict(got.items())), broken, got == want,
                                                  complete)
             into[outcome].append(f"{name}: {text}")
     if problems:

@@ -30,23 +30,23 @@ class ClockRead:
 
 def clock_reads(net) -> dict[int, ClockRead]:
     """Transition index -> its first read of the clock, for every transition instance that reads it."""
-    globals_ = _global_readers(net.globals.decls)
+    globals_ = global_readers(net.globals.decls)
     out: dict[int, ClockRead] = {}
     for t in net.transitions:
         parts = [("the guard", g) for g in t.guards]
         parts += [(f"the inscription of arc {a.label}".rstrip(), a.expr) for a in t.arcs]
         parts += [("the delay", t.delay), ("the priority", t.priority)]
         for element, e in parts:
-            span = _first_read(e, globals_)
+            span = first_read(e, globals_)
             if span is not None:
-                name = _called_reader(e, globals_)
+                name = called_reader(e, globals_)
                 via = f"'{name[0]}' reads it at {name[1]}" if name is not None else None
                 out[t.index] = ClockRead(t.name, element, span, via)
                 break
     return out
 
 
-def _global_readers(decls) -> dict[int, Span]:
+def global_readers(decls) -> dict[int, Span]:
     """Symbol uid -> span of a clock read, for every global `fun` or `val` that reads the clock (a value
     counts too: it may hold a function), following calls between them to a fixpoint."""
     bodies: dict[int, list] = {}
@@ -63,7 +63,7 @@ def _global_readers(decls) -> dict[int, Span]:
             if uid in readers:
                 continue
             for e in exprs:
-                span = _first_read(e, readers)
+                span = first_read(e, readers)
                 if span is not None:
                     readers[uid] = span
                     changed = True
@@ -71,14 +71,14 @@ def _global_readers(decls) -> dict[int, Span]:
     return readers
 
 
-def _first_read(e, readers: dict[int, Span]) -> Span | None:
+def first_read(e, readers: dict[int, Span]) -> Span | None:
     """The span of the first clock read in e: a time built-in, or a name of a reader in `readers`."""
     if e is None:
         return None
     stack = [e]
     while stack:
         x = stack.pop()
-        if isinstance(x, A.App) and _first_read(x.fn, readers) is not None:
+        if isinstance(x, A.App) and first_read(x.fn, readers) is not None:
             return x.span  # the whole call: `intTime()`, `late(x)`
         if isinstance(x, A.Name):
             if x.ref.kind == "builtin" and x.ref.name in TIME_BUILTINS:
@@ -90,7 +90,7 @@ def _first_read(e, readers: dict[int, Span]) -> Span | None:
     return None
 
 
-def _called_reader(e, readers: dict[int, Span]):
+def called_reader(e, readers: dict[int, Span]):
     """(name, span of its clock read) of the first global function or value read in e that reads the
     clock, when e does not read it directly first; else None."""
     stack = [e]

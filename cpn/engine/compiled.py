@@ -280,6 +280,14 @@ class CompiledEngine(TimedSuccessors, EngineAPI):
         pl = self.places[p]
         return format_multiset(pl.colour_set, self.store.dicts[p][s[p]].items(), timed=pl.timed)
 
+    def forget_memo(self) -> None:
+        """Empty the memo tables of transition results (keyed by the markings of the places a transition
+        reads) and of single occurrences: this changes no result, only what is computed again (the
+        sweep-line method calls it as it leaves markings behind)."""
+        for info in self._plan:
+            info.memo.clear()  # in place: the generated successor function keeps bound `memo.get` methods
+        self._fire_memo.clear()
+
     def successor_groups(self) -> TransitionGroups | None:
         """The untimed successor function without priorities as LTSmin's transition groups: one per
         transition, with the places it reads and those it only writes (None for other nets)."""

@@ -1,7 +1,8 @@
 """`Engine`: the successor function of a net, as the state space and the checks see it.
 
 Both engines (`compile_net(net)` and `compile_net(net, reference=True)`) implement it, and so may any
-other back end: the explorer, the checks and the reports use nothing else (docs/internals.md).
+other back end: the explorer, the checks and the reports use nothing else, and of the optional
+`Capabilities` only what an engine offers (docs/internals.md).
 
 Examples
 --------
@@ -81,10 +82,38 @@ class Engine(Protocol):
     def format_multiset(self, p: int, ms: dict) -> str:
         """CPN ML text of an untimed multiset (value -> count) of place p's colour set."""
 
-    # Optional: `successor_groups()`, the successor function as transition groups for the native search
-    # (`cpn.engine.compiled.TransitionGroups`, or None), and `timed_groups()`, those of a timed net or a net
-    # with priorities (`cpn.engine.timedgroups.TimedGroups`, or None); an engine without them is searched in
-    # Python.
+    # the net it runs, and how: the reports draw the net and replay traces with an engine of their own
+    net: Any  # cpn.net.Net
+    time_condensation: bool
 
 
-__all__ = ["BindingElementLike", "Engine", "Place", "Transition"]
+class Capabilities(Protocol):
+    """What an engine may offer beyond `Engine`, and the upper layers use where it does (an engine without
+    one is searched and checked without it: they look it up by these public names, never by private ones,
+    `tests/test_layering.py`). The compiled engine offers all of them, the reference interpreter
+    `reference` and `arc_tokens`/`binding_env` (`cpn.engine.reference.ReferenceEngine`).
+    """
+
+    reference: bool  # the reference interpreter (the reports replay traces with the same kind of engine)
+    functions: dict  # uid -> compiled function of the model (the property compiler calls them)
+    store: Any  # the intern tables of place markings: store.views[p][id] (untimed dict), store.counts[p][id]
+
+    def place_view(self, state: Any, p: int) -> dict:
+        """The untimed multiset of place p (value -> count); not to be mutated."""
+
+    def successor_groups(self) -> Any:
+        """The successor function as transition groups for the native search
+        (`cpn.engine.compiled.TransitionGroups`), or None (timed nets, priorities)."""
+
+    def timed_groups(self) -> Any:
+        """Those of a timed net or a net with priorities (`cpn.engine.timedgroups.TimedGroups`), or None."""
+
+    def native_code(self) -> tuple:
+        """(the C of the net's transitions, None), or (None, why not) (`cpn.engine.ccodegen`)."""
+
+    def forget_memo(self) -> None:
+        """Empty the memo tables of transition results: no result changes, only what is computed again
+        (the sweep-line method calls it as it leaves markings behind)."""
+
+
+__all__ = ["BindingElementLike", "Capabilities", "Engine", "Place", "Transition"]

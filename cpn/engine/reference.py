@@ -75,7 +75,9 @@ class ReferenceEngine(EngineAPI):
                                   + (f" for binding <{text}>" if text else "") + f": {exc}",
                                   e.span, t.name, binding) from None
 
-    def _ms(self, e, env, t):
+    def arc_tokens(self, e, env, t) -> list[tuple]:
+        """The tokens of arc inscription e of transition t in environment env (`binding_env`): a list of
+        (value, count, delay)."""
         v = self._eval(e, env, t, "an arc inscription")
         if isinstance(v, TimedMultiset):
             return [(x, n, d) for x, n, d in v.items]
@@ -83,7 +85,9 @@ class ReferenceEngine(EngineAPI):
             return [(x, n, 0) for x, n in v.items()]
         return [(v, 1, 0)]
 
-    def _env(self, t, assignment):
+    def binding_env(self, t, assignment: dict) -> dict:
+        """The environment in which transition t's inscriptions are evaluated for a binding (variable name
+        -> value): its module parameters and its variables by uid."""
         env = dict(t.params)
         for name, v in assignment.items():
             env[self.uids[name]] = v
@@ -149,7 +153,7 @@ class ReferenceEngine(EngineAPI):
                     gb = B.guard_binder(c, set(assignment))
                     if gb is None or v not in B.pattern_vars(gb[0]):
                         continue
-                    val = self._eval(gb[1], self._env(t, assignment), t, "the guard")
+                    val = self._eval(gb[1], self.binding_env(t, assignment), t, "the guard")
                     found = {}
                     self._collect(gb[0], val, found)
                     for k, vals in found.items():
@@ -167,11 +171,11 @@ class ReferenceEngine(EngineAPI):
 
     def _enabled(self, t, marking, assignment):
         """(consumed per place, ready time) if the binding is enabled (ignoring time), else None."""
-        env = self._env(t, assignment)
+        env = self.binding_env(t, assignment)
         need: dict[int, dict] = {}
         for a in t.arcs:
             if a.kind.consumes and a.expr is not None:
-                for v, n, _ in self._ms(a.expr, env, t):
+                for v, n, _ in self.arc_tokens(a.expr, env, t):
                     if n < 0:
                         return None
                     d = need.setdefault(a.place, {})
@@ -191,7 +195,7 @@ class ReferenceEngine(EngineAPI):
                         return None
                 else:
                     inh: dict = {}
-                    for v, n, _ in self._ms(a.expr, env, t):
+                    for v, n, _ in self.arc_tokens(a.expr, env, t):
                         inh[v] = inh.get(v, 0) + n
                     if (not any(inh.values()) and view) or (any(inh.values()) and all(
                             view.get(v, 0) >= n for v, n in inh.items())):
@@ -232,7 +236,7 @@ class ReferenceEngine(EngineAPI):
             return []
         self.ev.time = f
         if any(t.priority is not None for t in self.transitions):
-            prios = [self._eval(t.priority, self._env(t, a), t, "the priority") if t.priority is not None else P_NORMAL
+            prios = [self._eval(t.priority, self.binding_env(t, a), t, "the priority") if t.priority is not None else P_NORMAL
                      for t, a, _ in now]
             best = min(prios)
             now = [c for c, p in zip(now, prios) if p == best]
@@ -252,7 +256,7 @@ class ReferenceEngine(EngineAPI):
 
     def _fire(self, t, marking, assignment, need, f):
         self.ev.time = f
-        env = self._env(t, assignment)
+        env = self.binding_env(t, assignment)
         m = [dict(d) for d in marking]
         for p, d in need.items():
             if self.places[p].timed:
@@ -275,7 +279,7 @@ class ReferenceEngine(EngineAPI):
         for a in t.arcs:
             if a.kind.produces and a.expr is not None:
                 pl = self.places[a.place]
-                items = self._ms(a.expr, env, t)  # a double arc puts back its own inscription
+                items = self.arc_tokens(a.expr, env, t)  # a double arc puts back its own inscription
                 for v, n, d in items:
                     if not pl.colour_set.contains(v):
                         raise EvaluationError(f"transition '{t.name}' puts a value outside colour set "

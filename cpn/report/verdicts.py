@@ -100,14 +100,14 @@ class _ArcTokens:
         ref = self.ref
         t = ref.transitions[b.transition if isinstance(b.transition, int) else b.transition.index]
         try:
-            env = ref._env(t, b.binding)
+            env = ref.binding_env(t, b.binding)
             ref.ev.time = clock
             out: dict[int, tuple[dict, dict]] = {}
             for a in t.arcs:
                 if a.kind not in ("in", "out", "both") or a.expr is None or ref.places[a.place].timed:
                     continue
                 take, put = out.setdefault(a.place, ({}, {}))
-                for v, n, _ in ref._ms(a.expr, env, t):
+                for v, n, _ in ref.arc_tokens(a.expr, env, t):
                     if a.kind in ("in", "both"):
                         take[v] = take.get(v, 0) + n
                     if a.kind in ("out", "both"):

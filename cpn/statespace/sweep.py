@@ -332,21 +332,11 @@ class SweepLine:
 
 
 def _memo_tables(engine) -> Callable | None:
-    """A function that empties the compiled engine's memo tables of transition results (their keys are
-    markings of the places a transition reads, mostly behind the sweep-line once it has moved on), or None
-    for an engine without them. Emptying them changes no result, only what is computed again."""
-    plan = getattr(engine, "_plan", None)
-    fire = getattr(engine, "_fire_memo", None)
-    if not plan or not all(isinstance(getattr(i, "memo", None), dict) for i in plan):
-        return None
-
-    def forget() -> None:
-        for info in plan:
-            info.memo.clear()  # in place: the engine keeps bound `memo.get` methods
-        if isinstance(fire, dict):
-            fire.clear()
-
-    return forget
+    """A function that empties the engine's memo tables of transition results (their keys are markings of
+    the places a transition reads, mostly behind the sweep-line once it has moved on), or None for an
+    engine without them (`Engine.forget_memo`). Emptying them changes no result, only what is computed
+    again."""
+    return getattr(engine, "forget_memo", None)
 
 
 class _SweepTimeGrowth(_TimeGrowthWatcher):
