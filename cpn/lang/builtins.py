@@ -171,11 +171,5 @@ def record_setter(cs, op: str) -> str | None:
     return None
 
 
-def set_field(labels: list[str], label: str):
-    """The curried setter of field `label` of a record value (a tuple in the order of `labels`)."""
-    i = labels.index(label)
-    return lambda r: lambda v: r[:i] + (v,) + r[i + 1:]
-
-
-__all__ = ["BUILTINS", "COLSET_OPS", "MLError", "MultisetError", "parse_type", "record_setter", "set_field",
+__all__ = ["BUILTINS", "COLSET_OPS", "MLError", "MultisetError", "parse_type", "record_setter",
            "TIME_BUILTINS"]
