@@ -64,10 +64,66 @@ def test_output_does_not_depend_on_the_hash_seed(tmp_path):
     assert outs[0] == outs[1]
 
 
+# the one mutant of specs/modbus/mutants/ that the gate below runs (a small one)
+GATE_MUTANT = "specs/modbus/mutants/bcast-as-unicast.toml"
+# scenarios the gate below does not run because another test runs each in full through the gate's own
+# run_scenario and asserts the gate's verdict (no state space is searched twice in the suite): the file
+# and the test that runs it
+MUTANTS_TEST = ("tests/modbus/test_issue_11_mutants.py", "test_mutant_is_caught_by_the_property_it_breaks")
+RUN_ELSEWHERE = {
+    "specs/modbus/modbus_a_100.toml": ("tests/modbus/test_modbus_a_reserved_ids.py",
+                                       "test_the_100_slave_scenario_holds_and_exercises_the_reserved_ids"),
+    **{f"specs/modbus/{name}.toml": ("tests/regressions/test_issue_13_timed.py",
+                                     "test_modbus_scenario_checks_search_natively_with_the_python_verdicts")
+       for name in ("A_1", "D_4_faults")},
+}
+
+
+def _run_elsewhere(spec: str):
+    """The (test file, test) that runs scenario `spec` in full instead of the gate test, or None."""
+    if spec in RUN_ELSEWHERE:
+        return RUN_ELSEWHERE[spec]
+    return MUTANTS_TEST if "/mutants/" in spec and spec != GATE_MUTANT else None
+
+
 def test_the_repository_gate_passes(tmp_path, capsys, monkeypatch):
-    # every scenario under specs/ (examples, MODBUS, Modbus-A) holds, and every mutant's bug is caught
+    # `check` with no argument finds every scenario under specs/ (examples, MODBUS, Modbus-A) and every
+    # mutant; every scenario holds, and each mutant's bug is caught. It runs them all but those another test
+    # runs in full (_run_elsewhere; test_the_scenarios_the_gate_test_leaves_out_are_run_elsewhere)
+    from cpn.checks import scenario as scenarios
+
     monkeypatch.chdir(ROOT)
+    found: list[str] = []
+    every = scenarios.scenario_files
+
+    def gate_files(paths):
+        found.extend(every(paths))
+        return [f for f in found if _run_elsewhere(pathlib.Path(f).as_posix()) is None]
+
+    monkeypatch.setattr(scenarios, "scenario_files", gate_files)
     code = main(["check", "--no-reports", "--no-timings", "--quiet"])
     out, err = capsys.readouterr()
     assert code == 0, out + err
     assert "violated (expected)" in out and "(expected holds)" not in out
+    on_disk = {p.relative_to(ROOT).as_posix() for p in (ROOT / "specs").rglob("*.toml")}
+    assert {pathlib.Path(f).as_posix() for f in found} == on_disk and GATE_MUTANT in on_disk
+
+
+def test_the_scenarios_the_gate_test_leaves_out_are_run_elsewhere():
+    """Each scenario the gate test leaves out is run by the test named for it: the mutants' test runs every
+    file of specs/modbus/mutants/, and each other test names its scenario file."""
+    import importlib.util
+
+    on_disk = sorted(p.relative_to(ROOT).as_posix() for p in (ROOT / "specs").rglob("*.toml"))
+    left_out = {spec: _run_elsewhere(spec) for spec in on_disk if _run_elsewhere(spec) is not None}
+    assert set(RUN_ELSEWHERE) <= set(left_out) and any(t == MUTANTS_TEST for t in left_out.values())
+    for spec, (path, test) in left_out.items():
+        text = (ROOT / path).read_text(encoding="utf-8")
+        assert f"\ndef {test}(" in text, f"{path} has no {test}, which runs {spec} for the gate test"
+        if (path, test) != MUTANTS_TEST:
+            assert f'"{pathlib.Path(spec).stem}' in text, f"{path} does not name {spec}"
+    where = importlib.util.spec_from_file_location("mutants_test", ROOT / MUTANTS_TEST[0])
+    module = importlib.util.module_from_spec(where)
+    where.loader.exec_module(module)
+    mutants = {spec for spec, t in left_out.items() if t == MUTANTS_TEST} | {GATE_MUTANT}
+    assert {f"specs/modbus/mutants/{name}.toml" for name in module.FILES} == mutants
