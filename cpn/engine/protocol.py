@@ -82,10 +82,6 @@ class Engine(Protocol):
     def format_multiset(self, p: int, ms: dict) -> str:
         """CPN ML text of an untimed multiset (value -> count) of place p's colour set."""
 
-    # the net it runs, and how: the reports draw the net and replay traces with an engine of their own
-    net: Any  # cpn.net.Net
-    time_condensation: bool
-
 
 class Capabilities(Protocol):
     """What an engine may offer beyond `Engine`, and the upper layers use where it does (an engine without
@@ -94,6 +90,8 @@ class Capabilities(Protocol):
     `reference` and `arc_tokens`/`binding_env` (`cpn.engine.reference.ReferenceEngine`).
     """
 
+    net: Any  # the cpn.net.Net it runs: the reports draw it and replay traces with an engine of their own
+    time_condensation: bool
     reference: bool  # the reference interpreter (the reports replay traces with the same kind of engine)
     functions: dict  # uid -> compiled function of the model (the property compiler calls them)
     store: Any  # the intern tables of place markings: store.views[p][id] (untimed dict), store.counts[p][id]
