@@ -33,15 +33,20 @@ def summary(x) -> dict:
     e, g = x.engine, x.graph
     names = [canonical(e, s) for s in g.states]
     arcs = Counter()
+    text: dict = {}  # each binding element formatted once (ms.cpnet N=5: 76,545 arcs, 95 binding elements)
     for i in range(g.expanded):
         for be, d in g.out_arcs(i):
-            arcs[(names[i], e.format_binding_element(be), names[d])] += 1
+            if be not in text:
+                text[be] = e.format_binding_element(be)
+            arcs[(names[i], text[be], names[d])] += 1
     # the BFS tree gives shortest paths: every state's depth is the same in both searches
     depth = {}
     for i in range(g.n_states):
         p = g.parent[i]
         depth[names[i]] = 0 if p < 0 else depth[names[p]] + 1
-    return {"states": Counter(names), "expanded": Counter(names[:g.expanded]), "arcs": arcs,
+    # the counts as plain dicts (each count at least 1): their == is dict's, in C; Counter's == compares
+    # element by element in Python (5.6 s of one test's 13 on ms.cpnet N=5)
+    return {"states": dict(Counter(names)), "expanded": dict(Counter(names[:g.expanded])), "arcs": dict(arcs),
             "dead": sorted(map(repr, (names[i] for i in g.dead_states()))), "depth": depth,
             "stop": x.stop_reason, "levels": x.levels, "initial": names[0]}
 
