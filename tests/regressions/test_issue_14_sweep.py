@@ -194,7 +194,8 @@ def test_random_timed_nets_verdicts_equal_the_full_search(tmp_path):
     compared = 0
     for seed in range(40):
         text = random_timed_net(seed)
-        if not Explorer(cpn.loads(text).engine(), ExploreOptions(max_states=3000, backend="python")).run().complete:
+        # the finite ones have at most 256 states (seeds 0..59): past 500 the state space has no end
+        if not Explorer(cpn.loads(text).engine(), ExploreOptions(max_states=500, backend="python")).run().complete:
             continue
         (tmp_path / "n.cpnet").write_text(text, encoding="utf-8")
         verdicts = []
