@@ -58,10 +58,18 @@ def consistent(x) -> None:
     assert len(g.offsets) == g.expanded + 1 and g.offsets[0] == 0 and g.offsets[-1] == g.n_arcs
     assert len(g.parent) == len(g.parent_be) == g.n_states and g.parent[0] == -1
     assert all(0 <= d < g.n_states for d in g.dst)
-    names = [canonical(e, s) for s in g.states]
+    states = list(g.states)
+    names = [canonical(e, s) for s in states]
     assert len(set(names)) == g.n_states  # no state stored twice
+    # a successor is most often a state of the graph, whose marking is already read (`canonical` is a
+    # function of the engine's state); another is read here
+    known = dict(zip(states, names))
+
+    def name(t):
+        return known[t] if t in known else canonical(e, t)
+
     for i in range(g.expanded):
-        want = Counter((be, canonical(e, t)) for be, t in e.successors(g.states[i]))
+        want = Counter((be, name(t)) for be, t in e.successors(states[i]))
         assert Counter((be, names[d]) for be, d in g.out_arcs(i)) == want, f"state {i}"
     depth = [0] * g.n_states
     for i in range(1, g.n_states):
