@@ -6,12 +6,16 @@ per declared symbol), type annotations are dropped, record patterns keep the lab
 
 from __future__ import annotations
 
+from dataclasses import fields
 from typing import Any
 
 from cpn._util.deep import left_spine
 from cpn.expr import nodes as E
 from cpn.lang import ast as A
 from cpn.lang.symbols import ConInfo, Symbol
+
+# what the front end annotated and the net does without
+_LEFT_BEHIND = frozenset({"ty", "op_ty", "ran_var", "type_expr", "result_type"})
 
 
 class Translator:
@@ -41,35 +45,19 @@ class Translator:
         done = self._done.get(id(e))
         if done is not None and done[0] is e:
             return done[1]
-        x = getattr(self, "_x_" + type(e).__name__)(e)
+        if isinstance(e, A.Annot):
+            x = self.expr(e.expr)
+        elif isinstance(e, A.BinOp):
+            x = self._binop(e)
+        else:
+            x = self._copy(e)
         self._done[id(e)] = (e, x)  # the node is kept, so that its id is not reused
         return x
 
     def exprs(self, es: list[A.Expr]) -> list:
         return [self.expr(x) for x in es]
 
-    def _x_Const(self, e):
-        return E.Const(e.span, e.value, e.kind)
-
-    def _x_Name(self, e):
-        return E.Name(e.span, e.name, ref=self.ref(e.ref))
-
-    def _x_Select(self, e):
-        return E.Select(e.span, e.label, index=e.index)
-
-    def _x_TupleE(self, e):
-        return E.TupleE(e.span, self.exprs(e.items))
-
-    def _x_RecordE(self, e):
-        return E.RecordE(e.span, [(label, self.expr(x)) for label, x in e.fields])
-
-    def _x_ListE(self, e):
-        return E.ListE(e.span, self.exprs(e.items))
-
-    def _x_App(self, e):
-        return E.App(e.span, self.expr(e.fn), self.expr(e.arg))
-
-    def _x_BinOp(self, e):
+    def _binop(self, e):
         # the left spine in a loop (a chain of any length is one frame deep), sharing nodes done before
         first, spine = left_spine(e, A.BinOp, lambda n: n is not e and self._done.get(id(n), (None,))[0] is n)
         x = self.expr(first)
@@ -78,75 +66,43 @@ class Translator:
             self._done[id(node)] = (node, x)
         return x
 
-    def _x_Neg(self, e):
-        return E.Neg(e.span, self.expr(e.operand))
+    def _copy(self, node):
+        """The node in closed form: its parts translated, its name resolved to a Ref, what the type checker
+        annotated (`ty`, `op_ty`, `ran_var`) and the type annotations left behind. One rule for every
+        node, so that a new expression form needs no line here."""
+        parts = {}
+        for f in fields(node):
+            if f.name in _LEFT_BEHIND:
+                continue
+            v = getattr(node, f.name)
+            parts[f.name] = self.ref(v) if f.name == "ref" else self._part(v)
+        return type(node)(**parts)
 
-    def _x_If(self, e):
-        return E.If(e.span, self.expr(e.cond), self.expr(e.then), self.expr(e.else_))
-
-    def _x_Case(self, e):
-        return E.Case(e.span, self.expr(e.subject), [(self.pat(p), self.expr(b)) for p, b in e.rules])
-
-    def _x_Fn(self, e):
-        return E.Fn(e.span, [(self.pat(p), self.expr(b)) for p, b in e.rules])
-
-    def _x_Raise(self, e):
-        return E.Raise(e.span, self.expr(e.expr))
-
-    def _x_Handle(self, e):
-        return E.Handle(e.span, self.expr(e.expr), [(self.pat(p), self.expr(b)) for p, b in e.rules])
-
-    def _x_Let(self, e):
-        return E.Let(e.span, [self.decl(d) for d in e.decls], self.expr(e.body))
-
-    def _x_Seq(self, e):
-        return E.Seq(e.span, self.exprs(e.items))
-
-    def _x_Annot(self, e):
-        return self.expr(e.expr)
-
-    def _x_ToMs(self, e):
-        return E.ToMs(e.span, self.expr(e.expr))
-
-    def _x_OpFun(self, e):
-        return E.OpFun(e.span, e.op)
+    def _part(self, v):
+        if isinstance(v, A.Expr):
+            return self.expr(v)
+        if isinstance(v, A.Pat):
+            return self.pat(v)
+        if isinstance(v, A.ValDecl | A.FunDecl | A.Clause):
+            return self._copy(v)
+        if isinstance(v, A.Decl):
+            raise TypeError(f"unsupported declaration {type(v).__name__} inside let")
+        if isinstance(v, list):
+            return [self._part(x) for x in v]
+        if isinstance(v, tuple):
+            return tuple(self._part(x) for x in v)
+        return v  # a constant, an operator, a label
 
     # ------------------------------------------------------------------ patterns
     def pat(self, p: A.Pat) -> E.Pat:
-        if isinstance(p, A.PWild):
-            return E.PWild(p.span)
-        if isinstance(p, A.PVar):
-            return E.PVar(p.span, p.name, ref=self.ref(p.ref))
-        if isinstance(p, A.PConst):
-            return E.PConst(p.span, p.value, p.kind)
-        if isinstance(p, A.PTuple):
-            return E.PTuple(p.span, [self.pat(x) for x in p.items])
-        if isinstance(p, A.PList):
-            return E.PList(p.span, [self.pat(x) for x in p.items])
-        if isinstance(p, A.PCons):
-            return E.PCons(p.span, self.pat(p.head), self.pat(p.tail))
-        if isinstance(p, A.PCon):
-            return E.PCon(p.span, p.name, self.pat(p.arg), ref=self.ref(p.ref))
-        if isinstance(p, A.PRecord):
-            return E.PRecord(p.span, [(label, self.pat(q)) for label, q in p.fields], p.flexible,
-                             ty_labels=list(p.ty_labels))
-        if isinstance(p, A.PAs):
-            return E.PAs(p.span, p.name, self.pat(p.pat), ref=self.ref(p.ref))
-        if isinstance(p, A.PAnnot):
-            return self.pat(p.pat)
-        raise TypeError(f"unknown pattern {type(p).__name__}")
+        return self.pat(p.pat) if isinstance(p, A.PAnnot) else self._copy(p)
 
     # ------------------------------------------------------------------ declarations
     def decl(self, d: A.Decl) -> E.ValDecl | E.FunDecl:
-        if isinstance(d, A.ValDecl):
-            return E.ValDecl(d.span, self.pat(d.pat), self.expr(d.expr))
-        if isinstance(d, A.FunDecl):
-            return self.fun(d)
-        raise TypeError(f"unsupported declaration {type(d).__name__} inside let")
+        return self._part(d)
 
     def fun(self, d: A.FunDecl) -> E.FunDecl:
-        clauses = [E.Clause(c.span, [self.pat(p) for p in c.params], self.expr(c.body)) for c in d.clauses]
-        return E.FunDecl(d.span, d.name, clauses, ref=self.ref(d.ref))
+        return self._copy(d)
 
     def globals(self, model: A.Model, values: dict[int, Any]) -> E.Globals:
         """The global constants and functions of a checked model; `values` maps the uid of each checked

@@ -100,3 +100,24 @@ def test_the_checker_and_the_engines_evaluate_alike(reference):
     e = m.engine(reference=reference)
     ((_, s1),) = e.successors(e.initial_state())
     assert list(e.marking(s1)[0]) == [(6, (1, 3), -1)]
+
+
+def test_lowering_closes_an_expression_form_it_does_not_name():
+    # a new form needs no line in cpn/net/translate.py: every node is closed by one rule
+    from dataclasses import dataclass
+    from typing import Any
+
+    from cpn.lang.symbols import Symbol
+    from cpn.net.translate import Translator
+
+    @dataclass(slots=True, eq=False)
+    class Twice(N.Expr):
+        expr: N.Expr
+        ty: Any = None
+
+    sym = Symbol("x", "var", data="N")
+    typed = Twice(None, N.Annot(None, N.Name(None, "x", ty="int", ref=sym), N.TName(None, "N")), ty="int")
+    closed = Translator().expr(typed)
+    assert type(closed) is Twice and closed.ty is None
+    assert isinstance(closed.expr, N.Name) and isinstance(closed.expr.ref, N.Ref)  # the annotation dropped
+    assert (closed.expr.ref.name, closed.expr.ref.kind, closed.expr.ref.uid) == ("x", "var", sym.uid)
