@@ -2,6 +2,7 @@
 (timestamps included), on every model of the repository and on random nets; and the native search
 (`--backend c`) against the Python search with tuples: the same graph."""
 
+import functools
 import glob
 import os
 
@@ -48,12 +49,25 @@ def test_repository_models(path):
         _compare(model, condensation=False, limit=60)
 
 
+@functools.lru_cache(maxsize=None)
+def _random_model(seed: int):
+    """Random net `seed`, loaded once for test_random_nets and test_random_nets_native_search (a model is
+    only read: each engine is compiled from its net anew)."""
+    return cpn.loads(random_net(seed), f"random{seed}.cpnet")
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _forget_random_models():
+    yield
+    _random_model.cache_clear()
+
+
 @pytest.mark.parametrize("chunk", range(10))
 def test_random_nets(chunk):
     """1,000 random nets in ten chunks of 100."""
     for seed in range(chunk * 100, chunk * 100 + 100):
         text = random_net(seed)
-        model = cpn.loads(text, f"random{seed}.cpnet")
+        model = _random_model(seed)
         try:
             _compare(model, condensation=model.net.is_timed and seed % 2 == 0, limit=25)
         except AssertionError:
@@ -103,7 +117,7 @@ def test_random_nets_native_search(chunk, monkeypatch):
     monkeypatch.setattr(nativetimed, "HAND_OVER_RATE", 1e9)  # timed nets: the C search to the end
     for seed in range(chunk * 200, chunk * 200 + 200):
         text = random_net(seed)
-        model = cpn.loads(text, f"random{seed}.cpnet")
+        model = _random_model(seed)
         try:
             _same_search(model, limit=150)
         except AssertionError:
