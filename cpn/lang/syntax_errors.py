@@ -64,6 +64,13 @@ SYNTAX_ERRORS: list[tuple[str, str, str, list[str]]] = [
     ),
     (
         "E0101",
+        "a family of instances names its variable and its values: 'instance NAME[i : LOW..HIGH] = ...'",
+        "Write 'instance Slave[i : 1..MAXS] = Slave(me = i) { ... };' (the values LOW..HIGH, integer constants) "
+        "or 'instance Slave[i : SIX] = ...' (the values of a colour set).",
+        ["instance S[i] = M(me = i);", "instance S[i : 1..] = M(me = i);", "instance S[i : ] = M;"],
+    ),
+    (
+        "E0101",
         "expected ';' after the declaration",
         "Each declaration ends with ';'. Add one at the end of the previous declaration.",
         [

@@ -153,3 +153,12 @@ def test_parse_and_canonical_text_round_trip():
     assert pretty(parse(text, "again.cpnet")) == text
     again = pretty(A.Model("fam.cpnet", FAMILY, parse(FAMILY, "fam.cpnet").decls))
     assert shape(cpn.loads(again, "again.cpnet")) == shape(cpn.loads(written_out(4), "out.cpnet"))
+
+
+@pytest.mark.parametrize("text", ["instance S[i] = Stage(me = i);", "instance S[i : 1..] = Stage(me = i);"])
+def test_a_malformed_family_says_how_it_is_written(text):
+    with pytest.raises(ModelError) as info:
+        parse(text, "fam.cpnet")
+    (d,) = info.value.diagnostics
+    assert d.code == "E0101" and "instance NAME[i : LOW..HIGH]" in d.message
+    assert (d.span.line, d.span.col) == (1, text.index("]") + 1) and "1..MAXS" in d.hint
