@@ -73,7 +73,9 @@ def test_random_nets_keep_dead_markings_and_visible_markings(chunk):
             model = cpn.loads(random_net(seed))
         except cpn.ModelError:
             continue
-        if compare(model.engine(), max_states=3000, seed=seed) is not None:
+        # the finite state spaces of these nets have at most 34 states: past 500 the net has no end (a
+        # search to 3,000 states took most of the test's time)
+        if compare(model.engine(), max_states=500, seed=seed) is not None:
             compared += 1
     assert compared >= 10
 
