@@ -612,27 +612,37 @@ def _ints(text: str) -> list[int]:
     return [int(x) for x in text.strip("[]").split(",") if x.strip()]
 
 
+BCAST_OK = [5, 6, 15, 16]
+WREGS = list(range(1, 10))  # the model's WREGS: the registers and coils the write codes of WFCS write
+
+
+def _bwrite(code: int) -> dict:
+    """The values that make one scenario of a family send a broadcast write first, which every slave
+    processes: every slave implements the write codes (WFCS, on WREGS; the thesis's slaves have none)."""
+    return dict(WFCS=str(BCAST_OK).replace(" ", ""), PRE=f"[(0, {code}, 1, 1)]")
+
+
 # (name, file, values); LATE: the slave that may be late (the owner of the first unicast address that
 # supports the frames' first code, so that its processing, not an exception, is what is late); CRC 1 (all):
 # the line may corrupt one frame, anywhere
 SCENARIOS = [
     ("A.1", "A_1", dict(CONFIG='"A"', ADRS="[3,5]", FCS="[4,5,7]", PO="2")),
-    ("A.2", "A_2", dict(CONFIG='"A"', ADRS="[0,3,5,6]", FCS="[1,7,20]", PO="2")),
+    ("A.2", "A_2", dict(CONFIG='"A"', ADRS="[0,3,5,6]", FCS="[1,7,20]", PO="2", **_bwrite(6))),
     ("A.3", "A_3", dict(CONFIG='"A"', ADRS="[0,3,5,6]", FCS="[1,7,20]", PO="0")),
     ("A.4", "A_4", dict(CONFIG='"A"', ADRS="[0,3,5,6]", FCS="[1,7,20]", PO="5")),
     ("B.1", "B_1", dict(CONFIG='"B"', NS="3", ADRS="[3,5,6]", FCS="[1,7,20]", PO="5", LATE="[3]")),
-    ("B.2", "B_2", dict(CONFIG='"B"', NS="3", ADRS="[0,3,5,6]", FCS="[1,7,20]", PO="2", LATE="[3]")),
+    ("B.2", "B_2", dict(CONFIG='"B"', NS="3", ADRS="[0,3,5,6]", FCS="[1,7,20]", PO="2", LATE="[3]", **_bwrite(16))),
     ("B.3", "B_3", dict(CONFIG='"B"', NS="3", ADRS="[0,3,5,6]", FCS="[1,7,20]", PO="2", LATE="[3]",
                         BCAST_ANY="true")),
     ("B.4", "B_4", dict(CONFIG='"B"', NS="5", ADRS="[0,3,5,6,7]", FCS="[1]", PO="1", LATE="[5]")),
     ("B.5", "B_5", dict(CONFIG='"B"', NS="6", ADRS="[0,2,3,4]", FCS="[1]", PO="0", LATE="[4]")),
     ("B.6", "B_6", dict(CONFIG='"B"', NS="8", ADRS="[1,2,3,4,5,6,7,8]", FCS="[1]", PO="1", LATE="[1]")),
-    ("C.1", "C_1", dict(CONFIG='"C"', S2ADRS="[5]", ADRS="[0,3,5,6]", FCS="[1,7,20]", PO="2")),
+    ("C.1", "C_1", dict(CONFIG='"C"', S2ADRS="[5]", ADRS="[0,3,5,6]", FCS="[1,7,20]", PO="2", **_bwrite(5))),
     ("C.2", "C_2", dict(CONFIG='"C"', S2ADRS="[5,6]", ADRS="[0,3,5,6]", FCS="[1,7,20]", PO="2")),
     ("C.3", "C_3", dict(CONFIG='"C"', S2ADRS="[5,6,7]", ADRS="[0,3,5,6,7,8]", FCS="[1,7,20]", PO="1")),
     ("D.1", "D_1", dict(CONFIG='"D"', ADRS="[0,3,5,6]", FCS="[1,7,20]", PO="2")),
     ("D.2", "D_2", dict(CONFIG='"D"', ADRS="[3,5]", FCS="[1,7,20,65]", PO="2")),
-    ("D.3", "D_3", dict(CONFIG='"D"', ADRS="[0,3,5]", FCS="[1,7,20,65]", PO="2")),
+    ("D.3", "D_3", dict(CONFIG='"D"', ADRS="[0,3,5]", FCS="[1,7,20,65]", PO="2", **_bwrite(15))),
     ("D.4", "D_4", dict(CONFIG='"D"', ADRS="[0,3,5,6]", FCS="[1,7,20,65]", PO="1")),
 ]
 # configurations beyond the thesis's rows (not thesis scenarios: the bug catalogue does not count them)
@@ -647,20 +657,22 @@ EXTRAS = [
      "a line that also loses one frame"),
 ]
 DEFAULTS = dict(LATE="[1]", CRC="1")
-BCAST_OK = [5, 6, 15, 16]
+
+
+def _explicit(text: str) -> list[tuple]:
+    """The frames of an ML list of (address, code, register, quantity), as EXTRA and PRE write them."""
+    return [tuple(int(x) for x in part.strip("( ").split(","))
+            for part in filter(None, (p.strip(" ,") for p in text.strip()[1:-1].split(")")))]
 
 
 def _frames(sets: dict) -> list[tuple]:
     slaves = _slaves(sets)
-    out = []
+    out = _explicit(sets.get("PRE", "[]"))
     for a in _ints(sets["ADRS"]):
         for c in _ints(sets["FCS"]):
             owners = [s for s in slaves if a in s["adrs"]]
             out.append((a, c, 1 if a == 0 or not owners else owners[0]["regs"][0], 1))
-    extra = sets.get("EXTRA", "[]").strip()[1:-1]
-    for part in filter(None, (p.strip(" ,") for p in extra.split(")"))):
-        out.append(tuple(int(x) for x in part.strip("( ").split(",")))
-    return out
+    return out + _explicit(sets.get("EXTRA", "[]"))
 
 
 def _expected(sets: dict, frame: tuple) -> int:
@@ -672,23 +684,36 @@ def _expected(sets: dict, frame: tuple) -> int:
     if a == 0 or not owners:
         return -1
     s = owners[0]
-    fail = _ints(sets.get("FAIL_FCS", "[]"))
-    if c not in s["fcs"]:
-        e = 1
-    elif c in (1, 2, 3, 4, 15, 16) and not 1 <= q <= {1: 2000, 2: 2000, 3: 125, 4: 125, 15: 1968, 16: 123}[c]:
-        e = 3
-    elif c in (1, 2, 3, 4, 5, 6, 15, 16, 22, 23) and not (
-            r in s["regs"] and r + (q - 1 if c in (1, 2, 3, 4, 15, 16) else 0) in s["regs"]):
-        e = 2
-    elif s["ss"] and c == 65:
-        return -2
-    elif c in fail:
-        e = 4
-    else:
-        e = 0
+    e = _request_error(sets, s, frame)
     if s["ss"] and c == 65:
-        return -1  # a super-request with an error: no reply (rule 4)
+        return -1 if e else -2  # a super-request with an error: no reply (rule 4)
+    if e == 0 and c in _ints(sets.get("FAIL_FCS", "[]")):
+        return 4
     return e
+
+
+def _request_error(sets: dict, slave: dict, frame: tuple) -> int:
+    """The exception a request raises at a slave before execution (0: none): function code (01), quantity
+    (03), register address and range (02), in that order (SL Appendix A, AP's per-function diagrams)."""
+    _, c, r, q = frame
+    writes = _ints(sets.get("WFCS", "[]"))
+    regs = WREGS if c in writes else slave["regs"]
+    if c not in slave["fcs"] and c not in writes:
+        return 1
+    if c in (1, 2, 3, 4, 15, 16) and not 1 <= q <= {1: 2000, 2: 2000, 3: 125, 4: 125, 15: 1968, 16: 123}[c]:
+        return 3
+    if c in (1, 2, 3, 4, 5, 6, 15, 16, 22, 23) and not (
+            r in regs and r + (q - 1 if c in (1, 2, 3, 4, 15, 16) else 0) in regs):
+        return 2
+    return 0
+
+
+def _broadcast_writes(sets: dict) -> list[int]:
+    """The ids of the master's broadcasts that every slave processes (a code allowed in broadcasts, no
+    error at any slave)."""
+    slaves = _slaves(sets)
+    return [i + 1 for i, f in enumerate(_frames(sets)) if f[0] == 0 and f[1] in BCAST_OK
+            and all(_request_error(sets, s, f) == 0 for s in slaves)]
 
 
 def _q(text: str) -> str:
@@ -708,14 +733,16 @@ def _properties(name: str, sets: dict) -> list[dict]:
     props = []
 
     def add(pname, kind, **fields):
+        if STRUCTURAL in pname:
+            fields.setdefault("description", STRUCTURAL_WHY)
         props.append(dict(name=pname, kind=kind, **fields))
 
-    add("S-P1 (claim 1; holds by the net's structure): the master is in one state of Fig. 7", "bound",
+    add(f"S-P1 (claim 1) {STRUCTURAL}: the master is in one state of Fig. 7", "bound",
         place="Master'State 1", upper_equals=1, lower_equals=1)
     per = " andalso\n".join(
         f"size (Slave'Idle {k}) + size (Slave'Processing {k}) + size (Slave'FormatNormal {k}) + "
         f"size (Slave'FormatError {k}) + size (Slave'WaitEvent {k}) = 1" for k in range(1, ns + 1))
-    add("S-P1 (claim 1; holds by the net's structure): every slave is in one state of Fig. 8", "invariant", expr=per)
+    add(f"S-P1 (claim 1) {STRUCTURAL}: every slave is in one state of Fig. 8", "invariant", expr=per)
     add("S-P2 (claim 2): no new request before the reply, the time-out or the turnaround", "invariant",
         expr="let val d = size (Master'Done 1) in ms_to_col (Master'NextId 1) - 1 <= d + 1 andalso\n"
              "List.all (fn (f : FRAME) => #id f <= d + 1) (ms_to_list (Modbus'm2b 1)) end")
@@ -764,13 +791,21 @@ def _properties(name: str, sets: dict) -> list[dict]:
              "size (Modbus'm2b 1) + size (Modbus'b2m 1) + size (Modbus's2b 1) + size (Modbus'b2s 1) +\n"
              "size (Master'Timer 1) = 0 andalso forall Slave'Idle (fn m => size m = 1)")
     add("S-P8 (claim 4): no infinite loop (the state space has no cycle)", "no_livelock")
-    add("S-P9 (holds by the net's structure: a node transmits only on a silent line): one frame on the line",
+    add(f"S-P9 {STRUCTURAL}: one frame on the line (a node transmits only on a silent line)",
         "bound", expr="size (Modbus'm2b 1) + size (Modbus's2b 1)", at_most=1)
     add("S-P10: the turnaround delay protects a broadcast: no frame reaches a slave still processing one",
         "invariant",
         expr="let val busy = List.map #1 (List.filter (fn (k, g : FRAME) => #adr g = 0) (ms_to_list (sum Slave'Processing)))\n"
              "in List.all (fn (ks, f : FRAME) => #src f <> 0 orelse not (List.exists (fn k => mem busy k) ks))\n"
              "(ms_to_list (Modbus'b2s 1)) end")
+    writes = _broadcast_writes(sets)
+    if writes:
+        add(f"S-P4 (where a broadcast write is sent): every slave processes the broadcast write {writes[0]}",
+            "reachable",
+            expr=f"List.length (List.filter (fn (k, g : FRAME) => #src g = 0 andalso #id g = {writes[0]})\n"
+                 "(ms_to_list (sum Slave'Processing))) = NSLAVES")
+    for fact, expr in _dead_facts(sets):
+        add(f"{DEAD} {fact}", "invariant", expr=expr)
     if config == "C":
         add("M-P4: the address sets of the nodes are disjoint", "invariant",
             expr="List.all (fn k => List.all (fn l => k = l orelse\n"
@@ -782,8 +817,11 @@ def _properties(name: str, sets: dict) -> list[dict]:
             expr="let fun ok (f : FRAME) = let val (a, c, _, _) = requestOf f in\n"
                  "not (#src f = 1 andalso a <> 0 andalso c = SUPER_FC andalso #adr f <> 0) end\n"
                  "in List.all ok (ms_to_list (Modbus's2b 1)) andalso List.all ok (ms_to_list (Modbus'b2m 1)) end")
-        add("SS-P3: the SuperSlave waits for its event only while its window tw is open", "invariant",
-            expr="size (Slave'WaitEvent 1) = size (Slave'Window 1)")
+        add("SS-P3: the SuperSlave's broadcast starts no later than its receipt of the super-request + the tw "
+            "the request carries", "invariant",
+            expr="(* (id, late) per broadcast started: late iff receipt + tw had passed (a stopwatch set from the\n"
+                 "   request's tw at its receipt: under time condensation no property reads the clock) *)\n"
+                 "List.all (fn (i, late) => not late) (ms_to_list (sum Slave'SuperStarts))")
         add("SS-P4: while the SuperSlave's broadcast is on the line, the master is waiting for it (t3 = tw + tBC + t2)",
             "invariant",
             expr="List.all (fn (f : FRAME) => #src f = 0 orelse #adr f <> 0 orelse\n"
@@ -795,6 +833,39 @@ def _properties(name: str, sets: dict) -> list[dict]:
             expr="let fun ok (f : FRAME) = #src f = 0 orelse #src f = 1 orelse #adr f <> 0\n"
                  "in List.all ok (ms_to_list (Modbus's2b 1)) andalso List.all ok (ms_to_list (Modbus'b2m 1)) end")
     return props
+
+
+# the label of a property that holds by the net's structure (a place invariant, the silence token): it
+# cannot catch a bug in a guard, a token value or an order of occurrences, so it does not count as
+# verification (reports/README.md; the bug catalogue leaves it out)
+STRUCTURAL = "[structural]"
+STRUCTURAL_WHY = ("holds by the net's structure (a place invariant or the line's silence token): no guard, token "
+                  "value or order of occurrences can break it, so it is not counted as verification")
+# the label of a protocol fact: a path the configuration excludes never occurs
+DEAD = "dead (a protocol fact of the configuration):"
+
+
+def _dead_facts(sets: dict) -> list[tuple[str, str]]:
+    """The protocol paths the scenario's configuration excludes, derived from its frames and slaves (not
+    from a state space): (what, a state predicate that the paths' transitions are never enabled)."""
+    frames, slaves = _frames(sets), _slaves(sets)
+    never = lambda ts: " andalso ".join(f'not (enabled "{t}")' for t in ts)  # noqa: E731
+    supers = [f for f in frames if f[1] == 65 and f[0] != 0 and any(s["ss"] and f[0] in s["adrs"] for s in slaves)]
+    out = []
+    if not any(f[0] == 0 for f in frames):
+        out.append(("no broadcast in the frames: the master never sends one (M2) nor waits its turnaround (M3)",
+                    never(["Master'SendBroadcast", "Master'TurnaroundExpired"])))
+    if not _broadcast_writes(sets) and sets.get("BCAST_ANY", "false") != "true" and not supers:
+        out.append(("the frames' broadcasts are read codes, dropped unprocessed, and no SuperSlave broadcasts: "
+                    "no slave processes a broadcast (S6)", never(["Slave'AcceptBroadcast", "Slave'EndBroadcast"])))
+    if not supers:
+        out.append(("no super-request to a SuperSlave: the master never waits t3, no SuperSlave opens a window",
+                    never(["Master'SendSuper", "Slave'AcceptSuper", "Slave'SendSuperBroadcast"])))
+    if not _ints(sets.get("FAIL_FCS", "[]")):
+        out.append(("no execution fails: no exception 04 (S7)", never(["Slave'ProcessingError"])))
+    if sets.get("LOSS", "0") == "0":
+        out.append(("the line loses no frame", never(["Bus'LoseMaster", "Bus'LoseSlave"])))
+    return out
 
 
 def _toml_value(v) -> str:
@@ -815,14 +886,17 @@ def spec_text(name: str, sets: dict, description: str, model: str = MODEL_REL, m
              "# Choices where the seed is silent (MODBUS.md 3.6) are in models/modbus/modbus.cpnet; here:",
              "# frames every pair address x code in list order (register: the first of the owner, quantity 1);",
              "# RESP_TO 1000, TURNAROUND 200, TPROC {1, 50} ms and TLATE 1010 ms (beyond the time-out) for the",
-             f"# slave(s) LATE = {sets['LATE']}; the line may corrupt CRC = {sets['CRC']} frame(s); 11-bit characters at 9600 baud.",
+             f"# slave(s) LATE = {sets['LATE']}; the line may corrupt CRC = {sets['CRC']} frame(s); 11-bit characters at 9600 baud;",
+             "# broadcasts take TPROC_BC {1, 50} ms; the SuperSlave's work {50, tw, tw + 10, tw + t2 + 10} ms, tw = 210 ms",
+             "# carried in the super-request" + (f"; first the broadcast write PRE = {sets['PRE']}, which every slave"
+                                                 f" processes (WFCS = {sets['WFCS']})." if "PRE" in sets else "."),
              f'name = "{name}"', f'model = "{model}"', f'description = "{description}"', "", "[set]"]
     for k, v in sets.items():
         lines.append(f"{k} = {_toml_value(v)}")
     lines += ["", "[explore]", "time_condensation = true", "max_seconds = 600", ""]
     for p in props if props is not None else _properties(name, sets):
         lines.append("[[property]]")
-        for key in ("name", "kind", "place", "expr", "upper_equals", "lower_equals", "at_most"):
+        for key in ("name", "description", "kind", "place", "expr", "upper_equals", "lower_equals", "at_most"):
             if key in p:
                 lines.append(f"{key} = {_toml_value(p[key])}")
         if p["name"] in expect_violated:
@@ -835,7 +909,8 @@ def write_specs() -> None:
     folder = os.path.join(ROOT, "specs", "modbus")
     for name, stem, sets in SCENARIOS:
         figs = THESIS_FIGURES[name]
-        desc = (f"Thesis scenario {name} (MODBUS.md 3.5): frames {sets['ADRS']} x {sets['FCS']} in list order, "
+        first = f"the broadcast write {sets['PRE'][1:-1]}, then " if "PRE" in sets else ""
+        desc = (f"Thesis scenario {name} (MODBUS.md 3.5): frames {first}{sets['ADRS']} x {sets['FCS']} in list order, "
                 f"PO {sets['PO']}. Thesis: {figs[0]} nodes, {figs[1]} dead markings, {figs[2]}.")
         with open(os.path.join(folder, stem + ".toml"), "w", encoding="utf-8") as fh:
             fh.write(spec_text(name, sets, desc))
@@ -863,7 +938,7 @@ MUTANTS = [
     ("timeout-from-send", "the response time-out is started without the slave's processing time (0 ms)",
      "SL 2.4.1 response time-out"),
     ("short-turnaround", "1 ms turnaround delay after a broadcast", "SL 2.4.1 turnaround"),
-    ("bcast-reply", "a slave answers a broadcast it has processed", "SL 2.1"),
+    ("bcast-reply", "a slave answers a broadcast it has processed (with its own address in the reply)", "SL 2.1"),
     ("bcast-exception", "a slave sends an exception reply to a broadcast with an error", "SL 2.1, App. A"),
     ("bcast-any-code", "a slave processes a broadcast of a read code", "SL 2.1, App. A"),
     ("busy-slave-queues", "a busy slave queues the frames that arrive while it processes", "SL 2.4.2 Fig. 8"),
@@ -917,7 +992,7 @@ def write_mutant_on(mutant: str, stem: str) -> None:
     result = run_scenario(scenario, type(base)(base.name, base.params, {**base.values, **_mutant_values(mutant)}))
     assert result.exploration.complete, mutant
     broken = {r.spec.name for r in result.results if r.verdict.status is Status.VIOLATED}
-    assert broken, mutant
+    assert any(STRUCTURAL not in b for b in broken), mutant
     print(mutant, stem, sorted(_short(b) for b in broken), f"{result.exploration.n_states:,} states")
     text = spec_text(f"{name} mutant {mutant}", {**sets, **PARAM_MUTANTS.get(mutant, {})},
                      f"Bug: {bug}. Scenario {name}, its full property set; the bug breaks the properties "
@@ -950,7 +1025,9 @@ def run_mutants(write: bool, only: list[str] | None = None, columns: list[str] |
             base = scenario.runs[0]
             run = type(base)(base.name, base.params, {**base.values, **_mutant_values(mutant)})
             result = run_scenario(scenario, run, {"max_seconds": MUTANT_BUDGET})
-            violated = [r for r in result.results if r.verdict.status is Status.VIOLATED]
+            every = [r for r in result.results if r.verdict.status is Status.VIOLATED]
+            # a property that holds by the net's structure does not count as catching a bug
+            violated = [r for r in every if STRUCTURAL not in r.spec.name]
             if not violated:
                 cells.append("-" if result.exploration.complete else "?")
                 continue
@@ -965,7 +1042,7 @@ def run_mutants(write: bool, only: list[str] | None = None, columns: list[str] |
             complete = result.exploration.complete
             cells.append(", ".join(names) + (f" ({steps})" if steps < 10 ** 9 else "") + ("" if complete else " *"))
             if first is None and complete:  # the gate needs a complete search: every verdict decided
-                first = (name, stem, sets, {b[2] for b in best})
+                first = (name, stem, sets, {r.spec.name for r in every})
         print(f"| {mutant} | {bug} | " + " | ".join(cells) + " |", flush=True)
         if write and first is not None:
             name, stem, sets, broken = first
