@@ -1,5 +1,6 @@
 """Helpers of the issue 16 regression tests: the small models beside them and their state-space figures."""
 
+import functools
 import os
 
 import cpn
@@ -13,9 +14,16 @@ def model_path(name: str) -> str:
     return os.path.join(MODELS, name)
 
 
+@functools.lru_cache(maxsize=None)
+def _model(name: str):
+    """A model beside this file, loaded once for both engines' figures (a model is only read: each
+    engine is compiled from its net anew; chains.cpnet took a second to load)."""
+    return cpn.load(model_path(name))
+
+
 def figures(name: str, reference: bool = False, **options) -> tuple[int, int, int]:
     """(nodes, arcs, dead markings) of the state space of a model beside this file."""
-    return engine_figures(cpn.load(model_path(name)).engine(reference=reference), **options)
+    return engine_figures(_model(name).engine(reference=reference), **options)
 
 
 def engine_figures(engine, **options) -> tuple[int, int, int]:
