@@ -46,8 +46,11 @@ class Model:
         self.warnings = warnings
         self.translation = None  # for .pnml and .cpn files: the translation to .cpnet and its origins
 
-    def engine(self, time_condensation: bool = False, reference: bool = False):
+    def engine(self, time_condensation: bool = False, reference: bool = False, simulation: bool = False):
         """The net's successor function (`cpn.engine.compile_net`): compiled, or the reference interpreter.
+
+        A net that calls a random distribution function (`exponential`, `uniform`, ...) has no state space:
+        unless `simulation` is given, that is a ModelError with one error (E0206) per call.
 
         >>> import cpn
         >>> e = cpn.loads("colset U = unit; place A : U = 1`(); trans t; arc A -> t;").engine()
@@ -56,6 +59,18 @@ class Model:
         """
         from cpn.engine import compile_net
 
+        draws = getattr(self.net.checked, "random_draws", ())
+        if draws and not simulation:
+            from cpn.lang.infer import random_hint
+
+            error = ModelError([Diagnostic("E0206", f"'{name}' draws a random value: a state space cannot hold it "
+                                           "(simulate runs the model)", span, hint=random_hint(name),
+                                           params={"name": name}) for name, span in draws],
+                               {span.file: self.source for _, span in draws if span is not None})
+            if self.translation is not None:
+                importer = importer_for(self.path)
+                error = importer.remap_error(error, self.translation, f"{self.path} (as .cpnet)")
+            raise error
         return compile_net(self.net, time_condensation=time_condensation, reference=reference)
 
     @property

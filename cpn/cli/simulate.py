@@ -43,9 +43,16 @@ def run(args) -> int:
     sets = sets_of(args)
     outputs = {o.option: o for o in prepare_outputs(("--json", args.json))}
     text = not ("--json" in outputs and outputs["--json"].to_stdout)
-    model = load_model(args.model, sets)
-    engine = model.engine()
+    from cpn.values import draws
+
+    # one generator, seeded by --seed, chooses the binding elements and draws the values of CPN Tools' random
+    # distribution functions (also those of constants, drawn when the model is loaded): one seed, one run
     rng = random.Random(args.seed)
+    draws.use(rng)
+    model = load_model(args.model, sets)
+    # a draw is made anew at each occurrence: the reference interpreter remembers no result of a marking
+    # (the compiled engine reuses the effect of a binding element)
+    engine = model.engine(simulation=True, reference=bool(getattr(model.net.checked, "random_draws", ())))
     s = engine.initial_state()
     steps: list[dict] = []
     width = max(len(str(args.steps)), 4)

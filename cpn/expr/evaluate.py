@@ -23,6 +23,7 @@ from cpn._util.deep import left_spine
 from cpn._util.deep import run_deep as _run_deep
 from cpn._util.deep import run_deep_again as _run_deep_again
 from cpn.expr import nodes as A
+from cpn.values import draws
 from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS, MLError, MLRaise, binop
 from cpn.values.multiset import Multiset, TimedMultiset
 
@@ -185,9 +186,11 @@ class Evaluator:
                 return Multiset({v: n for v, n in items})
             return mult
         if op == "ran":
-            def ran(_u):
-                raise MLError(f"{csname}.ran() draws a random value; it is allowed only in arc inscriptions "
-                              "and guards, where exploration tries every value")
+            def ran(_u):  # a draw where it is no choice (inside a function): simulation only
+                vals = cs.values()
+                if not vals:
+                    raise MLError(f"{csname}.ran(): colour set {csname} is infinite or too large to draw from")
+                return draws.ran(vals)
             return ran
         raise MLError(f"unknown colour set function {csname}.{op}")
 

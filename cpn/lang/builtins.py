@@ -7,6 +7,7 @@ Every function value takes one argument (SML): tuples for several arguments, cur
 from __future__ import annotations
 
 from cpn.lang import types as T
+from cpn.values import draws
 from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS, MLError
 from cpn.values.multiset import MultisetError
 
@@ -145,6 +146,12 @@ TYPES: dict[str, str] = {
     "time": "unit -> int",
 }
 
+# CPN Tools' random distribution functions: simulation only (a net that calls them has no state space)
+RANDOM_BUILTINS: frozenset[str] = frozenset(draws.DISTRIBUTIONS)
+TYPES.update({name: ty for name, (ty, _) in draws.DISTRIBUTIONS.items()})
+# the engines find every library function in one table; the draws are defined beside the generator they use
+FUNCTIONS.update(draws.FUNCTIONS)
+
 # name -> (type, implementation)
 BUILTINS: dict[str, tuple[str, object]] = {name: (ty, FUNCTIONS[name]) for name, ty in TYPES.items()}
 
@@ -171,5 +178,5 @@ def record_setter(cs, op: str) -> str | None:
     return None
 
 
-__all__ = ["BUILTINS", "COLSET_OPS", "MLError", "MultisetError", "parse_type", "record_setter",
-           "TIME_BUILTINS"]
+__all__ = ["BUILTINS", "COLSET_OPS", "MLError", "MultisetError", "RANDOM_BUILTINS", "parse_type",
+           "record_setter", "TIME_BUILTINS"]

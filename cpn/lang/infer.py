@@ -9,8 +9,10 @@ from __future__ import annotations
 
 from cpn._util import did_you_mean
 from cpn._util.deep import left_spine
+from cpn.expr.binding import children
 from cpn.lang import ast as A
 from cpn.lang import types as T
+from cpn.lang.builtins import RANDOM_BUILTINS
 from cpn.lang.checked import Abort, Env
 from cpn.lang.symbols import Symbol
 
@@ -27,6 +29,21 @@ FINITE_DRAWS: frozenset[str] = frozenset({"discrete", "bernoulli"})
 
 # The library functions on multisets that CPN Tools models also give a list (a multiset is a list there)
 LIST_AS_MS_FUNCTIONS: frozenset[str] = frozenset({"ms_to_list", "ms_to_col", "size"})
+
+
+def random_hint(name: str) -> str:
+    """What to change so that a state space can hold the draw of random distribution function `name`."""
+    if name.endswith(".ran"):
+        return (f"For a state space, call {name}() directly in an output arc inscription or a transition delay, "
+                "where it is explored as a choice of every value, and pass the value to the function as an "
+                "argument.")
+    if name in FINITE_DRAWS:
+        return (f"For a state space, call {name} with constant arguments directly in an output arc inscription or "
+                "a transition delay, where it is explored as a choice of every value, and pass the value to the "
+                "function as an argument.")
+    return (f"For a state space, replace {name}(...) by a finite choice: a small colour set "
+            "'colset D = int with 1..5;' and 'D.ran()' in an output arc or a delay (every value is explored), "
+            "or a bounded 'discrete(a, b)' there.")
 
 
 class TypeInference:
@@ -151,12 +168,8 @@ class TypeInference:
             cst = self.cstypes[cs]
             if op == "ran":
                 # an application CS.ran() in an output arc inscription or a delay never gets here (_i_App):
-                # anywhere else it would be one random draw, which no state space holds
-                self.error("E0206", f"'{e.name}()' draws a random value here: it is a choice of every value of "
-                           f"{cs} only where it is called in an output arc inscription or a transition delay",
-                           e.span, hint=f"Call {e.name}() in the output arc inscription or the delay, and pass the "
-                           "value to the function as an argument.", name=e.name)
-                raise Abort()
+                # anywhere else it is one random draw, which simulate makes and no state space holds
+                self.random_draw(e)
             if op.startswith("set_"):  # CS.set_<field> r v: r with the field set to v, as in CPN Tools
                 rt = T.prune(cst)
                 return T.TFun(cst, T.TFun(dict(rt.fields)[op[4:]], cst))
@@ -169,8 +182,33 @@ class TypeInference:
             return {"all": T.TFun(T.UNIT, T.ms(cst)), "size": T.TFun(T.UNIT, T.INT), "ran": T.TFun(T.UNIT, cst),
                     "ord": T.TFun(cst, T.INT), "col": T.TFun(T.INT, cst), "legal": T.TFun(cst, T.BOOL),
                     "mkstr": T.TFun(cst, T.STRING), "lt": T.TFun(T.TTuple([cst, cst]), T.BOOL)}[op]
+        if sym.kind == "builtin" and sym.name in RANDOM_BUILTINS:
+            self.random_draw(e)
         t = sym.type
         return t.instantiate() if isinstance(t, T.Scheme) else t
+
+    def _depends_on_binding(self, e: A.Expr, env: Env) -> bool:
+        """Whether a name in `e` (not yet inferred) is a variable of the transition or a local name."""
+        stack = [e]
+        while stack:
+            x = stack.pop()
+            if isinstance(x, A.Name):
+                sym = self.resolve_name(x.name, env, x.span)
+                if sym is not None and sym.kind in ("var", "local", "param"):
+                    return True
+                continue
+            stack.extend(c for c in children(x) if c is not None)
+        return False
+
+    def random_draw(self, e: A.Name) -> None:
+        """A call of one of CPN Tools' random distribution functions: simulate draws it (seeded), explore and
+        check refuse the model with one error per such call (`random_draws`); lint warns."""
+        if any(span == e.span and name == e.name for name, span in self.random_draws):
+            return
+        self.random_draws.append((e.name, e.span))
+        self.warn("W0105", f"'{e.name}' draws a random value: simulate runs the model (one run per --seed), "
+                  "explore and check cannot analyse it", e.span,
+                  hint=random_hint(e.name), name=e.name)
 
     def _i_Select(self, e, env):
         a, r = T.TVar(), T.TVar()
@@ -201,9 +239,12 @@ class TypeInference:
             if self.pending and self.pending[-1][0] is e.fn and self._try_select(*self.pending[-1]):
                 self.pending.pop()
             return T.prune(ft).res
-        if (isinstance(e.fn, A.Name) and e.fn.name in FINITE_DRAWS
-                and self.resolve_name(e.fn.name, env, e.fn.span) is None):
-            return self.finite_draw(e, env)  # discrete(a, b), bernoulli(p): a choice, as CS.ran()
+        if (isinstance(e.fn, A.Name) and e.fn.name in FINITE_DRAWS and self.ran_sink is not None
+                and getattr(self.resolve_name(e.fn.name, env, e.fn.span), "kind", "builtin") == "builtin"
+                and not self._depends_on_binding(e.arg, env)):
+            # discrete(a, b), bernoulli(p) with constant arguments in an output arc or a delay: a choice, as
+            # CS.ran(); anywhere else a draw that only simulation makes (random_draw)
+            return self.finite_draw(e, env)
         if isinstance(e.fn, A.Name) and e.fn.name.endswith(".ran") and self.ran_sink is not None:
             sym = self.resolve_name(e.fn.name, env, e.fn.span)
             if sym is not None and sym.kind == "csop":

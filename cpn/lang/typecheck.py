@@ -51,6 +51,7 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
         self.genv = Env(self.globals)
         self.ran_counter = 0
         self.ran_sink: list | None = None
+        self.random_draws: list[tuple[str, Span]] = []  # calls of random distribution functions (simulate only)
         # CPN Tools' standard declarations; a model may redeclare them
         self.predefined = {"UNIT", "BOOL", "INT", "STRING", "REAL", "TIME", "INTINF"}
         for name, cs, ty in (("UNIT", C.UnitCS("UNIT"), T.UNIT), ("BOOL", C.BoolCS("BOOL"), T.BOOL),
@@ -97,6 +98,7 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
                                self.globals, self.ev, top, pages,
                                [d for d in self.diags if d.severity is Severity.WARNING])
         checked.symmetries = list(self.symmetries)
+        checked.random_draws = list(self.random_draws)
         return checked
 
     def top_decl(self, d: A.Decl, top_decls: list, modules: dict) -> None:

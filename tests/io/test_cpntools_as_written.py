@@ -183,19 +183,19 @@ def test_a_code_segment_without_semicolon_before_action_is_read_as_cpn_tools_rea
 # ------------------------------------------------------------------ messages
 
 
-def test_a_recursive_function_that_draws_names_the_distribution_once():
+def test_a_recursive_function_that_draws_names_the_distribution_once(tmp_path):
     decls = DECLS + ('<ml id="M2">fun localize 0 = 0\n  | localize n = localize (n - 1) + floor (uniform (0.0, 1.0))'
                      '</ml><ml id="M3">fun place2 n = localize n + 1</ml>')
     body = (place("P1", "A", "S", "1`0") + trans("T1", "t") + arc("A1", "PtoT", "T1", "P1", "x")
             + arc("A2", "TtoP", "T1", "P1", "localize x") + trans("T2", "u") + arc("A3", "PtoT", "T2", "P1", "x")
             + arc("A4", "TtoP", "T2", "P1", "place2 x"))
+    model = load(tmp_path, cpn_xml(decls, page("PG1", "Top", body)))
+    assert [w.code for w in model.warnings] == ["W0105"]
     with pytest.raises(ModelError) as info:
-        translate_text(cpn_xml(decls, page("PG1", "Top", body)), "m.cpn")
-    msgs = [d.message for d in info.value.diagnostics]
-    assert len(msgs) == 2
-    assert "'localize' calls 'uniform', a random distribution function" in msgs[0]
-    assert "'place2' calls 'localize', which calls 'uniform', a random distribution function" in msgs[1]
-    assert all(m.count("localize") <= 2 for m in msgs)
+        model.engine()
+    [d] = info.value.diagnostics  # one call of uniform: one error, at it, naming it
+    assert d.code == "E0206" and d.message.startswith("'uniform' draws a random value")
+    assert "localize" not in d.message and d.span.file.endswith("m.cpn")
 
 
 def test_an_error_in_a_used_sml_file_is_reported_in_that_file(tmp_path):
@@ -275,7 +275,7 @@ def test_time_intervals_on_a_transition_and_an_output_arc(tmp_path):
     assert len(succ) == 4 and len({s for _, s in succ}) == 3
 
 
-def test_discrete_on_an_output_arc_is_a_choice_and_inside_a_function_still_refused(tmp_path):
+def test_discrete_on_an_output_arc_is_a_choice_and_inside_a_function_only_simulated(tmp_path):
     body = (place("P1", "A", "S", "1`0") + place("P2", "B", "INT") + trans("T1", "t", cond="[x = 0]")
             + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P2", "discrete(1, 3)"))
     model = load(tmp_path, cpn_xml(DECLS, page("PG1", "Top", body)))
@@ -284,9 +284,12 @@ def test_discrete_on_an_output_arc_is_a_choice_and_inside_a_function_still_refus
     assert len(list(e.successors(e.initial_state()))) == 3
     decls = DECLS + '<ml id="M2">fun roll () = discrete(1, 6)</ml>'
     body = body.replace("discrete(1, 3)", "roll ()")
+    model = load(tmp_path, cpn_xml(decls, page("PG1", "Top", body)))
+    assert [w.code for w in model.warnings] == ["W0105"]
     with pytest.raises(ModelError) as info:
-        translate_text(cpn_xml(decls, page("PG1", "Top", body)), "m.cpn")
-    assert "'roll' calls 'discrete'" in info.value.diagnostics[0].message
+        model.engine()
+    [d] = info.value.diagnostics
+    assert d.code == "E0206" and d.message.startswith("'discrete' draws a random value") and "roll" not in d.message
 
 
 def test_a_reference_declared_with_val_and_read_by_an_inscription_is_refused_at_the_read():

@@ -37,17 +37,26 @@ def test_bernoulli_is_1_with_probability_p(p, values):
     assert {e.format_marking(s, 1) for _, s in succ} == values
 
 
-@pytest.mark.parametrize("text, fragment", [
-    ("fun f () = discrete (1, 2);", "'discrete' draws a random value here"),
-    ("trans T [discrete (0, 1) = 0];\narc P -> T : ();", "'discrete' draws a random value here"),
-    ("var x : C;\ntrans T;\narc P -> T : ();\narc Q -> T : x;\narc T -> Q : discrete (x, 3);", "depends on the binding"),
-    ("trans T;\narc P -> T : ();\narc T -> Q : discrete (3, 1);", "has no value"),
+@pytest.mark.parametrize("text, line, col", [
+    ("fun f () = discrete (1, 2);", 6, 12),
+    ("trans T [discrete (0, 1) = 0];\narc P -> T : ();", 6, 10),
+    ("var x : C;\ntrans T;\narc P -> T : ();\narc Q -> T : x;\narc T -> Q : discrete (x, 3);", 10, 14),
 ])
-def test_a_draw_that_cannot_be_a_choice_is_one_error(text, fragment):
+def test_a_draw_that_cannot_be_a_choice_is_simulated_and_one_error_of_explore(text, line, col):
+    model = cpn.loads(DECLS + text, "t.cpnet")
+    assert [(w.code, w.span.line, w.span.col) for w in model.warnings] == [("W0105", line, col)]
     with pytest.raises(ModelError) as info:
-        cpn.loads(DECLS + text, "t.cpnet")
+        model.engine()
+    [d] = info.value.diagnostics
+    assert d.code == "E0206" and "'discrete' draws a random value" in d.message
+    assert (d.span.line, d.span.col) == (line, col)
+
+
+def test_a_choice_without_a_value_is_an_error():
+    with pytest.raises(ModelError) as info:
+        cpn.loads(DECLS + "trans T;\narc P -> T : ();\narc T -> Q : discrete (3, 1);", "t.cpnet")
     errors = [d for d in info.value.diagnostics if d.severity.value == "error"]
-    assert len(errors) == 1 and fragment in errors[0].message
+    assert len(errors) == 1 and "has no value" in errors[0].message
 
 
 def test_a_function_of_the_model_called_discrete_is_no_draw():

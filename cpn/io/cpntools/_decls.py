@@ -13,6 +13,7 @@ from cpn.diagnostics import Diagnostic, Span
 from cpn.io.cpntools import _ml as ml
 from cpn.io.cpntools._text import Origin, _clean, _short, _text_origin_from
 from cpn.io.cpntools._xml import Element
+from cpn.values.draws import DISTRIBUTIONS
 
 
 class _Declarations:
@@ -54,7 +55,9 @@ class _Declarations:
         self._needed_declarations(gb)
         user_names |= {name for name, _ in funs}
         # A user's own 'normal' or 'uniform' (an enumeration constant, say) is not the library function.
-        self.impure = set(ml.RANDOM_FUNCTIONS) - user_names
+        # The distributions of CPN Tools' library that simulate draws are left to the front end, which warns
+        # (lint) and refuses them in explore and check, at each call, naming the distribution.
+        self.impure = set(ml.RANDOM_FUNCTIONS) - user_names - set(DISTRIBUTIONS)
         self.impure_via: dict[str, str] = {}  # a function -> the random function it calls
         # `fun DEL() = NetDelay.ran();`: a call DEL() is written NetDelay.ran(), which the engine explores
         # as a choice of every value; inside a function it would be one random draw.
