@@ -126,6 +126,20 @@ def _rayleigh(s):
     return s * math.sqrt(-2.0 * math.log(1.0 - _rng().random()))
 
 
+# SML/NJ's structure Random, which CPN ML includes: `Random.rand (i, j)` makes a generator from two seeds (the
+# same seeds, the same sequence, as in SML/NJ; the numbers are not SML/NJ's), the others draw from one and
+# advance it. A generator is a value of type `rand`.
+def _sml_rand(arg):
+    a, b = arg
+    return random.Random(f"Random.rand({a},{b})")
+
+
+def _sml_rand_range(arg):
+    lo, hi = arg
+    _domain(lo <= hi, "randRange", f"Random.randRange ({lo}, {hi}): lo > hi")
+    return lambda gen: gen.randint(lo, hi)
+
+
 # name -> (CPN Tools' type, implementation)
 DISTRIBUTIONS: dict[str, tuple[str, object]] = {
     "bernoulli": ("real -> int", _bernoulli),
@@ -142,6 +156,11 @@ DISTRIBUTIONS: dict[str, tuple[str, object]] = {
     "student": ("int -> real", _student),
     "weibull": ("real * real -> real", _weibull),
     "rayleigh": ("real -> real", _rayleigh),
+    "Random.rand": ("int * int -> rand", _sml_rand),
+    "Random.randRange": ("int * int -> rand -> int", _sml_rand_range),
+    "Random.randInt": ("rand -> int", lambda gen: gen.randint(-(2 ** 30), 2 ** 30 - 1)),
+    "Random.randNat": ("rand -> int", lambda gen: gen.randint(0, 2 ** 30 - 1)),
+    "Random.randReal": ("rand -> real", lambda gen: gen.random()),
 }
 
 FUNCTIONS: dict[str, object] = {name: fn for name, (_, fn) in DISTRIBUTIONS.items()}

@@ -90,3 +90,25 @@ def test_a_value_outside_the_domain_is_a_run_time_error(tmp_path, capsys):
     err = capsys.readouterr().err
     assert "exponential: the intensity ~1.0 is not positive" in err or "intensity -1.0 is not positive" in err
     assert "Traceback" not in err
+
+
+def test_sml_random_generators_are_simulated_and_refused_by_explore(tmp_path, capsys):
+    # SML/NJ's Random as a CPN Tools model uses it: a generator from two seeds, a function drawing from it
+    path = tmp_path / "r.cpnet"
+    path.write_text("colset U = unit;\n"
+                    "fun pick (s1 : int, s2 : int) =\n"
+                    "  let val prox = Random.randRange (1, 36) val rs = Random.rand (s1, s2) in [prox rs, prox rs] end;\n"
+                    "place A : U = 1`();\nplace Out : INT;\nplace Again : INT;\ntrans t;\narc A -> t : ();\n"
+                    "arc t -> Out : pick (1, 2);\narc t -> Again : pick (1, 2);\n")
+    out = tmp_path / "r.json"
+    assert main(["simulate", str(path), "--json", str(out), "--quiet"]) == 0
+    marking = json.loads(out.read_text())["final_marking"]
+    # the same seeds give the same sequence (as in SML/NJ); a generator advances as it draws
+    assert marking["Top'Out 1"] == marking["Top'Again 1"]
+    assert all(1 <= int(t.split("`")[1]) <= 36 for t in marking["Top'Out 1"].split("++"))
+    capsys.readouterr()
+    assert main(["explore", str(path)]) == 65
+    err = capsys.readouterr().err
+    assert err.count("error[E0206]") == 2
+    assert f"{path}:3:18: error[E0206]: 'Random.randRange' draws a random value" in err
+    assert f"{path}:3:52: error[E0206]: 'Random.rand' draws a random value" in err

@@ -72,6 +72,8 @@ class _Declarations:
         # part of a state space either
         for _name, body in funs:
             for n, _ in ml.names(body):
+                if n in DISTRIBUTIONS:  # SML/NJ's Random.rand, Random.randRange, ...: as the distributions
+                    continue
                 if n.split(".")[0] in ml.RANDOM_STRUCTURES or n.split(".")[0] in ml.SIDE_EFFECT_NAMES:
                     library.add(n)
         self.impure |= library
