@@ -308,7 +308,7 @@ SAMPLE_TRANSLATION = {
     "QueueSystem": None,  # exponential and JobType.ran() inside functions: simulated, refused by explore
     "QueueSystemConfigs": ("E0502", "reads the reference variable 'num_of_servers'"),
     "RealTimedProtocol": ("E0502", "'@++'"),
-    "RealTimedResourceAlloc": ("E0502", "'exponential' draws a random value"),
+    "RealTimedResourceAlloc": ("E0502", "uses '@++', a real-valued delay"),  # its exponential(..) is simulated
     "ResourceAllocation": None,
     "ResourceAllocation_OG": None,
     "ResourceAllocation_OG_Graphviz": None,
