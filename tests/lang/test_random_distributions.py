@@ -112,3 +112,12 @@ def test_sml_random_generators_are_simulated_and_refused_by_explore(tmp_path, ca
     assert err.count("error[E0206]") == 2
     assert f"{path}:3:18: error[E0206]: 'Random.randRange' draws a random value" in err
     assert f"{path}:3:52: error[E0206]: 'Random.rand' draws a random value" in err
+
+
+def test_check_refuses_a_scenario_whose_model_draws(tmp_path, capsys):
+    model(tmp_path, "m", DRAWS["normal"])
+    (tmp_path / "s.toml").write_text('name = "s"\nmodel = "m.cpnet"\n\n[[property]]\nname = "none dead"\n'
+                                     'kind = "dead_markings"\ncount = 0\n')
+    assert main(["check", str(tmp_path / "s.toml"), "--no-reports"]) == 65
+    err = capsys.readouterr().err
+    assert err.count("error[E0206]") == 1 and "m.cpnet:2:30: error[E0206]: 'normal' draws a random value" in err
