@@ -66,7 +66,9 @@ def lint_file(path: str, sets: dict[str, str]) -> tuple[dict, str]:
         return entry, render_error(exc)
     warnings = model_warnings(model)
     net = model.net
+    # a model that draws random values is valid and simulated; explore and check refuse it (W0105 says where)
     entry.update(places=len(net.places), transitions=len(net.transitions), timed=bool(net.is_timed),
+                 simulation_only=bool(getattr(net.checked, "random_draws", ())),
                  diagnostics=[_diagnostic_json(w) for w in warnings])
     return entry, "\n".join(render(w, model.source) for w in warnings)
 
@@ -84,7 +86,8 @@ def run(args) -> int:
         if entry["status"] == "ok" and not args.quiet and not json_to_stdout:
             np, nt = entry["places"], entry["transitions"]
             print(f"{path}: ok ({np} {noun(np, 'place instance')}, {nt} {noun(nt, 'transition instance')}"
-                  f"{', timed' if entry['timed'] else ''})")
+                  f"{', timed' if entry['timed'] else ''}"
+                  f"{'; it draws random values: simulate only' if entry['simulation_only'] else ''})")
     status = ExitStatus.worst(e["exit_status"] for e in entries)
     if "--json" in outputs:
         write_output(outputs["--json"], json.dumps({"exit_status": int(status), "models": entries}, indent=2,

@@ -121,3 +121,16 @@ def test_check_refuses_a_scenario_whose_model_draws(tmp_path, capsys):
     assert main(["check", str(tmp_path / "s.toml"), "--no-reports"]) == 65
     err = capsys.readouterr().err
     assert err.count("error[E0206]") == 1 and "m.cpnet:2:30: error[E0206]: 'normal' draws a random value" in err
+
+
+def test_lint_says_a_model_that_draws_is_for_simulation_only(tmp_path, capsys):
+    path = model(tmp_path, "u", DRAWS["uniform"])
+    out = tmp_path / "lint.json"
+    assert main(["lint", path, "--json", str(out)]) == 0
+    assert "it draws random values: simulate only" in capsys.readouterr().out
+    [entry] = json.loads(out.read_text())["models"]
+    assert entry["simulation_only"] is True and [d["code"] for d in entry["diagnostics"]] == ["W0105"]
+    plain = tmp_path / "plain.cpnet"
+    plain.write_text("colset U = unit;\nplace A : U = 1`();\ntrans t;\narc A -> t : ();\n")
+    assert main(["lint", str(plain), "--json", str(out)]) == 0
+    assert json.loads(out.read_text())["models"][0]["simulation_only"] is False
