@@ -431,7 +431,7 @@ class _Declarations:
         self._check_globref_use(text, origin, f"the declaration {origin.element}")
         for name, ran in self.ran_aliases.items():
             text = re.sub(r"(?<![\w'.])" + re.escape(name) + r"\s*\(\s*\)", ran, text)
-        text = ml.separate_declarations(self._rewrite_globrefs(text))
+        text = ml.separate_declarations(self._rewrite_globrefs(ml.single_semicolons(text)))
         if not ml.strip_comments(text).rstrip().endswith(";"):  # `val x = 1; (* ... *)` has its ';'
             text += ";"
         self.out.stmt([(text, origin)], origin)

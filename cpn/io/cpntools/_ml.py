@@ -202,6 +202,19 @@ def separate_declarations(text: str) -> str:
     return text
 
 
+def single_semicolons(text: str) -> str:
+    """`val x = 1;;` as SML reads it: the ';' after a ';' (an empty declaration) becomes a blank, so that
+    every character keeps its line and column. Strings and comments are left as they are."""
+    clean = strip_comments(text)
+    out = list(text)
+    for m in re.finditer(r'"(?:[^"\\\n]|\\.)*"|;((?:\s*;)+)', clean):
+        if m.group(1):
+            for i in range(m.start(1), m.end(1)):
+                if clean[i] == ";":
+                    out[i] = " "
+    return "".join(out)
+
+
 def ml_name(text: str) -> str:
     """The name CPN Tools gives an element in ML and in its reports.
 
