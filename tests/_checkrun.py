@@ -27,15 +27,15 @@ def check_reports(tmp_path, name: str, capsys, spec: str) -> tuple[int, dict]:
 
 def record_backends(monkeypatch) -> list:
     """The list to which each search from now on appends why it is not native (None: it is)."""
-    from cpn.statespace import native
+    from cpn.statespace import chooser
 
     backends: list = []
-    unavailable = native.unavailable
+    unavailable = chooser.why_not_native
 
     def spy(engine, options, s0):
         why = unavailable(engine, options, s0)
         backends.append(why)
         return why
 
-    monkeypatch.setattr(native, "unavailable", spy)
+    monkeypatch.setattr(chooser, "why_not_native", spy)
     return backends

@@ -171,3 +171,132 @@ def test_an_engine_importing_the_language_fails():
     assert _problems("cpn.expr.x", "expr", "from cpn.lang import ast\n", ALLOWED)
     assert _problems("cpn.expr.x", "expr", "from cpn.engine import codegen\n", ALLOWED)
     assert _problems("cpn.statespace.x", "statespace", "from cpn.net import Net\n", ALLOWED)
+
+
+# Inside a package: its modules bottom to top (docs/internals.md, "Inside the state space"). A module
+# imports only modules before it in its package's list, at the top of the file or inside a function, so
+# the package has no upward import and no import circle. A module missing from the list fails.
+MODULE_ORDER: dict[str, list[str]] = {
+    "statespace": ["_memory", "options", "store", "graph", "graphnative", "scc", "trace", "symmetry", "reduction",
+                   "result", "native", "nativetimed", "threads", "parallel", "distributed", "chooser", "explore",
+                   "sweep", "__init__"],
+}
+
+
+def _package_imports(package: str, source: str) -> list[tuple[str, int]]:
+    """(module of `package`, line) for every import of one of its modules in `source`, wherever it is."""
+    out = []
+    prefix = f"cpn.{package}"
+    for node in ast.walk(ast.parse(source)):
+        names = []
+        if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            names = [node.module] + ([f"{node.module}.{a.name}" for a in node.names] if node.module == prefix else [])
+        elif isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        for name in names:
+            parts = name.split(".")
+            if parts[:2] == ["cpn", package] and len(parts) >= 3:
+                out.append((parts[2], node.lineno))
+    return out
+
+
+def _inner_problems(package: str, modules: dict[str, str], order: list[str]) -> list[str]:
+    """Upward imports (against `order`) and import circles among `modules` (name -> source) of `package`."""
+    out = [f"cpn.{package}.{m}: not in MODULE_ORDER[{package!r}] (add it where it belongs)"
+           for m in modules if m not in order]
+    graph: dict[str, set[str]] = {m: set() for m in modules}
+    for m, source in modules.items():
+        for other, line in _package_imports(package, source):
+            if other not in modules or other == m:
+                continue
+            graph[m].add(other)
+            if m in order and other in order and order.index(other) > order.index(m):
+                out.append(f"cpn.{package}.{m}:{line} imports {other}, which comes later in {package}/")
+    # a circle: a module that reaches itself again
+    for start in graph:
+        seen, todo = set(), list(graph[start])
+        while todo:
+            m = todo.pop()
+            if m == start:
+                out.append(f"cpn.{package}.{start} is on an import circle")
+                break
+            if m not in seen:
+                seen.add(m)
+                todo.extend(graph[m])
+    return out
+
+
+def test_no_upward_import_and_no_circle_inside_a_package():
+    problems = []
+    for package, order in MODULE_ORDER.items():
+        modules = {p.stem: p.read_text(encoding="utf-8") for p in sorted((ROOT / package).glob("*.py"))}
+        problems += _inner_problems(package, modules, order)
+    assert not problems, "\n".join(problems)
+
+
+def test_an_upward_import_or_a_circle_inside_a_package_fails():
+    order = ["low", "mid", "top"]
+    fine = {"low": "", "mid": "from cpn.p.low import x\n", "top": "from cpn.p import low, mid\n"}
+    assert not _inner_problems("p", fine, order)
+    # a deferred import counts as much as one at the top of the file
+    up = dict(fine, low="def f():\n    from cpn.p.top import y\n")
+    assert any("low:2 imports top" in p for p in _inner_problems("p", up, order))
+    assert any("circle" in p for p in _inner_problems("p", up, order))
+    assert any("mid:1 imports top" in p for p in _inner_problems("p", dict(fine, mid="from cpn.p import top\n"), order))
+    assert any("not in MODULE_ORDER" in p for p in _inner_problems("p", dict(fine, new=""), order))
+    # what the state space had before its search chooser: native <-> explore, trace <-> symmetry
+    before = {"native": "def rate():\n    from cpn.statespace.explore import HAND_OVER_RATE\n",
+              "explore": "from cpn.statespace import native\n",
+              "trace": "def t():\n    from cpn.statespace.symmetry import lifted_trace\n",
+              "symmetry": "from cpn.statespace.trace import Step, Trace\n"}
+    found = _inner_problems("statespace", before, MODULE_ORDER["statespace"])
+    assert any("native:2 imports explore" in p for p in found) and any("trace:2 imports symmetry" in p for p in found)
+    assert sum("circle" in p for p in found) == 4
+
+
+def _capability_probes(mod: str, own: str, source: str) -> list[str]:
+    """`getattr(engine, "<capability>")`, `hasattr(...)` on an engine outside the engine's package: a
+    capability is looked up with `cpn.engine.protocol.capability` or `has`, which know only the declared
+    ones."""
+    from cpn.engine.protocol import CAPABILITIES
+
+    if own == "engine":
+        return []
+    out = []
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.Call) and isinstance(node.func, ast.Name) and node.func.id in ("getattr", "hasattr") \
+                and len(node.args) >= 2 and isinstance(node.args[1], ast.Constant) \
+                and node.args[1].value in CAPABILITIES:
+            owner = ast.unparse(node.args[0])
+            if owner in ("engine", "eng") or owner.endswith(".engine"):
+                out.append(f"{mod}:{node.lineno} probes {ast.unparse(node)}: use cpn.engine.protocol.capability "
+                           "or has")
+    return out
+
+
+def test_no_module_probes_an_engines_capabilities_with_getattr():
+    problems = []
+    for path in sorted(ROOT.rglob("*.py")):
+        rel = path.relative_to(ROOT.parent).with_suffix("")
+        problems += _capability_probes(".".join(rel.parts), rel.parts[1], path.read_text(encoding="utf-8"))
+    assert not problems, "\n".join(problems)
+
+
+def test_a_capability_probed_with_getattr_fails_and_an_undeclared_one_is_refused():
+    import pytest
+
+    from cpn.engine.protocol import capability, has
+
+    assert _capability_probes("cpn.statespace.x", "statespace", 'g = getattr(engine, "successor_groups", None)\n')
+    assert _capability_probes("cpn.report.x", "report", 'c = hasattr(self.engine, "place_view")\n')
+    # required members, other objects, and the engine's own package are not probes of a capability
+    assert not _capability_probes("cpn.statespace.x", "statespace", 'getattr(engine, "is_timed", False)\n')
+    assert not _capability_probes("cpn.checks.x", "checks", 'getattr(store, "views", None)\n')
+    assert not _capability_probes("cpn.engine.x", "engine", 'getattr(engine, "native_code", None)\n')
+
+    class Bare:
+        pass
+
+    assert capability(Bare(), "native_code") is None and not has(Bare(), "place_view")
+    with pytest.raises(ValueError, match="not a capability declared"):
+        capability(Bare(), "native_cod")

@@ -11,6 +11,7 @@ from itertools import islice
 from operator import itemgetter
 
 from cpn.engine import Engine
+from cpn.engine.protocol import capability
 from cpn.statespace import graphnative
 
 
@@ -87,7 +88,7 @@ def state_chunks(states: list):
 
 def _intern_tables(engine):
     """The compiled engine's per-place intern tables (untimed multisets, token counts), or None."""
-    store = getattr(engine, "store", None)
+    store = capability(engine, "store")
     views = getattr(store, "views", None)
     counts = getattr(store, "counts", None)
     if views is None or counts is None or len(views) != len(engine.places):

@@ -18,6 +18,7 @@ from collections.abc import Callable
 from cpn._util import did_you_mean
 from cpn.diagnostics import Diagnostic, Span
 from cpn.engine.codegen import ExprCompiler, Namespace, Unsupported
+from cpn.engine.protocol import capability, has
 from cpn.engine.runtime import RUNTIME
 from cpn.errors import ModelError
 from cpn.expr import nodes as E
@@ -58,7 +59,7 @@ class MarkingContext:
         self.sid: int | None = None
         self.graph = None
         n = len(engine.places)
-        self._columns = hasattr(engine, "place_view")
+        self._columns = has(engine, "place_view")
         self._cache: list[dict] = [{} for _ in range(n)]
         self._enabled_state = None
         self._enabled: list[int] = []
@@ -277,7 +278,7 @@ class PropertyLanguage:
     def _refuse_clock_under_condensation(self, expr: A.Expr, what: str) -> None:
         """A text that reads the clock cannot be decided on a condensed state space, whose clock is 0 in
         every state: refused (E0601) as a model that reads the clock is (cpn.engine.clock)."""
-        if not getattr(self.engine, "time_condensation", False):
+        if not capability(self.engine, "time_condensation", False):
             return
         from cpn.engine import clock
 
@@ -364,7 +365,7 @@ class PropertyLanguage:
         uses_enabled = any(isinstance(n, A.Name) and n.ref is self.special.get("enabled") and n.ref is not None
                            for n in walk(expr))
         ns = Namespace()
-        comp = _PredicateCompiler(ns, self.ev, self.symbols, getattr(self.engine, "functions", {}) or {})
+        comp = _PredicateCompiler(ns, self.ev, self.symbols, capability(self.engine, "functions") or {})
         body = comp.expr(self._tr.expr(expr))
         glob = dict(RUNTIME)
         glob.update(ns.objects)
@@ -383,7 +384,7 @@ class PropertyLanguage:
         reads = sorted({p for n in walk(expr) if isinstance(n, A.Name) and n.ref is not None
                         and n.ref.uid in self.symbols for p in self.symbols[n.ref.uid].places})
         places_read = tuple(reads)
-        if uses_enabled or not hasattr(self.engine, "place_view"):
+        if uses_enabled or not has(self.engine, "place_view"):
             def fn(sid, state, raw=raw):
                 try:
                     return raw(sid, state)

@@ -18,6 +18,7 @@ from cpn.checks.predicates import CTL_ARC, CTL_BINARY, CTL_UNARY, PredicateError
 from cpn.checks.scenario import PropertySpec
 from cpn.checks.verdict import Status, Verdict, evidence_to, path_evidence
 from cpn.diagnostics import Diagnostic, Span
+from cpn.engine.protocol import has
 from cpn.errors import ModelError
 from cpn.lang import ast as A
 from cpn.lang import types as T
@@ -347,7 +348,7 @@ def _first_states(view: GraphView, p: int) -> list[int]:
     """For each distinct marking of place p, the first (smallest, so shallowest) state that has it, in
     increasing order; every state when states are not tuples of place columns."""
     states = view.g.states
-    if not hasattr(view.engine, "place_view"):
+    if not has(view.engine, "place_view"):
         return list(range(len(states)))
     first: dict = {}
     setdefault = first.setdefault

@@ -3,7 +3,7 @@
 `tomllib` gives values without positions, so the raw text is scanned once more to find where each key's
 value starts (`_Locator`), and the characters of a string value are mapped back to the file
 (`TextOrigin`): an error in a property text points at its line and column in the TOML file.
-Imports the standard library and layer 0 only.
+Imports the standard library, layer 0 and the state space's `Backend` (the words of `backend`) only.
 """
 
 from __future__ import annotations
@@ -16,11 +16,12 @@ from dataclasses import dataclass, field
 
 from cpn.diagnostics import Diagnostic, Span, other_command_hint
 from cpn.errors import ModelError
+from cpn.statespace.options import Backend
 
 TOP_KEYS = {"name", "model", "description", "set", "explore", "parameters", "property"}
 EXPLORE_KEYS = {"max_states": int, "max_arcs": int, "max_seconds": (int, float), "max_memory_mb": (int, float),
                 "time_condensation": bool, "stop_at_first_violation": bool, "detect_time_growth": bool,
-                "until_time": int, "workers": int,
+                "until_time": int, "workers": int, "backend": Backend,
                 "reduction": str, "sweep_line": bool, "progress": str, "symmetry": list}
 # the reductions `reduction` may name (docs/specs.md)
 REDUCTIONS: tuple = ("stubborn", "symmetry")
@@ -391,6 +392,15 @@ def _explore(r: _Reader, table) -> dict:
                         r.value_span(("explore",), k), hint='Write symmetry = ["PH", "Ring:rotations"] (all '
                         "permutations of PH, rotations of Ring), symmetry = \"auto\", or symmetry = true for the "
                         "model's own declarations.")
+            continue
+        if want is Backend:  # the search: the words of `--backend`
+            if not isinstance(v, str) or v not in Backend.option_words():
+                r.error("E0702", f"'backend' must be one of {', '.join(repr(w) for w in Backend.option_words())}",
+                        r.value_span(("explore",), k), hint="'auto': the native search where it can run, else "
+                        "Python; 'c': the native search (why not, as a warning); 'python': the Python search. "
+                        "The state space is the same with each (as explore --backend).")
+                continue
+            out[k] = v
             continue
         if want is str:
             if v not in REDUCTIONS:

@@ -114,4 +114,35 @@ class Capabilities(Protocol):
         (the sweep-line method calls it as it leaves markings behind)."""
 
 
-__all__ = ["BindingElementLike", "Capabilities", "Engine", "Place", "Transition"]
+#: the names `Capabilities` declares: the only ones `capability` and `has` answer for
+CAPABILITIES: frozenset[str] = frozenset(
+    {n for n in vars(Capabilities) if not n.startswith("_")} | set(Capabilities.__annotations__))
+
+
+def capability(engine: Any, name: str, default: Any = None) -> Any:
+    """The capability `name` of `engine` (a member `Capabilities` declares), or `default` where the engine
+    does not offer it. The upper layers look capabilities up here, never by `getattr` on the engine, so
+    that each one they use is declared; an undeclared name is a ValueError (a typo, or a member to
+    declare first).
+
+    >>> import cpn
+    >>> engine = cpn.loads("colset U = unit; place A : U = 1`(); trans t; arc A -> t;").engine()
+    >>> capability(engine, "time_condensation"), capability(object(), "place_view")
+    (False, None)
+    """
+    if name not in CAPABILITIES:
+        raise ValueError(f"'{name}' is not a capability declared in cpn.engine.protocol.Capabilities "
+                         f"(declared: {', '.join(sorted(CAPABILITIES))})")
+    return getattr(engine, name, default)
+
+
+def has(engine: Any, name: str) -> bool:
+    """Whether `engine` offers the capability `name` (declared in `Capabilities`, else a ValueError)."""
+    return capability(engine, name, _MISSING) is not _MISSING
+
+
+_MISSING = object()
+
+
+__all__ = ["CAPABILITIES", "BindingElementLike", "Capabilities", "Engine", "Place", "Transition", "capability",
+           "has"]

@@ -11,6 +11,7 @@ from __future__ import annotations
 import math
 from collections import defaultdict
 
+from cpn.engine.protocol import capability
 from cpn.report import svg as S
 from cpn.report.layout import layered_layout
 
@@ -48,7 +49,7 @@ def marking_text(engine, state, limit: int = TOOLTIP_PLACES) -> str:
             lines.append(f"{place.name}: {S.clip(m, 120)}")
     if len(lines) > limit:
         lines = lines[:limit] + [f"… {len(lines) - limit} more places"]
-    if getattr(engine, "is_timed", False) and not getattr(engine, "time_condensation", False):
+    if getattr(engine, "is_timed", False) and not capability(engine, "time_condensation", False):
         lines.insert(0, f"model time {engine.clock(state)}")  # a condensed state's clock is shifted
     return "\n".join(lines) if lines else "(every place is empty)"
 

@@ -15,6 +15,7 @@ import os
 from collections import Counter
 from dataclasses import dataclass
 
+from cpn.engine.protocol import capability
 from cpn.report import svg as S
 from cpn.report.graphdraw import bfs_levels, draw_state_space, level_sizes, marking_text
 from cpn.report.model import Report, reduction_text
@@ -430,7 +431,7 @@ def _end_marking(trace, r: Report, v: Verdict) -> str:
 
     x = r.exploration
     engine, state = x.engine, x.graph.states[trace.target]
-    if getattr(engine, "time_condensation", False) and len(trace):
+    if capability(engine, "time_condensation", False) and len(trace):
         replayed = _replay_absolute(engine, [s.be for s in trace.steps])
         if replayed is not None:
             engine, state = replayed[0], replayed[1][-1]

@@ -18,6 +18,7 @@ from collections import Counter, defaultdict, deque
 from dataclasses import dataclass, field
 
 from cpn.checks._common import untimed_multiset
+from cpn.engine.protocol import capability
 from cpn.report import svg as S
 from cpn.report.netdraw import instance_tree
 
@@ -180,7 +181,7 @@ def _step_times(trace, exploration) -> list | None:
     """
     engine = exploration.engine
     g = exploration.graph
-    if not getattr(engine, "time_condensation", False):
+    if not capability(engine, "time_condensation", False):
         return [engine.clock(g.states[s.target]) for s in trace.steps]
     try:
         plain = _PLAIN.get(engine)

@@ -12,6 +12,7 @@ import os
 
 from cpn.checks.vacuity import warning_code
 from cpn.checks.verdict import Evidence
+from cpn.engine.protocol import capability, has
 from cpn.values.colours import format_multiset
 
 SCHEMA = "cpn-verify/check-report/1"
@@ -37,7 +38,7 @@ def trace_steps(engine, graph, evidence: Evidence | None, reads: tuple = ()) -> 
         states, bes = lift_path(graph, pairs, engine)
         pairs = [(u, v, be) for (u, v, _), be in zip(pairs, bes)]
     shown, texts = engine, None
-    if getattr(engine, "time_condensation", False):
+    if capability(engine, "time_condensation", False):
         # condensed states keep timestamps relative to their clock: replay the trace on the same net
         # without condensation to print the model time and the absolute timestamps
         replayed = _replay_absolute(engine, [be for _, _, be in pairs])
@@ -72,7 +73,7 @@ def _replay_absolute(engine, bes: list[int]):
     """(uncondensed engine, its states along the trace, binding element texts) or None if it diverges."""
     from cpn.engine import compile_net
 
-    plain = compile_net(engine.net, time_condensation=False, reference=bool(getattr(engine, "reference", False)))
+    plain = compile_net(engine.net, time_condensation=False, reference=bool(capability(engine, "reference", False)))
     state = plain.initial_state()
     states, texts = [state], []
     for be in bes:
@@ -289,7 +290,7 @@ def _integer_bounds(result) -> dict:
     out = {}
     if not states:
         return out
-    columns = hasattr(engine, "place_view")
+    columns = has(engine, "place_view")
     for p, place in enumerate(engine.places):
         if columns:
             ids = {s[p]: s for s in states}

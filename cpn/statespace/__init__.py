@@ -4,9 +4,10 @@ Uses the engine through its protocol (`cpn.engine.Engine`) only: never the net, 
 reports or the command line (tests/test_layering.py).
 """
 
-from cpn.statespace.explore import Exploration, Explorer, Progress
+from cpn.statespace.explore import Explorer
 from cpn.statespace.graph import StateGraph
-from cpn.statespace.options import ExploreOptions, StopReason
+from cpn.statespace.options import Backend, ExploreOptions, StopReason
+from cpn.statespace.result import Exploration, Progress
 from cpn.statespace.scc import (
     SccDecomposition,
     first_cycle_component,
@@ -17,6 +18,6 @@ from cpn.statespace.sweep import SweepExploration, SweepLine
 from cpn.statespace.trace import Step, Trace, replay, shortest_trace
 
 __all__ = [
-    "Exploration", "Explorer", "ExploreOptions", "Progress", "SccDecomposition", "StateGraph", "Step",
+    "Backend", "Exploration", "Explorer", "ExploreOptions", "Progress", "SccDecomposition", "StateGraph", "Step",
     "StopReason", "SweepExploration", "SweepLine", "Trace", "first_cycle_component", "has_cycle", "replay", "shortest_trace", "strongly_connected_components",
 ]

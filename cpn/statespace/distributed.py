@@ -15,6 +15,7 @@ a cluster's head (host:port). A Ray already initialised in this process is used 
 from __future__ import annotations
 
 from cpn.errors import ConfigurationError
+from cpn.statespace.options import Backend
 from cpn.statespace.parallel import PartitionWorker, WorkerFailed
 
 
@@ -47,7 +48,7 @@ class _RayWorker:
 class RayWorkers:
     """The transport of the partitioned search over Ray actors (see the module)."""
 
-    name = "ray"
+    name = Backend.RAY
 
     def __init__(self, n: int | None, net_blob: bytes, time_condensation: bool, address: str):
         why = ray_unavailable()

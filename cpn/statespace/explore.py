@@ -1,7 +1,9 @@
 """Breadth-first generation of the occurrence graph: `Explorer(engine, options).run() -> Exploration`.
 
 Uses the engine through its protocol only (`cpn.engine.Engine`, docs/internals.md). The driver, the
-store (`graph.StateGraph`) and the trace builder (`trace`) are separate; the frontier is the tail `states[expanded:]` of the store, which BFS fills in order.
+store (`graph.StateGraph`) and the trace builder (`trace`) are separate; the frontier is the tail
+`states[expanded:]` of the store, which BFS fills in order. Which search runs (this loop, the native
+one, threads, processes, Ray) is `cpn.statespace.chooser`'s choice; the result is a `result.Exploration`.
 """
 
 from __future__ import annotations
@@ -11,14 +13,15 @@ import time
 from array import array
 from collections import deque
 from collections.abc import Callable
-from dataclasses import dataclass, field
 
 from cpn.engine import Engine
 from cpn.errors import EvaluationError
-from cpn.statespace import native
+from cpn.statespace import chooser, native
 from cpn.statespace._memory import current_rss_mb, peak_rss_mb
 from cpn.statespace.graph import StateGraph
-from cpn.statespace.options import ExploreOptions, StopReason
+from cpn.statespace.native import HAND_OVER_BY
+from cpn.statespace.options import Backend, ExploreOptions, StopReason
+from cpn.statespace.result import Exploration, Progress
 from cpn.statespace.store import new_store, pack
 from cpn.statespace.trace import shortest_trace
 
@@ -30,80 +33,6 @@ TIME_GROWTH_LEVELS: int = 8
 # successors stores a million states in 512 expansions, far past a memory limit.
 CHECK_EVERY: int = 512
 CHECK_EVERY_ARCS: int = 1 << 16
-#: the native search hands over to the Python search if, by the time it has expanded at most HAND_OVER_BY
-#: states, it has returned to the engine more than HAND_OVER_RATE times per state (DP: about 3; MS: 0.2-0.5)
-HAND_OVER_BY: int = 8192
-HAND_OVER_RATE: float = 1.5
-
-
-@dataclass(frozen=True)
-class Progress:
-    """A snapshot for progress displays."""
-
-    states: int
-    arcs: int
-    queue: int
-    seconds: float
-    memory_mb: float
-
-    @property
-    def states_per_second(self) -> float:
-        return self.states / self.seconds if self.seconds > 0 else 0.0
-
-
-@dataclass
-class Exploration:
-    """The result of one exploration: the graph, why it stopped and what it cost.
-
-    `complete` says every reachable state was expanded; otherwise `stop_reason` says which limit
-    stopped the search and `unexpanded` how many states wait in the queue.
-    """
-
-    engine: Engine
-    graph: StateGraph
-    options: ExploreOptions
-    stop_reason: StopReason
-    seconds: float
-    peak_memory_mb: float
-    predicate_state: int | None = None
-    untimed_states: int | None = None
-    time_growth: dict | None = None
-    levels: int = 0
-    notes: list = field(default_factory=list)
-    #: notes on which search ran and why, that change no result and ask nothing of the user (the Python
-    #: search of a timed net under `auto`, transitions whose bindings come from Python, a hand-over); the
-    #: command line prints them with --verbose; a note that carries an action (no compiler, an unwritable
-    #: compile cache, an incomplete installation) or answers `--backend c` is in `notes`
-    backend_notes: list = field(default_factory=list)
-    #: which search ran: "c" (cpn.statespace.native), "python", or the partitioned search
-    #: (cpn.statespace.parallel): "threads" (cpn.statespace.threads), "workers" (processes) or "ray"
-    backend: str = "python"
-    # the partial-order reduction that ran ("stubborn"), None for the full graph; its figures
-    reduction: str | None = None
-    reduction_stats: dict | None = None
-    #: the partitioned search's figures (cpn.statespace.parallel): workers, successors and bytes sent between them
-    partition: dict | None = None
-
-    @property
-    def restricted(self) -> bool:
-        """Branching options left out some successors: this is a restricted state space."""
-        return self.options.restricted
-
-    @property
-    def complete(self) -> bool:
-        return self.stop_reason is StopReason.COMPLETE
-
-    @property
-    def n_states(self) -> int:
-        return self.graph.n_states
-
-    @property
-    def n_arcs(self) -> int:
-        return self.graph.n_arcs
-
-    @property
-    def unexpanded(self) -> int:
-        return self.graph.n_states - self.graph.expanded
 
 
 def _observe(observe, g: StateGraph, observed: int) -> int:
@@ -143,13 +72,12 @@ class Explorer:
         self.progress = progress
 
     def run(self) -> Exploration:
-        """Generate the occurrence graph breadth-first until it is complete or a limit stops it."""
+        """Generate the occurrence graph breadth-first until it is complete or a limit stops it, in the
+        search `cpn.statespace.chooser` chooses for the engine and the options."""
         opts = self.options
         parallel_note = None
         if opts.workers is not None or opts.ray is not None:
-            from cpn.statespace.parallel import run_partitioned
-
-            partitioned, parallel_note = run_partitioned(self.engine, opts, self.progress)
+            partitioned, parallel_note = chooser.run_partitioned(self.engine, opts, self.progress)
             if partitioned is not None:
                 return partitioned
         g = StateGraph()
@@ -163,19 +91,19 @@ class Explorer:
         stop, predicate_state = self._start(g)
         self._reduced = self._reduction(g)
         levels = 0
-        self._backend = "python"
+        self._backend = Backend.PYTHON
         self._notes = [parallel_note] if parallel_note else []
         self._backend_notes = []  # which search ran and why (`Exploration.backend_notes`)
         if stop is StopReason.COMPLETE:
             s0 = self._queue[0]
-            why = self._python_only() or native.unavailable(self.engine, opts, s0)
-            if why is None:
-                self._backend = "c"
+            backend, why = chooser.one_process(self.engine, opts, s0, self._reduced is not None)
+            if backend is Backend.C:
+                self._backend = Backend.C
                 stop, predicate_state, levels = self._search_native(g, s0)
             else:
-                if opts.backend != "python":
+                if opts.backend is not Backend.PYTHON:
                     note = f"the Python back end searched this net: {why}"
-                    (self._notes if native.needs_action(why) else self._backend_notes).append(note)
+                    (self._notes if chooser.needs_action(why) else self._backend_notes).append(note)
                 stop, predicate_state, levels = self._search(g)
         return self._finish(g, stop, predicate_state, levels)
 
@@ -202,23 +130,11 @@ class Explorer:
             return None
         return ReducedSuccessors(self.engine, sets, g.store.index)
 
-    def _python_only(self) -> str | None:
-        """Why only the Python search can run these options (reductions, branching options and the
-        model-time bound are steps of the Python search), or None."""
-        opts = self.options
-        if self._reduced is not None:
-            return "the native search does not reduce the graph (--reduction)"
-        if opts.restricted:
-            return "the native search has no branching options"
-        if opts.until_time is not None and self.engine.is_timed:
-            return "the native search has no model-time bound (--until-time)"
-        return None
-
     def _search_native(self, g: StateGraph, s0) -> tuple[StopReason, int | None, int]:
         """The same search as `_search`, its loop in C (`cpn.statespace.native`)."""
         opts = self.options
         self._queue = None
-        search = native.new_search(self.engine, g, s0, opts, self._backend_notes, self._level_hook(g))
+        search = chooser.new_native_search(self.engine, g, s0, opts, self._backend_notes, self._level_hook(g))
         max_states = opts.max_states if opts.max_states is not None else 1 << 62
         max_arcs = opts.max_arcs if opts.max_arcs is not None else 1 << 62
         until = CHECK_EVERY
@@ -280,7 +196,7 @@ class Explorer:
             f"the native search handed over to the Python search after {head:,} states: " + (why or
             f"each state needed the engine {search.round_trips / head:.1f} times on average (transitions' "
             "results rarely recur)"))
-        self._backend = "python"
+        self._backend = Backend.PYTHON
         search.tg.engine_caches()
         self._queue = deque(g.states[head:])
         return self._search(g, head, search.level_end, search.levels)
@@ -345,7 +261,7 @@ class Explorer:
         next_check_arcs = n_arcs + CHECK_EVERY_ARCS
         n_states = len(store)
         # a reduction, branching options and the model-time bound keep the tuple store (they read its index)
-        special = self._python_only() is not None
+        special = chooser.python_only(engine, opts, self._reduced is not None) is not None
         pack_from = opts.pack_from if opts.packed_states and tuples and not special else None
         succ: list | tuple = ()
         fresh: list | tuple = ()
@@ -485,7 +401,7 @@ class Explorer:
             self.progress(Progress(len(g.states), len(g.dst), len(g.states) - g.expanded, seconds,
                                    current_rss_mb()))
         notes = list(self._reduction_notes)
-        asked_c = self.options.backend == "c"
+        asked_c = self.options.backend is Backend.C
         if self._reads_clock and self.options.detect_time_growth and stop is not StopReason.COMPLETE:
             engine = self.engine
             read = engine.clock_reads[min(engine.clock_reads)]

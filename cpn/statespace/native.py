@@ -15,8 +15,8 @@ engine (each named with the reason in `notes`) and for what the C code cannot ev
 the same tables of markings, deltas and binding elements with the same ids (copied across before and
 after every return to Python), so the graph is the same either way.
 
-Where the native search cannot run, `unavailable(engine, options)` says why in one line and the explorer
-uses the Python loop.
+Where the native search cannot run, `cpn.statespace.chooser.why_not_native` says why in one line and the
+explorer uses the Python loop.
 """
 
 from __future__ import annotations
@@ -26,7 +26,8 @@ import os
 from array import array
 
 from cpn._util.cbuild import load_library, sources, switched_off, why_unavailable
-from cpn.statespace.options import StopReason
+from cpn.engine.protocol import capability
+from cpn.statespace.options import Backend, StopReason
 from cpn.statespace.store import _CDEF as _STORE_CDEF
 from cpn.statespace.store import PackedStore
 
@@ -130,12 +131,12 @@ def library(code=None, timed: bool = False):
 
 def generated(engine, options) -> tuple[object | None, list[str]]:
     """The net's generated C (a `NativeCode`, or None) and the notes saying what is left to Python."""
-    if options.backend == "python" or os.environ.get("CPN_NO_GENERATED"):
+    if options.backend is Backend.PYTHON or os.environ.get("CPN_NO_GENERATED"):
         return None, []
     off = switched_off()
     if off is not None:
         return None, [off]
-    make = getattr(engine, "native_code", None)  # an optional capability of the compiled engine
+    make = capability(engine, "native_code")  # an optional capability of the compiled engine
     if make is None:
         return None, ["the C back end has no code of this engine's transitions (the reference interpreter)"]
     code, why = make()
@@ -147,58 +148,15 @@ def generated(engine, options) -> tuple[object | None, list[str]]:
     return code, notes
 
 
+#: the native search hands over to the Python search if, by the time it has expanded at most HAND_OVER_BY
+#: states, it has returned to the engine more than HAND_OVER_RATE times per state (DP: about 3; MS: 0.2-0.5)
+HAND_OVER_BY: int = 8192
+HAND_OVER_RATE: float = 1.5
+
 #: whether `auto` searches timed nets and nets with priorities natively (`--backend c` always does): their
 #: bindings still come from the Python engine, and the native search of them measured 1.0 to 1.9 times the
 #: Python search's time (`python bench/modbus.py --native`, docs/performance.md)
 TIMED_AUTO: bool = False
-
-
-def unavailable(engine, options, s0) -> str | None:
-    """Why the native search cannot run this exploration (None if it can)."""
-    if options.backend == "python":
-        return "the Python back end was asked for"
-    if not options.packed_states:
-        return "the states are to be kept as tuples (packed_states=False)"
-    if options.stop_predicate is not None and getattr(options.stop_predicate, "may_stop", True):
-        return "a stop predicate that may end the search is a Python function of each new state"
-    # optional capabilities of an engine (the Engine protocol's other members are required)
-    groups = getattr(engine, "successor_groups", None)
-    timed = None
-    if groups is None or groups() is None:
-        timed = getattr(engine, "timed_groups", None)
-        if timed is None or timed() is None:
-            if getattr(engine, "reads_clock", False):
-                read = engine.clock_reads[min(engine.clock_reads)]
-                return (f"{read.element} of transition '{read.transition}' reads the model clock, and the "
-                        "native search examines transitions at the clock and the occurrence time only")
-            return "this engine gives no transition groups (the reference interpreter)"
-    if timed is not None and options.backend != "c" and not TIMED_AUTO:
-        return ("timed nets and nets with priorities are searched natively only with --backend c: their "
-                "transitions have no generated C yet, and that search was measured slower than the Python "
-                "one (docs/performance.md)")
-    if not (isinstance(s0, tuple) and s0 and all(type(v) is int and 0 <= v < _U32 for v in s0)):
-        return "the states are not tuples of small non-negative integers"
-    if library(timed=timed is not None) is None:
-        return f"no native code: {why_unavailable()}"
-    return None
-
-
-def needs_action(why: str) -> bool:
-    """Whether `why`, a reason `unavailable` gave, asks something of the user: native code could not be
-    built for a reason they can change (no compiler, the compiler failed, an unwritable compile cache, an
-    incomplete installation), not because they switched it off or the net has no C."""
-    return why.startswith("no native code: ") and switched_off() is None
-
-
-def new_search(engine, graph, s0, options=None, notes: list[str] | None = None, on_level=None):
-    """The native search for this engine: over its transition groups (`NativeSearch`), or over the groups
-    of a timed net or a net with priorities (`cpn.statespace.nativetimed.TimedNativeSearch`, which calls
-    `on_level(start, end)` at each new BFS level)."""
-    if engine.successor_groups() is not None:
-        return NativeSearch(engine, graph, s0, options, notes)
-    from cpn.statespace.nativetimed import TimedNativeSearch
-
-    return TimedNativeSearch(engine, graph, s0, options, notes, on_level)
 
 
 class HandOver(Exception):  # noqa: N818 - a request, not an error
@@ -230,7 +188,7 @@ class NativeSearch:
         if self.code is None:
             self.notes.extend(self._code_notes)
         # `--backend c` builds the net's C at once; `auto` once the search is large enough to repay it
-        self.generate_after = 0 if options is not None and options.backend == "c" else \
+        self.generate_after = 0 if options is not None and options.backend is Backend.C else \
             max(GENERATE_AFTER, GENERATE_PER_LINE * (self.code.source.count("\n") if self.code else 0))
         if self.code is not None and self.generate_after == 0:
             lib = self._generated_library()
@@ -300,8 +258,6 @@ class NativeSearch:
 
     def hand_over_rate(self) -> float:
         """Returns to the engine per state past which the explorer hands over to the Python search."""
-        from cpn.statespace.explore import HAND_OVER_RATE
-
         return HAND_OVER_RATE
 
     @property

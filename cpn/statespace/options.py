@@ -14,6 +14,36 @@ from dataclasses import dataclass
 DEFAULT_MEMORY_SHARE: float = 0.5
 
 
+class Backend(enum.StrEnum):
+    """The search: what `ExploreOptions.backend` asks for and what `Exploration.backend` says ran.
+
+    The option is AUTO, PYTHON or C (the command line's and the scenario files' words "auto", "python",
+    "c"); the result is PYTHON, C, or where `workers` or `ray` is set THREADS, WORKERS (processes) or RAY.
+    `cpn.statespace.chooser` chooses one and says why not the others. The values are the words the reports
+    print, so a member compares equal to its word (`Backend.C == "c"`).
+    """
+
+    AUTO = "auto"  # the native search where it can run, else Python (option only)
+    PYTHON = "python"  # the breadth-first loop in Python (cpn.statespace.explore)
+    C = "c"  # the native search (cpn.statespace.native, nativetimed)
+    THREADS = "threads"  # the partitioned search in threads of this process (cpn.statespace.threads; result only)
+    WORKERS = "workers"  # the partitioned search in processes (cpn.statespace.parallel; result only)
+    RAY = "ray"  # the partitioned search on a Ray cluster (cpn.statespace.distributed; result only)
+
+    @classmethod
+    def option_words(cls) -> tuple[str, ...]:
+        """The values `ExploreOptions.backend` takes: "auto", "python", "c"."""
+        return (cls.AUTO.value, cls.PYTHON.value, cls.C.value)
+
+    @classmethod
+    def option(cls, value) -> Backend:
+        """`value` (a member or its word) as an option; a ValueError naming the words for anything else."""
+        if isinstance(value, str) and value in cls.option_words():
+            return cls(value)
+        raise ValueError(f"backend must be one of {', '.join(repr(w) for w in cls.option_words())}, "
+                         f"got {value!r}")
+
+
 class StopReason(enum.Enum):
     """Why an exploration ended. Only COMPLETE means every reachable state was expanded."""
 
@@ -64,9 +94,10 @@ class ExploreOptions:
     `packed_states` keeps the states as packed records in native memory where that can be built
     (`cpn.statespace.store`); the Python search packs them once it has `pack_from` states (0: from the
     start), since packing from Python costs time (6-26% on DP and MS) that only large searches repay in
-    memory (about half). The graph is the same either way. `backend` is "auto" (the native search,
-    `cpn.statespace.native`, where it can run, else Python, with a note saying why), "c" (the same, the
-    note printed as a warning) or "python"; the graph is the same with either.
+    memory (about half). The graph is the same either way. `backend` (a `Backend` or its word) is "auto"
+    (the native search, `cpn.statespace.native`, where it can run, else Python, with a note saying why),
+    "c" (the same, the note printed as a warning) or "python"; the graph is the same with either, and
+    `cpn.statespace.chooser` makes the choice.
     """
 
     max_states: int | None = None
@@ -108,7 +139,7 @@ class ExploreOptions:
     symmetry: tuple = ()
     packed_states: bool = True
     pack_from: int = 1_000_000
-    backend: str = "auto"
+    backend: Backend = Backend.AUTO
     # the partitioned search (cpn.statespace.parallel): `workers` processes (None: this process alone), on
     # the Ray cluster at `ray` ("auto": a local Ray instance) when that is set
     workers: int | None = None
@@ -116,6 +147,9 @@ class ExploreOptions:
     # `workers` are threads of this process (cpn.statespace.threads) where the net is wholly in generated C
     # and the options allow; False: always processes
     threads: bool = True
+
+    def __post_init__(self):
+        object.__setattr__(self, "backend", Backend.option(self.backend))
 
 
 def machine_memory_mb() -> float | None:

@@ -22,13 +22,14 @@ How it works (as in Helena, LTSmin and DiVinE's distributed searches):
   has the same states, arcs, dead markings and bounds as the one-process search (only the numbering of
   states and the order of arcs may differ).
 
-`run_partitioned` returns None with a one-line reason where the partitioned search does not apply (timed
-nets, reductions, branching options, a stop predicate that may stop the search, the reference
-interpreter); the caller then searches in one process. A stop predicate that only observes the states
+Where the partitioned search does not apply (timed nets, reductions, branching options, a stop predicate
+that may stop the search, the reference interpreter), `cpn.statespace.chooser.why_not_partitioned` says
+why and the caller searches in one process; `run_partitioned` returns None with a one-line reason where
+the workers could not start or failed. A stop predicate that only observes the states
 (its attribute `may_stop` is False, as the property checks' monitor without stop_at_first_violation) is
 called on every state of the assembled graph in breadth-first order, as the one-process search calls it.
 The transport is pluggable: `LocalWorkers` (processes of this machine, through pipes) here, a Ray
-cluster in `cpn.statespace.distributed`.
+cluster in `cpn.statespace.distributed`; `cpn.statespace.chooser` chooses it.
 """
 
 from __future__ import annotations
@@ -41,10 +42,12 @@ from array import array
 from bisect import bisect_right
 from operator import getitem
 
+from cpn.engine.protocol import capability
 from cpn.errors import EvaluationError
 from cpn.statespace._memory import current_rss_mb, peak_rss_mb
 from cpn.statespace.graph import StateGraph
-from cpn.statespace.options import ExploreOptions, StopReason
+from cpn.statespace.options import Backend, ExploreOptions, StopReason
+from cpn.statespace.result import Exploration, Progress, observe
 from cpn.statespace.store import new_store
 
 #: states a worker expands per step at most: the limits and Ctrl-C are looked at between steps
@@ -55,25 +58,6 @@ REMOTE_CACHE: int = 1 << 18
 
 class WorkerFailed(Exception):
     """A worker stopped with an error (the caller repeats the search in one process to report it)."""
-
-
-def why_not_partitioned(engine, options: ExploreOptions) -> str | None:
-    """Why these options need the one-process search (None if the partitioned search can run them)."""
-    from cpn.engine.transfer import transfer_for
-
-    if engine.is_timed:
-        return ("timed nets are searched in one process: the time-growth watch and the model-time bound "
-                "look at every state of a level in order")
-    if options.reduction is not None:
-        return ("stubborn sets (--reduction) are computed in one process" if options.reduction == "stubborn"
-                else "the quotient by symmetry (--symmetry) is computed in one process")
-    if options.restricted:
-        return "branching options restrict the search in one process"
-    if options.stop_predicate is not None and getattr(options.stop_predicate, "may_stop", True):
-        return "a stop predicate ends the search at the first state satisfying it in breadth-first order"
-    if transfer_for(engine) is None or not hasattr(engine, "net"):
-        return "this engine cannot send its states to other processes (the reference interpreter)"
-    return None
 
 
 # ------------------------------------------------------------------------------------------ worker
@@ -299,7 +283,7 @@ def _describe(exc: BaseException) -> str:
 class LocalWorkers:
     """N worker processes of this machine, each behind a pipe; batches are routed by the coordinator."""
 
-    name = "workers"
+    name = Backend.WORKERS
 
     def __init__(self, n: int, net_blob: bytes, time_condensation: bool):
         import multiprocessing as mp
@@ -389,7 +373,7 @@ def net_blob(net) -> bytes:
     return pickle.dumps(light, protocol=pickle.HIGHEST_PROTOCOL)
 
 
-class _CtrlC:
+class CtrlC:
     """Ctrl-C only sets `hit` while the coordinator runs (a step is never cut in half: its batches would
     be lost); the coordinator stops at the end of the step. Outside the main thread it changes nothing."""
 
@@ -415,58 +399,35 @@ class _CtrlC:
         return False
 
 
-def run_partitioned(engine, options: ExploreOptions, progress=None):
-    """The partitioned search of `engine` with `options.workers` processes (or on the Ray cluster
-    `options.ray`): (Exploration, None), or (None, why) where it does not apply."""
+def run_partitioned(engine, options: ExploreOptions, progress, transport, at_s0: bool = False,
+                    threads_note: str | None = None):
+    """The partitioned search of `engine` over the workers `transport(net_blob, time_condensation)` starts
+    (`cpn.statespace.chooser` chose them: `LocalWorkers`, or Ray's): (Exploration, None), or (None, why)
+    where the workers could not start or failed. `at_s0`: the (observing) stop predicate holds in the
+    initial state; `threads_note`: why the threads did not search this net (a note of the result)."""
     from cpn.engine.transfer import transfer_for
 
-    why = why_not_partitioned(engine, options)
-    if why is not None:
-        return None, f"the search ran in one process: {why}"
-    n = options.workers
-    if n is not None and n < 1:
-        raise ValueError(f"workers must be at least 1, got {n}")
-    # the stop predicate (an observing one: why_not_partitioned) is asked about the initial state once,
-    # whichever search runs
-    pred = options.stop_predicate
-    at_s0 = pred is not None and bool(pred(engine.initial_state()))
-    threaded, why_not = _threads(engine, options, progress, at_s0)
-    if threaded is not None:
-        return threaded, None
     t0 = time.perf_counter()
     blob = net_blob(engine.net)
-    cond = bool(getattr(engine, "time_condensation", False))
+    cond = bool(capability(engine, "time_condensation", False))
     try:
-        if options.ray is not None:
-            from cpn.statespace.distributed import RayWorkers
-
-            transport = RayWorkers(n, blob, cond, options.ray)
-        else:
-            transport = LocalWorkers(n or 1, blob, cond)
+        workers = transport(blob, cond)
     except WorkerFailed as exc:
         return None, f"the search ran in one process: the workers could not start ({exc})"
     try:
-        search = _Coordinator(engine, transfer_for(engine), options, progress, transport, t0)
+        search = _Coordinator(engine, transfer_for(engine), options, progress, workers, t0)
         search.at_s0 = at_s0
-        with _CtrlC() as ctrl_c:
+        with CtrlC() as ctrl_c:
             search.ctrl_c = ctrl_c
             x = search.run()
-        if why_not is not None and options.ray is None:
-            x.notes.append(f"processes, not threads: {why_not}")
+        if threads_note is not None:
+            x.notes.append(f"processes, not threads: {threads_note}")
         return x, None
     except WorkerFailed as exc:
         # the one-process search meets the same error and reports it with the trace to its state
         return None, f"the search was repeated in one process: {exc}"
     finally:
-        transport.close()
-
-
-def _threads(engine, options: ExploreOptions, progress, at_s0: bool):
-    """The threaded search (`cpn.statespace.threads`) where it applies: (Exploration or None, why not)."""
-    from cpn.statespace.threads import run_threaded
-
-    with _CtrlC() as ctrl_c:
-        return run_threaded(engine, options, progress, lambda: ctrl_c.hit, at_s0)
+        workers.close()
 
 
 class _Coordinator:
@@ -476,7 +437,7 @@ class _Coordinator:
         self.n = transport.n
         self.rss = [0.0] * self.n
         self.cpu = [0.0] * self.n  # the workers' CPU seconds (process time, their start included)
-        self.ctrl_c = _CtrlC()
+        self.ctrl_c = CtrlC()
         self.bytes_sent = 0  # the batches' bytes, all steps
         self.sent = 0  # successors sent to another worker (one per arc whose target another worker owns)
         self.at_s0 = False  # the stop predicate holds in the initial state (asked by the caller)
@@ -485,8 +446,6 @@ class _Coordinator:
         return current_rss_mb() + sum(self.rss)
 
     def run(self):
-        from cpn.statespace.explore import Exploration, Progress
-
         opts, n, transport = self.options, self.n, self.transport
         self.t_started = time.perf_counter()  # the workers are up
         s0 = self.engine.initial_state()
@@ -558,7 +517,7 @@ class _Coordinator:
         notes = [f"the search ran in {n} {where}, the states partitioned by a hash of each state"]
         return Exploration(engine=self.engine, graph=g, options=opts, stop_reason=stop, seconds=seconds,
                            peak_memory_mb=peak_rss_mb() + sum(self.rss), predicate_state=predicate_state,
-                           levels=levels, notes=notes, backend=self.transport.name,
+                           levels=levels, notes=notes, backend=Backend(self.transport.name),
                            partition={"workers": n, "successors_sent": self.sent, "bytes_sent": self.bytes_sent,
                                       "worker_states": [len(p["states"]) for p in parts],
                                       "worker_cpu_seconds": [round(c, 3) for c in self.cpu],
@@ -665,20 +624,6 @@ class _Coordinator:
         return g, observe(self.options, g, stop)
 
 
-def observe(options: ExploreOptions, g: StateGraph, stop: StopReason) -> int | None:
-    """Call the observing stop predicate on every state of an assembled graph but the initial one (the
-    search asked it about that one), in breadth-first order as the one-process search does: the first
-    state satisfying it (0: the initial state stopped the search), or None."""
-    pred = options.stop_predicate
-    if stop is StopReason.PREDICATE:
-        return 0
-    if pred is not None:
-        for j, s in enumerate(g.states):
-            if j and pred(s):
-                return j
-    return None
-
-
 def _budget(states_left: int, arcs_left: int, expanded: int, arcs: int, n: int) -> int:
     """States each worker may expand in the next step: STEP_STATES, fewer near a states or arcs limit
     (estimated from the arcs per expanded state so far) so that the search stops close to it."""
@@ -687,5 +632,4 @@ def _budget(states_left: int, arcs_left: int, expanded: int, arcs: int, n: int) 
     return max(1, min(STEP_STATES, int(room)))
 
 
-__all__ = ["LocalWorkers", "PartitionWorker", "STEP_STATES", "WorkerFailed", "run_partitioned",
-           "why_not_partitioned"]
+__all__ = ["CtrlC", "LocalWorkers", "PartitionWorker", "STEP_STATES", "WorkerFailed", "run_partitioned"]

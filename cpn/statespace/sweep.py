@@ -31,10 +31,12 @@ from collections import deque
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
+from cpn.engine.protocol import capability
 from cpn.errors import ConfigurationError
 from cpn.statespace._memory import current_rss_mb, peak_rss_mb
-from cpn.statespace.explore import CHECK_EVERY, Progress, _TimeGrowthWatcher
+from cpn.statespace.explore import CHECK_EVERY, _TimeGrowthWatcher
 from cpn.statespace.options import ExploreOptions, StopReason
+from cpn.statespace.result import Progress
 
 #: the name of the default progress measure in reports
 CLOCK_MEASURE: str = "the global clock"
@@ -121,7 +123,7 @@ def default_measure(engine, options: ExploreOptions) -> Callable:
             "the sweep-line method needs a progress measure, and this net is untimed (its clock is always 0)",
             hint="Give an integer expression over the marking that no occurrence decreases, e.g. "
                  "--progress \"ms_to_col (Top'Count 1)\" (or progress = \"...\" in the scenario's [explore]).")
-    if options.time_condensation or getattr(engine, "time_condensation", False):
+    if options.time_condensation or capability(engine, "time_condensation", False):
         raise ConfigurationError(
             "the sweep-line method cannot use the clock under time condensation: the clock is set back to 0 "
             "in every state, so it measures no progress",
@@ -336,7 +338,7 @@ def _memo_tables(engine) -> Callable | None:
     the places a transition reads, mostly behind the sweep-line once it has moved on), or None for an
     engine without them (`Engine.forget_memo`). Emptying them changes no result, only what is computed
     again."""
-    return getattr(engine, "forget_memo", None)
+    return capability(engine, "forget_memo")
 
 
 class _SweepTimeGrowth(_TimeGrowthWatcher):
@@ -376,7 +378,7 @@ class _Bounds:
         self.upper: list = [None] * n
         self.lower: list = [None] * n
         self.seen: list = [set() for _ in range(n)]
-        self.view = getattr(engine, "place_view", None)
+        self.view = capability(engine, "place_view")
         self.timed = [bool(getattr(p, "timed", False)) for p in engine.places]
 
     def _views(self, s):

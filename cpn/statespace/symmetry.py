@@ -34,6 +34,11 @@ class SymmetricSuccessors:
         self._pending: dict = {}  # canonical state -> stabiliser size, until expanded
         self._memo: dict = {}  # successor state -> its representative (bounded, see MEMO_MAX)
 
+    def trace(self, graph, target: int, engine=None) -> Trace:
+        """The trace to state `target` of the quotient `graph`, lifted to the full graph (`lifted_trace`):
+        what `cpn.statespace.trace.shortest_trace` gives on a graph built with this step."""
+        return lifted_trace(graph, target, engine)
+
     def initial(self, state):
         """The representative of the initial state's orbit (the initial state itself when it is
         symmetric, as `cpn.net.symmetry` requires)."""

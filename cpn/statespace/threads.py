@@ -12,10 +12,11 @@ fills: every analysis runs unchanged. The graph has the
 states, arcs, dead markings and bounds of the one-process search (the numbering of states and the order
 of arcs aside), and its parent pointers give shortest paths.
 
-`run_threaded` returns (None, why) where it does not apply (`why_not_threaded`: a transition left to the
-Python engine, no C compiler, ...) and where the net's C met a binding it cannot evaluate (a division by
-zero, a value outside its colour set, deep recursion: the one-process search hands such a key to the
-Python engine, which the threads cannot call): the caller then runs the process search.
+`cpn.statespace.chooser.why_not_threaded` says where the threads do not apply (a transition left to the
+Python engine, no C compiler, ...); `run_threaded` returns (None, why) where the net's C met a binding it
+cannot evaluate (a division by zero, a value outside its colour set, deep recursion: the one-process
+search hands such a key to the Python engine, which the threads cannot call): the caller then runs the
+process search.
 
 While the threads run, this thread looks at the limits (seconds, memory), Ctrl-C and the progress hook
 every `POLL_MS` milliseconds and asks them to stop; the states and arcs limits are looked at by the
@@ -32,7 +33,8 @@ from array import array
 from cpn.statespace import native
 from cpn.statespace._memory import current_rss_mb, peak_rss_mb
 from cpn.statespace.graph import StateGraph
-from cpn.statespace.options import ExploreOptions, StopReason
+from cpn.statespace.options import Backend, ExploreOptions, StopReason
+from cpn.statespace.result import Exploration, Progress, observe
 from cpn.statespace.store import PackedStore
 
 #: how often (milliseconds) the calling thread looks at the limits, Ctrl-C and the progress hook
@@ -43,48 +45,16 @@ _STOPS = {native.ND_DONE: StopReason.COMPLETE, native.ND_MAX_STATES: StopReason.
           native.ND_MAX_ARCS: StopReason.MAX_ARCS}
 
 
-def why_not_threaded(engine, options: ExploreOptions, s0) -> tuple[str | None, object]:
-    """(why the threads cannot search this net with these options or None, the net's `NativeCode`)."""
-    if options.ray is not None:
-        return "the workers run on a Ray cluster (--ray)", None
-    if not options.threads:
-        return "processes were asked for (threads=False)", None
-    if options.backend == "python":
-        return "the Python back end was asked for", None
-    off = native.switched_off()
-    if off is not None:
-        return off, None
-    if not options.packed_states:
-        return "the states are to be kept as tuples (packed_states=False)", None
-    groups = getattr(engine, "successor_groups", None)  # an optional capability of the compiled engine
-    if groups is None or groups() is None:
-        return "this engine gives no transition groups (priorities, or the reference interpreter)", None
-    if not (isinstance(s0, tuple) and s0 and all(type(v) is int and 0 <= v < 1 << 32 for v in s0)):
-        return "the states are not tuples of small non-negative integers", None
-    code, notes = native.generated(engine, options)
-    if code is None:
-        return (notes[0] if notes else "the net's transitions have no C"), None
-    if code.left:
-        return notes[0] + (f" (and {len(notes) - 1} more)" if len(notes) > 1 else ""), None
-    if native.library(code) is None:
-        return f"the net's C could not be built ({native.why_unavailable()})", None
-    return None, code
-
-
-def run_threaded(engine, options: ExploreOptions, progress=None, stop_watch=None, stopped_at_s0: bool = False):
-    """The threaded search of `engine` with `options.workers` threads: (Exploration, None), or (None, why)
-    where it does not apply or must be repeated another way. `stop_watch()` (optional) says whether
+def run_threaded(engine, options: ExploreOptions, code, progress=None, stop_watch=None,
+                 stopped_at_s0: bool = False):
+    """The threaded search of `engine` with `options.workers` threads running `code` (the net's
+    `NativeCode`, every transition in it: `cpn.statespace.chooser.why_not_threaded` found nothing against
+    it): (Exploration, None), or (None, why) where it must be repeated another way. `stop_watch()` (optional) says whether
     Ctrl-C was pressed (the caller's handler); a KeyboardInterrupt stops the search the same way.
     `stopped_at_s0`: the (observing) stop predicate holds in the initial state, as the caller found when
     it asked it (once, whichever search then runs)."""
-    from cpn.statespace.explore import Exploration, Progress
-    from cpn.statespace.parallel import observe
-
     t0 = time.perf_counter()
     s0 = engine.initial_state()
-    why, code = why_not_threaded(engine, options, s0)
-    if why is not None:
-        return None, why
     n = options.workers or 1
     lib = native.library(code)
     ffi, clib = lib.ffi, lib.lib
@@ -179,7 +149,7 @@ def run_threaded(engine, options: ExploreOptions, progress=None, stop_watch=None
             "a hash of each state")
     return Exploration(engine=engine, graph=g, options=options, stop_reason=stop, seconds=seconds,
                        peak_memory_mb=peak_rss_mb(), predicate_state=predicate_state, levels=sizes[4],
-                       notes=[note], backend="threads",
+                       notes=[note], backend=Backend.THREADS,
                        partition={"workers": n, "threads": n, "worker_states": sizes[5:5 + n],
                                   "computed": sizes[5 + n:5 + 2 * n],
                                   "uncached": sizes[5 + 3 * n:5 + 4 * n],
@@ -223,4 +193,4 @@ def _assemble(lib, h, s0: tuple, n: int) -> tuple[StateGraph, list[int]]:
     return g, sizes
 
 
-__all__ = ["POLL_MS", "run_threaded", "why_not_threaded"]
+__all__ = ["POLL_MS", "run_threaded"]

@@ -41,11 +41,10 @@ class Trace:
 
 def shortest_trace(graph: StateGraph, target: int, engine=None) -> Trace:
     """The BFS-tree path to `target`; with an engine, each step carries its text and marking changes.
-    On a quotient graph (symmetry reduction) the path is lifted to the full graph (`symmetry.lifted_trace`)."""
+    On a quotient graph (symmetry reduction) the path is lifted to the full graph by the graph's successor
+    step (`symmetry.SymmetricSuccessors.trace`)."""
     if graph.symmetry is not None:
-        from cpn.statespace.symmetry import lifted_trace
-
-        return lifted_trace(graph, target, engine)
+        return graph.symmetry.trace(graph, target, engine)
     path = []
     v = target
     parent, parent_be = graph.parent, graph.parent_be

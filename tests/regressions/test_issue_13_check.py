@@ -8,7 +8,7 @@ import os
 
 import pytest
 
-from cpn.statespace import native
+from cpn.statespace import chooser
 from cpn.statespace.store import packed_unavailable
 from tests._checkrun import check_reports, record_backends
 
@@ -56,7 +56,7 @@ def test_check_searches_natively_with_the_python_verdicts(tmp_path, capsys, monk
     backends = record_backends(monkeypatch)
     code_c, doc_c = _check(tmp_path, "c", capsys)
     assert backends == [None]  # the native search ran, the monitor on its states
-    monkeypatch.setattr(native, "unavailable", lambda *_: "the Python search, for comparison")
+    monkeypatch.setattr(chooser, "why_not_native", lambda *_: "the Python search, for comparison")
     code_py, doc_py = _check(tmp_path, "py", capsys)
     assert code_c == code_py == 1
     assert doc_c["properties"] == doc_py["properties"] and doc_c["statespace"] == doc_py["statespace"]

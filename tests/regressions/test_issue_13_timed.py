@@ -11,7 +11,7 @@ import tomllib
 import pytest
 
 import cpn
-from cpn.statespace import ExploreOptions, Explorer, native, nativetimed
+from cpn.statespace import ExploreOptions, Explorer, chooser, native, nativetimed
 from cpn.statespace.store import packed_unavailable
 from tests._checkrun import check_reports, record_backends
 from tests._shared import count_calls, needs_shared
@@ -286,7 +286,7 @@ def test_modbus_scenario_checks_search_natively_with_the_python_verdicts(name, t
     backends = record_backends(monkeypatch)
     code_c, docs_c = check_reports(tmp_path, "c", capsys, spec)
     assert backends and backends == [None] * len(backends)
-    monkeypatch.setattr(native, "unavailable", lambda *_: "the Python search, for comparison")
+    monkeypatch.setattr(chooser, "why_not_native", lambda *_: "the Python search, for comparison")
     code_py, docs_py = check_reports(tmp_path, "py", capsys, spec)
     assert code_c == code_py and docs_c == docs_py and docs_c
     if name != "early":  # the scenario holds: the gate's verdict (the gate test leaves these two to this test)

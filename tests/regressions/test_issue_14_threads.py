@@ -15,7 +15,7 @@ import pytest
 import cpn
 from cpn.report import build_report, to_json
 from cpn.statespace import ExploreOptions, Explorer, StopReason
-from cpn.statespace.threads import why_not_threaded
+from cpn.statespace.chooser import why_not_threaded
 from tests._shared import ROOT
 from tests.engine.randomnets import random_net
 from tests.statespace._partition import Observer, compare, consistent, summary

@@ -14,7 +14,8 @@ import pytest
 import cpn
 from cpn.engine.transfer import transfer_for
 from cpn.statespace import ExploreOptions, Explorer, StopReason
-from cpn.statespace.parallel import PartitionWorker, why_not_partitioned
+from cpn.statespace.chooser import why_not_partitioned
+from cpn.statespace.parallel import PartitionWorker
 from tests._shared import ROOT, SHARED, needs_shared
 from tests.statespace._partition import Observer, canonical, compare, summary
 
