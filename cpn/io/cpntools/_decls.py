@@ -317,7 +317,8 @@ class _Declarations:
         if k.tag in ("unit", "bool", "real", "intinf", "time"):
             if w is not None:
                 return None if k.tag in ("real", "time") else (
-                    f"{k.tag} with {ids(w)[0]}" if k.tag == "unit" and ids(w)
+                    # `unit with student`: one colour, named: an enumeration of one constant
+                    f"with {ids(w)[0]}" if k.tag == "unit" and ids(w)
                     else f"bool with ({', '.join(ids(w))})" if k.tag == "bool" and len(ids(w)) == 2 else None)
             return k.tag
         if k.tag in ("int", "string"):
