@@ -392,6 +392,7 @@ def _prepare_folder(folder: str, option: str, default: str = "") -> None:
 
 def _write_html_page(folder: str, result, stem: str):
     """The page of one run (its report, its verdicts and their traces); returns its index entry."""
+    from cpn.checks.vacuity import warning_code
     from cpn.report import build_report
     from cpn.report.html import Verdict, write_run_page
 
@@ -404,7 +405,8 @@ def _write_html_page(folder: str, result, stem: str):
         v = r.verdict
         expect = "" if r.spec.expect == "holds" else f" (expected: {r.spec.expect})"
         verdicts.append(Verdict(r.spec.name, v.status, v.message + expect, v.evidence,
-                                places=tuple(result.engine.places[p].name for p in r.reads)))
+                                places=tuple(result.engine.places[p].name for p in r.reads),
+                                warnings=tuple((warning_code(w), w) for w in r.warnings)))
     return write_run_page(folder, stem, result.run.name, report, verdicts, status=result.status.value)
 
 

@@ -36,7 +36,8 @@ class Verdict:
     lasso, the 1-based step where the repeated part starts; marked_step: the violating step (default:
     the last step of a violated property's trace; none for a lasso, whose cycle is marked); places: the
     place instances (names) the property reads, listed first, even when empty, in the marking shown after
-    its trace.
+    its trace; warnings: (code, text) pairs about a property that holds (W0702 vacuously, W0703 by the
+    net's structure), shown under the table.
     """
 
     name: str
@@ -46,6 +47,7 @@ class Verdict:
     cycle_from: int | None = None
     marked_step: int | None = None
     places: tuple = ()
+    warnings: tuple = ()
 
     def resolved(self, engine) -> Verdict:
         """This verdict with `trace` as a Trace: evidence given as a path of states (`path`, `arcs`,
@@ -53,11 +55,11 @@ class Verdict:
         status = str(getattr(self.status, "value", self.status))  # a Status enum or its text
         if self.trace is None or hasattr(self.trace, "steps"):
             return Verdict(self.name, status, self.detail, self.trace, self.cycle_from, self.marked_step,
-                           tuple(self.places))
+                           tuple(self.places), tuple(self.warnings))
         trace, cycle_from = evidence_trace(self.trace, engine)
         return Verdict(self.name, status, self.detail, trace,
                        self.cycle_from if self.cycle_from is not None else cycle_from, self.marked_step,
-                       tuple(self.places))
+                       tuple(self.places), tuple(self.warnings))
 
 
 def evidence_trace(evidence, engine=None) -> tuple:
@@ -317,6 +319,11 @@ def _verdicts(r: Report, verdicts: list, failed: list) -> str:
     rows = [[S.esc(v.name), _pill(v.status), S.esc(v.detail),
              str(len(v.trace)) if v.trace is not None else ""] for v in verdicts]
     inner = _table(["Property", "Verdict", "Detail", "Trace steps"], rows, num_cols=(3,))
+    warned = [(v, code, text) for v in verdicts for code, text in v.warnings]
+    if warned:
+        inner += ('<p class="warnings"><strong>Warnings</strong></p><ul class="warnings">'
+                  + "".join(f"<li><code>warning[{S.esc(code)}]</code> {S.esc(v.name)}: {S.esc(text)}</li>"
+                            for v, code, text in warned) + "</ul>")
     if failed:
         v = failed[0]
         top = (f'<p class="headline">First violated property: <strong>{S.esc(v.name)}</strong>'

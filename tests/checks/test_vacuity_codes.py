@@ -121,3 +121,16 @@ def test_a_report_written_without_codes_gets_them_from_the_text():
     old = {"warnings": ["holds vacuously: x", "follows from the net's structure: y"]}
     assert property_warnings(old) == [("W0702", "holds vacuously: x"), ("W0703", "follows from the net's structure: y")]
     assert property_warnings({}) == []
+
+
+def test_the_html_page_of_a_run_lists_the_warnings_with_their_codes(tmp_path, capsys):
+    (tmp_path / "m.cpnet").write_text(MODEL, encoding="utf-8")
+    spec = tmp_path / "jobs.toml"
+    spec.write_text(SCENARIO, encoding="utf-8")
+    assert main(["check", str(spec), "--no-timings", "--no-reports", "--html", str(tmp_path / "html")]) == 0
+    capsys.readouterr()
+    page = next(p for p in (tmp_path / "html").iterdir() if p.name != "index.html").read_text(encoding="utf-8")
+    assert f"<code>warning[W0702]</code> {VACUOUS_NAME}: holds vacuously" in page
+    assert f"<code>warning[W0703]</code> {STRUCTURAL_NAME}: follows from the net&#x27;s structure" in page \
+        or f"<code>warning[W0703]</code> {STRUCTURAL_NAME}: follows from the net's structure" in page
+    assert PLAIN_NAME + ":" not in page.split('<ul class="warnings">')[1].split("</ul>")[0]
