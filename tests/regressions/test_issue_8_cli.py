@@ -442,8 +442,11 @@ def test_exit_1_is_promised_only_for_check():
     assert blocks[:2] == [
         "python3 -m pip install . && cpn-verify check specs/modbus specs/examples && cpn-verify explore "
         "--time-condensation models/examples/stop_and_wait.cpnet\n",
-        "python3 -m pip install -e '.[test]' && ruff check cpn tests bench && pytest\n",
+        "python3 -m pip install -e '.[test]' && ruff check cpn tests bench && pytest -n auto --dist loadfile\n",
     ]
+    # .ci/run runs exactly the README's test command, as its last line
+    with open(os.path.join(ROOT, ".ci", "run"), encoding="utf-8") as fh:
+        assert fh.read().splitlines()[-1] + "\n" == blocks[1]
 
 
 def test_a_large_dead_marking_is_cut_in_the_text(tmp_path):
