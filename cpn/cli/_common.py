@@ -297,13 +297,16 @@ def model_warnings(model) -> list:
     return warnings
 
 
-def load_model(path: str, sets: dict[str, str], *, show_warnings: bool = True):
-    """`cpn.load` for the command line: its warnings go to stderr (never silenced by --quiet)."""
+def load_model(path: str, sets: dict[str, str], *, show_warnings: bool = True, state_space: bool = False):
+    """`cpn.load` for the command line: its warnings go to stderr (never silenced by --quiet). With
+    `state_space` (explore), the warnings that a random draw is for simulation only (W0105) are left out:
+    building the engine refuses each such draw with an error at the same place (E0206)."""
     import cpn
     from cpn.diagnostics import render
 
     model = cpn.load(path, set=sets)
     if show_warnings:
         for w in model_warnings(model):
-            print(render(w, model.source), file=sys.stderr)
+            if not (state_space and w.code == "W0105"):
+                print(render(w, model.source), file=sys.stderr)
     return model

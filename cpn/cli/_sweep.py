@@ -36,7 +36,7 @@ def run_sweep(args, sets: dict) -> int:
                              "successor in one process and keeps no graph; drop one of the two")
     outputs = {o.option: o for o in _outputs(args)}
     quiet = bool(getattr(args, "quiet", False))
-    model = load_model(args.model, sets)
+    model = load_model(args.model, sets, state_space=True)
     engine = model.engine(time_condensation=args.time_condensation)
     measure = None
     if args.progress:

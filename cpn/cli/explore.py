@@ -110,7 +110,7 @@ def load_engine(path: str, sets: dict[str, str], time_condensation: bool):
     """The model's engine; raises ModelError (bad model) or ConfigurationError (no such file)."""
     from cpn.cli._common import load_model
 
-    return load_model(path, sets).engine(time_condensation=time_condensation)
+    return load_model(path, sets, state_space=True).engine(time_condensation=time_condensation)
 
 
 def _outputs(args):
@@ -146,7 +146,7 @@ def run(args) -> int:
     if getattr(args, "reduction", None) == "symmetry":
         from cpn.cli._common import load_model
 
-        model = load_model(args.model, sets)
+        model = load_model(args.model, sets, state_space=True)
         args.symmetric_colour_sets = model.symmetry(getattr(args, "symmetry", None))
         engine = model.engine(time_condensation=args.time_condensation)
     else:
