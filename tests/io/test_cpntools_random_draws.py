@@ -34,7 +34,7 @@ def test_a_draw_in_a_used_sml_file_is_refused_at_its_line_in_that_file(tmp_path,
 
 @needs_shared
 def test_a_corpus_model_refused_only_for_its_distributions_now_loads(capsys):
-    # HCPN traffic control: 14 refusals at 518acaa, all "'expTime' calls 'exponential'"
+    # HCPN traffic control: 14 refusals at d2e5f54, all "'expTime' calls 'exponential'"
     path = os.path.join(CORPUS, "Danilo0liveira__HCPN_TRAFFIC_CONTROL__src__cpn_project.cpn")
     assert main(["lint", path]) == 0
     assert "simulate only" in capsys.readouterr().out
