@@ -124,11 +124,17 @@ def _private_uses(mod: str, own: str, source: str) -> list[str]:
     return out
 
 
-def test_no_module_reaches_into_another_packages_private_members():
+def _each_module(check, *args) -> list[str]:
+    """The problems `check(module, package, source, *args)` finds in every module of the package."""
     problems = []
     for path in sorted(ROOT.rglob("*.py")):
         rel = path.relative_to(ROOT.parent).with_suffix("")
-        problems += _private_uses(".".join(rel.parts), rel.parts[1], path.read_text(encoding="utf-8"))
+        problems += check(".".join(rel.parts), rel.parts[1], path.read_text(encoding="utf-8"), *args)
+    return problems
+
+
+def test_no_module_reaches_into_another_packages_private_members():
+    problems = _each_module(_private_uses)
     assert not problems, "\n".join(problems)
 
 
@@ -151,10 +157,7 @@ def test_private_member_access_across_packages_fails():
 
 
 def test_every_module_imports_only_what_its_layer_allows():
-    problems = []
-    for path in sorted(ROOT.rglob("*.py")):
-        rel = path.relative_to(ROOT.parent).with_suffix("")
-        problems += _problems(".".join(rel.parts), rel.parts[1], path.read_text(encoding="utf-8"), ALLOWED)
+    problems = _each_module(_problems, ALLOWED)
     assert not problems, "\n".join(problems)
 
 
@@ -275,10 +278,7 @@ def _capability_probes(mod: str, own: str, source: str) -> list[str]:
 
 
 def test_no_module_probes_an_engines_capabilities_with_getattr():
-    problems = []
-    for path in sorted(ROOT.rglob("*.py")):
-        rel = path.relative_to(ROOT.parent).with_suffix("")
-        problems += _capability_probes(".".join(rel.parts), rel.parts[1], path.read_text(encoding="utf-8"))
+    problems = _each_module(_capability_probes)
     assert not problems, "\n".join(problems)
 
 
