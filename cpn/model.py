@@ -90,7 +90,8 @@ class Model:
         >>> [str(s) for s in m.symmetry("auto")]
         ['P']
         """
-        from cpn.net.symmetry import Scalar, parse_scalars, root, scalar_values, symmetry_problems
+        from cpn.net.scalars import Scalar, parse_scalars, root, scalar_values
+        from cpn.net.symmetry import symmetry_problems
 
         if spec is None:
             scalars = [Scalar(n, k) for n, k in getattr(self.net.checked, "symmetries", ())]

@@ -38,7 +38,7 @@ from __future__ import annotations
 import math
 from itertools import permutations
 
-from cpn.net.symmetry import (
+from cpn.net.scalars import (
     KINDS,
     PERMUTATIONS,
     ROTATIONS,

@@ -22,7 +22,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 from cpn.diagnostics import Diagnostic
-from cpn.net.symmetry import CODE, root, value_mapper
+from cpn.net.scalars import CODE, root, value_mapper
 
 
 @dataclass
