@@ -14,14 +14,18 @@ from __future__ import annotations
 import os
 from collections import Counter
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 from cpn.engine.protocol import capability
 from cpn.report import svg as S
 from cpn.report.graphdraw import bfs_levels, draw_state_space, level_sizes, marking_text
-from cpn.report.model import Report, reduction_text
 from cpn.report.msc import draw_msc
 from cpn.report.netdraw import draw_net
 from cpn.report.plot import growth_chart
+from cpn.report.reduction import reduction_text
+
+if TYPE_CHECKING:  # a renderer of the report model, which shows itself in Jupyter with this page
+    from cpn.report.model import Report
 
 MAX_TRACE_CHARTS: int = 8  # dead markings whose trace is drawn (the first ones, by state number)
 MAX_TABLE_ROWS: int = 50

@@ -5,7 +5,8 @@ Imports `cpn.report.model` and `cpn.values` only.
 
 from __future__ import annotations
 
-from cpn.report.model import NOT_PRESERVED, REDUCED_SECTIONS, Report
+from cpn.report.model import Report
+from cpn.report.reduction import NOT_PRESERVED, REDUCED_SECTIONS
 from cpn.values import colours as C
 
 SCHEMA_VERSION: int = 1
@@ -97,8 +98,8 @@ def to_json(r: Report) -> dict:
             "not_preserved": list(REDUCED_SECTIONS), "why": NOT_PRESERVED},
     }
     if r.symmetric:
-        from cpn.checks.symmetry import INSTANCE_NOT_PRESERVED, NOT_PRESERVED_SECTIONS, PRESERVED
-        from cpn.checks.symmetry import NOT_PRESERVED as SYM_NOT_PRESERVED
+        from cpn.properties.symmetry import INSTANCE_NOT_PRESERVED, NOT_PRESERVED_SECTIONS, PRESERVED
+        from cpn.properties.symmetry import NOT_PRESERVED as SYM_NOT_PRESERVED
 
         st = x.reduction_stats or {}
         moved = r.moves_instances
