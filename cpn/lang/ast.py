@@ -122,6 +122,14 @@ def flat_decls(decls: list) -> list:
 
 
 @dataclass(slots=True, eq=False)
+class UseDecl(Decl):
+    """`use "file.cpnet";`: replaced by the parser with the global declarations and modules of that file."""
+
+    path: str
+    path_span: Span
+
+
+@dataclass(slots=True, eq=False)
 class PlaceDecl(Decl):
     name: str
     name_span: Span

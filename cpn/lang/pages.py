@@ -390,12 +390,13 @@ class PageChecks:
             return []
         members = []
         for v in values:
-            text = cs.format(v) if cs is not None else C.format_int(v)
+            # an index value ph(3) names the instance by its number, as CPN Tools numbers page instances
+            text = C.format_int(v) if cs is None or isinstance(cs, C.IndexCS) else cs.format(v)
             if not _NAME_PART.fullmatch(text):
                 self.error("E0204", f"the value {text} of {where} does not make an instance name "
                            f"('{fam.name}{text}')", span,
                            hint="Instance names of a family are its name followed by the value: use a range "
-                           "of non-negative integers or an enumeration.")
+                           "of non-negative integers, an index colour set or an enumeration.")
                 return []
             members.append(A.FamilyMember(fam.span, f"{fam.name}{text}", fam.name_span, fam.module,
                                           fam.module_span, fam.args, fam.binds, family=fam, value=v,

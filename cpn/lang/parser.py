@@ -19,6 +19,7 @@ from cpn.errors import ModelSyntaxError
 from cpn.lang import ast as A
 from cpn.lang.syntax_errors import CASE_RULE_DELAY, SYNTAX_ERRORS, TERMINAL_NAMES
 from cpn.lang.transform import ToAst, balance_chains
+from cpn.lang.uses import expand_uses
 
 MAX_SYNTAX_ERRORS: int = 50
 
@@ -32,7 +33,7 @@ RESERVED_WORDS: frozenset[str] = frozenset(
 BOM: str = "\ufeff"
 
 _STMT_START = re.compile(
-    r"^[ \t]*(net|colset|var|val|fun|place|port|trans|arc|inhibitor|reset|module|instance)\b|^[ \t]*\}",
+    r"^[ \t]*(net|use|colset|var|val|fun|place|port|trans|arc|inhibitor|reset|module|instance)\b|^[ \t]*\}",
     re.MULTILINE,
 )
 
@@ -388,8 +389,10 @@ def _unbalanced(text: str, filename: str) -> list[tuple[Diagnostic, int, int]]:
     return out
 
 
-def parse(text: str, filename: str = "<string>") -> A.Model:
-    """Parse `.cpnet` source text into an `ast.Model`.
+def parse(text: str, filename: str = "<string>", *, using: tuple[str, ...] = ()) -> A.Model:
+    """Parse `.cpnet` source text into an `ast.Model`, with the declarations of the files it `use`s.
+
+    `using` holds the files whose `use` led here (cpn.lang.uses).
 
     Raises `ModelSyntaxError` with one diagnostic per erroneous statement (at most one per line).
     """
@@ -459,4 +462,6 @@ def parse(text: str, filename: str = "<string>") -> A.Model:
         if isinstance(exc.orig_exc, RecursionError):
             raise exc.orig_exc from None  # too deeply nested: the caller reports E0206
         raise
+    if any(isinstance(d, (A.UseDecl, A.ModuleDecl)) for d in decls):
+        decls = expand_uses(decls, filename, text, parse, using)
     return A.Model(filename, text, decls)

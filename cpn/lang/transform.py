@@ -162,6 +162,11 @@ class ToAst(Transformer_NonRecursive):
     def net_header(self, meta, items):
         return A.NetHeader(self.span(meta), items[0][0])
 
+    @v_args(meta=True)
+    def use_decl(self, meta, items):
+        tok = items[0]
+        return A.UseDecl(self.span(meta), _unescape(tok[1:-1]), self.tspan(tok))
+
     def name(self, items):
         tok = items[0]
         text = _unescape(tok[1:-1]) if tok.type == "STRING" else str(tok)
