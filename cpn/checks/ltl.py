@@ -1,0 +1,265 @@
+"""LTL on the fly: the product of a Büchi automaton with the state space as it is built, an emptiness check
+that stops at the first accepting cycle, and the counterexample as a lasso.
+
+`check_ltl(system, formula, propositions)` decides whether every path of the system satisfies the
+formula (`cpn.checks.buchi`'s tuples, ``("ap", i)`` being the state predicate `propositions[i]`). It
+translates the negated formula into a generalised Büchi automaton and searches the product for an
+accepting cycle with Couvreur's SCC-based algorithm ("On-the-fly verification of linear temporal logic",
+FM 1999): one depth-first search that keeps a stack of SCC roots with the acceptance sets each has
+met, and stops as soon as one root has met them all. Only the states the search reaches are generated.
+
+Paths are infinite. A dead state (no enabled binding element) repeats forever: it gets a self-loop, the
+stuttering extension of Spin and of the Model Checking Contest, so ``F p`` fails on a path that deadlocks
+before p holds and ``G p`` holds on one that deadlocks with p true ever since.
+
+The system is anything with `initial_state()` and `successors(state) -> [(label, state)]` (an engine, or
+`Cache` around one so that several formulas share the states generated). Imports `cpn.checks.buchi`.
+
+Examples
+--------
+>>> import cpn
+>>> engine = cpn.loads("colset U = unit; place A : U = 1`(); place B : U;"
+...                    " trans t; arc A -> t; arc t -> B;").engine()
+>>> in_b = lambda s: engine.token_counts(s)[1] > 0
+>>> check_ltl(engine, ("F", ("ap", 0)), [in_b]).holds, check_ltl(engine, ("G", ("ap", 0)), [in_b]).holds
+(True, False)
+"""
+
+from __future__ import annotations
+
+import time
+from collections import deque
+from collections.abc import Callable, Hashable
+from dataclasses import dataclass, field
+
+from cpn.checks.buchi import Automaton, translate
+
+
+class Cache:
+    """The successors of every state a search asked for, kept: formulas checked one after the other on
+    the same system generate each state once. `expanded` counts the states whose successors were
+    computed."""
+
+    def __init__(self, system) -> None:
+        self.system = system
+        self.memo: dict = {}
+        self._initial = None
+
+    def initial_state(self):
+        if self._initial is None:
+            self._initial = self.system.initial_state()
+        return self._initial
+
+    def successors(self, state) -> list:
+        got = self.memo.get(state)
+        if got is None:
+            got = self.memo[state] = list(self.system.successors(state))
+        return got
+
+    @property
+    def expanded(self) -> int:
+        return len(self.memo)
+
+
+@dataclass
+class LtlResult:
+    """The verdict: `holds` True or False, or None when a limit stopped the search (`reason` says which).
+
+    A violation comes with a lasso: `prefix` is the path (label, state) from the initial state (whose
+    label is None) to the first state of the cycle, and `cycle` the steps (label, state) from there back
+    to that state; a label None in the cycle is a dead state's stutter step. `product_states` counts the
+    states of the product the search generated, `system_states` the distinct system states among them.
+    """
+
+    holds: bool | None
+    prefix: list = field(default_factory=list)
+    cycle: list = field(default_factory=list)
+    product_states: int = 0
+    system_states: int = 0
+    automaton_states: int = 0
+    reason: str = ""
+
+
+class _Stop(Exception):
+    pass
+
+
+def check_ltl(system, formula: tuple, propositions: list[Callable[[Hashable], bool]],
+              max_states: int | None = None, deadline: float | None = None) -> LtlResult:
+    """Whether every infinite path of `system` from its initial state satisfies `formula` (see the module).
+
+    `max_states` bounds the product states generated, `deadline` (a `time.monotonic()` value) the time;
+    either stops the search with `holds` None.
+    """
+    aut = translate(("not", formula))
+    search = _Search(system, aut, propositions, max_states, deadline)
+    try:
+        found = search.run()
+    except _Stop as stop:
+        return LtlResult(None, product_states=len(search.index), system_states=len(search.masks),
+                         automaton_states=len(aut), reason=str(stop))
+    res = LtlResult(found is None, product_states=len(search.index), system_states=len(search.masks),
+                    automaton_states=len(aut))
+    if found is not None:
+        res.prefix, res.cycle = _without_stutter(*found)
+    return res
+
+
+def _without_stutter(prefix: list, cycle: list) -> tuple[list, list]:
+    """A dead state's repeated stutter steps (several automaton states over one system state) as one:
+    the prefix ends at the dead state and the cycle is its one stutter step."""
+    for k, (label, s) in enumerate(prefix[1:], 1):
+        if label is None:
+            return prefix[:k], [(None, s)]
+    if cycle and all(label is None for label, _s in cycle):
+        return prefix, [cycle[0]]
+    return prefix, cycle
+
+
+_DONE = -1  # the index of a product state whose SCC is finished
+
+
+class _Search:
+    def __init__(self, system, aut: Automaton, propositions, max_states, deadline) -> None:
+        self.system = system
+        self.aut = aut
+        self.props = propositions
+        self.max_states = max_states
+        self.deadline = deadline
+        self.masks: dict = {}  # system state -> bitmask of its true propositions
+        self.index: dict = {}  # product state -> depth-first number, or _DONE
+
+    def mask(self, s) -> int:
+        m = self.masks.get(s)
+        if m is None:
+            m = 0
+            for i, p in enumerate(self.props):
+                if p(s):
+                    m |= 1 << i
+            self.masks[s] = m
+        return m
+
+    def steps(self, s) -> list:
+        """The system's steps from s, a dead state stuttering."""
+        out = self.system.successors(s)
+        return out if out else [(None, s)]
+
+    def successors(self, v: tuple) -> list:
+        """(label, product state) after product state v = (system state, automaton state)."""
+        s, q = v
+        aut = self.aut
+        out = []
+        for label, t in self.steps(s):
+            m = self.mask(t)
+            for r in aut.succ[q]:
+                if aut.enters(r, m):
+                    out.append((label, (t, r)))
+        return out
+
+    def run(self):
+        """None when the product has no accepting cycle, else the lasso (prefix, cycle)."""
+        aut = self.aut
+        s0 = self.system.initial_state()
+        m0 = self.mask(s0)
+        full = aut.full
+        index = self.index
+        roots: list[list] = []  # [depth-first number, acceptance sets met]
+        live: list = []  # states of the SCCs not yet finished, in depth-first order
+        todo: list = []  # the depth-first path: [product state, its successors, next position, label in]
+
+        def push(v, label) -> None:
+            index[v] = len(index)
+            if self.max_states is not None and len(index) > self.max_states:
+                raise _Stop(f"the product reached {self.max_states:,} states")
+            if self.deadline is not None and len(index) % 256 == 0 and time.monotonic() > self.deadline:
+                raise _Stop("the time limit was reached")
+            roots.append([index[v], aut.acc[v[1]]])
+            live.append(v)
+            todo.append([v, self.successors(v), 0, label])
+
+        for q in aut.initial:
+            if not aut.enters(q, m0) or (s0, q) in index:
+                continue
+
+            push((s0, q), None)
+            while todo:
+                top = todo[-1]
+                v, succ, k = top[0], top[1], top[2]
+                if k == len(succ):
+                    todo.pop()
+                    if roots[-1][0] == index[v]:
+                        roots.pop()
+                        while True:
+                            w = live.pop()
+                            index[w] = _DONE
+                            if w == v:
+                                break
+                    continue
+                top[2] = k + 1
+                label, w = succ[k]
+                iw = index.get(w)
+                if iw is None:
+                    push(w, label)
+                    continue
+                if iw == _DONE:
+                    continue
+                met = 0
+                while roots[-1][0] > iw:
+                    met |= roots.pop()[1]
+                roots[-1][1] |= met
+                if roots[-1][1] == full:
+                    return self.lasso(todo, live, roots[-1][0])
+        return None
+
+    def lasso(self, todo: list, live: list, root: int):
+        """The counterexample when the SCC of the root with depth-first number `root` is accepting:
+        the depth-first path to the root, then a cycle in the SCC through every acceptance set."""
+        index, aut = self.index, self.aut
+        prefix = []
+        for v, _succ, _k, label in todo:
+            prefix.append((label, v))
+            if index[v] == root:
+                break
+        start = prefix[-1][1]
+        inside = {v for v in live if index[v] >= root}
+        cycle: list = []
+        cur = start
+        need = aut.full
+        for k in range(aut.n_acc):
+            if not need >> k & 1:
+                continue
+            seg = self._path(cur, lambda v, k=k: aut.acc[v[1]] >> k & 1, inside, at_least_one=False)
+            for _label, v in seg:
+                need &= ~aut.acc[v[1]]
+            cycle.extend(seg)
+            cur = seg[-1][1] if seg else cur
+            if cur == start and cycle:
+                need &= ~aut.acc[start[1]]
+        cycle.extend(self._path(cur, lambda v: v == start, inside, at_least_one=True))
+        return ([(label, v[0]) for label, v in prefix], [(label, v[0]) for label, v in cycle])
+
+    def _path(self, frm, goal, inside: set, at_least_one: bool) -> list:
+        """The shortest steps (label, product state) from frm to a goal state, inside the SCC."""
+        if not at_least_one and goal(frm):
+            return []
+        parent: dict = {}
+        queue = deque([frm])
+        while queue:
+            u = queue.popleft()
+            for label, w in self.successors(u):
+                if w not in inside or w in parent:
+                    continue
+                parent[w] = (u, label)
+                if goal(w):
+                    out = []
+                    while True:
+                        p, lab = parent[w]
+                        out.append((lab, w))
+                        if p == frm:
+                            return out[::-1]
+                        w = p
+                queue.append(w)
+        raise AssertionError("a state of an accepting SCC reaches every state of it")
+
+
+__all__ = ["Cache", "LtlResult", "check_ltl"]
