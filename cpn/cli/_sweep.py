@@ -11,6 +11,7 @@ import os
 import sys
 
 from cpn.cli._common import ExitStatus, UsageError, write_output
+from cpn.cli._search_args import ProgressLine, explore_options, explore_outputs
 from cpn.report._words import noun
 
 # options of `explore` that need the whole graph, restrict it or partition it, and so do not combine with
@@ -25,7 +26,6 @@ def run_sweep(args, sets: dict) -> int:
     from cpn.checks.predicates import PropertyLanguage
     from cpn.checks.sweep import progress_measure
     from cpn.cli._common import load_model
-    from cpn.cli.explore import _options, _outputs, _ProgressLine
     from cpn.errors import ConfigurationError
     from cpn.report.sweep import render_sweep_text, sweep_to_json
     from cpn.statespace.sweep import SweepLine
@@ -34,7 +34,7 @@ def run_sweep(args, sets: dict) -> int:
         if getattr(args, attr, None):
             raise UsageError(f"{option} cannot be combined with --sweep-line: the sweep-line method explores every "
                              "successor in one process and keeps no graph; drop one of the two")
-    outputs = {o.option: o for o in _outputs(args)}
+    outputs = {o.option: o for o in explore_outputs(args)}
     quiet = bool(getattr(args, "quiet", False))
     model = load_model(args.model, sets, state_space=True)
     engine = model.engine(time_condensation=args.time_condensation)
@@ -42,10 +42,10 @@ def run_sweep(args, sets: dict) -> int:
     if args.progress:
         lang = PropertyLanguage(model.net, engine, TransitionIndex(engine))
         measure = progress_measure(lang, args.progress)
-    display = _ProgressLine() if (not quiet and sys.stderr.isatty()) else None
+    display = ProgressLine() if (not quiet and sys.stderr.isatty()) else None
     try:
         try:
-            x = SweepLine(engine, _options(args), measure, args.progress, progress=display).run()
+            x = SweepLine(engine, explore_options(args), measure, args.progress, progress=display).run()
         except ConfigurationError as err:
             raise UsageError(err.render().removeprefix("error: ")) from None
     finally:

@@ -27,7 +27,7 @@ from cpn.cli._common import (
     sets_of,
     write_output,
 )
-from cpn.cli.explore import _ProgressLine
+from cpn.cli._search_args import ProgressLine
 
 DEFAULT_DIR = "specs"
 # seconds of generation per run where neither the scenario (max_seconds) nor --max-seconds sets a limit: an
@@ -141,7 +141,7 @@ def run(args) -> int:
         if not scenario.properties:
             print(render(_no_property(scenario), scenario.source), file=sys.stderr)
         for r in scenario.runs:
-            display = _ProgressLine() if (not args.quiet and sys.stderr.isatty()) else None
+            display = ProgressLine() if (not args.quiet and sys.stderr.isatty()) else None
             try:
                 result = run_scenario(scenario, r, overrides, progress=display)
             except (ModelError, EvaluationError) as err:

@@ -24,10 +24,10 @@ from cpn.cli._common import (
     check_limits,
     check_parallel,
     parse_sets,
-    prepare_outputs,
     sets_of,
     write_output,
 )
+from cpn.cli._search_args import ProgressLine, explore_options, explore_outputs
 from cpn.report._words import noun
 
 __all__ = ["add_parser", "explore_engine", "load_engine", "parse_sets", "run"]
@@ -113,11 +113,6 @@ def load_engine(path: str, sets: dict[str, str], time_condensation: bool):
     return load_model(path, sets, state_space=True).engine(time_condensation=time_condensation)
 
 
-def _outputs(args):
-    return prepare_outputs(("--json", args.json), ("--dot", args.dot), ("--graphml", args.graphml),
-                           ("--html", getattr(args, "html", None)), ("--msc", getattr(args, "msc", None)))
-
-
 def run(args) -> int:
     sets = sets_of(args)
     check_limits(args)
@@ -136,7 +131,7 @@ def run(args) -> int:
         how = "stubborn sets" if args.reduction == "stubborn" else "symmetry (one node per orbit)"
         raise UsageError("--dot and --graphml draw the state space and its SCC graph, which a graph reduced by "
                          f"{how} does not preserve; drop --reduction/--symmetry to draw the full graph")
-    _outputs(args)  # before the model is even loaded: a long run must never be lost to a bad path
+    explore_outputs(args)  # before the model is even loaded: a long run must never be lost to a bad path
     if not os.path.exists(args.model):
         raise UsageError(f"no such model file: '{args.model}'")
     if getattr(args, "sweep_line", False) or getattr(args, "progress", None):
@@ -152,19 +147,6 @@ def run(args) -> int:
     else:
         engine = load_engine(args.model, sets, args.time_condensation)
     return explore_engine(engine, args, sets)
-
-
-def _options(args):
-    from cpn.statespace import ExploreOptions
-
-    return ExploreOptions(max_states=args.max_states, max_arcs=args.max_arcs, max_seconds=args.max_seconds,
-                          max_memory_mb=args.max_memory, time_condensation=args.time_condensation,
-                          detect_time_growth=not args.no_time_growth_check,
-                          until_time=getattr(args, "until_time", None),
-                          reduction=getattr(args, "reduction", None),
-                          symmetry=tuple(getattr(args, "symmetric_colour_sets", ()) or ()),
-                          backend=getattr(args, "backend", "auto"),
-                          workers=getattr(args, "workers", None), ray=getattr(args, "ray", None))
 
 
 def _branching_options(engine, options, names: str | None, max_successors: int | None):
@@ -202,13 +184,13 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
     from cpn.report.graphs import MAX_EXPORT_STATES, TooLargeToExport, render_dot, render_graphml
     from cpn.statespace import Explorer
 
-    outputs = {o.option: o for o in _outputs(args)}
+    outputs = {o.option: o for o in explore_outputs(args)}
     quiet = bool(getattr(args, "quiet", False))
-    options = _branching_options(engine, _options(args), getattr(args, "branch_transitions", None),
+    options = _branching_options(engine, explore_options(args), getattr(args, "branch_transitions", None),
                                  getattr(args, "max_successors", None))
     if options.until_time is not None and not getattr(engine, "is_timed", False) and not quiet:
         print("note: the model is untimed (its clock is always 0): --until-time has no effect", file=sys.stderr)
-    display = _ProgressLine() if (not quiet and sys.stderr.isatty()) else None
+    display = ProgressLine() if (not quiet and sys.stderr.isatty()) else None
     try:
         x = Explorer(engine, options, progress=display).run()
     except EvaluationError:
@@ -291,56 +273,6 @@ def _write_pictures(report, outputs: dict, quiet: bool) -> None:
             write_output(outputs["--msc"], traces[0].svg(standalone=True) + "\n")
         elif not quiet:
             print("note: --msc: no chart written: there is no dead marking to trace", file=sys.stderr)
-
-
-# The fields of the progress line, most important first; those that do not fit the terminal are dropped.
-def progress_text(p, width: int) -> str:
-    """The progress line for a terminal `width` columns wide: never longer than width - 1 (no wrap)."""
-    fields = [f"states {p.states:,}", f"arcs {p.arcs:,}", f"{p.seconds:,.1f} s", f"queue {p.queue:,}",
-              f"{p.memory_mb:,.0f} MiB", f"{p.states_per_second:,.0f} states/s"]
-    order = [0, 1, 3, 5, 4, 2]  # display order: states, arcs, queue, states/s, MiB, seconds
-    limit = max(width - 1, 1)
-    # first drop fields (keeping at least two), then the label, then fields again, then cut
-    attempts = [("exploring  ", keep) for keep in range(len(fields), 1, -1)]
-    attempts += [("", keep) for keep in range(len(fields), 0, -1)]
-    for label, keep in attempts:
-        line = label + "  ".join(fields[i] for i in order if i < keep)
-        if len(line) <= limit:
-            return line
-    return line[:limit]
-
-
-class _ProgressLine:
-    """A rich live line on stderr (states, arcs, queue, states/s, memory), shown after one second and
-    fitted to the terminal's width so that it never wraps."""
-
-    def __init__(self):
-        self._live = None
-        self._console = None
-        self._t0 = time.perf_counter()
-
-    def __call__(self, p) -> None:
-        if self._live is None:
-            if p.seconds < 1.0:
-                return
-            from rich.console import Console
-            from rich.live import Live
-
-            self._console = Console(stderr=True)
-            self._live = Live("", console=self._console, transient=True, auto_refresh=False)
-            self._live.start()
-        from rich.text import Text
-
-        line = progress_text(p, self._console.width)
-        text = Text(line, no_wrap=True, overflow="crop")
-        if line.startswith("exploring"):
-            text.stylize("bold", 0, len("exploring"))
-        self._live.update(text, refresh=True)
-
-    def close(self) -> None:
-        if self._live is not None:
-            self._live.stop()
-            self._live = None
 
 
 class _ReportLine:

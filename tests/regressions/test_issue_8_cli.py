@@ -295,7 +295,7 @@ def test_an_unknown_flag_prints_the_subcommands_usage(capsys):
 
 
 def test_the_progress_line_fits_the_terminal():
-    from cpn.cli.explore import progress_text
+    from cpn.cli._search_args import progress_text
     from cpn.statespace import Progress
 
     p = Progress(states=1_234_567_890, arcs=98_765_432_100, queue=123_456_789, seconds=86_400.5,
