@@ -26,8 +26,8 @@ DEFAULT = [("specs/examples/ms.toml", {"N": 5}), ("specs/examples/dp.toml", {"N"
 
 
 def measure(path: str, values: dict, repeat: int) -> dict:
-    from cpn.checks.gate import run_scenario
-    from cpn.checks.scenario import Run, load_scenario
+    from cpn.gate.run import run_scenario
+    from cpn.gate.scenario import Run, load_scenario
     from cpn.model import load
     from cpn.report import build_report
     from cpn.statespace import ExploreOptions, Explorer

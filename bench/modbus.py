@@ -132,9 +132,9 @@ def scaling_modbus_a_explore(budget: float) -> None:
 
 
 def scaling_modbus_a(budget: float) -> None:
-    from cpn.checks.gate import run_scenario
-    from cpn.checks.scenario import Run, load_scenario
     from cpn.checks.verdict import Status
+    from cpn.gate.run import run_scenario
+    from cpn.gate.scenario import Run, load_scenario
 
     scenario = load_scenario(os.path.join(ROOT, "specs", "modbus", "modbus_a.toml"))
     base = scenario.runs[0]
@@ -184,8 +184,8 @@ def _explore(values: dict, condensed: bool, budget: float) -> str:
 
 
 def table(budget: float) -> None:
-    from cpn.checks.gate import run_scenario
-    from cpn.checks.scenario import load_scenario
+    from cpn.gate.run import run_scenario
+    from cpn.gate.scenario import load_scenario
 
     print("| scenario | thesis nodes | thesis DM | thesis time | check: states | arcs | DM | s "
           "| timed: states | arcs | DM (mod. time) | s |")
@@ -401,11 +401,11 @@ THESIS_MEASURE = "size (Master'Done 1)"
 def sweep_thesis() -> None:
     """Per thesis scenario (and the fault variants): the full search and the sweep-line, condensed with
     the measure THESIS_MEASURE and timed (no condensation) with the clock; in this process, generation only."""
-    from cpn.checks._common import TransitionIndex
-    from cpn.checks.predicates import PropertyLanguage
-    from cpn.checks.scenario import load_scenario
-    from cpn.checks.sweep import progress_measure
+    from cpn.checks.columns import TransitionIndex
+    from cpn.gate.scenario import load_scenario
+    from cpn.gate.sweep import progress_measure
     from cpn.model import load
+    from cpn.properties.predicates import PropertyLanguage
     from cpn.statespace import ExploreOptions, Explorer
     from cpn.statespace.sweep import SweepLine
 
@@ -439,10 +439,10 @@ def sweep_thesis() -> None:
 def sweep_memo(k: int, forget: bool) -> None:
     """One sweep-line run of scenario B (NS 10, k broadcasts) in this process, with the engine's memo
     tables emptied behind the sweep-line (the default) or kept: entries left, peak memory, seconds."""
-    from cpn.checks._common import TransitionIndex
-    from cpn.checks.predicates import PropertyLanguage
-    from cpn.checks.sweep import progress_measure
+    from cpn.checks.columns import TransitionIndex
+    from cpn.gate.sweep import progress_measure
     from cpn.model import load
+    from cpn.properties.predicates import PropertyLanguage
     from cpn.statespace import ExploreOptions
     from cpn.statespace import sweep as sweep_module
     from cpn.statespace._memory import peak_rss_mb
@@ -980,9 +980,9 @@ def _mutant_values(mutant: str) -> dict:
 def write_mutant_on(mutant: str, stem: str) -> None:
     """Write specs/modbus/mutants/MUTANT.toml on the scenario file STEM (a complete search, no budget): for a
     mutant whose table searches stop at the budget, or one that only an extra configuration catches."""
-    from cpn.checks.gate import run_scenario
-    from cpn.checks.scenario import load_scenario
     from cpn.checks.verdict import Status
+    from cpn.gate.run import run_scenario
+    from cpn.gate.scenario import load_scenario
 
     (name, sets) = [(n, v) for n, st, v, *_ in SCENARIOS + EXTRAS if st == stem][0]
     bug = [b for m, b, _ in MUTANTS if m == mutant][0]
@@ -1007,9 +1007,9 @@ def run_mutants(write: bool, only: list[str] | None = None, columns: list[str] |
     """Every mutant against every thesis scenario (the full property set of the scenario file, in this
     process): the properties violated and the shortest trace; with write, a file per caught mutant in
     specs/modbus/mutants/ (the first thesis scenario that catches it, its properties unchanged)."""
-    from cpn.checks.gate import run_scenario
-    from cpn.checks.scenario import load_scenario
     from cpn.checks.verdict import Status
+    from cpn.gate.run import run_scenario
+    from cpn.gate.scenario import load_scenario
 
     folder = os.path.join(ROOT, "specs", "modbus")
     print("| mutant | bug | " + " | ".join(n for n, _, _ in SCENARIOS) + " |")
@@ -1072,8 +1072,8 @@ PATHS = [
 def coverage() -> None:
     """Which paths of SL Figs. 7 and 8 each thesis scenario exercises (a transition that occurs in its state
     space); S1, a reception, is every S2-S4 and the busy slave's loss."""
-    from cpn.checks.gate import run_scenario
-    from cpn.checks.scenario import load_scenario
+    from cpn.gate.run import run_scenario
+    from cpn.gate.scenario import load_scenario
 
     print("| scenario | " + " | ".join(p for p, _ in PATHS) + " |")
     print("|---|" + "---|" * len(PATHS))

@@ -7,7 +7,6 @@
 ["Top't 1: {}"]
 """
 
-from cpn.checks.gate import check
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import (
     ConfigurationError,
@@ -16,6 +15,7 @@ from cpn.errors import (
     ModelError,
     ModelSyntaxError,
 )
+from cpn.gate.run import check
 from cpn.lang.parser import parse
 from cpn.model import Model, load, loads
 from cpn.net import Net

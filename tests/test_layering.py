@@ -7,9 +7,9 @@ import pathlib
 ROOT = pathlib.Path(__file__).resolve().parent.parent / "cpn"
 
 # the order of the layers, as docs/internals.md draws it: text -> lang -> net -> engine -> statespace ->
-# checks -> report -> cli; an allow-list may only name earlier layers
+# checks -> properties -> gate -> report -> cli; an allow-list may only name earlier layers
 ORDER = ["diagnostics", "_util", "arcs", "errors", "values", "expr", "lang", "net", "io", "engine", "model", "statespace",
-         "checks", "report", "__init__", "cli", "__main__"]
+         "checks", "properties", "gate", "report", "__init__", "cli", "__main__"]
 
 FOUNDATION = {"diagnostics", "_util", "errors", "arcs"}
 
@@ -28,13 +28,20 @@ ALLOWED: dict[str, set[str]] = {
     "engine": FOUNDATION | {"values", "expr", "net"},  # the Net is the engine's only input: never the language
     "model": FOUNDATION | {"values", "expr", "lang", "net", "io", "engine"},  # the loader: file to net and engines
     "statespace": FOUNDATION | {"values", "engine"},  # through the engine protocol only
-    # property texts are CPN ML, typed by the language's checker against the model's declarations; the
-    # gate loads the models its scenarios name
-    "checks": FOUNDATION | {"values", "expr", "lang", "net", "model", "engine", "statespace"},
+    # the algorithms over an explored state space: they read the graph and the engine, never a property text
+    "checks": FOUNDATION | {"values", "engine", "statespace"},
+    # property texts are CPN ML, typed by the language's checker against the model's declarations and
+    # compiled in the net's expression form; each kind is decided with an algorithm of checks
+    # (the contest's property files are XML, read as cpn.io reads its formats)
+    "properties": FOUNDATION | {"values", "expr", "lang", "net", "io", "engine", "statespace", "checks"},
+    # the gate reads scenario files, loads the models they name and decides their properties
+    "gate": FOUNDATION | {"values", "expr", "lang", "net", "model", "engine", "statespace", "checks", "properties"},
     # drawings of the net print its inscriptions (cpn.expr.pretty)
-    "report": FOUNDATION | {"values", "expr", "net", "engine", "statespace", "checks"},
-    "__init__": FOUNDATION | {"values", "expr", "lang", "net", "engine", "model", "statespace", "checks", "report"},
-    "cli": FOUNDATION | {"values", "io", "engine", "model", "statespace", "checks", "report", "__init__"},
+    "report": FOUNDATION | {"values", "expr", "net", "engine", "statespace", "checks", "properties", "gate"},
+    "__init__": FOUNDATION | {"values", "expr", "lang", "net", "engine", "model", "statespace", "checks", "properties",
+                              "gate", "report"},
+    "cli": FOUNDATION | {"values", "io", "engine", "model", "statespace", "checks", "properties", "gate", "report",
+                         "__init__"},
     "__main__": {"cli"},
 }
 
@@ -176,6 +183,26 @@ def test_an_engine_importing_the_language_fails():
     assert _problems("cpn.statespace.x", "statespace", "from cpn.net import Net\n", ALLOWED)
 
 
+def test_the_checks_the_property_language_and_the_gate_import_only_downward():
+    # checks -> properties -> gate: the algorithms never read a property text, the property language never
+    # reads a scenario file
+    assert _problems("cpn.checks.x", "checks", "from cpn.properties.kinds import Check\n", ALLOWED)
+    assert _problems("cpn.checks.x", "checks", "def f():\n    from cpn.gate import run_scenario\n", ALLOWED)
+    assert _problems("cpn.checks.x", "checks", "from cpn.lang import ast\n", ALLOWED)
+    assert _problems("cpn.properties.x", "properties", "from cpn.gate.scenario import Scenario\n", ALLOWED)
+    assert _problems("cpn.properties.x", "properties", "from cpn.model import load\n", ALLOWED)
+    assert _problems("cpn.gate.x", "gate", "from cpn.report import build_report\n", ALLOWED)
+    assert not _problems("cpn.properties.x", "properties", "from cpn.checks.ctl import Kripke\n", ALLOWED)
+    assert not _problems("cpn.gate.x", "gate", "from cpn.properties.spec import PropertySpec\n", ALLOWED)
+    # inside the property language: the kinds come after the texts' compiler, the warnings after the kinds
+    found = _inner_problems("properties", {"predicates": "from cpn.properties.kinds import Check\n",
+                                           "kinds": "from cpn.properties.predicates import walk\n"},
+                            MODULE_ORDER["properties"])
+    assert any("predicates:1 imports kinds" in p for p in found) and any("circle" in p for p in found)
+    found = _inner_problems("gate", {"scenario": "def f():\n    from cpn.gate.run import check\n", "run": ""},
+                            MODULE_ORDER["gate"])
+    assert any("scenario:2 imports run" in p for p in found)
+
 # Inside a package: its modules bottom to top (docs/internals.md, "Inside the state space"). A module
 # imports only modules before it in its package's list, at the top of the file or inside a function, so
 # the package has no upward import and no import circle. A module missing from the list fails.
@@ -183,6 +210,10 @@ MODULE_ORDER: dict[str, list[str]] = {
     "statespace": ["_memory", "options", "store", "graph", "graphnative", "scc", "trace", "symmetry", "reduction",
                    "result", "native", "nativetimed", "threads", "parallel", "distributed", "chooser", "explore",
                    "sweep", "__init__"],
+    "checks": ["verdict", "columns", "bounds", "liveness", "fairness", "ctl", "buchi", "ltl", "mcc", "__init__"],
+    "properties": ["spec", "predicates", "kinds", "vacuity", "structure", "reduction", "symmetry", "contest",
+                   "__init__"],
+    "gate": ["scenario", "sweep", "run", "mutants", "mutation", "__init__"],
 }
 
 

@@ -1,6 +1,6 @@
 """Boundedness: best integer bounds, best multiset bounds and token maxima, timestamps stripped.
 
-Imports `cpn.checks._common` and `cpn.statespace` only. Every figure is computed over the distinct
+Imports `cpn.checks.columns` and `cpn.statespace` only. Every figure is computed over the distinct
 markings each place takes (the engine interns them), not over states, so it costs little.
 """
 
@@ -9,7 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass, replace
 from operator import itemgetter
 
-from cpn.checks._common import has_place_columns, place_markings, state_chunks
+from cpn.checks.columns import has_place_columns, place_markings, state_chunks
 from cpn.statespace import Exploration, graphnative
 
 

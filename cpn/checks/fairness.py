@@ -1,6 +1,6 @@
 """Fairness of transition instances (CPN Tools' TIsFairness), decided on the SCCs of the graph.
 
-Imports `cpn.checks._cycles` and `cpn.statespace` only. Where native code is available the whole
+Imports `cpn.statespace` only (its cycle searches, `cpn.statespace.scc`). Where native code is available the whole
 decision runs in C (`cpn.statespace.graphnative.fairness`, the same shortcuts and confined searches
 without the walks); the Python code below is the fallback and the tests' reference. For a transition instance t and the infinite
 occurrence sequences:
@@ -20,9 +20,8 @@ from array import array
 from collections.abc import Callable
 from itertools import compress
 
-from cpn.checks._cycles import ConfinedSearch, walk_cycle
 from cpn.statespace import Exploration, graphnative
-from cpn.statespace.scc import SccDecomposition
+from cpn.statespace.scc import SccDecomposition, first_cycle_component, has_cycle, walk_cycle
 
 # cheap witness cycles before any search: walks per SCC, in the largest SCCs of at least some size
 WALKS_PER_COMPONENT: int = 4
@@ -52,7 +51,7 @@ def fairness(x: Exploration, dec: SccDecomposition, arc_transitions: array,
       and if t is enabled in that SCC, not fair either.
     A few walks per SCC find cycles; t labelling no arc of one is not impartial, and t enabled on one
     it does not label is not fair. What is left is decided by searches confined to the SCCs that
-    matter and started from the states that matter (`ConfinedSearch`):
+    matter and started from the states that matter (`has_cycle`, `first_cycle_component`):
     1. a cycle avoiding t (only when t labels an arc inside every nontrivial SCC and every walked
        cycle): none means impartial;
     2. a cycle avoiding t among the states where t is enabled: No Fairness;
@@ -81,7 +80,6 @@ def fairness(x: Exploration, dec: SccDecomposition, arc_transitions: array,
     not_just = [False] * ntrans
     _walk_witnesses(dec, cyclic_components, off, dst, labels, impartial_candidate, not_fair, not_just)
 
-    search = ConfinedSearch(n, off, dst, labels, comp)
     result: dict[int, Fairness] = {}
     cyclic = None
     for t in range(ntrans):
@@ -90,7 +88,10 @@ def fairness(x: Exploration, dec: SccDecomposition, arc_transitions: array,
         elif impartial_candidate[t]:
             if cyclic is None:
                 cyclic = bytearray(map(nontrivial.__getitem__, comp))
-            if not search.cycle_avoiding(t, compress(range(n), cyclic), cyclic):
+            # arcs between SCCs are followed (a cycle lies inside one SCC anyway, so they cannot make
+            # one): testing `comp` on every arc made the search half as fast again on SwimmingPool-PT-01;
+            # `cyclic` already confines it, as the states enabling t do below
+            if not has_cycle(n, off, dst, labels, t, cyclic, compress(range(n), cyclic)):
                 result[t] = Fairness.IMPARTIAL
         elif not_just[t]:
             result[t] = Fairness.NONE
@@ -104,10 +105,11 @@ def fairness(x: Exploration, dec: SccDecomposition, arc_transitions: array,
             for v in en:
                 keep[v] = 1
             try:
-                if search.cycle_avoiding(t, en, keep):
+                if has_cycle(n, off, dst, labels, t, keep, en):
                     result[t] = Fairness.NONE
                 elif (not_fair[t] or _walked_through_enabled(off, dst, comp, labels, t, en, keep, walk_budget)
-                      or search.component_through(t, en, keep)):
+                      or first_cycle_component(n, off, dst, lambda nodes: any(map(keep.__getitem__, nodes)),
+                                               labels, t, roots=en, within=comp) is not None):
                     result[t] = Fairness.JUST
                 else:
                     result[t] = Fairness.FAIR

@@ -1,6 +1,6 @@
 """Home, liveness and dead-marking properties from the SCC decomposition (CPN Tools' definitions).
 
-Imports `cpn.checks._common` and `cpn.statespace` only. Properties that need the whole graph (home
+Imports `cpn.checks.columns` and `cpn.statespace` only. Properties that need the whole graph (home
 markings, live transitions) are None on a partial state space: an unexpanded state has no arcs yet
 and would look like a terminal SCC.
 """
@@ -11,7 +11,7 @@ from array import array
 from dataclasses import dataclass
 from itertools import compress
 
-from cpn.checks._common import TransitionIndex
+from cpn.checks.columns import TransitionIndex
 from cpn.statespace import Exploration, SccDecomposition, graphnative
 from cpn.statespace.scc import scc_graph_arcs, strongly_connected_components
 
@@ -76,7 +76,7 @@ def _moves_instances(x: Exploration) -> bool:
 
 def live_transitions(x: Exploration, scc: SccSummary, arc_transitions, native: bool = True) -> list[int] | None:
     """Transition instances that label an arc inside every terminal SCC (None if partial, or on a quotient
-    whose group moves module instances: not preserved there, `cpn.checks.symmetry`)."""
+    whose group moves module instances: not preserved there, `cpn.properties.symmetry`)."""
     if not x.complete or _moves_instances(x):
         return None
     g = x.graph

@@ -24,8 +24,8 @@ Examples
 
 from __future__ import annotations
 
-from cpn.checks._common import TransitionIndex
 from cpn.checks.bounds import Boundedness, boundedness
+from cpn.checks.columns import TransitionIndex
 from cpn.checks.liveness import SccSummary, dead_transitions, live_transitions, scc_summary
 from cpn.checks.verdict import Evidence, Verdict, evidence_to
 from cpn.statespace import Exploration

@@ -22,11 +22,11 @@ _REFUSED = (("reduction", "--reduction"), ("until_time", "--until-time"), ("bran
 
 
 def run_sweep(args, sets: dict) -> int:
-    from cpn.checks._common import TransitionIndex
-    from cpn.checks.predicates import PropertyLanguage
-    from cpn.checks.sweep import progress_measure
+    from cpn.checks.columns import TransitionIndex
     from cpn.cli._common import load_model
     from cpn.errors import ConfigurationError
+    from cpn.gate.sweep import progress_measure
+    from cpn.properties.predicates import PropertyLanguage
     from cpn.report.sweep import render_sweep_text, sweep_to_json
     from cpn.statespace.sweep import SweepLine
 

@@ -1,6 +1,6 @@
 """`cpn-verify check [SCENARIO|DIR]...`: prove the properties of scenario files, the CI gate.
 
-Parses the arguments, runs each scenario (`cpn.checks.gate`), prints the summary and the counterexamples,
+Parses the arguments, runs each scenario (`cpn.gate.run`), prints the summary and the counterexamples,
 writes the reports. Exit statuses (DESIGN.md 4): 0 every property holds on a complete state space; 1 a
 property is violated; 2 unknown (a limit stopped a search first); 64 bad usage; 65 bad model or scenario
 file (or a property text that fails in some marking); 70 internal error.
@@ -79,10 +79,10 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
 
 def run(args) -> int:
     from cpn import __version__
-    from cpn.checks.gate import run_scenario
-    from cpn.checks.scenario import load_scenario, scenario_files
     from cpn.diagnostics import render
     from cpn.errors import ConfigurationError, EvaluationError, ModelError
+    from cpn.gate.run import run_scenario
+    from cpn.gate.scenario import load_scenario, scenario_files
     from cpn.report.verdicts import report_name, run_report
 
     check_limits(args)
@@ -196,7 +196,7 @@ def run(args) -> int:
 def _apply_sets(scenario, sets: dict[str, str]) -> None:
     """`check --set NAME=VALUE`: every run of the scenario takes the value (over [set] and over a parameter
     table's), and its name says so, as a parameter row's does: 'MS[N=5]' (rows made equal are run once)."""
-    from cpn.checks.scenario import Run
+    from cpn.gate.scenario import Run
 
     def show(v) -> str:
         return ("true" if v else "false") if isinstance(v, bool) else str(v)
@@ -392,7 +392,7 @@ def _prepare_folder(folder: str, option: str, default: str = "") -> None:
 
 def _write_html_page(folder: str, result, stem: str):
     """The page of one run (its report, its verdicts and their traces); returns its index entry."""
-    from cpn.checks.vacuity import warning_code
+    from cpn.properties.vacuity import warning_code
     from cpn.report import build_report
     from cpn.report.html import Verdict, write_run_page
 

@@ -1,5 +1,5 @@
 """`cpn-verify mutate SCENARIO|DIR...`: how strong is the gate? Mutation testing of the models the scenarios
-check (`cpn.checks.mutation`), with the score, what each property catches and every surviving mutant.
+check (`cpn.gate.mutation`), with the score, what each property catches and every surviving mutant.
 
 Exit statuses: 0 done (and the score is at least --fail-under); 1 the score is below --fail-under, or the
 original model violates a property; 2 the time budget left mutants unrun, or the original's search was
@@ -74,10 +74,10 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
 
 
 def run(args) -> int:
-    from cpn.checks.mutation import mutate
-    from cpn.checks.scenario import load_scenario, scenario_files
     from cpn.cli.check import _apply_sets
     from cpn.errors import ConfigurationError, EvaluationError, ModelError
+    from cpn.gate.mutation import mutate
+    from cpn.gate.scenario import load_scenario, scenario_files
     from cpn.report.mutation import mutation_document, render_html, render_markdown, render_text
 
     _check_options(args)

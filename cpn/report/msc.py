@@ -1,6 +1,6 @@
 """A trace drawn as a message sequence chart (SVG).
 
-Imports `cpn.checks._common`, the report's `netdraw.instance_tree` and `svg` helpers. One lifeline per
+Imports `cpn.checks.columns`, the report's `netdraw.instance_tree` and `svg` helpers. One lifeline per
 module instance that takes part (for a net with a single instance: one per transition instance); each
 step of the trace is an event on the lifeline of its transition's instance; a token produced by a step
 of one instance and consumed by a later step of another instance is an arrow between the two events.
@@ -17,7 +17,7 @@ import weakref
 from collections import Counter, defaultdict, deque
 from dataclasses import dataclass, field
 
-from cpn.checks._common import untimed_multiset
+from cpn.checks.columns import untimed_multiset
 from cpn.engine.protocol import capability
 from cpn.report import svg as S
 from cpn.report.netdraw import instance_tree

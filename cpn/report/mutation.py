@@ -1,15 +1,15 @@
-"""Reports of a mutation run (`cpn.checks.mutation.MutationReport`): a JSON document first, then text,
+"""Reports of a mutation run (`cpn.gate.mutation.MutationReport`): a JSON document first, then text,
 Markdown and an HTML page rendered from it.
 
-Imports `cpn.checks.mutation` and the standard library only.
+Imports `cpn.gate.mutation` and the standard library only.
 """
 
 from __future__ import annotations
 
 import html
 
-from cpn.checks.mutants import OPERATORS
-from cpn.checks.mutation import EQUIVALENT, KILLED, NOT_LOADABLE, OUTCOMES, SURVIVED, UNDECIDED
+from cpn.gate.mutants import OPERATORS
+from cpn.gate.mutation import EQUIVALENT, KILLED, NOT_LOADABLE, OUTCOMES, SURVIVED, UNDECIDED
 
 RUNTIME_ERROR = "(the model fails while it is explored)"
 

@@ -10,9 +10,9 @@ from __future__ import annotations
 
 import os
 
-from cpn.checks.vacuity import warning_code
 from cpn.checks.verdict import Evidence
 from cpn.engine.protocol import capability, has
+from cpn.properties.vacuity import warning_code
 from cpn.values.colours import format_multiset
 
 SCHEMA = "cpn-verify/check-report/1"

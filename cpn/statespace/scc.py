@@ -1,4 +1,7 @@
-"""Strongly connected components of the occurrence graph: an iterative Tarjan on the CSR arrays.
+"""Strongly connected components and cycles of the occurrence graph: an iterative Tarjan on the CSR
+arrays, the search for a cycle, and a walk that finds one cheaply. The one Python implementation of
+each: the liveness, home-marking, fairness, livelock and CTL checks (`cpn.checks`, `cpn.properties`)
+all use these.
 
 Imports the standard library and `cpn.statespace.graphnative` only. No recursion, so graphs of millions
 of states are fine. The plain decomposition and the SCC graph's arcs run in C where native code is
@@ -54,7 +57,7 @@ def _padded(offsets: array, n: int) -> array:
 
 
 def strongly_connected_components(n: int, offsets: array, dst: array, arc_labels=None, avoid: int = -1,
-                                  keep_node=None, stop_at=None, native: bool = True):
+                                  keep_node=None, stop_at=None, native: bool = True, roots=None, within=None):
     """Tarjan's algorithm, iterative, over states 0..n-1 and the arcs `dst[offsets[v]:offsets[v+1]]`.
 
     Parameters
@@ -65,6 +68,11 @@ def strongly_connected_components(n: int, offsets: array, dst: array, arc_labels
     stop_at : optional callable(nodes: list[int]) -> bool, called on each *nontrivial* SCC as soon as it
         is complete; when it returns true the search stops and that list is returned (the caller wants a
         witness, not the decomposition). If it never does, None is returned.
+    roots : optional iterable of states: the search starts only from these (and sees only what they
+        reach), instead of from every state.
+    within : optional array over states (the SCC of each state in a decomposition of a larger graph): only
+        arcs between two states with the same entry are followed. Every cycle lies inside one SCC, so a
+        search for cycles of a subgraph loses none and goes only where one can be.
 
     Returns
     -------
@@ -80,7 +88,8 @@ def strongly_connected_components(n: int, offsets: array, dst: array, arc_labels
     >>> d.count, list(d.comp), list(d.terminal)
     (2, [0, 0, 1], [1, 1])
     """
-    if native and arc_labels is None and keep_node is None and stop_at is None:
+    if native and arc_labels is None and keep_node is None and stop_at is None and roots is None \
+            and within is None:
         fast = graphnative.scc(n, offsets, dst)
         if fast is not None:
             return SccDecomposition(*fast)
@@ -103,7 +112,7 @@ def strongly_connected_components(n: int, offsets: array, dst: array, arc_labels
     # A DFS frame is a state and the position of its next arc (two ints in two lists). Frames that
     # held an iterator over a slice of dst ran no faster and cost about 200 bytes each, and the DFS
     # of a single large SCC is as deep as the SCC: on MS(8) that was 100 MB of peak memory.
-    for root in range(n):
+    for root in range(n) if roots is None else roots:
         if index[root] != -1 or (keep_node is not None and not keep_node[root]):
             continue
         index[root] = low[root] = counter
@@ -116,6 +125,7 @@ def strongly_connected_components(n: int, offsets: array, dst: array, arc_labels
             i = ptr[-1]
             end = offsets[v + 1]
             lv = low[v]
+            cv = within[v] if within is not None else 0
             descended = False
             while i < end:
                 if filtered and arc_labels[i] == avoid:
@@ -123,6 +133,8 @@ def strongly_connected_components(n: int, offsets: array, dst: array, arc_labels
                     continue
                 w = dst[i]
                 i += 1
+                if within is not None and within[w] != cv:
+                    continue
                 iw = index[w]
                 if iw == -1:
                     if keep_node is not None and not keep_node[w]:
@@ -194,16 +206,25 @@ def _self_loop(v: int, offsets: array, dst: array, arc_labels, avoid: int) -> bo
     return any(w == v and lab != avoid for w, lab in zip(dst[a:b], arc_labels[a:b]))
 
 
-def has_cycle(n: int, offsets: array, dst: array, arc_labels=None, avoid: int = -1, keep_node=None) -> bool:
-    """Whether the graph, less the arcs labelled `avoid` and the states not kept, has a cycle.
+def has_cycle(n: int, offsets: array, dst: array, arc_labels=None, avoid: int = -1, keep_node=None,
+              roots=None) -> bool:
+    """Whether the graph, less the arcs labelled `avoid` and the states not kept, has a cycle (with
+    `roots`, one that these states reach).
 
     A depth-first search that stops at the first arc back to a state on its stack (a self-loop counts);
-    unlike a full SCC decomposition it usually ends after a few steps when a cycle exists.
+    unlike a full SCC decomposition it usually ends after a few steps when a cycle exists. Apart from a
+    memset of one byte per state it costs what it visits, so that one search per transition instance
+    confined to a small region (`keep_node`, `roots`) does not cost graph x transitions.
+
+    >>> from array import array
+    >>> off, dst = array("q", [0, 1, 2, 3]), array("i", [1, 2, 1])  # 0 -> 1 -> 2 -> 1
+    >>> has_cycle(3, off, dst), has_cycle(3, off, dst, array("b", [0, 1, 0]), avoid=1)
+    (True, False)
     """
     offsets = _padded(offsets, n)
     colour = bytearray(n)  # 0 unseen, 1 on the DFS stack, 2 done
     labels = arc_labels
-    for root in range(n):
+    for root in range(n) if roots is None else roots:
         if colour[root] or (keep_node is not None and not keep_node[root]):
             continue
         colour[root] = 1
@@ -236,9 +257,42 @@ def has_cycle(n: int, offsets: array, dst: array, arc_labels=None, avoid: int = 
 
 
 def first_cycle_component(n: int, offsets: array, dst: array, accept, arc_labels=None, avoid: int = -1,
-                          keep_node=None) -> list[int] | None:
-    """The states of the first nontrivial SCC (less avoided arcs and dropped states) that `accept`s."""
-    return strongly_connected_components(n, offsets, dst, arc_labels, avoid, keep_node, stop_at=accept)
+                          keep_node=None, roots=None, within=None) -> list[int] | None:
+    """The states of the first nontrivial SCC (less avoided arcs and dropped states; with `roots` and
+    `within`, as `strongly_connected_components` reads them) that `accept`s, or None."""
+    return strongly_connected_components(n, offsets, dst, arc_labels, avoid, keep_node, stop_at=accept, roots=roots,
+                                         within=within)
+
+
+def walk_cycle(offsets: array, dst: array, comp: array, start: int, choice: int, max_steps: int = 4096,
+               labels: array | None = None, avoid: int = -1) -> list[int] | None:
+    """The arcs (positions in `dst`) of a cycle inside the SCC of `start`, found by walking from it.
+
+    Every state of a nontrivial SCC has an arc to a state of the same SCC, so a walk that always takes
+    such an arc (the `choice`-th one, cyclically) revisits a state within |SCC| steps; the arcs from that
+    state's first visit on form a cycle. `start` must lie in a nontrivial SCC. With `labels`, arcs
+    labelled `avoid` are not taken, and the walk can get stuck. None when it gets stuck or revisits no
+    state within `max_steps` steps (the walk is only a cheap source of witnesses).
+    """
+    c = comp[start]
+    seen: dict[int, int] = {}
+    path: list[int] = []
+    v = start
+    while v not in seen:
+        if len(path) >= max_steps:
+            return None
+        seen[v] = len(path)
+        a, b = offsets[v], offsets[v + 1]
+        if labels is None:
+            inside = [i for i in range(a, b) if comp[dst[i]] == c]
+        else:
+            inside = [i for i in range(a, b) if comp[dst[i]] == c and labels[i] != avoid]
+            if not inside:
+                return None
+        i = inside[choice % len(inside)]
+        path.append(i)
+        v = dst[i]
+    return path[seen[v]:]
 
 
 def scc_graph_arcs(dec: SccDecomposition, offsets: array, dst: array, native: bool = True) -> tuple[int, int]:

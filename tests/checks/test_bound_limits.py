@@ -4,9 +4,9 @@ exact ones (`upper_equals`, ...; `upper`, ... are their older spellings): a boun
 
 import pytest
 
-from cpn.checks.gate import run_scenario
-from cpn.checks.scenario import load_scenario
 from cpn.errors import ModelError
+from cpn.gate.run import run_scenario
+from cpn.gate.scenario import load_scenario
 from tests.checks._nets import COUNTER, scenario
 
 # COUNTER: P holds one token, 0 in the initial marking, then 1, 2, 3 (dead); state i has value i

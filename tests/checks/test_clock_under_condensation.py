@@ -4,10 +4,10 @@ another model (`size (B 1) = 0 orelse intTime() < 30` held with condensation, an
 
 import pytest
 
-from cpn.checks.gate import run_scenario
-from cpn.checks.scenario import load_scenario
 from cpn.cli.main import main
 from cpn.errors import ModelError
+from cpn.gate.run import run_scenario
+from cpn.gate.scenario import load_scenario
 from tests.checks._nets import scenario
 
 TIMED = """net T;

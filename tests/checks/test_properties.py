@@ -2,9 +2,9 @@
 
 import pytest
 
-from cpn.checks.gate import run_scenario
-from cpn.checks.scenario import load_scenario
 from cpn.checks.verdict import Status
+from cpn.gate.run import run_scenario
+from cpn.gate.scenario import load_scenario
 from tests.checks._nets import COUNTER, LOOP, SLAVES, scenario
 
 

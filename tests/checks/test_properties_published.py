@@ -3,8 +3,8 @@
 
 import os
 
-from cpn.checks.gate import run_scenario
-from cpn.checks.scenario import loads_scenario
+from cpn.gate.run import run_scenario
+from cpn.gate.scenario import loads_scenario
 from tests._shared import SHARED, needs_shared
 
 MODEL = os.path.join(SHARED, "validation", "CPNBook-LimitProtocol", "7-2LimitProtocol.cpn")

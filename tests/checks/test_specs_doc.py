@@ -5,7 +5,7 @@ import re
 
 import pytest
 
-from cpn.checks.scenario import loads_scenario
+from cpn.gate.scenario import loads_scenario
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 BLOCKS = [(doc, m.group(1)) for doc in ("docs/specs.md", "docs/ci-guide.md")
@@ -21,7 +21,7 @@ def test_documented_examples_are_valid_scenarios(doc, block):
 
 
 def test_the_documented_ms_properties_hold_on_ms(tmp_path):
-    from cpn.checks.gate import run_scenario
+    from cpn.gate.run import run_scenario
 
     props = [b for d, b in BLOCKS if "MS'" in b and "[[property]]" in b and "StopAndWait" not in b
              and "Slave'" not in b and "[set]" not in b]
@@ -32,7 +32,7 @@ def test_the_documented_ms_properties_hold_on_ms(tmp_path):
 
 
 def test_the_documented_stop_and_wait_properties(tmp_path):
-    from cpn.checks.gate import run_scenario
+    from cpn.gate.run import run_scenario
 
     props = [b for d, b in BLOCKS if d == "docs/specs.md" and "StopAndWait" in b and "[explore]" not in b]
     text = ('model = "models/examples/stop_and_wait.cpnet"\n[explore]\ntime_condensation = true\n'

@@ -2,7 +2,7 @@
 counts) is warned about; one that holds only because of how the net behaves is not."""
 
 import cpn
-from cpn.checks.structure import is_place_invariant, token_count
+from cpn.properties.structure import is_place_invariant, token_count
 
 MODEL = """net S;
 colset U = unit;
@@ -129,7 +129,7 @@ def test_bounds_that_place_invariants_give(tmp_path):
 
 
 def test_farkas_finds_the_minimal_invariants():
-    from cpn.checks.structure import semi_positive_invariants, structural_bound
+    from cpn.properties.structure import semi_positive_invariants, structural_bound
 
     net = cpn.loads(MODEL.replace("trans drop [1 = 2];\narc A -> drop : ();\n", "")).net
     a, c, d = (net.place(f"S'{x} 1").index for x in "ACD")

@@ -5,9 +5,9 @@ from collections import deque
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from cpn.checks.gate import run_scenario
-from cpn.checks.scenario import loads_scenario
 from cpn.checks.verdict import Status
+from cpn.gate.run import run_scenario
+from cpn.gate.scenario import loads_scenario
 from tests.engine.randomnets import random_net
 
 

@@ -4,9 +4,9 @@ the text, Markdown and JSON reports, JUnit and SARIF. The verdicts and the exit 
 
 import json
 
-from cpn.checks.vacuity import STRUCTURAL, VACUOUS, warning_code
 from cpn.cli.main import main
 from cpn.diagnostics import CODES
+from cpn.properties.vacuity import STRUCTURAL, VACUOUS, warning_code
 
 # a job moves between Idle and Busy; the counter only grows up to 2
 MODEL = """net M;

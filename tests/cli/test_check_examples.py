@@ -90,7 +90,7 @@ def test_the_repository_gate_passes(tmp_path, capsys, monkeypatch):
     # `check` with no argument finds every scenario under specs/ (examples, MODBUS, Modbus-A) and every
     # mutant; every scenario holds, and each mutant's bug is caught. It runs them all but those another test
     # runs in full (_run_elsewhere; test_the_scenarios_the_gate_test_leaves_out_are_run_elsewhere)
-    from cpn.checks import scenario as scenarios
+    from cpn.gate import scenario as scenarios
 
     monkeypatch.chdir(ROOT)
     found: list[str] = []

@@ -10,8 +10,8 @@ from collections import deque
 
 import pytest
 
-from cpn.checks.gate import run_scenario
-from cpn.checks.scenario import load_scenario
+from cpn.gate.run import run_scenario
+from cpn.gate.scenario import load_scenario
 from cpn.checks.verdict import Status
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))

@@ -9,8 +9,8 @@ import os
 import pytest
 
 import cpn
-from cpn.checks.gate import run_scenario
-from cpn.checks.scenario import load_scenario
+from cpn.gate.run import run_scenario
+from cpn.gate.scenario import load_scenario
 from cpn.checks.verdict import Status
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))

@@ -6,7 +6,7 @@ import os
 import re
 
 import cpn
-from cpn.checks.scenario import load_scenario
+from cpn.gate.scenario import load_scenario
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 MODEL = os.path.join(ROOT, "models", "modbus", "modbus.cpnet")

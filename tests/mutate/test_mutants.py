@@ -3,7 +3,7 @@ drawn by a seed."""
 
 import pathlib
 
-from cpn.checks.mutants import OPERATORS, mutants, select
+from cpn.gate.mutants import OPERATORS, mutants, select
 from cpn.lang.parser import parse
 
 HERE = pathlib.Path(__file__).parent

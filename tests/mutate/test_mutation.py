@@ -6,9 +6,9 @@ import pathlib
 
 import pytest
 
-from cpn.checks.mutation import EQUIVALENT, KILLED, NOT_LOADABLE, SURVIVED, mutate
-from cpn.checks.scenario import load_scenario
 from cpn.cli.main import main
+from cpn.gate.mutation import EQUIVALENT, KILLED, NOT_LOADABLE, SURVIVED, mutate
+from cpn.gate.scenario import load_scenario
 
 HERE = pathlib.Path(__file__).parent
 WEAK = str(HERE / "weak.toml")
@@ -172,7 +172,7 @@ def test_all_runs_credits_every_property_that_catches_a_mutant():
 
 def test_the_digest_compares_labelled_graphs():
     import cpn
-    from cpn.checks.mutation import graph_digest
+    from cpn.gate.mutation import graph_digest
     from cpn.statespace import ExploreOptions, Explorer
 
     def digest(text):

@@ -8,11 +8,11 @@ import pathlib
 
 import pytest
 
-import cpn.checks.mutation as mutation
+import cpn.gate.mutation as mutation
 import cpn.lang.parser
-from cpn.checks.mutation import mutate
-from cpn.checks.scenario import load_scenario
 from cpn.cli.main import main
+from cpn.gate.mutation import mutate
+from cpn.gate.scenario import load_scenario
 from cpn.report.mutation import mutation_document, render_markdown, render_text
 
 HERE = pathlib.Path(__file__).parent

@@ -6,8 +6,8 @@ import json
 import os
 
 import cpn
-from cpn.checks.gate import run_scenario
-from cpn.checks.scenario import load_scenario
+from cpn.gate.run import run_scenario
+from cpn.gate.scenario import load_scenario
 from cpn.cli.main import main
 from cpn.statespace import ExploreOptions, Explorer
 from tests.engine.randomnets import random_timed_net

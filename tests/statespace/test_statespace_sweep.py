@@ -6,7 +6,7 @@ import os
 import pytest
 
 import cpn
-from cpn.checks._common import place_markings
+from cpn.checks.columns import place_markings
 from cpn.errors import ConfigurationError
 from cpn.statespace import ExploreOptions, Explorer, StopReason
 from cpn.statespace.sweep import SweepLine
@@ -81,7 +81,7 @@ def test_modbus_timed_scenario_held_states_are_a_fraction():
 def test_modbus_timed_scenarios_with_quiet_spells_are_not_cut_short(name):
     # B.6 without condensation has a quiet spell of 34 clock values (no new marking modulo time) before
     # its last states: the time-growth watch must not stop the sweep there
-    from cpn.checks.scenario import load_scenario
+    from cpn.gate.scenario import load_scenario
 
     scenario = load_scenario(os.path.join(ROOT, "specs", "modbus", f"{name}.toml"))
     engine = cpn.load(scenario.model, set=scenario.runs[0].values).engine()

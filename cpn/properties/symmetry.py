@@ -34,8 +34,8 @@ def symmetry_plan(checks: list, net, scalars) -> dict:
     instances, a property that names one instance's place or transition (`Slave'Idle 2`: `sum`, `forall`
     and `exists` over all of them are allowed), a bound of such a place, and live transitions among
     them; the others are decided on the quotient graph."""
-    from cpn.checks.properties import Bound, Home
     from cpn.net.symmetry import expression_problems
+    from cpn.properties.kinds import Bound, Home
 
     refused = {}
     instances = _Instances(net, scalars)
@@ -92,7 +92,7 @@ class _Instances:
     def refusal(self, check) -> str | None:
         if not self.families:
             return None
-        from cpn.checks.properties import Bound, LiveTransitions
+        from cpn.properties.kinds import Bound, LiveTransitions
 
         t_names = [t.name for t in self.net.transitions]
         if isinstance(check, LiveTransitions):
@@ -153,7 +153,7 @@ class _Instances:
 
 
 def _compiled(check) -> list:
-    """The compiled property texts of a check (`cpn.checks.predicates.Compiled`)."""
+    """The compiled property texts of a check (`cpn.properties.predicates.Compiled`)."""
     out = []
     for name in ("pred", "fn", "atoms"):
         v = getattr(check, name, None)

@@ -13,19 +13,19 @@ Imports `cpn.checks` only.
 from __future__ import annotations
 
 from cpn.checks.ctl import And, Atom, Not, Or, Temporal
-from cpn.checks.properties import Ctl, DeadMarkings, Invariant, _slice
 from cpn.checks.verdict import Status
 from cpn.lang import ast as A
+from cpn.properties.kinds import Ctl, DeadMarkings, Invariant, _slice
 
 # the diagnostic codes of the two kinds of warning a property that holds can get (cpn.diagnostics.CODES)
 VACUOUS = "W0702"  # it holds vacuously (this module)
-STRUCTURAL = "W0703"  # it follows from the net's structure (cpn.checks.structure)
-# every warning of cpn.checks.structure starts with these words, every warning of this module with others
+STRUCTURAL = "W0703"  # it follows from the net's structure (cpn.properties.structure)
+# every warning of cpn.properties.structure starts with these words, every warning of this module with others
 STRUCTURAL_WORDS = "follows from the net's structure"
 
 
 def warning_code(text: str) -> str:
-    """The code of a warning that `vacuity` or `cpn.checks.structure.structural` wrote.
+    """The code of a warning that `vacuity` or `cpn.properties.structure.structural` wrote.
 
     >>> warning_code("holds vacuously: there is no dead marking, so its predicate is never tested")
     'W0702'

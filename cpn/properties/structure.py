@@ -14,10 +14,10 @@ from __future__ import annotations
 import weakref
 
 from cpn.arcs import ArcKind
-from cpn.checks.properties import Bound, Invariant
 from cpn.checks.verdict import Status
 from cpn.expr import nodes as E
 from cpn.lang import ast as A
+from cpn.properties.kinds import Bound, Invariant
 
 _COMPARISONS = {"=", "<>", "<", "<=", ">", ">="}
 

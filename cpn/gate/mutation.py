@@ -1,4 +1,4 @@
-"""Mutation testing of a gate: run the scenarios that check a model on mutants of it (`cpn.checks.mutants`)
+"""Mutation testing of a gate: run the scenarios that check a model on mutants of it (`cpn.gate.mutants`)
 and say which property catches each one, and which mutants no property catches.
 
 A mutant is *killed* when some property of some run of the scenarios misses its expected verdict (or
@@ -15,8 +15,8 @@ import os
 import time
 from dataclasses import dataclass, field
 
-from cpn.checks.mutants import Mutant, mutants, select
 from cpn.checks.verdict import Status
+from cpn.gate.mutants import Mutant, mutants, select
 
 KILLED = "killed"
 SURVIVED = "survived"
@@ -150,8 +150,8 @@ def mutate(scenarios: list, *, seed: int = 0, max_mutants: int | None = None, ma
 
 def _mutate_model(model_path, group, seed, max_mutants, deadline, workers, overrides, mutant_max_states,
                   all_runs, on_outcome) -> ModelMutation:
-    from cpn.checks.gate import run_scenario
     from cpn.errors import ConfigurationError, EvaluationError, ModelError
+    from cpn.gate.run import run_scenario
     from cpn.lang.parser import parse
     from cpn.model import importer_for, source_of
 
@@ -285,8 +285,8 @@ class _Job:
     def evaluate(self, mutant: Mutant, remaining: float | None) -> tuple[Outcome, list | None]:
         """The mutant's outcome, and the digests of its state spaces (run index, digest) when every run
         passes with the original's counts (the caller compares them with the original's), else None."""
-        from cpn.checks.gate import run_scenario
         from cpn.errors import ConfigurationError, EvaluationError, ModelError
+        from cpn.gate.run import run_scenario
         from cpn.lang.parser import parse
 
         t0 = time.perf_counter()

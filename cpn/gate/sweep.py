@@ -11,8 +11,11 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from cpn.checks.predicates import PredicateError, PropertyLanguage
-from cpn.checks.properties import (
+from cpn.checks.verdict import Verdict
+from cpn.diagnostics import Span
+from cpn.errors import ConfigurationError
+from cpn.lang import types as T
+from cpn.properties.kinds import (
     Bound,
     Check,
     DeadlockFree,
@@ -22,11 +25,8 @@ from cpn.checks.properties import (
     judge_integer_limit,
     judge_multiset_limit,
 )
-from cpn.checks.scenario import TextOrigin
-from cpn.checks.verdict import Verdict
-from cpn.diagnostics import Span
-from cpn.errors import ConfigurationError
-from cpn.lang import types as T
+from cpn.properties.predicates import PredicateError, PropertyLanguage
+from cpn.properties.spec import TextOrigin
 from cpn.values.multiset import Multiset
 
 #: why a property that needs the whole graph is not decided

@@ -14,14 +14,14 @@ from array import array
 from collections import deque
 
 from cpn.checks.ctl import And, Atom, Kripke, Not, Or, Temporal, reverse_csr
-from cpn.checks.predicates import CTL_ARC, CTL_BINARY, CTL_UNARY, PredicateError, PropertyLanguage, walk
-from cpn.checks.scenario import PropertySpec
 from cpn.checks.verdict import Status, Verdict, evidence_to, path_evidence
 from cpn.diagnostics import Diagnostic, Span
 from cpn.engine.protocol import has
 from cpn.errors import ModelError
 from cpn.lang import ast as A
 from cpn.lang import types as T
+from cpn.properties.predicates import CTL_ARC, CTL_BINARY, CTL_UNARY, PredicateError, PropertyLanguage, walk
+from cpn.properties.spec import PropertySpec
 from cpn.statespace.scc import strongly_connected_components
 from cpn.values.multiset import Multiset
 
@@ -720,7 +720,7 @@ def _ctl(spec, lang) -> Check:
                 pat, phi = e.arg.items
                 if not (isinstance(pat, A.Const) and isinstance(pat.value, str)) or (
                         lang.resolve_transitions(pat.value) is None and not lang._known_be(pat.value)):
-                    from cpn.checks.predicates import _remap
+                    from cpn.properties.predicates import _remap
 
                     raise _remap(ModelError([Diagnostic(
                         "E0703", f"'{op}' takes a transition or binding element of the net as a string literal",
@@ -755,7 +755,7 @@ def _ctl(spec, lang) -> Check:
 
 def _slice(text, origin, e) -> str:
     """The source text of a sub-expression of a property text (for messages about one CTL atom)."""
-    from cpn.checks.predicates import PREFIX
+    from cpn.properties.predicates import PREFIX
 
     sp = e.span
     if sp is None or sp.end_line is None or sp.end_col is None:
@@ -772,7 +772,7 @@ def _slice(text, origin, e) -> str:
 
 
 def _ctl_error(e, text, origin, span) -> ModelError:
-    from cpn.checks.predicates import _remap
+    from cpn.properties.predicates import _remap
 
     return _remap(ModelError([Diagnostic(
         "E0702", "a temporal operator can only be combined with not, andalso, orelse and if-then-else",

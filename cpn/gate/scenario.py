@@ -2,8 +2,9 @@
 
 `tomllib` gives values without positions, so the raw text is scanned once more to find where each key's
 value starts (`_Locator`), and the characters of a string value are mapped back to the file
-(`TextOrigin`): an error in a property text points at its line and column in the TOML file.
-Imports the standard library, layer 0 and the state space's `Backend` (the words of `backend`) only.
+(`cpn.properties.spec.TextOrigin`): an error in a property text points at its line and column in the TOML
+file. Imports the standard library, layer 0, the property kinds (`cpn.properties.spec`) and the state
+space's `Backend` (the words of `backend`) only.
 """
 
 from __future__ import annotations
@@ -16,6 +17,15 @@ from dataclasses import dataclass, field
 
 from cpn.diagnostics import Diagnostic, Span, other_command_hint
 from cpn.errors import ModelError
+from cpn.properties.spec import (
+    BOUND_INTEGER,
+    BOUND_MULTISET,
+    BOUND_OLD_SPELLINGS,
+    KINDS,
+    PropertySpec,
+    TextOrigin,
+    line_col,
+)
 from cpn.statespace.options import Backend
 
 TOP_KEYS = {"name", "model", "description", "set", "explore", "parameters", "property"}
@@ -25,66 +35,6 @@ EXPLORE_KEYS = {"max_states": int, "max_arcs": int, "max_seconds": (int, float),
                 "reduction": str, "sweep_line": bool, "progress": str, "symmetry": list}
 # the reductions `reduction` may name (docs/specs.md)
 REDUCTIONS: tuple = ("stubborn", "symmetry")
-# kind -> (required fields, optional fields); every kind also takes name and description
-KINDS: dict[str, tuple[set, set]] = {
-    "invariant": ({"expr"}, set()),
-    "reachable": ({"expr"}, set()),
-    "deadlock_free": (set(), set()),
-    "dead_markings": (set(), {"count", "count_modulo_time", "expr"}),
-    "bound": (set(), {"place", "expr", "upper_equals", "lower_equals", "at_most", "at_least",
-                      "upper_multiset_equals", "lower_multiset_equals", "at_most_multiset", "at_least_multiset",
-                      "upper", "lower", "upper_multiset", "lower_multiset"}),
-    "dead_transitions": ({"expected"}, set()),
-    "live_transitions": (set(), {"transitions"}),
-    "home": (set(), {"expr", "initial"}),
-    "no_livelock": (set(), {"progress"}),
-    "ctl": ({"formula"}, {"fairness"}),
-}
-# a `bound` property's limits (docs/specs.md): an exact one is written `upper_equals`, ...; `upper`, ... are
-# its older spellings, still read with the same meaning
-BOUND_INTEGER = ("upper_equals", "lower_equals", "at_most", "at_least")
-BOUND_MULTISET = ("upper_multiset_equals", "lower_multiset_equals", "at_most_multiset", "at_least_multiset")
-BOUND_OLD_SPELLINGS = {"upper": "upper_equals", "lower": "lower_equals", "upper_multiset": "upper_multiset_equals",
-                       "lower_multiset": "lower_multiset_equals"}
-
-
-@dataclass(frozen=True)
-class TextOrigin:
-    """Where the characters of a string value lie in the file: `offsets[i]` is the file offset of char i."""
-
-    file: str
-    source: str
-    offsets: tuple
-
-    def __repr__(self) -> str:
-        return f"TextOrigin({self.span(0, len(self.offsets) - 2)})"
-
-    def span(self, start: int, end: int | None = None) -> Span:
-        """The file span of value characters start..end (end inclusive; clamped to the value)."""
-        n = len(self.offsets) - 1
-        a = self.offsets[max(0, min(start, n))]
-        b = self.offsets[max(0, min(end if end is not None else start, n))]
-        la, ca = _line_col(self.source, a)
-        lb, cb = _line_col(self.source, b)
-        return Span(self.file, la, ca, lb, cb)
-
-
-@dataclass
-class PropertySpec:
-    index: int  # 1-based position in the file
-    name: str
-    kind: str
-    fields: dict
-    span: Span  # the property's `kind` value (or its table header)
-    spans: dict = field(default_factory=dict)  # field -> Span of its value
-    texts: dict = field(default_factory=dict)  # field -> TextOrigin (string fields only)
-    description: str = ""
-    source: str = ""  # the scenario file's text (for positions inside arrays)
-    expect: str = "holds"  # the verdict the gate expects: 'violated' for a mutant that must be caught
-
-    def __repr__(self) -> str:
-        # short: the dataclass's own repr prints the scenario file's text once per field that holds it
-        return f"PropertySpec({self.index}, {self.name!r}, kind={self.kind!r}, at {self.span})"
 
 
 @dataclass
@@ -113,12 +63,6 @@ class Scenario:
     def __repr__(self) -> str:
         return (f"Scenario({self.name!r}, {self.path!r}, {len(self.runs)} run{'s' if len(self.runs) != 1 else ''}, "
                 f"{len(self.properties)} propert{'ies' if len(self.properties) != 1 else 'y'})")
-
-
-def _line_col(text: str, offset: int) -> tuple[int, int]:
-    line = text.count("\n", 0, offset) + 1
-    col = offset - (text.rfind("\n", 0, offset) + 1) + 1
-    return line, col
 
 
 _HEADER = re.compile(r"^[ \t]*(\[\[?)[ \t]*([A-Za-z0-9_.\-\" ]+?)[ \t]*\]\]?[ \t]*(#.*)?$")
@@ -235,7 +179,7 @@ class _Reader:
     def span_at(self, offset: int | None, length: int = 1) -> Span:
         if offset is None:
             return Span(self.path, 1, 1)
-        line, col = _line_col(self.text, offset)
+        line, col = line_col(self.text, offset)
         return Span(self.path, line, col, line, col + max(length, 1) - 1)
 
     def key_span(self, table: tuple, key: str) -> Span:

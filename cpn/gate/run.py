@@ -10,17 +10,18 @@ import dataclasses
 import time
 from dataclasses import dataclass, field
 
-from cpn.checks._common import TransitionIndex
-from cpn.checks.predicates import PredicateError, PropertyLanguage
-from cpn.checks.properties import Check, DeadlockFree, GraphView, Reachable, build_checks
-from cpn.checks.reduction import stubborn_plan
-from cpn.checks.scenario import PropertySpec, Run, Scenario
-from cpn.checks.structure import structural
-from cpn.checks.symmetry import symmetry_plan
-from cpn.checks.vacuity import vacuity
+from cpn.checks.columns import TransitionIndex
 from cpn.checks.verdict import Status, Verdict, evidence_to
 from cpn.diagnostics import Diagnostic
 from cpn.errors import ConfigurationError, ModelError
+from cpn.gate.scenario import Run, Scenario
+from cpn.properties.kinds import Check, DeadlockFree, GraphView, Reachable, build_checks
+from cpn.properties.predicates import PredicateError, PropertyLanguage
+from cpn.properties.reduction import stubborn_plan
+from cpn.properties.spec import PropertySpec
+from cpn.properties.structure import structural
+from cpn.properties.symmetry import symmetry_plan
+from cpn.properties.vacuity import vacuity
 from cpn.statespace import ExploreOptions, Explorer
 
 
@@ -30,7 +31,7 @@ class PropertyResult:
     verdict: Verdict
     seconds: float
     reads: tuple = ()  # the place instances the property's texts read (indices), for the reports
-    warnings: list = field(default_factory=list)  # why it holds vacuously (cpn.checks.vacuity)
+    warnings: list = field(default_factory=list)  # why it holds vacuously (cpn.properties.vacuity)
 
     def __repr__(self) -> str:  # short: the property, its verdict, how many warnings (not their text)
         return (f"PropertyResult(spec={self.spec!r}, verdict={self.verdict!r}, seconds={self.seconds:.3g}, "
@@ -135,7 +136,7 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     time limit); `default_max_memory_mb` and `default_max_seconds` apply only where the scenario sets no
     such limit; `set` (the command line's constant values, already in `run.values`) is recorded in the
     options, and a value the model refuses stays an error of the command line. `model`, a loaded model,
-    replaces the scenario's model file (a mutant of it, cpn.checks.mutation).
+    replaces the scenario's model file (a mutant of it, cpn.gate.mutation).
     """
     from cpn.model import load
 
@@ -166,7 +167,7 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     lang = PropertyLanguage(model.net, engine, index)
     checks = build_checks(scenario.properties, lang, scenario.source)
     if opts.get("sweep_line"):  # the sweep-line method: no graph, the properties it can decide (docs/specs.md)
-        from cpn.checks.sweep import sweep_run
+        from cpn.gate.sweep import sweep_run
 
         x, decided, t_x, t_c = sweep_run(scenario, engine, lang, checks, opts, progress)
         return RunResult(scenario, run, x, engine, [PropertyResult(c.spec, v, s) for c, v, s in decided], t_x, t_c,
@@ -312,7 +313,7 @@ def check(path, **overrides) -> list[RunResult]:
     ... # doctest: +SKIP
     [('the only dead marking: everyone holds the left fork', 'holds')]
     """
-    from cpn.checks.scenario import load_scenario
+    from cpn.gate.scenario import load_scenario
 
     scenario = load_scenario(path)
     return [run_scenario(scenario, run, overrides) for run in scenario.runs]

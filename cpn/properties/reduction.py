@@ -9,7 +9,7 @@ not those of the full one), gets `unknown` with the reason, never a verdict.
 
 from __future__ import annotations
 
-from cpn.checks.properties import Check, DeadlockFree, DeadMarkings, Invariant, Reachable
+from cpn.properties.kinds import Check, DeadlockFree, DeadMarkings, Invariant, Reachable
 
 NOT_PRESERVED: str = "not preserved by stubborn sets"
 
