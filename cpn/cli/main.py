@@ -15,7 +15,7 @@ import sys
 from cpn._util.resources import ResourceMissing
 from cpn.cli._common import EPILOG, ExitStatus, exit_status_of, render_error
 
-SUBCOMMANDS = ["lint", "simulate", "explore", "check", "mutate", "convert", "validate"]
+SUBCOMMANDS = ["lint", "simulate", "explore", "check", "mutate", "convert", "validate", "mcc"]
 
 
 def build_parser() -> argparse.ArgumentParser:

@@ -55,6 +55,7 @@ class PnmlTranslation:
     text: str
     origins: dict[int, Span]  # 1-based line of the generated text -> start tag of the PNML element
     notes: list[str] = field(default_factory=list)
+    node_names: dict[str, str] = field(default_factory=dict)  # PNML id of a place or transition -> its name
 
     def locate(self, line: int) -> Span | None:
         return self.origins.get(line)
@@ -128,7 +129,7 @@ def _translation(data: bytes | str, filename: str) -> PnmlTranslation:
         el = tr.origins.get(line)
         if el is not None:
             origins[i] = el.span(filename)
-    return PnmlTranslation(filename, text, origins)
+    return PnmlTranslation(filename, text, origins, node_names=dict(tr.node_names))
 
 
 @dataclass
@@ -157,6 +158,7 @@ class _Translator(TermTranslator):
         self.anon: dict[str, Sort] = {}  # builtin sorts without a namedsort ("dot", "bool")
         self.origins: dict[str, Element] = {}  # generated statement -> the PNML element it comes from
         self.var_els: dict[str, Element] = {}  # colour set -> its first variabledecl
+        self.node_names: dict[str, str] = {}  # PNML id -> the name of the place or transition
 
     def line(self, text: str, origin: Element | None) -> str:
         """Record where a generated statement comes from (statements are unique lines) and return it."""
@@ -252,7 +254,8 @@ class _Translator(TermTranslator):
             if node_id in table:
                 self.error(el, f"the id '{node_id}' is used by two nodes", code="E0501")
                 continue
-            table[node_id] = quote_name(self.nodes.name(self._name_of(el), node_id))
+            self.node_names[node_id] = self.nodes.name(self._name_of(el), node_id)
+            table[node_id] = quote_name(self.node_names[node_id])
         return table
 
     def arc_ends(self, arc: Element, ids, resolve, table) -> tuple[str, str, str] | None:

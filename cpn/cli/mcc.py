@@ -1,0 +1,349 @@
+"""`cpn-verify mcc MODEL.pnml PROPERTIES.xml`: answer a Model Checking Contest property file.
+
+Every formula of the file is answered on standard output in the contest's format, one line each, in file
+order: ``FORMULA <id> TRUE|FALSE TECHNIQUES ...``, ``FORMULA <id> <bound> TECHNIQUES ...`` for
+UpperBounds, or ``FORMULA <id> CANNOT_COMPUTE`` (the reason on standard error) when a limit stops it.
+Reachability (``E F p``, ``A G p``) is searched on the fly and stops at the first witness; LTL (``A phi``)
+on the fly with a Büchi automaton (`cpn.checks.ltl`); UpperBounds and every other CTL formula on the state
+space, generated once for the whole file (`cpn.checks.ctl`). The contest reads a path that ends in a
+deadlock as repeating its last marking forever (docs/mcc.md).
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from array import array
+from collections import deque
+from dataclasses import dataclass
+
+from cpn.cli._common import ExitStatus, UsageError, add_quiet_option
+from cpn.properties import contest as c
+
+TECHNIQUES = "TECHNIQUES EXPLICIT SEQUENTIAL_PROCESSING"
+DEFAULT_MAX_STATES = 3_000_000
+
+
+def add_parser(subparsers) -> argparse.ArgumentParser:
+    p = subparsers.add_parser("mcc", help="answer a Model Checking Contest property file on a PNML model",
+                              description=__doc__.split("\n\n")[1], formatter_class=argparse.RawDescriptionHelpFormatter)
+    p.add_argument("model", metavar="MODEL", help="the PNML model (P/T or symmetric net)")
+    p.add_argument("properties", metavar="PROPERTIES", help="the contest's XML property file")
+    p.add_argument("--max-states", type=int, default=DEFAULT_MAX_STATES, metavar="N",
+                   help=f"give up (CANNOT_COMPUTE) a formula whose search passes N states (default {DEFAULT_MAX_STATES:,})")
+    p.add_argument("--max-seconds", type=float, metavar="S", help="give up the formulas not answered after S seconds")
+    p.add_argument("--stats", action="store_true", help="after each answer, print on standard error the states "
+                   "the formula generated and its time")
+    add_quiet_option(p)
+    return p
+
+
+# ----------------------------------------------------------------------------- answering
+class CannotCompute(Exception):
+    """A limit (states, time) stopped a formula's search."""
+
+
+@dataclass
+class Answer:
+    id: str
+    value: object  # True, False, an int (UpperBounds), or None (CANNOT_COMPUTE)
+    reason: str = ""
+    states: int = 0  # the distinct markings this formula's search generated
+    seconds: float = 0.0
+    technique: str = ""
+
+    def line(self) -> str:
+        if self.value is None:
+            return f"FORMULA {self.id} CANNOT_COMPUTE"
+        v = ("TRUE" if self.value else "FALSE") if isinstance(self.value, bool) else str(self.value)
+        return f"FORMULA {self.id} {v} {TECHNIQUES}{' ' + self.technique if self.technique else ''}"
+
+
+class ContestModel:
+    """A contest model and what its formulas need: the engine, the PNML ids of places and transitions,
+    the markings generated so far (shared by the formulas), and the whole state space once built."""
+
+    def __init__(self, engine, node_names: dict[str, str], max_states: int = DEFAULT_MAX_STATES,
+                 deadline: float | None = None, ctl_stutter: bool = False) -> None:
+        from cpn.checks.ltl import Cache
+
+        self.ctl_stutter = ctl_stutter
+
+        self.engine = engine
+        self.cache = Cache(engine)
+        self._new_cache = lambda: Cache(engine)
+        self.max_states = max_states
+        self.deadline = deadline
+        self._tnames = {t.name: i for i, t in enumerate(engine.transitions)}
+        self._be_transition: dict[int, int] = {}
+        body = {_body(p.name): i for i, p in enumerate(engine.places)}
+        tbody = {_body(t.name): i for i, t in enumerate(engine.transitions)}
+        self.place = {pid: body[name] for pid, name in node_names.items() if name in body}
+        self.transition = {tid: tbody[name] for tid, name in node_names.items() if name in tbody}
+        self._counts: dict = {}
+        self._fire: dict = {}
+        self._graph = None
+        self._file = ""
+
+    def forget(self) -> None:
+        """Forget the markings generated so far (to time a property file on its own)."""
+        self.cache = self._new_cache()
+        self._counts, self._fire, self._graph = {}, {}, None
+
+    @classmethod
+    def load(cls, path: str, **kw) -> ContestModel:
+        import cpn
+        from cpn.io.pnml import translate_with_origins
+
+        model = cpn.load(path)
+        return cls(model.engine(), translate_with_origins(path).node_names, **kw)
+
+    # ------------------------------------------------------------------ atoms
+    def counts(self, s) -> tuple:
+        got = self._counts.get(s)
+        if got is None:
+            got = self._counts[s] = self.engine.token_counts(s)
+        return got
+
+    def fireable(self, s) -> frozenset:
+        got = self._fire.get(s)
+        if got is None:
+            got = self._fire[s] = frozenset(map(self.transition_of, (be for be, _t in self.cache.successors(s))))
+        return got
+
+    def transition_of(self, be: int) -> int:
+        """The transition instance (index) of a binding element."""
+        t = self._be_transition.get(be)
+        if t is None:
+            tr = self.engine.binding_element(be).transition
+            t = self._be_transition[be] = tr if isinstance(tr, int) else self._tnames[tr.name]
+        return t
+
+    def predicate(self, f: c.Node):
+        """A function state -> value of a state formula (or integer expression)."""
+        if isinstance(f, c.Bool):
+            return lambda s, v=f.value: v
+        if isinstance(f, c.Not):
+            g = self.predicate(f.arg)
+            return lambda s: not g(s)
+        if isinstance(f, (c.And, c.Or)):
+            parts = [self.predicate(a) for a in f.args]
+            if isinstance(f, c.And):
+                return lambda s: all(p(s) for p in parts)
+            return lambda s: any(p(s) for p in parts)
+        if isinstance(f, c.IntLe):
+            left, right = self.predicate(f.left), self.predicate(f.right)
+            return lambda s: left(s) <= right(s)
+        if isinstance(f, c.IntConst):
+            return lambda s, v=f.value: v
+        if isinstance(f, (c.Tokens, c.PlaceBound)):
+            idx = [self._index(self.place, p, "place", f) for p in f.places]
+            return lambda s: sum(self.counts(s)[i] for i in idx)
+        if isinstance(f, c.Fireable):
+            want = frozenset(self._index(self.transition, t, "transition", f) for t in f.transitions)
+            return lambda s: not want.isdisjoint(self.fireable(s))
+        raise CannotCompute(f"not a state formula: {c.show(f)}")
+
+    def _index(self, table: dict, name: str, what: str, f: c.Node) -> int:
+        if name not in table:
+            from cpn._util import did_you_mean
+            from cpn.diagnostics import Diagnostic, Span
+
+            near = did_you_mean(name, list(table))
+            raise c.ContestFormatError([Diagnostic(
+                "E0502", f"the formula names the {what} '{name}', which the model does not have",
+                Span(self._file, f.line, f.col),
+                hint=f"Did you mean '{near}'?" if near else f"Formulas name a {what} by its PNML id.")])
+        return table[name]
+
+    def check_names(self, props: list[c.ContestProperty]) -> None:
+        """Every place and transition the formulas name is the model's, else one error listing them all."""
+        problems = []
+        for prop in props:
+            self._file = prop.file
+            stack = [prop.formula]
+            while stack:
+                f = stack.pop()
+                if isinstance(f, (c.Tokens, c.PlaceBound, c.Fireable)):
+                    table, what = (self.transition, "transition") if isinstance(f, c.Fireable) else (self.place, "place")
+                    for name in (f.transitions if isinstance(f, c.Fireable) else f.places):
+                        try:
+                            self._index(table, name, what, f)
+                        except c.ContestFormatError as exc:
+                            problems += exc.diagnostics
+                elif isinstance(f, c.IntLe):
+                    stack += [f.left, f.right]
+                elif isinstance(f, (c.Not, c.Quant)):
+                    stack.append(f.arg)
+                elif isinstance(f, (c.And, c.Or, c.Temporal)):
+                    stack.extend(f.args)
+        if problems:
+            raise c.ContestFormatError(problems)
+
+    def _tick(self, n: int) -> None:
+        if n > self.max_states:
+            raise CannotCompute(f"the search passed --max-states {self.max_states:,}")
+        if self.deadline is not None and n % 512 == 0 and time.monotonic() > self.deadline:
+            raise CannotCompute("the time limit was reached")
+
+    # ------------------------------------------------------------------ searches
+    def reach(self, target) -> bool:
+        """Whether some reachable marking satisfies `target`: breadth first, stopping at the first."""
+        s0 = self.cache.initial_state()
+        seen = {s0}
+        queue = deque([s0])
+        while queue:
+            s = queue.popleft()
+            if target(s):
+                return True
+            for _be, t in self.cache.successors(s):
+                if t not in seen:
+                    seen.add(t)
+                    self._tick(len(seen))
+                    queue.append(t)
+        return False
+
+    def graph(self):
+        """The whole state space as (states, offsets, dst), dead markings with a self-loop (built once)."""
+        if self._graph is None:
+            s0 = self.cache.initial_state()
+            ids = {s0: 0}
+            states = [s0]
+            offsets, dst = array("q", [0]), array("i")
+            k = 0
+            while k < len(states):
+                s = states[k]
+                succ = self.cache.successors(s)
+                if not succ and self.ctl_stutter:
+                    dst.append(k)
+                for _be, t in succ:
+                    j = ids.get(t)
+                    if j is None:
+                        j = ids[t] = len(states)
+                        states.append(t)
+                        self._tick(len(states))
+                    dst.append(j)
+                offsets.append(len(dst))
+                k += 1
+            self._graph = (states, offsets, dst)
+        return self._graph
+
+    def answer(self, prop: c.ContestProperty) -> Answer:
+        t0 = time.perf_counter()
+        before = self.cache.expanded
+        self._file = prop.file
+        try:
+            value, technique = self._answer(prop.formula)
+            ans = Answer(prop.id, value, technique=technique)
+        except CannotCompute as exc:
+            ans = Answer(prop.id, None, reason=str(exc))
+        ans.states = self.cache.expanded - before
+        ans.seconds = time.perf_counter() - t0
+        return ans
+
+    def _answer(self, f: c.Node) -> tuple[object, str]:
+        if isinstance(f, c.PlaceBound):
+            value = self.predicate(f)
+            states, _off, _dst = self.graph()
+            return max(map(value, states)), ""
+        if isinstance(f, c.Quant) and isinstance(f.arg, c.Temporal) and f.arg.op in ("F", "G") \
+                and c.is_state_formula(f.arg.args[0]):
+            p = self.predicate(f.arg.args[0])
+            if f.path == "E" and f.arg.op == "F":
+                return self.reach(p), "TOPOLOGICAL"
+            if f.path == "A" and f.arg.op == "G":
+                return not self.reach(lambda s: not p(s)), "TOPOLOGICAL"
+        if c.is_ltl(f):
+            return self._ltl(f.arg), "LTL_NFA"
+        return self._ctl(f), ""
+
+    def _ltl(self, phi: c.Node) -> bool:
+        from cpn.checks.ltl import check_ltl
+
+        props: list = []
+        formula = _to_ltl(phi, props, self.predicate)
+        res = check_ltl(self.cache, formula, props, max_states=self.max_states, deadline=self.deadline)
+        if res.holds is None:
+            raise CannotCompute(res.reason)
+        return res.holds
+
+    def _ctl(self, f: c.Node) -> bool:
+        from cpn.checks import ctl
+
+        states, offsets, dst = self.graph()
+        atoms: list[bytearray] = []
+        formula = _to_ctl(f, atoms, lambda g: bytearray(map(bool, map(self.predicate(g), states))))
+        k = ctl.Kripke(len(states), offsets, dst, labels=array("i", bytes(4 * len(dst))))
+        return bool(k.label(formula, atoms)[0])
+
+
+def _body(name: str) -> str:
+    """A place or transition instance name without its page and instance number: "Top'P 1" -> "P"."""
+    name = name.split("'", 1)[-1]
+    return name.rsplit(" ", 1)[0] if name.endswith(" 1") else name
+
+
+def _to_ltl(f: c.Node, props: list, predicate) -> tuple:
+    """The `cpn.checks.buchi` formula of a path formula; its largest state subformulas become
+    propositions (their predicates appended to `props`)."""
+    if c.is_state_formula(f):
+        props.append(predicate(f))
+        return ("ap", len(props) - 1)
+    if isinstance(f, c.Not):
+        return ("not", _to_ltl(f.arg, props, predicate))
+    if isinstance(f, (c.And, c.Or)):
+        op = "and" if isinstance(f, c.And) else "or"
+        out = _to_ltl(f.args[0], props, predicate)
+        for a in f.args[1:]:
+            out = (op, out, _to_ltl(a, props, predicate))
+        return out
+    if isinstance(f, c.Temporal):
+        return (f.op, *(_to_ltl(a, props, predicate) for a in f.args))
+    raise CannotCompute(f"a path quantifier inside an LTL formula: {c.show(f)}")
+
+
+def _to_ctl(f: c.Node, atoms: list, label):
+    """The `cpn.checks.ctl` formula of a CTL state formula; its largest atomic parts become atoms."""
+    from cpn.checks import ctl
+
+    if c.is_state_formula(f):
+        atoms.append(label(f))
+        return ctl.Atom(len(atoms) - 1, c.show(f))
+    if isinstance(f, c.Not):
+        return ctl.Not(_to_ctl(f.arg, atoms, label))
+    if isinstance(f, (c.And, c.Or)):
+        out = _to_ctl(f.args[0], atoms, label)
+        for a in f.args[1:]:
+            out = (ctl.And if isinstance(f, c.And) else ctl.Or)(out, _to_ctl(a, atoms, label))
+        return out
+    if isinstance(f, c.Quant) and isinstance(f.arg, c.Temporal):
+        args = tuple(_to_ctl(a, atoms, label) for a in f.arg.args)
+        return ctl.Temporal(f.path + f.arg.op, args)
+    raise CannotCompute(f"not a CTL formula: {c.show(f)}")
+
+
+def answer_file(model: ContestModel, path: str) -> list[Answer]:
+    return [model.answer(p) for p in c.read_file(path)]
+
+
+def run(args) -> int:
+    import os
+
+    for path in (args.model, args.properties):
+        if not os.path.exists(path):
+            raise UsageError(f"{path}: no such file")
+    props = c.read_file(args.properties)
+    deadline = time.monotonic() + args.max_seconds if args.max_seconds else None
+    model = ContestModel.load(args.model, max_states=args.max_states, deadline=deadline)
+    model.check_names(props)
+    status = ExitStatus.OK
+    for prop in props:
+        ans = model.answer(prop)
+        print(ans.line(), flush=True)
+        if ans.value is None:
+            status = ExitStatus.UNKNOWN
+            print(f"{prop.id}: cannot compute: {ans.reason}", file=sys.stderr)
+        if args.stats:
+            print(f"{prop.id}: {ans.states:,} states generated, {ans.seconds:.3f} s", file=sys.stderr)
+    return status
