@@ -174,8 +174,17 @@ def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | No
         terms_cap, steps_cap, names_cap = MULTISET_TERMS, TRACE_STEPS, NAMES
     else:
         terms_cap = steps_cap = names_cap = max_listed
+    out = _statistics(r)
+    if r.reduced:
+        return "\n".join(out + _reduced(r, marking_changes, steps_cap, terms_cap)) + "\n"
+    out += _boundedness(r, terms_cap) + _home(r) + _liveness(r, marking_changes, steps_cap, terms_cap, names_cap)
+    out += _fairness(r)
+    return "\n".join(out) + "\n"
+
+
+def _statistics(r: Report) -> list[str]:
+    """The report's head and its Statistics section (state space, SCC graph, notes)."""
     x = r.exploration
-    g = x.graph
     out = ["CPN Tools state space report for:", r.model, f"Report generated: {r.generated}"]
     out.append(f"(cpn-verify; time condensation: {'on' if x.options.time_condensation else 'off'})"
                if r.timed else "(cpn-verify)")
@@ -199,12 +208,13 @@ def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | No
         out += ["", f"  Markings modulo time: {x.untimed_states}"]
     for note in r.notes:
         out += ["", f"  Note: {note}"]
+    return out
 
-    if r.reduced:
-        return "\n".join(out + _reduced(r, marking_changes, steps_cap, terms_cap)) + "\n"
 
-    out += _heading("Boundedness Properties")
-    if not x.complete:
+def _boundedness(r: Report, terms_cap) -> list[str]:
+    """Boundedness Properties: integer and multi-set bounds, token maxima."""
+    out = _heading("Boundedness Properties")
+    if not r.exploration.complete:
         out += ["  (bounds of the explored part of a partial state space)", ""]
     out += ["  Best Integer Bounds"]
     out += _table([(b.place, (str(b.upper), str(b.lower))) for b in r.bounds.places], ("Upper", "Lower"))
@@ -222,9 +232,12 @@ def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | No
             f"     Tokens in one marking:          {r.bounds.max_tokens_per_marking}",
             f"     Tokens in one place:            {r.bounds.max_tokens_in_place}",
             f"     Tokens of one colour in a place: {r.bounds.max_of_one_colour_in_place}"]
+    return out
 
-    out += _heading("Home Properties")
-    out += ["  Home Markings"]
+
+def _home(r: Report) -> list[str]:
+    """Home Properties."""
+    out = _heading("Home Properties") + ["  Home Markings"]
     if r.symmetric:
         out.append(f"     {SYM_NOT_PRESERVED}")
     elif r.home.states is None:
@@ -233,10 +246,15 @@ def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | No
         out.append("     Initial Marking is " + ("a home marking" if r.home.initial_is_home
                                                   else "not a home marking"))
     else:
-        out.append("     " + _node_list(r.home.states, g.n_states))
+        out.append("     " + _node_list(r.home.states, r.exploration.graph.n_states))
+    return out
 
-    out += _heading("Liveness Properties")
-    out += ["  Dead Markings", "     " + _node_list(r.dead.states, g.n_states)]
+
+def _liveness(r: Report, marking_changes: bool, steps_cap, terms_cap, names_cap) -> list[str]:
+    """Liveness Properties: dead markings (with their traces), dead and live transition instances."""
+    x = r.exploration
+    out = _heading("Liveness Properties")
+    out += ["  Dead Markings", "     " + _node_list(r.dead.states, x.graph.n_states)]
     if r.symmetric:
         full = r.full_dead_count
         out.append("     (orbits of the quotient graph" + ("" if full is None else
@@ -255,8 +273,12 @@ def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | No
     out += ([f"     {SYM_NOT_PRESERVED}"] if r.moves_instances else
             ["     Unknown (the state space is partial)"] if r.live_transitions is None
             else _name_list(r.live_transitions, ntrans, names_cap))
+    return out
 
-    out += _heading("Fairness Properties")
+
+def _fairness(r: Report) -> list[str]:
+    """Fairness Properties."""
+    out = _heading("Fairness Properties")
     if r.moves_instances:
         out.append(f"     {SYM_NOT_PRESERVED}")
     elif not r.fairness_known:
@@ -265,4 +287,4 @@ def render_text(r: Report, *, marking_changes: bool = True, max_listed: int | No
         out.append("     No infinite occurrence sequences.")
     else:
         out += _table([(name, (cls.value,)) for name, cls in r.fairness.items()])
-    return "\n".join(out) + "\n"
+    return out
