@@ -68,6 +68,7 @@ CODES: dict[str, str] = {
     "W0103": "empty model",
     "W0104": "random draw explored as a choice",
     "W0105": "random draw: simulation only",
+    "W0106": "real time, reference or side effect: simulation only",
     "W0701": "scenario states no property",
     "W0702": "property holds vacuously",
     "W0703": "property follows from the net's structure",

@@ -49,8 +49,9 @@ class Model:
     def engine(self, time_condensation: bool = False, reference: bool = False, simulation: bool = False):
         """The net's successor function (`cpn.engine.compile_net`): compiled, or the reference interpreter.
 
-        A net that calls a random distribution function (`exponential`, `uniform`, ...) has no state space:
-        unless `simulation` is given, that is a ModelError with one error (E0206) per call.
+        A net that calls a random distribution function (`exponential`, `uniform`, ...), or has a real-valued
+        delay, a reference variable or a side effect, has no state space: unless `simulation` is given, that
+        is a ModelError with one error (E0206) per call or construct.
 
         >>> import cpn
         >>> e = cpn.loads("colset U = unit; place A : U = 1`(); trans t; arc A -> t;").engine()
@@ -60,13 +61,17 @@ class Model:
         from cpn.engine import compile_net
 
         draws = getattr(self.net.checked, "random_draws", ())
-        if draws and not simulation:
+        others = getattr(self.net.checked, "simulation_only", ())  # real-valued delays, references, effects
+        if (draws or others) and not simulation:
             from cpn.lang.infer import random_hint
 
             error = ModelError([Diagnostic("E0206", f"'{name}' draws a random value: a state space cannot hold it "
                                            "(simulate runs the model)", span, hint=random_hint(name),
-                                           params={"name": name}) for name, span in draws],
-                               {span.file: self.source for _, span in draws if span is not None})
+                                           params={"name": name}) for name, span in draws]
+                               + [Diagnostic("E0206", f"{what}: a state space cannot hold it (simulate runs the "
+                                             "model)", span, hint=hint, params={"name": name})
+                                  for what, span, hint, name in others],
+                               {span.file: self.source for _, span, *_ in [*draws, *others] if span is not None})
             if self.translation is not None:
                 importer = importer_for(self.path)
                 error = importer.remap_error(error, self.translation, f"{self.path} (as .cpnet)")

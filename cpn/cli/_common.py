@@ -299,14 +299,14 @@ def model_warnings(model) -> list:
 
 def load_model(path: str, sets: dict[str, str], *, show_warnings: bool = True, state_space: bool = False):
     """`cpn.load` for the command line: its warnings go to stderr (never silenced by --quiet). With
-    `state_space` (explore), the warnings that a random draw is for simulation only (W0105) are left out:
-    building the engine refuses each such draw with an error at the same place (E0206)."""
+    `state_space` (explore), the warnings that a random draw or another construct is for simulation only
+    (W0105, W0106) are left out: building the engine refuses each with an error at the same place (E0206)."""
     import cpn
     from cpn.diagnostics import render
 
     model = cpn.load(path, set=sets)
     if show_warnings:
         for w in model_warnings(model):
-            if not (state_space and w.code == "W0105"):
+            if not (state_space and w.code in ("W0105", "W0106")):
                 print(render(w, model.source), file=sys.stderr)
     return model

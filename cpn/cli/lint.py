@@ -66,9 +66,11 @@ def lint_file(path: str, sets: dict[str, str]) -> tuple[dict, str]:
         return entry, render_error(exc)
     warnings = model_warnings(model)
     net = model.net
-    # a model that draws random values is valid and simulated; explore and check refuse it (W0105 says where)
+    # a model that draws random values (or has real delays, references, side effects) is valid and simulated;
+    # explore and check refuse it (W0105, W0106 say where)
     entry.update(places=len(net.places), transitions=len(net.transitions), timed=bool(net.is_timed),
-                 simulation_only=bool(getattr(net.checked, "random_draws", ())),
+                 simulation_only=bool(getattr(net.checked, "random_draws", ())
+                                      or getattr(net.checked, "simulation_only", ())),
                  diagnostics=[_diagnostic_json(w) for w in warnings])
     return entry, "\n".join(render(w, model.source) for w in warnings)
 
@@ -87,7 +89,7 @@ def run(args) -> int:
             np, nt = entry["places"], entry["transitions"]
             print(f"{path}: ok ({np} {noun(np, 'place instance')}, {nt} {noun(nt, 'transition instance')}"
                   f"{', timed' if entry['timed'] else ''}"
-                  f"{'; it draws random values: simulate only' if entry['simulation_only'] else ''})")
+                  f"{'; simulate only: explore and check cannot analyse it' if entry['simulation_only'] else ''})")
     status = ExitStatus.worst(e["exit_status"] for e in entries)
     if "--json" in outputs:
         write_output(outputs["--json"], json.dumps({"exit_status": int(status), "models": entries}, indent=2,

@@ -52,7 +52,9 @@ def run(args) -> int:
     model = load_model(args.model, sets)
     # a draw is made anew at each occurrence: the reference interpreter remembers no result of a marking
     # (the compiled engine reuses the effect of a binding element)
-    engine = model.engine(simulation=True, reference=bool(getattr(model.net.checked, "random_draws", ())))
+    checked = model.net.checked
+    engine = model.engine(simulation=True, reference=bool(getattr(checked, "random_draws", ())
+                                                          or getattr(checked, "simulation_only", ())))
     s = engine.initial_state()
     steps: list[dict] = []
     width = max(len(str(args.steps)), 4)
@@ -69,7 +71,7 @@ def run(args) -> int:
             steps.append({"step": len(steps) + 1, "time": engine.clock(s),
                           "binding_element": engine.format_binding_element(be)})
             if text:
-                print(f"{steps[-1]['step']:>{width}}  {steps[-1]['time']:>6}  {steps[-1]['binding_element']}")
+                print(f"{steps[-1]['step']:>{width}}  {_time(steps[-1]['time']):>6}  {steps[-1]['binding_element']}")
     except EvaluationError as err:
         err.trace = [st["binding_element"] for st in steps]
         raise
@@ -91,3 +93,8 @@ def run(args) -> int:
                   "final_marking": {k: v for k, v in marking.items() if v != "empty"}}
         write_output(outputs["--json"], json.dumps(result, indent=2, ensure_ascii=False) + "\n")
     return ExitStatus.OK
+
+
+def _time(t) -> str:
+    """Model time for the trace: an integer as it is, a real time (`@++`) to three decimals."""
+    return f"{t:.3f}" if isinstance(t, float) else str(t)

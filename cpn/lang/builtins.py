@@ -144,6 +144,9 @@ TYPES: dict[str, str] = {
     "IntInf.fromInt": "int -> int",
     "intTime": "unit -> int",
     "time": "unit -> int",
+    # CPN Tools' ModelTime: the model time, an integer here (a real where '@++' makes it one in simulate)
+    "ModelTime.fromInt": "int -> int",
+    "ModelTime.toString": "int -> string",
 }
 
 # CPN Tools' random distribution functions: simulation only (a net that calls them has no state space)

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from cpn._util import did_you_mean
 from cpn._util.deep import left_spine
+from cpn.diagnostics import Span
 from cpn.expr.binding import children
 from cpn.lang import ast as A
 from cpn.lang import types as T
@@ -17,7 +18,7 @@ from cpn.lang.checked import Abort, Env
 from cpn.lang.symbols import Symbol
 
 # operators with a typing rule of their own (multisets, time), which end a chain of plain operators
-_MS_OPS: frozenset[str] = frozenset({"++", "--", "+++", "@+", "@@"})
+_MS_OPS: frozenset[str] = frozenset({"++", "--", "+++", "@+", "@++", "@@"})
 
 
 def _not_plain(node: A.BinOp) -> bool:
@@ -209,6 +210,23 @@ class TypeInference:
         self.warn("W0105", f"'{e.name}' draws a random value: simulate runs the model (one run per --seed), "
                   "explore and check cannot analyse it", e.span,
                   hint=random_hint(e.name), name=e.name)
+
+    def simulation_only(self, what: str, span: Span, hint: str, name: str) -> None:
+        """A construct that simulate runs and no state space can hold (a real-valued delay, a reference
+        variable, a code segment's side effect): lint warns (W0106), explore and check refuse the model with
+        one error per construct (`simulation_only`), `what` saying what it is and `hint` what to change."""
+        if any(span == s and what == w for w, s, _, _ in self.simulation_only_uses):
+            return
+        self.simulation_only_uses.append((what, span, hint, name))
+        self.warn("W0106", f"{what}: simulate runs the model, explore and check cannot analyse it", span,
+                  hint=hint, name=name)
+
+    def real_delay(self, e: A.BinOp, env: Env) -> None:
+        """The delay of `e @++ d` (CPN Tools' real-valued delay): a real; simulation only."""
+        self.must(self.infer(e.right, env), T.REAL, e.right.span, "a real-valued delay '@++' (a real)")
+        self.simulation_only("'@++' is a real-valued delay", e.span,
+                             "For a state space, write an integer delay with '@+' (e.g. '@+ round(d)' or a "
+                             "bounded choice '@+[a,b]'): model time is an integer there.", "@++")
 
     def _i_Select(self, e, env):
         a, r = T.TVar(), T.TVar()
@@ -433,6 +451,11 @@ class TypeInference:
             elem = T.TVar()
             e.left = self.infer_ms(e.left, elem, env, "the tokens of '@+'")
             self.infer_delay(e, env)
+            return T.ms(elem)
+        if op == "@++":
+            elem = T.TVar()
+            e.left = self.infer_ms(e.left, elem, env, "the tokens of '@++'")
+            self.real_delay(e, env)
             return T.ms(elem)
         if op == "@@":
             self.error("E0206", "absolute timestamps '@@' are not supported; use '@+' delays", e.span)

@@ -41,9 +41,12 @@ class MultisetInference:
             e.right = self.infer_ms(e.right, elem, env, f"the right operand of '{e.op}'")
             e.ty = T.ms(elem)
             return e
-        if isinstance(e, A.BinOp) and e.op == "@+":
-            e.left = self.infer_ms(e.left, elem, env, "the tokens of '@+'")
-            self.infer_delay(e, env)
+        if isinstance(e, A.BinOp) and e.op in ("@+", "@++"):
+            e.left = self.infer_ms(e.left, elem, env, f"the tokens of '{e.op}'")
+            if e.op == "@++":
+                self.real_delay(e, env)
+            else:
+                self.infer_delay(e, env)
             e.ty = T.ms(elem)
             return e
         if isinstance(e, A.If):

@@ -212,7 +212,15 @@ class PageChecks:
                 except Abort:
                     self.pending.clear()
                     ok = False
-            if d.delay is not None and not interval:
+            if isinstance(d.delay, A.BinOp) and d.delay.op == "@++":  # `@++ d`: a real-valued delay
+                try:
+                    self.real_delay(d.delay, env)
+                    self.resolve_pending()
+                    d.delay = d.delay.right
+                except Abort:
+                    self.pending.clear()
+                    ok = False
+            elif d.delay is not None and not interval:
                 t = self.infer_top(d.delay, env)
                 if t is None:
                     ok = False
@@ -497,7 +505,7 @@ def _has_delay(e) -> bool:
     while stack:
         x = stack.pop()
         if isinstance(x, A.BinOp):
-            if x.op == "@+":
+            if x.op in ("@+", "@++"):
                 return True
             stack += (x.right, x.left)
         elif isinstance(x, A.If):
@@ -511,7 +519,7 @@ def _delay_node(e):
     while stack:
         x = stack.pop()
         if isinstance(x, A.BinOp):
-            if x.op == "@+":
+            if x.op in ("@+", "@++"):
                 return x
             if x.op in ("++", "+++", "--"):
                 stack += (x.right, x.left)

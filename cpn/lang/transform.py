@@ -310,7 +310,10 @@ class ToAst(Transformer_NonRecursive):
     def guard(self, items):
         return [g for g in items if g is not None]
 
-    def delay(self, items):
+    @v_args(meta=True)
+    def delay(self, meta, items):
+        if str(items[0]) == "@++":  # a real-valued delay: `() @++ d`, which the checker takes apart
+            return A.BinOp(self.span(meta), "@++", A.Const(self.span(meta), (), "unit"), items[1])
         return items[1]
 
     def priority(self, items):

@@ -52,6 +52,8 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
         self.ran_counter = 0
         self.ran_sink: list | None = None
         self.random_draws: list[tuple[str, Span]] = []  # calls of random distribution functions (simulate only)
+        # real-valued delays, reference variables, side effects: (what, span, hint, name), simulate only
+        self.simulation_only_uses: list[tuple[str, Span, str, str]] = []
         # CPN Tools' standard declarations; a model may redeclare them
         self.predefined = {"UNIT", "BOOL", "INT", "STRING", "REAL", "TIME", "INTINF"}
         for name, cs, ty in (("UNIT", C.UnitCS("UNIT"), T.UNIT), ("BOOL", C.BoolCS("BOOL"), T.BOOL),
@@ -99,6 +101,7 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
                                [d for d in self.diags if d.severity is Severity.WARNING])
         checked.symmetries = list(self.symmetries)
         checked.random_draws = list(self.random_draws)
+        checked.simulation_only = list(self.simulation_only_uses)
         return checked
 
     def top_decl(self, d: A.Decl, top_decls: list, modules: dict) -> None:

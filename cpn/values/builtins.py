@@ -299,6 +299,8 @@ FUNCTIONS: dict[str, Any] = {
     "IntInf.fromInt": lambda x: x,
     "intTime": None,
     "time": None,
+    "ModelTime.fromInt": lambda x: x,
+    "ModelTime.toString": lambda t: _int_to_string(t) if isinstance(t, int) else f"{t:g}".replace("-", "~"),
 }
 
 TIME_BUILTINS = frozenset({"intTime", "time"})
@@ -359,7 +361,7 @@ def binop(op: str, a: Any, b: Any) -> Any:
             return a - b
         except MultisetError as exc:
             raise MLError(str(exc)) from None
-    if op == "@+":
+    if op in ("@+", "@++"):  # '@++': a real-valued delay (simulate only)
         if not isinstance(a, (Multiset, TimedMultiset)):
             a = Multiset.of(a)
         return TimedMultiset.lift(a, b)

@@ -127,7 +127,7 @@ def test_lint_says_a_model_that_draws_is_for_simulation_only(tmp_path, capsys):
     path = model(tmp_path, "u", DRAWS["uniform"])
     out = tmp_path / "lint.json"
     assert main(["lint", path, "--json", str(out)]) == 0
-    assert "it draws random values: simulate only" in capsys.readouterr().out
+    assert "simulate only: explore and check cannot analyse it" in capsys.readouterr().out
     [entry] = json.loads(out.read_text())["models"]
     assert entry["simulation_only"] is True and [d["code"] for d in entry["diagnostics"]] == ["W0105"]
     plain = tmp_path / "plain.cpnet"

@@ -3,8 +3,9 @@
 CPN Tools' declarations and inscriptions are CPN ML already, so the translation restructures the XML:
 globbox declarations (blocks flattened), pages to modules, the root page to the top level, substitution
 transitions to `instance` statements, fusion sets, ports, arcs of every orientation. Whatever cannot
-have a deterministic state space (random distributions, `@++` real delays, code segments with side
-effects, synchronous channels, assigned reference variables) is refused with a positioned E0502.
+have a deterministic state space is left to the front end where `simulate` can run it (random
+distributions, `@++` real delays: lint warns, explore refuses each) and refused with a positioned E0502
+otherwise (code segments with side effects, synchronous channels, assigned reference variables).
 Every generated statement carries a comment with its origin, and `Translation.locate` maps a position
 of the generated text back to the XML. Imports `cpn.diagnostics`, `cpn.errors` and the standard library.
 """
@@ -156,7 +157,7 @@ class _Translator(_Declarations):
                 vals = [b.text.strip() for b in o.iter("boolean")]
                 if vals and vals[0] == "true":
                     note = ("the net sets the option 'realtimestamp' (real-valued time stamps); "
-                            "integer delays give the same state space, '@++' delays are refused")
+                            "integer delays give the same state space, '@++' delays are simulated only")
                     self.notes.append(note)
                     self.out.raw(f"(* note: {note} *)")
 
@@ -397,9 +398,11 @@ class _Translator(_Declarations):
             if not delay.startswith("@+"):
                 self.error(do, f"{what} has the time inscription '{_short(delay)}'; expected '@+ delay'")
             elif t.id in self.code_outputs:
-                rest = delay[2:]
-                do2 = Origin(do.line, do.col + 2 + len(rest) - len(rest.lstrip()), do.element, do.page, do.what)
-                parts += [(" @+ ", None)] + self._with_code(t, rest.strip(), do2)
+                op = "@++" if delay.startswith("@++") else "@+"
+                rest = delay[len(op):]
+                do2 = Origin(do.line, do.col + len(op) + len(rest) - len(rest.lstrip()), do.element, do.page,
+                             do.what)
+                parts += [(f" {op} ", None)] + self._with_code(t, rest.strip(), do2)
             else:
                 parts += [(" ", None), (delay, do)]
         prio = _clean(t.el.child_text("priority"))

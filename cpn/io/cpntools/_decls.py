@@ -225,10 +225,7 @@ class _Declarations:
         if self._unclosed(text, origin):
             return text
         self._refuse_random(text, origin, what, finite=True)
-        if "@++" in text:
-            self.error(origin, f"{what} uses '@++', a real-valued delay ('{_short(text)}'): a state space "
-                       "needs integer model time",
-                       hint="Write an integer delay with '@+', e.g. '@+5'.")
+        # '@++' (a real-valued delay) is left to the front end: simulate runs it, explore and check refuse it
         self._check_globref_use(text, origin, what)
         for name, ran in self.ran_aliases.items():
             text = re.sub(r"\b" + re.escape(name) + r"\s*\(\s*\)", ran, text)
@@ -443,7 +440,7 @@ class _Declarations:
         mlel = el.find("ml")
         expr = _clean(mlel.text) if mlel is not None else ""
         origin = self._origin(el, None, f"reference variable '{name}'")
-        literal = re.fullmatch(r"~?\d+|\"[^\"]*\"|true|false|\(\)", expr) is not None
+        literal = re.fullmatch(r"~?\d+(?:\.\d+)?(?:[eE]~?\d+)?|\"[^\"]*\"|true|false|\(\)", expr) is not None
         if literal and name not in self.assigned:
             self.globref_consts[name] = expr
             self.out.raw(f"(* globref {name} = {expr} is never assigned: a constant *)")
