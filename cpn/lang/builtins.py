@@ -104,6 +104,13 @@ TYPES: dict[str, str] = {
     "ins_new": "''a list -> ''a -> ''a list",
     "union": "''a list -> ''a list -> ''a list",
     "intersect": "''a list -> ''a list -> ''a list",
+    "rmall": "''a -> ''a list -> ''a list",
+    "contains_all": "''a list -> ''a list -> bool",
+    "listsub": "''a list -> ''a list -> ''a list",
+    "app": "('a -> unit) -> 'a list -> unit",
+    "List.app": "('a -> unit) -> 'a list -> unit",
+    # CPN Tools' filter of a multiset (a list there): a multiset given to it is the list of its elements
+    "filter": "('a -> bool) -> 'a list -> 'a list",
     "list_to_ms": "'a list -> 'a ms",
     "ms_to_list": "'a ms -> 'a list",
     "Int.toString": "int -> string",

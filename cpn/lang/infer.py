@@ -319,9 +319,28 @@ class TypeInference:
 
     def _i_If(self, e, env):
         self.must(self.infer(e.cond, env), T.BOOL, e.cond.span, "the condition of 'if'")
-        tt = self.infer(e.then, env)
-        et = self.infer(e.else_, env)
+        if self._is_empty_ms(e.then, env) and not self._is_empty_ms(e.else_, env):
+            et = self.infer(e.else_, env)
+            e.then = self._empty_as_list(e.then, et)
+            tt = self.infer(e.then, env)
+        else:
+            tt = self.infer(e.then, env)
+            e.else_ = self._empty_as_list(e.else_, tt, env)
+            et = self.infer(e.else_, env)
         return self._join_branches(e, "then", "else_", tt, et)
+
+    def _is_empty_ms(self, x, env) -> bool:
+        return isinstance(x, A.Name) and x.name == "empty" and env.lookup("empty") is None
+
+    def _empty_as_list(self, x, other, env=None):
+        """`empty` beside a list (the other branch of an `if`, a rule of a `case`) is `[]`: CPN Tools'
+        multisets are lists, so `if l = [] then empty else hd l :: f (tl l)` is a list there."""
+        if env is not None and not self._is_empty_ms(x, env):
+            return x
+        po = T.prune(other)
+        if isinstance(po, T.TCon) and po.name == "list":
+            return A.ListE(x.span, [])
+        return x
 
     def _join_branches(self, e, a, b, ta, tb):
         pa, pb = T.prune(ta), T.prune(tb)
@@ -341,7 +360,11 @@ class TypeInference:
         for _i, (pat, body) in enumerate(e.rules):
             binds: dict[str, Symbol] = {}
             self.must(self.infer_pat(pat, binds), st, pat.span, "a case pattern")
-            bt = self.infer(body, env.child(binds))
+            inner = env.child(binds)
+            if rt is not None:
+                body = self._empty_as_list(body, rt, inner)
+                e.rules[_i] = (pat, body)
+            bt = self.infer(body, inner)
             if rt is None:
                 rt = bt
             else:

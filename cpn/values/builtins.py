@@ -88,11 +88,61 @@ def _rm(x):
 
 
 def _remdupl(lst):
+    """CPN Tools' remdupl keeps the last occurrence of each element: remdupl [1,2,3,2] is [1,3,2]."""
     out = []
-    for x in lst:
-        if x not in out:
+    for i, x in enumerate(lst):
+        if x not in lst[i + 1:]:
             out.append(x)
     return tuple(out)
+
+
+def _rmall(x):
+    return lambda lst: tuple(y for y in lst if y != x)
+
+
+def _contains_all(a):
+    """CPN Tools' contains_all l1 l2: every element of l2 is in l1, as often as l2 has it."""
+    def inner(b):
+        rest = list(a)
+        for x in b:
+            if x not in rest:
+                return False
+            rest.remove(x)
+        return True
+    return inner
+
+
+def _intersect(a):
+    """CPN Tools' intersect l1 l2: the elements of l1 that l2 has, each matched once (a multiset's)."""
+    def inner(b):
+        rest, out = list(b), []
+        for x in a:
+            if x in rest:
+                rest.remove(x)
+                out.append(x)
+        return tuple(out)
+    return inner
+
+
+def _listsub(a):
+    """CPN Tools' listsub l1 l2: l1 without the elements of l2, each removed once; an element of l2 that l1
+    has not raises Subtract."""
+    def inner(b):
+        rest = list(a)
+        for x in b:
+            if x not in rest:
+                raise MLError("listsub: the second list has an element the first has not (exception Subtract)")
+            rest.remove(x)
+        return tuple(rest)
+    return inner
+
+
+def _app(f):
+    def inner(lst):
+        for x in lst:
+            f(x)
+        return ()
+    return inner
 
 
 def _ms_to_col(m):
@@ -258,8 +308,14 @@ FUNCTIONS: dict[str, Any] = {
     "contains": lambda a: lambda b: all(x in a for x in b),
     "ins": lambda lst: lambda x: lst + (x,),
     "ins_new": lambda lst: lambda x: lst if x in lst else lst + (x,),
-    "union": lambda a: lambda b: a + tuple(x for x in b if x not in a),
-    "intersect": lambda a: lambda b: tuple(x for x in a if x in b),
+    "union": lambda a: lambda b: a + b,  # CPN Tools' union l1 l2 is l1 ^^ l2
+    "intersect": _intersect,
+    "rmall": _rmall,
+    "contains_all": _contains_all,
+    "listsub": _listsub,
+    "app": _app,
+    "List.app": _app,
+    "filter": lambda f: lambda lst: tuple(x for x in lst if f(x)),
     "list_to_ms": _list_to_ms,
     "ms_to_list": _ms_to_list,
     "Int.toString": _int_to_string,
