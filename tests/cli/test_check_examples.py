@@ -69,11 +69,11 @@ GATE_MUTANT = "specs/modbus/mutants/bcast-as-unicast.toml"
 # scenarios the gate below does not run because another test runs each in full through the gate's own
 # run_scenario and asserts the gate's verdict (no state space is searched twice in the suite): the file
 # and the test that runs it
-MUTANTS_TEST = ("tests/modbus/test_issue_11_mutants.py", "test_mutant_is_caught_by_the_property_it_breaks")
+MUTANTS_TEST = ("tests/modbus/test_modbus_mutants.py", "test_mutant_is_caught_by_the_property_it_breaks")
 RUN_ELSEWHERE = {
     "specs/modbus/modbus_a_100.toml": ("tests/modbus/test_modbus_a_reserved_ids.py",
                                        "test_the_100_slave_scenario_holds_and_exercises_the_reserved_ids"),
-    **{f"specs/modbus/{name}.toml": ("tests/regressions/test_issue_13_timed.py",
+    **{f"specs/modbus/{name}.toml": ("tests/statespace/test_native_timed.py",
                                      "test_modbus_scenario_checks_search_natively_with_the_python_verdicts")
        for name in ("A_1", "D_4_faults")},
 }

@@ -1,4 +1,5 @@
-"""Name and type errors: each malformed model gets its code and position, never a traceback."""
+"""Name and type errors: each malformed model gets its code and position, never a traceback; an unknown colour
+set is reported once, and a failed declaration causes no follow-on errors."""
 
 import pytest
 
@@ -92,3 +93,31 @@ def test_fusion_members_with_different_initial_markings():
     assert info.value.errors[0].code == "E0205"
     m = cpn.loads(HEAD + "place A : INT5 = 1`1 fusion F;\nplace B : INT5 = 1`1 fusion F;", "m.cpnet")
     assert m.net.places[0].aliases == ["Top'B 1"]
+
+
+def _diags(src: str, **kw):
+    with pytest.raises(ModelError) as info:
+        cpn.loads(src, "m.cpnet", **kw)
+    return info.value.diagnostics
+
+
+def test_one_unknown_colour_set_is_reported_once():
+    src = """colset S = int with 0..3;
+colset P2 = product Foo * S;
+var x : Foo;
+var y : S;
+place P : Foo = 1`1;
+place Q : P2;
+trans T [x < 3];
+arc P -> T : x;
+arc T -> Q : (x, y);
+"""
+    [d] = _diags(src)
+    assert (d.code, d.span.line, d.params["name"]) == ("E0201", 2, "Foo")
+    assert d.notes == ["also used at 3:9, 5:11"]
+
+
+def test_a_failed_declaration_causes_no_follow_on_errors():
+    [d] = _diags("val N = abc;\ncolset S = int with 0..N;\nvar x : S;\nplace P : S = S.all();\ntrans T [x < N];\n"
+                 "arc P -> T : x;\n")
+    assert (d.code, d.span.line, d.params["name"]) == ("E0201", 1, "abc")

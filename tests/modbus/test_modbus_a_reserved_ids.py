@@ -2,16 +2,16 @@
 which no slave may get and the master never polls (a frame for ID 98 is a reset); MA2 and MA7 follow the
 allocation sequence 1, 2, ..., 97, 100, 101, ... (specs/modbus/modbus_a_100.toml). The mutant whose counter
 hands out the reserved IDs gives slaves 98 and 99 those IDs; the gate catches it on a chain of 6 with the
-reserved IDs 4 and 5 (specs/modbus/mutants/ma_reserved_ids.toml, tests/modbus/test_issue_11_mutants.py)."""
+reserved IDs 4 and 5 (specs/modbus/mutants/ma_reserved_ids.toml, tests/modbus/test_modbus_mutants.py)."""
 
 import os
 
 import pytest
 
 import cpn
+from cpn.checks.verdict import Status
 from cpn.gate.run import run_scenario
 from cpn.gate.scenario import load_scenario
-from cpn.checks.verdict import Status
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 MODEL = os.path.join(ROOT, "models", "modbus", "modbus_a.cpnet")
