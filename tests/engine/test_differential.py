@@ -16,11 +16,11 @@ from tests.engine._explore import graph, same_exploration
 from tests.engine.randomnets import random_net, random_timed_net
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(__file__)))
+# the repository's models, and the small models of the tests (local declarations, exceptions, lists as
+# multisets, long chains, records, recursion, a model that reads the clock) but the one that stops with an
+# uncaught exception on purpose
 MODELS = sorted(glob.glob(os.path.join(ROOT, "models", "**", "*.cpnet"), recursive=True)
-                + glob.glob(os.path.join(ROOT, "tests", "models", "good", "*.cpnet"))
-                # the small models of issue 16 (local, exceptions, lists as multisets, long chains), but the
-                # one that stops with an uncaught exception on purpose
-                + [p for p in glob.glob(os.path.join(ROOT, "tests", "regressions", "issue_16", "*.cpnet"))
+                + [p for p in glob.glob(os.path.join(ROOT, "tests", "models", "*.cpnet"))
                    if not p.endswith("uncaught.cpnet")])
 SMALL = {"dp.cpnet": {"N": 4}, "ms.cpnet": {"N": 2}}
 
@@ -37,6 +37,13 @@ def _compare(model, condensation=False, limit=150):
     assert common, "the engines do not even agree on the initial state"
     for k in common:
         assert a[k] == b[k], k
+
+
+def test_each_folder_of_models_holds_models():
+    """The folders globbed above exist and hold models (a glob of a moved or misspelt folder finds nothing, and
+    the comparison would silently leave those models out)."""
+    for folder in (os.path.join(ROOT, "models"), os.path.join(ROOT, "tests", "models")):
+        assert any(p.startswith(folder + os.sep) for p in MODELS), f"no model of {folder} is compared"
 
 
 @pytest.mark.parametrize("path", MODELS + [os.path.join(ROOT, "bench", "nets", n) for n in SMALL],
@@ -111,8 +118,8 @@ def _same_search(model, limit):
 @pytest.mark.parametrize("chunk", range(5))
 def test_random_nets_native_search(chunk, monkeypatch):
     """The native search on the 1,000 random nets, in five chunks of 200 (timed ones included), its
-    transitions answered by the engine (C generated from the inscriptions: tests/regressions/
-    test_issue_13_generated.py, which compiles fewer nets: a compilation takes a second or two)."""
+    transitions answered by the engine (C generated from the inscriptions: tests/engine/test_generated_c.py,
+    which compiles fewer nets: a compilation takes a second or two)."""
     monkeypatch.setenv("CPN_NO_GENERATED", "1")
     monkeypatch.setattr(nativetimed, "HAND_OVER_RATE", 1e9)  # timed nets: the C search to the end
     for seed in range(chunk * 200, chunk * 200 + 200):
