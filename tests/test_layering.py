@@ -8,7 +8,7 @@ ROOT = pathlib.Path(__file__).resolve().parent.parent / "cpn"
 
 # the order of the layers, as docs/internals.md draws it: text -> lang -> net -> engine -> statespace ->
 # checks -> properties -> gate -> report -> cli; an allow-list may only name earlier layers
-ORDER = ["diagnostics", "_util", "arcs", "errors", "values", "expr", "lang", "net", "io", "engine", "model", "statespace",
+ORDER = ["diagnostics", "_native", "_util", "arcs", "errors", "values", "expr", "lang", "net", "io", "engine", "model", "statespace",
          "checks", "properties", "gate", "report", "__init__", "cli", "__main__"]
 
 FOUNDATION = {"diagnostics", "_util", "errors", "arcs"}
@@ -16,7 +16,10 @@ FOUNDATION = {"diagnostics", "_util", "errors", "arcs"}
 # what each top-level part of the package may import (besides itself)
 ALLOWED: dict[str, set[str]] = {
     "diagnostics": set(),
-    "_util": set(),
+    # the package's C and its build manifest, under every layer that builds C (the engine's generated code
+    # and the state space's searches through cpn._util.cbuild)
+    "_native": set(),
+    "_util": {"_native"},
     "arcs": set(),
     "errors": {"diagnostics"},
     "values": FOUNDATION,

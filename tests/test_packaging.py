@@ -1,5 +1,6 @@
-"""What a user installs has every file the package reads at run time (cpn/_util/resources.py), and a native
-build that cannot happen falls back to the Python search with one note (cpn/_util/cbuild.py).
+"""What a user installs has every file the package reads at run time (cpn/_util/resources.py: the grammar
+and the build manifest's C, cpn/_native/manifest.py), and a native build that cannot happen falls back to
+the Python search with one note (cpn/_util/cbuild.py).
 
 The whole path (the README's main command after `pip install .`, the wheel built from the sdist in a fresh
 virtual environment, run from another folder) is `.ci/install-check`, which `.ci/run` runs before the tests.
@@ -16,6 +17,7 @@ import zipfile
 
 import pytest
 
+from cpn._native import manifest
 from cpn._util import cbuild, resources
 from tests._shared import ROOT
 
@@ -67,21 +69,30 @@ def built(tmp_path_factory):
     return sdist, wheel
 
 
-def test_the_wheel_and_the_sdist_ship_every_data_file(built):
+def _data_files(names: list[str]) -> set[str]:
+    """The files under cpn/ among `names` (paths in an archive) that are not Python modules."""
+    return {n for n in names if n.startswith("cpn/") and not n.endswith("/") and not n.endswith((".py", ".pyc"))}
+
+
+def test_the_wheel_and_the_sdist_ship_exactly_the_data_files(built):
     sdist, wheel = built
-    in_wheel = set(zipfile.ZipFile(wheel).namelist())
-    in_sdist = {n.split("/", 1)[1] for n in tarfile.open(sdist).getnames() if "/" in n}
-    for name in resources.DATA_FILES:
-        assert f"cpn/{name}" in in_wheel, f"the wheel lacks cpn/{name}"
-        assert f"cpn/{name}" in in_sdist, f"the sdist lacks cpn/{name}"
+    in_wheel = _data_files(zipfile.ZipFile(wheel).namelist())
+    in_sdist = _data_files([m.name.split("/", 1)[1] for m in tarfile.open(sdist).getmembers()
+                            if m.isfile() and "/" in m.name])
+    listed = {f"cpn/{name}" for name in resources.DATA_FILES}
+    assert in_wheel == listed, f"the wheel differs from DATA_FILES: {sorted(in_wheel ^ listed)}"
+    assert in_sdist == listed, f"the sdist differs from DATA_FILES: {sorted(in_sdist ^ listed)}"
+    # the C of the build manifest, headers too
+    assert {f"cpn/{name}" for name in manifest.DATA_FILES} <= in_wheel
+    assert any(name.endswith(".h") for name in manifest.DATA_FILES)
 
 
 def test_a_data_file_missing_from_the_installation_is_a_clear_error(monkeypatch):
     monkeypatch.setattr(resources.resources, "files", lambda _: _Missing())
-    with pytest.raises(resources.ResourceMissing, match="engine/_cnet.c cannot be read.*reinstall"):
-        resources.read_text("engine/_cnet.c")
-    assert cbuild.sources("statespace/_packed.c") is None
-    assert "statespace/_packed.c cannot be read" in cbuild.why_unavailable()
+    with pytest.raises(resources.ResourceMissing, match="_native/_cnet.c cannot be read.*reinstall"):
+        resources.read_text("_native/_cnet.c")
+    assert cbuild.build("store") is None
+    assert "cpn/_native/_packed.c cannot be read" in cbuild.why_unavailable()
 
 
 class _Missing:

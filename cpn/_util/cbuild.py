@@ -1,11 +1,15 @@
 """Build C source into a shared library with the system C compiler, load it through cffi, cache the build.
 
+The package's libraries are named in the build manifest (`cpn._native.manifest`): `build` compiles one of
+them (its units in order, their headers written beside them, the net's generated C after them where the
+library takes it) and declares to cffi what its headers declare between their cffi markers.
+
 Nothing is compiled at install time: a library is built the first time it is needed, in the user's
 cache directory (``$CPN_CACHE_DIR``, else ``$XDG_CACHE_HOME/cpn-verify``, else ``~/.cache/cpn-verify``),
-named by a hash of the source, the declarations and the compiler's version, and reused from there.
-Where a build cannot happen (CPN_NO_NATIVE is set, cffi or a compiler is missing, the compiler fails, a
-C file of the package is missing, the cache cannot be written), `load_library` and `sources` return None
-and `why_unavailable` says why, so that callers fall back to pure Python and say so.
+named by a hash of the source, the headers, the declarations and the compiler's version, and reused from
+there. Where a build cannot happen (CPN_NO_NATIVE is set, cffi or a compiler is missing, the compiler
+fails, a C file of the package is missing, the cache cannot be written), `build` and `load_library`
+return None and `why_unavailable` says why, so that callers fall back to pure Python and say so.
 
 Examples
 --------
@@ -24,6 +28,7 @@ import tempfile
 from dataclasses import dataclass
 from functools import lru_cache
 
+from cpn._native import manifest
 from cpn._util.resources import ResourceMissing, read_text
 
 #: the flags every library is built with (after the optimisation level)
@@ -80,13 +85,43 @@ def switched_off() -> str | None:
     return None
 
 
-def sources(*names: str) -> str | None:
-    """The package's C files `names` (paths under `cpn/`, see `cpn._util.resources`) joined by newlines,
-    or None where one cannot be read (`why_unavailable` says which)."""
+@dataclass(frozen=True)
+class Recipe:
+    """What `load_library` builds a library of the manifest from: the one source (the defines, the units,
+    the generated C), its headers (file name -> text), the cffi declarations and the extra flags."""
+
+    source: str
+    headers: dict[str, str]
+    cdef: str
+    flags: tuple[str, ...]
+
+
+def recipe(name: str, generated: str = "") -> Recipe:
+    """The recipe of library `name` of the manifest (`generated`: the net's C, for a library that takes
+    it); `ResourceMissing` where a file of the package cannot be read."""
+    lib = manifest.LIBRARIES[name]
+    if lib.generated != bool(generated):
+        raise ValueError(f"library '{name}' {'needs' if lib.generated else 'takes no'} generated C")
+    units = manifest.units(name)
+    parts = [f"#define {d}" for d in lib.defines] + [read_text(u.source) for u in units]
+    if generated:
+        parts.append(generated)
+    headers = {h.rsplit("/", 1)[-1]: read_text(h) for h in manifest.headers(name)}
+    cdef = "".join(manifest.declarations(read_text(u.header), f"cpn/{u.header}") for u in units)
+    return Recipe("\n".join(parts), headers, cdef, lib.flags)
+
+
+def build(name: str, generated: str = "") -> Library | None:
+    """Library `name` of the manifest (`cpn._native.manifest.LIBRARIES`), with the net's C `generated`
+    for a library that takes it; None where it cannot be built (`why_unavailable` says why)."""
+    off = switched_off()
+    if off is not None:
+        return _unavailable(off)
     try:
-        return "\n".join(read_text(name) for name in names)
+        r = recipe(name, generated)
     except ResourceMissing as exc:
         return _unavailable(str(exc))
+    return load_library(r.source, r.cdef, r.flags, r.headers)
 
 
 def why_unavailable() -> str | None:
@@ -102,9 +137,21 @@ def _unavailable(reason: str) -> None:
 _loaded: dict[str, Library] = {}
 
 
-def load_library(source: str, cdef: str, flags: tuple[str, ...] = ()) -> Library | None:
+def cache_key(source: str, cdef: str, compiler_version: str, flags: list[str], headers: dict[str, str],
+              cffi_version: str) -> str:
+    """The name of a built library in the cache: a hash of everything the build reads."""
+    parts = [source, cdef, compiler_version, " ".join(flags), cffi_version]
+    for name in sorted(headers):
+        parts += [name, headers[name]]
+    return hashlib.sha256("\0".join(parts).encode()).hexdigest()[:24]
+
+
+def load_library(source: str, cdef: str, flags: tuple[str, ...] = (),
+                 headers: dict[str, str] | None = None) -> Library | None:
     """The library built from C `source` whose functions `cdef` declares (built once, then cached);
-    `flags`: more compiler flags than CFLAGS (part of the cache key, as the source is)."""
+    `flags`: more compiler flags than CFLAGS; `headers`: the files (name -> text) its `#include "..."`
+    lines name, written beside the source. All are part of the cache key, as the source is."""
+    headers = headers or {}
     off = switched_off()
     if off is not None:
         return _unavailable(off)
@@ -115,8 +162,7 @@ def load_library(source: str, cdef: str, flags: tuple[str, ...] = ()) -> Library
     cc = compiler()
     if cc is None:
         return _unavailable("no C compiler found (set CC or install cc/gcc/clang)")
-    key = hashlib.sha256("\0".join([source, cdef, cc[1], " ".join(cflags() + list(flags)), cffi.__version__])
-                         .encode()).hexdigest()[:24]
+    key = cache_key(source, cdef, cc[1], cflags() + list(flags), headers, cffi.__version__)
     if key in _loaded:
         return _loaded[key]
     directory = cache_dir()
@@ -132,8 +178,12 @@ def load_library(source: str, cdef: str, flags: tuple[str, ...] = ()) -> Library
                 src = os.path.join(tmp, "lib.c")
                 with open(src, "w") as f:
                     f.write(source)
+                for name, text in headers.items():
+                    with open(os.path.join(tmp, name), "w") as f:
+                        f.write(text)
                 out = os.path.join(tmp, "lib.so")
-                res = subprocess.run([cc[0], *cflags(), *flags, "-o", out, src], capture_output=True, text=True, timeout=300)
+                res = subprocess.run([cc[0], *cflags(), *flags, "-I", tmp, "-o", out, src], capture_output=True,
+                                     text=True, timeout=300)
                 if res.returncode != 0:
                     first = (res.stderr.strip().splitlines() or ["no message"])[0]
                     return _unavailable(f"the C compiler failed: {first}")

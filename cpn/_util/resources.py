@@ -1,26 +1,21 @@
 """The files the package reads at run time besides its Python modules: one list, `DATA_FILES`, read
 through one function, `read_text`.
 
-`pyproject.toml` ships them as package data; `tests/test_packaging.py` builds the wheel and the sdist and
-checks that each file of the list is in both, and that every `.c` and `.lark` file under `cpn/` is on the
-list. A file that an installation lacks raises `ResourceMissing` (an `OSError`), which the native back
-end turns into a fallback to Python with a note.
+The C files on the list are the build manifest's (`cpn._native.manifest.DATA_FILES`: every unit's `.c` and
+`.h`). `pyproject.toml` ships them as package data; `tests/test_packaging.py` builds the wheel and the sdist
+and checks that they hold exactly the files of the list besides the modules, and that every data file under
+`cpn/` is on it. A file that an installation lacks raises `ResourceMissing` (an `OSError`), which the native
+back end turns into a fallback to Python with a note.
 """
 
 from __future__ import annotations
 
 from importlib import resources
 
+from cpn._native import manifest
+
 #: every data file the package reads, as a path under the `cpn` package
-DATA_FILES: tuple[str, ...] = (
-    "lang/grammar.lark",
-    "engine/_cnet.c",
-    "statespace/_packed.c",
-    "statespace/_search.c",
-    "statespace/_timed.c",
-    "statespace/_threads.c",
-    "statespace/_graph.c",
-)
+DATA_FILES: tuple[str, ...] = ("lang/grammar.lark", *manifest.DATA_FILES)
 
 
 class ResourceMissing(OSError):

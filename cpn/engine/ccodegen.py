@@ -32,9 +32,8 @@ Examples
 
 from __future__ import annotations
 
-from cpn._util.resources import ResourceMissing
 from cpn.engine import plan
-from cpn.engine.ctables import CDEF, Layout, NativeCode, NotNative, S, Tp, layout, runtime
+from cpn.engine.ctables import Layout, NativeCode, NotNative, S, Tp, layout
 from cpn.expr import binding as B
 from cpn.expr import nodes as A
 
@@ -709,10 +708,6 @@ def native_code(engine) -> NativeCode:
     net = engine.net
     if net.is_timed:
         raise NotNative("the net is timed")
-    try:
-        c_runtime = runtime()
-    except ResourceMissing as exc:
-        raise NotNative(str(exc)) from None
     layouts = []
     for p in net.places:
         try:
@@ -740,7 +735,6 @@ def native_code(engine) -> NativeCode:
     dispatch = "\n".join(f"    case {k}: return grp{k}(c, d, key);" for k in bodies)
     src = "\n".join([
         "#define FAIL do { c->err = 1; goto done; } while (0)",
-        c_runtime,
         "static int64_t g_rng(gctx *c, int64_t x, int64_t lo, int64_t hi) { if (x < lo || x > hi) c->err = 1; return x; }",
         *mod.protos,
         *mod.parts,
@@ -764,7 +758,7 @@ def native_code(engine) -> NativeCode:
         f"    return g_new({len(net.places)}, {len(engine._plan)}, sizes);",
         "}",
     ])
-    return NativeCode(src, sorted(engine._plan[k].t.index for k in bodies), left, layouts, var_layouts, CDEF)
+    return NativeCode(src, sorted(engine._plan[k].t.index for k in bodies), left, layouts, var_layouts)
 
 
 def _size(lays) -> int:

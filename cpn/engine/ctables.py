@@ -15,7 +15,6 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from itertools import product as _cartesian
 
-from cpn._util.resources import read_text
 from cpn.values.colours import AliasCS, BoolCS, EnumCS, IndexCS, IntCS, ProductCS, RecordCS, UnitCS
 
 #: colour sets with more values than this are not laid out as colour ids
@@ -146,31 +145,17 @@ def _flatten(v) -> list:
 
 
 # ---------------------------------------------------------------------------- the net
-CDEF = """
-void *gen_new(void);
-void gen_free(void *g);
-void nd_set_gen(nd_search *d, void *g);
-int64_t gen_count(void *g, int what, int p);
-int32_t gen_ms_len(void *g, int what, int p, int64_t id);
-int32_t *gen_ms_pairs(void *g, int what, int p, int64_t id);
-int64_t gen_ms_table(void *g, int what, int p, int64_t **off, int32_t **len, int32_t **pairs);
-int64_t gen_ms_put(void *g, int what, int p, const int32_t *pr, int32_t n);
-int64_t gen_be_key(void *g, int64_t be, int32_t *t);
-int64_t gen_be_put(void *g, int t, int64_t key);
-"""
-
-
 @dataclass
 class NativeCode:
-    """The C of a net's transitions (`source`, to be compiled after the native search's C with
-    ``ND_GENERATED`` defined) and the exchange of tables with the Python engine."""
+    """The C of a net's transitions (`source`, compiled after the run-time `_cnet.c` in the build manifest's
+    libraries that take a net's C: `cpn._native.manifest`) and the exchange of tables with the Python
+    engine."""
 
     source: str
     native: list[int]  # transitions compiled to C
     left: dict[int, str]  # transitions left to the Python engine: why
     layouts: list[Layout]  # per place
     var_layouts: dict[int, list[Layout]]  # per native transition
-    cdef: str = ""
 
     def to_c(self, engine, lib, ctx) -> None:
         """Copy the engine's markings, deltas and binding elements that the C tables do not have yet."""
@@ -246,10 +231,3 @@ class NativeCode:
                 vals.append(lay.values[cid])
             if engine._intern_be(t, tuple(reversed(vals))) != i:
                 raise RuntimeError("native binding elements out of step with the engine")
-
-
-def runtime() -> str:
-    """The C run-time of the generated code (`_cnet.c`); `ResourceMissing` where the installation lacks it."""
-    return read_text("engine/_cnet.c")
-
-

@@ -17,32 +17,9 @@ from __future__ import annotations
 
 import gc
 from array import array
-from functools import lru_cache
 from itertools import compress
 
-from cpn._util.cbuild import load_library, sources
-
-_CDEF = """
-int64_t gr_scc(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, int32_t *comp,
-               int32_t *members, int32_t *start, uint8_t *terminal, uint8_t *nontrivial);
-int gr_scc_arcs(int64_t nexp, const int64_t *off, const int32_t *dst, const int32_t *comp,
-                const int32_t *members, const int32_t *start, int64_t count, int64_t *out);
-int64_t gr_max_id(const void *ids, int bw, int64_t m);
-void gr_mark_ids(const void *ids, int bw, int64_t m, uint8_t *seen);
-void gr_map_ids(const void *ids, int bw, int64_t m, const int32_t *table, void *out, int ow);
-int64_t gr_dead(int64_t nexp, const int64_t *off, int32_t *out);
-int gr_reverse(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, int64_t *poff, int32_t *pred);
-int gr_live(int64_t n, int64_t nexp, const int64_t *off, const void *labels, int lw, int ntrans,
-            const int32_t *comp, const int32_t *members, const int32_t *start, const uint8_t *terminal,
-            int64_t count, uint8_t *live);
-int gr_fairness(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, const void *labels, int lw,
-                int ntrans, const int32_t *comp, const int32_t *members, const int32_t *start,
-                const uint8_t *nontrivial, int64_t count, uint8_t *cls);
-int gr_columns(const uint8_t *arena, int64_t n, int size, int nf, const int32_t *fo, const int32_t *fw,
-               const int64_t *so, const int64_t *cap, uint8_t *seen);
-int64_t gr_max_sum(const uint8_t *arena, int64_t n, int size, int nf, const int32_t *fo, const int32_t *fw,
-                   const int64_t *to, const int64_t *table);
-"""
+from cpn._util.cbuild import build
 
 #: False: every function returns None (the pure-Python path runs); tests switch it to compare both
 enabled: bool = True
@@ -66,8 +43,7 @@ def library(items: int | None = None):
         collecting = gc.isenabled()
         gc.disable()
         try:
-            source = _source()
-            lib = None if source is None else load_library(source, _CDEF)
+            lib = build("graph")
         finally:
             if collecting:
                 gc.enable()
@@ -77,12 +53,7 @@ def library(items: int | None = None):
     return _loaded[0]
 
 
-_loaded: list = []  # the library once loaded (load_library would hash the source again on every call)
-
-
-@lru_cache(maxsize=1)
-def _source() -> str | None:
-    return sources("statespace/_graph.c")
+_loaded: list = []  # the library once loaded (a build would read and hash the source again on every call)
 
 
 def _csr_ok(offsets, dst) -> bool:

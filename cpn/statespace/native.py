@@ -25,58 +25,10 @@ import gc
 import os
 from array import array
 
-from cpn._util.cbuild import load_library, sources, switched_off, why_unavailable
+from cpn._util.cbuild import build, switched_off, why_unavailable
 from cpn.engine.protocol import capability
 from cpn.statespace.options import Backend, StopReason
-from cpn.statespace.store import _CDEF as _STORE_CDEF
 from cpn.statespace.store import PackedStore
-
-_CDEF = _STORE_CDEF + """
-typedef struct nd_search nd_search;
-nd_search *nd_new(cs_store *st, int K, int G, const int32_t *nread, const int32_t *nwrite, const int32_t *fields);
-void nd_free(nd_search *d);
-int nd_put_group(nd_search *d, int g, const uint32_t *key, int64_t n, const int32_t *entries);
-int nd_put_add(nd_search *d, uint32_t p, uint32_t delta, uint32_t old, uint32_t nid);
-int nd_run(nd_search *d, int64_t until, int64_t max_states, int64_t max_arcs);
-void nd_clear_batch(nd_search *d);
-void nd_set_be32(nd_search *d);
-void nd_set_uncache_after(nd_search *d, int64_t n);
-void nd_resume(nd_search *d, int64_t head, int64_t level_end, int64_t levels, int64_t total_arcs, int be32);
-int64_t nd_head(nd_search *d);
-int64_t nd_levels(nd_search *d);
-int64_t nd_level_end(nd_search *d);
-int64_t nd_total_arcs(nd_search *d);
-int64_t nd_narcs(nd_search *d);
-int64_t nd_noff(nd_search *d);
-int64_t nd_nnew(nd_search *d);
-int32_t *nd_dst(nd_search *d);
-void *nd_bes(nd_search *d);
-int64_t *nd_offsets(nd_search *d);
-int32_t *nd_parent(nd_search *d);
-int32_t *nd_parent_be(nd_search *d);
-int64_t nd_nrequests(nd_search *d);
-uint32_t *nd_requests(nd_search *d);
-int64_t nd_cache_bytes(nd_search *d);
-int nd_uncached(nd_search *d);
-"""
-
-_TIMED_CDEF = """
-typedef struct nt_search nt_search;
-nt_search *nt_new(nd_search *d, int clock, int condense, int prio, const int32_t *timed_g, int ntp,
-                  const int32_t *tplaces);
-void nt_free(nt_search *t);
-void nt_set_watch(nt_search *t, int watch);
-int64_t nt_level_start(nt_search *t);
-int nt_put_ready(nt_search *t, int g, const uint32_t *key, int64_t n, const int64_t *pairs);
-int nt_put_effect(nt_search *t, int g, const uint32_t *key, int64_t n, const int32_t *entries);
-int nt_put_shift(nt_search *t, uint32_t p, uint32_t id, uint32_t f, uint32_t nid);
-int nt_put_readies(nt_search *t, const int64_t *buf, int64_t n);
-int nt_put_effects(nt_search *t, const int32_t *buf, int64_t n);
-int nt_put_adds(nt_search *t, const uint32_t *buf, int64_t n);
-int nt_put_shifts(nt_search *t, const uint32_t *buf, int64_t n);
-int nt_run(nt_search *t, int64_t until, int64_t max_states, int64_t max_arcs);
-int64_t nt_cache_bytes(nt_search *t);
-"""
 
 #: `auto` builds the net's C once the search has expanded this many states, or GENERATE_PER_LINE times the
 #: lines of C if that is more (a large net's C takes seconds to compile), or once each state needs the
@@ -88,23 +40,6 @@ GENERATE_PER_LINE: int = 4
 #: the same for the written places' new ids (0: every result is cached)
 UNCACHED_AFTER: int = 4096
 
-#: the multi-threaded search (`_threads.c`, cpn.statespace.threads), compiled in with the net's C
-_THREADS_CDEF = """
-typedef struct th_search th_search;
-th_search *th_new(int n, int K, int G, const int32_t *nread, const int32_t *nwrite, const int32_t *fields,
-                  void *gen, const uint32_t *s0, const uint8_t *widths, int64_t max_states, int64_t max_arcs,
-                  int64_t uncache_after);
-int th_widths(th_search *h, uint8_t *out);
-int th_start(th_search *h);
-int th_wait(th_search *h, int ms);
-void th_request_stop(th_search *h);
-void th_progress(th_search *h, int64_t *out);
-void th_sizes(th_search *h, int64_t *out);
-int th_assemble(th_search *h, cs_store *store, int64_t *offsets, int32_t *dst, void *bes, int be16,
-                int32_t *parent, int32_t *parent_be);
-void th_free(th_search *h);
-"""
-
 ND_DONE, ND_CHECK, ND_MAX_STATES, ND_MAX_ARCS, ND_NEED, _, ND_WIDE_BE = range(7)
 _U32 = 1 << 32
 
@@ -112,21 +47,13 @@ _U32 = 1 << 32
 def library(code=None, timed: bool = False):
     """The native search's library; with `code` (a `NativeCode`), the net's generated C compiled in, and
     the multi-threaded search (`_threads.c`, `cpn.statespace.threads`) with it; with `timed`, the search
-    of timed nets and nets with priorities (`_timed.c`, `cpn.statespace.nativetimed`)."""
-    threads = code is not None and not timed
-    names = ("_packed.c", "_search.c") + (("_timed.c",) if timed else ()) + (("_threads.c",) if threads else ())
-    # POSIX for the threads: their barriers and clock (-std=c99 alone declares neither)
-    parts = ["#define _POSIX_C_SOURCE 200809L", "#define ND_THREADS"] if threads else []
-    parts += ["#define ND_GENERATED"] if code is not None else []
-    text = sources(*(f"statespace/{name}" for name in names))
-    if text is None:
-        return None
-    parts.append(text)
+    of timed nets and nets with priorities (`_timed.c`, `cpn.statespace.nativetimed`). The libraries and
+    their units are the build manifest's (`cpn._native.manifest`)."""
     if code is None:
-        return load_library("\n".join(parts), _CDEF + (_TIMED_CDEF if timed else ""))
-    if threads:
-        return load_library("\n".join(parts + [code.source]), _CDEF + _THREADS_CDEF + code.cdef, ("-pthread",))
-    return load_library("\n".join(parts + [code.source]), _CDEF + code.cdef)
+        return build("search-timed" if timed else "search")
+    if timed:
+        raise ValueError("the search of timed nets takes no generated C")
+    return build("search-net-threads", code.source)
 
 
 def generated(engine, options) -> tuple[object | None, list[str]]:

@@ -26,31 +26,14 @@ from array import array
 from collections.abc import Sequence
 from itertools import chain
 
-from cpn._util.cbuild import load_library, sources, why_unavailable
-
-_CDEF = """
-typedef struct cs_store cs_store;
-cs_store *cs_new(int nf, const uint8_t *w);
-void cs_free(cs_store *s);
-int64_t cs_find(cs_store *s, const uint8_t *r);
-int64_t cs_add_many(cs_store *s, const uint8_t *recs, int64_t n, int32_t *ids, int32_t *fresh);
-int cs_widen(cs_store *s, const uint8_t *w);
-int64_t cs_count(cs_store *s);
-int cs_width(cs_store *s);
-const uint8_t *cs_widths(cs_store *s);
-const uint8_t *cs_arena(cs_store *s);
-int64_t cs_nbytes(cs_store *s);
-void cs_trim(cs_store *s);
-"""
+from cpn._util.cbuild import build, why_unavailable
 
 _CODES = {1: "B", 2: "H", 4: "I", 8: "Q"}
 _CHUNK = 4096  # records decoded per copy when the states are iterated
 
 
 def _library():
-    source = sources("statespace/_packed.c")
-    # the C source names its struct; cffi sees it as opaque
-    return None if source is None else load_library(source, _CDEF)
+    return build("store")
 
 
 def packed_unavailable() -> str | None:

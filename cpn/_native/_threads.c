@@ -32,11 +32,8 @@
 #include <pthread.h>
 #include <time.h>
 
-/* compiled after this file (cpn/engine/_cnet.c, with ND_THREADS): another context over the tables of
- * the net's C, and the end of their sharing */
-static void *gen_clone(void *g);
-static void gen_unshare(void *g);
-void gen_free(void *g);
+#include "_cnet.h"
+#include "_threads.h"
 
 enum { TH_RUNNING = -9, TH_STOPPED = 8, TH_FALLBACK = 7, TH_NO_MEMORY = 5, TH_COMPLETE = 9 };
 #define TH_OPEN 0xFFFFFFFFu       /* an arc whose destination another thread stores */
@@ -53,8 +50,6 @@ static int th_push(th_buf *b, int64_t more) {
     }
     return grow((void **)&b->v, &b->cap, b->n + more, 4);
 }
-
-typedef struct th_search th_search;
 
 typedef struct {
     th_search *h;

@@ -19,6 +19,8 @@
  * the locks: the same multisets and binding elements, numbered differently from run to run.
  */
 
+#include "_cnet.h"
+
 #ifdef ND_THREADS
 #include <sched.h>
 static void g_lock(int *l) {
@@ -306,7 +308,7 @@ void gen_free(void *g) {
 #ifdef ND_THREADS
 /* Another context over g's tables, for another thread: the tables are shared from now on (NULL without
  * memory). */
-static void *gen_clone(void *g) {
+void *gen_clone(void *g) {
     gtab *tb = ((gctx *)g)->tb;
     tb->shared = 1;
     for (int p = 0; p < tb->P; p++) tb->mk[p].shared = tb->dl[p].shared = 1;
@@ -315,7 +317,7 @@ static void *gen_clone(void *g) {
 
 /* The threads are done (their contexts freed): the tables are one thread's again, the arrays kept for
  * readers without a lock freed. */
-static void gen_unshare(void *g) {
+void gen_unshare(void *g) {
     gtab *tb = ((gctx *)g)->tb;
     tb->shared = 0;
     g_keep_free(&tb->kept);

@@ -8,9 +8,7 @@
  * (cpn/statespace/scc.py): roots in increasing order, arcs in CSR order, SCCs numbered as they complete,
  * members in the order they leave Tarjan's stack. So both give the same decomposition, number for number.
  */
-#include <stdint.h>
-#include <stdlib.h>
-#include <string.h>
+#include "_graph.h"
 
 #define ARCS_FROM(v) ((v) < nexp ? off[v] : 0)
 #define ARCS_TO(v) ((v) < nexp ? off[(v) + 1] : 0)

@@ -21,10 +21,12 @@
  * number and the indexes of the groups whose ready list is missing): the engine computes the whole state in
  * its own order, fills the caches with what it used, and the state is expanded again. */
 
+#include "_timed.h"
+
 #define ND_LEVEL 7
 #define ND_NONE 0xFFFFFFFFu
 
-typedef struct {
+struct nt_search {
     nd_search *d;
     int G;                   /* d's groups (d may be freed first) */
     int clock, condense, prio, watch;
@@ -41,7 +43,7 @@ typedef struct {
     uint32_t *ekey;
     uint32_t *miss; int nmiss;   /* the groups whose ready list the state being expanded misses */
     int64_t level_start;
-} nt_search;
+};
 
 nt_search *nt_new(nd_search *d, int clock, int condense, int prio, const int32_t *timed_g, int ntp,
                   const int32_t *tplaces) {

@@ -1,0 +1,31 @@
+/* The standard report's graph algorithms (_graph.c): what Python calls (cpn/statespace/graphnative.py). */
+#ifndef CPN_GRAPH_H
+#define CPN_GRAPH_H
+
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* cffi: begin */
+int64_t gr_scc(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, int32_t *comp,
+               int32_t *members, int32_t *start, uint8_t *terminal, uint8_t *nontrivial);
+int gr_scc_arcs(int64_t nexp, const int64_t *off, const int32_t *dst, const int32_t *comp,
+                const int32_t *members, const int32_t *start, int64_t count, int64_t *out);
+int64_t gr_max_id(const void *ids, int bw, int64_t m);
+void gr_mark_ids(const void *ids, int bw, int64_t m, uint8_t *seen);
+void gr_map_ids(const void *ids, int bw, int64_t m, const int32_t *table, void *out, int ow);
+int64_t gr_dead(int64_t nexp, const int64_t *off, int32_t *out);
+int gr_reverse(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, int64_t *poff, int32_t *pred);
+int gr_live(int64_t n, int64_t nexp, const int64_t *off, const void *labels, int lw, int ntrans,
+            const int32_t *comp, const int32_t *members, const int32_t *start, const uint8_t *terminal,
+            int64_t count, uint8_t *live);
+int gr_fairness(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, const void *labels, int lw,
+                int ntrans, const int32_t *comp, const int32_t *members, const int32_t *start,
+                const uint8_t *nontrivial, int64_t count, uint8_t *cls);
+int gr_columns(const uint8_t *arena, int64_t n, int size, int nf, const int32_t *fo, const int32_t *fw,
+               const int64_t *so, const int64_t *cap, uint8_t *seen);
+int64_t gr_max_sum(const uint8_t *arena, int64_t n, int size, int nf, const int32_t *fo, const int32_t *fw,
+                   const int64_t *to, const int64_t *table);
+/* cffi: end */
+
+#endif
