@@ -267,6 +267,15 @@ class ToAst(Transformer_NonRecursive):
         return A.ValDecl(self.span(meta), A.PWild(self.span(meta)), expr, ty)
 
     @v_args(meta=True)
+    def val_rec(self, meta, items):
+        """`val rec f = fn p1 => e1 | p2 => e2`: the function `fun f p1 = e1 | f p2 = e2`."""
+        name, rules = items
+        return A.FunDecl(self.span(meta), str(name),
+                         [A.Clause(pat.span if pat.span else self.span(meta), [pat], body) for pat, body in rules])
+
+    lval_rec = val_rec
+
+    @v_args(meta=True)
     def val_decl(self, meta, items):
         name, ty, expr = items
         return A.ValDecl(self.span(meta), A.PVar(self.tspan(name), str(name)), expr, ty)

@@ -162,7 +162,7 @@ def declared_functions(text: str) -> list[tuple[str, str]]:
     blocks: list[str] = []  # the open let/local/struct/sig blocks; 'local-in' once a local's 'in' is read
     for m in re.finditer(r'"(?:[^"\\]|\\.)*"|(?<![\w\'])(let|local|struct|sig|in|end)(?![\w\'])'
                          r"|(?<![\w'])(fun|val|and|exception)(?![\w'])"
-                         r"(?:\s+(?:\(\s*)?(?:op\s+)?(?!(?:fun|val|and|in|end|local|let)\b)([A-Za-z][A-Za-z0-9_']*))?",
+                         r"(?:\s+(?:rec\s+)?(?:\(\s*)?(?:op\s+)?(?!(?:fun|val|and|in|end|local|let)\b)([A-Za-z][A-Za-z0-9_']*))?",
                          clean):
         kw = m.group(1) or m.group(2)
         if _nest(kw, blocks):
