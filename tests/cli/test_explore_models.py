@@ -7,12 +7,7 @@ import sys
 
 import pytest
 
-import cpn
-
-if not hasattr(cpn, "load") or not hasattr(cpn, "__version__"):
-    pytest.skip("cpn.load is not available yet", allow_module_level=True)
-
-from cpn.cli.main import main  # noqa: E402
+from cpn.cli.main import main
 
 ROOT = os.path.abspath(os.path.join(os.path.dirname(__file__), "..", ".."))
 MODELS = os.path.join(ROOT, "tests", "statespace", "models")

@@ -22,8 +22,6 @@ LIMIT = SHARED + "/validation/CPNBook-LimitProtocol/7-2LimitProtocol.cpn"
 MAKE_NETS = SHARED + "/bench/make_cpn_nets.py"
 BENCH_NETS = os.path.join(os.path.dirname(__file__), "..", "..", "bench", "nets")
 
-pytestmark = pytest.mark.skipif(not hasattr(cpn, "load"), reason="the front end (cpn.load) has not landed yet")
-
 
 @dataclass
 class Space:
@@ -192,8 +190,6 @@ def test_bench_nets_match_the_published_counts(bench_cpn, net, n):
 @pytest.mark.parametrize("net,n", [("dp", 5), ("ms", 3)])
 def test_bench_cpn_equals_our_cpnet_version(bench_cpn, net, n):
     ours = os.path.join(BENCH_NETS, f"{net}.cpnet")
-    if not os.path.exists(ours):
-        pytest.skip(f"{ours} not written yet")
     model = cpn.load(ours, set={"N": n})
     a = explore(str(bench_cpn / f"{net}_{n}.cpn"), scc=False)
     b = _explore_model(model)

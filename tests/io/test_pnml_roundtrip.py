@@ -70,12 +70,6 @@ def _figures(path):
             f.properties)
 
 
-def _loader_missing() -> bool:
-    import cpn
-
-    return not hasattr(cpn, "load")
-
-
 SMALL = ["TokenRing-COL-005", "DatabaseWithMutex-COL-02", "Sudoku-COL-AN02", "BridgeAndVehicles-COL-V04P05N02",
          "ResAllocation-PT-R003C005", "IBM319-PT-none"]
 
@@ -83,8 +77,6 @@ SMALL = ["TokenRing-COL-005", "DatabaseWithMutex-COL-02", "Sudoku-COL-AN02", "Br
 @needs_shared
 @pytest.mark.parametrize("name", SMALL)
 def test_written_pnml_has_the_same_state_space(name, tmp_path):
-    if _loader_missing():
-        pytest.skip("cpn.load does not exist yet")
     src = os.path.join(VALIDATION, name, "model.pnml")
     out = tmp_path / "again.pnml"
     write(translate(src), out)
@@ -119,8 +111,6 @@ arc Put -> Fork : p ++ PH.col ((PH.ord p + 1) mod 4);
 
 
 def test_cpnet_model_written_and_read_back_has_the_same_state_space(tmp_path):
-    if _loader_missing():
-        pytest.skip("cpn.load does not exist yet")
     src = tmp_path / "phil.cpnet"
     src.write_text(CPNET)
     out = tmp_path / "phil.pnml"
@@ -154,8 +144,6 @@ instance S2 = Stage { In = B, Out = C };
 def test_net_with_modules_is_written_flattened_as_a_pt_net(tmp_path):
     import cpn
 
-    if not hasattr(cpn, "loads"):
-        pytest.skip("cpn.loads does not exist yet")
     model = cpn.loads(HIERARCHICAL, "stages.cpnet")
     out = tmp_path / "stages.pnml"
     write(model, out)

@@ -364,9 +364,6 @@ def test_partition_order():
 @pytest.mark.parametrize("weight, states", [(1, 2), (2, 3), (3, 3)])
 def test_inhibitor_weight_semantics_end_to_end(weight, states):
     import cpn
-
-    if not hasattr(cpn, "loads"):
-        pytest.skip("cpn.loads does not exist yet")
     from cpn.cli.validate import explore_figures
 
     text = translate_text(pt(f"""
@@ -381,9 +378,6 @@ def test_inhibitor_weight_semantics_end_to_end(weight, states):
 
 def test_reset_arc_end_to_end():
     import cpn
-
-    if not hasattr(cpn, "loads"):
-        pytest.skip("cpn.loads does not exist yet")
     from cpn.cli.validate import explore_figures
 
     text = translate_text(pt("""

@@ -69,8 +69,6 @@ def test_cpn_tools_timed_samples_run_in_c(name, fills):
     from tests._shared import SHARED
 
     path = os.path.join(SHARED, "cpntools-samples", name)
-    if not os.path.exists(path):
-        pytest.skip(f"{path} not found")
     model = cpn.load(path)
     for condensation in (False, True):
         c = _both(model, condensation)

@@ -10,9 +10,6 @@ import cpn
 from cpn.statespace import ExploreOptions, Explorer, StopReason, replay, shortest_trace
 from tests._shared import SHARED, needs_shared
 
-if not hasattr(cpn, "load"):
-    pytest.skip("cpn.load is not available yet", allow_module_level=True)
-
 HERE = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(os.path.dirname(HERE))
 MODELS = os.path.join(HERE, "models")

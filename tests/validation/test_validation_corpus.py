@@ -27,17 +27,9 @@ def _instances():
 INSTANCES = _instances()
 
 
-def _loader_missing() -> bool:
-    import cpn
-
-    return not hasattr(cpn, "load")
-
-
 @needs_shared
 @pytest.mark.parametrize("inst", INSTANCES, ids=[i["name"] for i in INSTANCES])
 def test_instance_matches_published_figures(inst):
-    if _loader_missing():
-        pytest.skip("cpn.load does not exist yet")
     [(inst, skip)] = select([inst], None, None)
     if skip:
         pytest.skip(skip)
