@@ -5,7 +5,11 @@ The public door's main entry; imports every front-end layer (lang, net, io) and 
 
 from __future__ import annotations
 
+import contextlib
 import os
+import pickle
+import re
+from collections import OrderedDict
 
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import ConfigurationError, ModelError
@@ -210,16 +214,126 @@ def loads(text: str, filename: str = "<string>", set: dict | None = None) -> Mod
     >>> m.net.places[0].initial
     {(): 3}
     """
-    overrides = parse_overrides(normalise_overrides(set))  # once, before checking: a bad value is a usage error
+    values = normalise_overrides(set)
+    overrides = parse_overrides(values)  # once, before checking: a bad value is a usage error
+    cache = _active
+    if cache is not None:
+        key = cache.key(text, filename, values)
+        found = cache.nets.get(key)
+        if found is not None:
+            cache.nets.move_to_end(key)
+            return Model(filename, text, found[0], list(found[1]))
     model = None
     try:
-        model = _parse(text, filename)
+        model = _parse(text, filename) if cache is None else cache.parse(text, filename, key[2])
         checked = _check(model, overrides)
         net = _lower(checked)
     except RecursionError:
         # chains of operators are read in loops: only expressions nested inside each other get here
         raise ModelError([too_deep(model.decls if model is not None else [], filename)], {filename: text}) from None
+    if cache is not None:
+        cache.keep(cache.nets, key, (net, tuple(checked.warnings)))
     return Model(filename, text, net, checked.warnings)
+
+
+class LoadCache:
+    """What `loads` reuses while `caching()` is active: the parse of a text and the checked, flattened net
+    of a text with a set of constant values.
+
+    A key holds everything the result depends on: the name the text is loaded under (positions and the
+    paths of `use` name it), the text, the bytes of every file it uses (recursively) and, for a net, the
+    constant values. A parse is kept pickled and each type check gets its own copy: the checker annotates
+    and rewrites the tree it is given. A net is shared by the models loaded from it (nothing writes into a
+    net); every `Model.engine()` builds a fresh engine from it (its stores and memo tables are its own), and
+    the compiled engine compiles the same generated code once per process (`cpn.engine.compiled`).
+    """
+
+    TREES = 16  # parses kept (a mutant is a text of its own)
+    NETS = 8  # nets kept (the MODBUS model's is a few megabytes)
+
+    def __init__(self):
+        self.trees: OrderedDict = OrderedDict()
+        self.nets: OrderedDict = OrderedDict()
+
+    def key(self, text: str, filename: str, values: dict[str, str]) -> tuple:
+        return filename, text, _used_files(text, filename), tuple(sorted(values.items()))
+
+    def parse(self, text: str, filename: str, used: tuple):
+        """The parse of `text` (a fresh copy of the kept one)."""
+        key = (filename, text, used)
+        kept = self.trees.get(key)
+        if kept is not None:
+            self.trees.move_to_end(key)
+            return pickle.loads(kept)
+        tree = _parse(text, filename)
+        try:
+            self.keep(self.trees, key, pickle.dumps(tree, pickle.HIGHEST_PROTOCOL))
+        except RecursionError:  # expressions nested too deeply to pickle: parsed again the next time
+            pass
+        return tree
+
+    def keep(self, table: OrderedDict, key, value) -> None:
+        table[key] = value
+        while len(table) > (self.TREES if table is self.trees else self.NETS):
+            table.popitem(last=False)
+
+
+_active: LoadCache | None = None
+
+
+@contextlib.contextmanager
+def caching():
+    """Within the block, `load` and `loads` parse a text once and type-check and flatten it once per
+    set of constant values (`LoadCache`); a `check` or `mutate` run loads each model this way. Nested
+    blocks share the outer one's cache.
+
+    >>> import cpn
+    >>> from cpn.model import caching
+    >>> text = "val N = 2; colset U = unit; place A : U = N`(); trans t; arc A -> t;"
+    >>> with caching():
+    ...     a, b, c = cpn.loads(text), cpn.loads(text), cpn.loads(text, set={"N": 3})
+    >>> a.net is b.net, a.net is c.net
+    (True, False)
+    """
+    global _active
+    if _active is not None:
+        yield _active
+        return
+    _active = LoadCache()
+    try:
+        yield _active
+    finally:
+        _active = None
+
+
+_USE = re.compile(r'\buse\s+"([^"\n]*)"')
+
+
+def _used_files(text: str, filename: str) -> tuple:
+    """The files `text` may use, directly or through others, with their bytes (None: unreadable), as
+    `cpn.lang.uses` finds them; a `use` in a comment or a string is counted too (it only costs a read)."""
+    out: list = []
+    seen: set = set()
+    stack = [(text, filename)]
+    while stack:
+        body, name = stack.pop()
+        if "use" not in body:
+            continue
+        base = os.path.dirname(name) if name and not name.startswith("<") else "."
+        for m in _USE.finditer(body):
+            path = os.path.normpath(os.path.join(base, m.group(1)))
+            if path in seen:
+                continue
+            seen.add(path)
+            try:
+                with open(path, "rb") as fh:
+                    data = fh.read()
+            except OSError:
+                data = None
+            out.append((path, data))
+            if data is not None:
+                stack.append((data.decode("utf-8", "replace"), path))
+    return tuple(out)
 
 
 def _original_position(span: Span, translation) -> str:

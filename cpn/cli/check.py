@@ -78,6 +78,13 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
 
 
 def run(args) -> int:
+    from cpn.model import caching
+
+    with caching():  # a model is parsed once, and checked once per set of constant values (cpn.model.LoadCache)
+        return _run(args)
+
+
+def _run(args) -> int:
     from cpn import __version__
     from cpn.diagnostics import render
     from cpn.errors import ConfigurationError, EvaluationError, ModelError

@@ -7,6 +7,7 @@ per tuple of those ids (LTSmin's transition groups): most states reuse a result 
 
 from __future__ import annotations
 
+import functools
 import operator
 from itertools import chain
 
@@ -30,6 +31,14 @@ MEMO_MISS_RATE: float = 0.8
 #: a transition keeps at most this many results; past it they are dropped (MS(8)'s Reply sees 111,537 keys,
 #: each about once)
 MEMO_MAX: int = 1 << 16
+
+
+@functools.lru_cache(maxsize=4096)
+def compiled_code(src: str, filename: str):
+    """The code object of generated source, compiled once per process: a net loaded with other constant
+    values, or a mutant, generates the same text for most transitions (values are in the namespace, not in
+    the text). A code object is immutable; each engine executes it in a namespace of its own."""
+    return compile(src, filename, "exec")
 
 
 def canonical_key(d: dict):
@@ -195,7 +204,7 @@ class CompiledEngine(TimedSuccessors, EngineAPI):
         ev = self.ev
         glob["TIMEFN"] = lambda _u: ev.time
         for d, src in sources:
-            exec(compile(src, f"{FUNCTION_FILE}{d.name}>", "exec"), glob)  # noqa: S102 - generated from the AST
+            exec(compiled_code(src, f"{FUNCTION_FILE}{d.name}>"), glob)  # noqa: S102 - generated from the AST
         for d, _ in sources:
             functions[d.ref.uid] = glob[f"_F{d.ref.uid}"]
         return functions
@@ -226,7 +235,7 @@ class CompiledEngine(TimedSuccessors, EngineAPI):
             ev = self.ev
             glob["TIMEFN"] = lambda _u, ev=ev: ev.time
             filename = f"<cpn transition {t.name}>"
-            code = compile(src, filename, "exec")
+            code = compiled_code(src, filename)
             exec(code, glob)  # noqa: S102 - source generated from the typed AST, not from model text
             fn = glob[fname]
             self.sources[t.index] = src
@@ -557,7 +566,7 @@ class CompiledEngine(TimedSuccessors, EngineAPI):
             lines.append(f"        append((be, ({', '.join(comps)}{',' if n == 1 else ''})))")
         lines.append("    return out")
         src = "\n".join(lines)
-        exec(compile(src, f"<cpn successors of {self.net.name}>", "exec"), glob)  # noqa: S102 - generated
+        exec(compiled_code(src, f"<cpn successors of {self.net.name}>"), glob)  # noqa: S102 - generated
         self.successors_source = src
         return glob["successors"]
 

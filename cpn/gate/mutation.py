@@ -141,9 +141,12 @@ def mutate(scenarios: list, *, seed: int = 0, max_mutants: int | None = None, ma
     groups: dict[str, list] = {}
     for s in scenarios:
         groups.setdefault(s.model, []).append(s)
+    from cpn.model import caching
+
     for model_path, group in groups.items():
-        report.models.append(_mutate_model(model_path, group, seed, max_mutants, deadline, workers,
-                                           dict(overrides or {}), mutant_max_states, all_runs, on_outcome))
+        with caching():  # the original runs load their model once per set of values, as `check` does
+            report.models.append(_mutate_model(model_path, group, seed, max_mutants, deadline, workers,
+                                               dict(overrides or {}), mutant_max_states, all_runs, on_outcome))
     report.seconds = time.perf_counter() - t0
     return report
 

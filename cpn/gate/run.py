@@ -314,6 +314,8 @@ def check(path, **overrides) -> list[RunResult]:
     [('the only dead marking: everyone holds the left fork', 'holds')]
     """
     from cpn.gate.scenario import load_scenario
+    from cpn.model import caching
 
     scenario = load_scenario(path)
-    return [run_scenario(scenario, run, overrides) for run in scenario.runs]
+    with caching():
+        return [run_scenario(scenario, run, overrides) for run in scenario.runs]
