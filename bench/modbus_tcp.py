@@ -305,7 +305,8 @@ SCALE_GW = [(1, 1, 1), (1, 2, 3), (2, 1, 1), (2, 2, 3), (3, 1, 1), (3, 2, 3)]
 
 
 def scale(budget: float, rows: str) -> None:
-    print("| family | C | S | depth | NS | full (time cond.) | symmetry: orbits (full) | sweep-line (no cond.) |")
+    print("| family | C | S | depth | NS | full (time condensation) | symmetry: orbits (full graph) | "
+          "sweep-line (no condensation) |")
     print("|---|---|---|---|---|---|---|---|")
     srv = SCALE_SRV if rows == "all" else SCALE_SRV[:4]
     gw = SCALE_GW if rows == "all" else SCALE_GW[:3]
@@ -321,8 +322,8 @@ def scale(budget: float, rows: str) -> None:
             if r is None:
                 return "error"
             text = f"{r[key]:,}" if r[key] is not None else "-"
-            return text + (f" in {r['wall']:.1f} s" if r["complete"] else f" (stopped at {budget:.0f} s)")
-        symtxt = "error" if sym is None else f"{sym['states']:,} ({sym['full_states'] or 0:,}) in {sym['wall']:.1f} s" + \
+            return text + (f" in {r['seconds']:.1f} s" if r["complete"] else f" (stopped at {budget:.0f} s)")
+        symtxt = "error" if sym is None else f"{sym['states']:,} ({sym['full_states'] or 0:,}) in {sym['seconds']:.1f} s" + \
             ("" if sym["complete"] else " (stopped)")
         print(f"| {family} | {c} | {s} | {d} | {ns} | {cell(full)} | {symtxt} | {cell(sweep)} |", flush=True)
 
