@@ -15,12 +15,13 @@ def test_the_records_model_has_its_hand_checked_figures(name, reference):
     assert figures(name, reference=reference) == (2, 1, 1)
 
 
-@pytest.mark.parametrize("src", ["fun g ({seq = s, ...} : R) = s;", "fun g ({seq = s ...} : R) = s;",
-                                 "fun g ({seq : C, ...} : R) = seq;", "fun g ({...} : R) = 1;",
-                                 "fun g {seq, data} = seq + data;"])
-def test_record_patterns_parse(src):
+@pytest.mark.parametrize("src,value", [("fun g ({seq = s, ...} : R) = s;", 2), ("fun g ({seq = s ...} : R) = s;", 2),
+                                       ("fun g ({seq : C, ...} : R) = seq;", 2), ("fun g ({...} : R) = 1;", 1),
+                                       ("fun g {seq, data} = seq + data;", 5)])
+def test_record_patterns_parse_and_bind_their_fields(src, value):
     decls = "colset C = int; colset R = record seq : C * data : C;\n"
-    cpn.loads(decls + src, "m.cpnet")
+    model = cpn.loads(decls + src + "\nval v = g {seq = 2, data = 3};", "m.cpnet")
+    assert list(model.net.globals.constants.values()) == [value]
 
 
 def test_a_flexible_record_pattern_prints_as_written():
