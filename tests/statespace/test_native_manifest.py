@@ -6,6 +6,7 @@ from __future__ import annotations
 
 import ast
 import os
+import pathlib
 import re
 import subprocess
 
@@ -114,16 +115,20 @@ _PROTOTYPE = re.compile(r"\b(cs|nd|nt|th|gr|gen)_\w+\s*\([^)]*\)\s*;")
 
 
 def test_no_module_declares_c_functions_in_a_python_string():
-    offenders = []
-    for folder, _, files in os.walk(PACKAGE):
-        for f in files:
-            if f.endswith(".py"):
-                path = os.path.join(folder, f)
-                with open(path, encoding="utf-8") as fh:
-                    tree = ast.parse(fh.read())
-                for node in ast.walk(tree):
-                    if isinstance(node, ast.Constant) and isinstance(node.value, str) and _PROTOTYPE.search(node.value):
-                        offenders.append(f"{os.path.relpath(path, ROOT)}:{node.lineno}")
+    offenders = [f"{path.relative_to(ROOT)}:{node.lineno}"
+                 for path in sorted(pathlib.Path(PACKAGE).rglob("*.py"))
+                 for node in ast.walk(ast.parse(path.read_text(encoding="utf-8")))
+                 if isinstance(node, ast.Constant) and isinstance(node.value, str) and _PROTOTYPE.search(node.value)]
+    assert not offenders
+
+
+def test_only_the_build_compiles_c_and_declares_it_to_cffi():
+    """Every library is built by name from the manifest (cbuild.build): no module builds C of its own."""
+    offenders = [f"{path.relative_to(ROOT)}:{node.lineno}"
+                 for path in sorted(pathlib.Path(PACKAGE).rglob("*.py")) if path.name != "cbuild.py"
+                 for node in ast.walk(ast.parse(path.read_text(encoding="utf-8")))
+                 if isinstance(node, ast.Call) and (getattr(node.func, "id", None) == "load_library"
+                                                    or getattr(node.func, "attr", None) in ("load_library", "cdef"))]
     assert not offenders
 
 
