@@ -641,6 +641,10 @@ def _build(spec: PropertySpec, lang: PropertyLanguage) -> Check:
         return NoLivelock(spec, set(_names(spec, lang, "progress")) if f.get("progress") else None)
     if k == "ctl":
         return _ctl(spec, lang)
+    if k == "ltl":
+        from cpn.properties.ltl import build_ltl
+
+        return build_ltl(spec, lang)
     raise AssertionError(k)
 
 

@@ -17,9 +17,7 @@ from collections.abc import Callable
 
 from cpn._util import did_you_mean
 from cpn.diagnostics import Diagnostic, Span
-from cpn.engine.codegen import ExprCompiler, Namespace, Unsupported
 from cpn.engine.protocol import capability, has
-from cpn.engine.runtime import RUNTIME
 from cpn.errors import ModelError
 from cpn.expr import nodes as E
 from cpn.expr.evaluate import Evaluator
@@ -38,6 +36,9 @@ CTL_UNARY = {"AG": "AG", "AF": "AF", "EF": "EF", "EG": "EG", "AX": "AX", "EX": "
              "INV": "AG", "POS": "EF", "EV": "AF", "ALONG": "EG"}
 CTL_BINARY = {"AU", "EU"}
 CTL_ARC = {"EXB", "AXB"}  # ASK-CTL's modal operators over the binding element that occurs
+# LTL (kind = "ltl"); a model's own declaration of one of these names wins (the long names remain)
+LTL_UNARY = {"G": "G", "F": "F", "X": "X", "ALWAYS": "G", "EVENTUALLY": "F", "NEXT": "X"}
+LTL_BINARY = {"U": "U", "R": "R", "UNTIL": "U", "RELEASE": "R"}
 _INSTANCE = re.compile(r"^(.*) (\d+)$")
 
 
@@ -208,6 +209,12 @@ class PropertyLanguage:
         for name in CTL_ARC:
             self.ctl_symbols[name] = Symbol(name, "builtin", T.TFun(T.TTuple([T.STRING, T.BOOL]), T.BOOL))
         self.ctl_env = self.env.child(self.ctl_symbols)
+        self.ltl_symbols: dict[str, Symbol] = {}
+        for name in LTL_UNARY.keys() | LTL_BINARY.keys():
+            if name not in checked.globals:
+                arg = T.BOOL if name in LTL_UNARY else T.TTuple([T.BOOL, T.BOOL])
+                self.ltl_symbols[name] = Symbol(name, "builtin", T.TFun(arg, T.BOOL))
+        self.ltl_env = self.env.child(self.ltl_symbols)
 
     # ------------------------------------------------------------------ binding-element atoms
     def resolve_transitions(self, name: str) -> list[int] | None:
@@ -251,7 +258,8 @@ class PropertyLanguage:
         return match
 
     # ------------------------------------------------------------------ checking
-    def check(self, text: str, origin, fallback: Span, want: T.Type, what: str, ctl: bool = False) -> A.Expr:
+    def check(self, text: str, origin, fallback: Span, want: T.Type, what: str, ctl: bool = False,
+              ltl: bool = False) -> A.Expr:
         """Parse and type `text`; raise ModelError with spans in the scenario file."""
         try:
             m = parse(f"{PREFIX}{text};", fallback.file)
@@ -264,7 +272,8 @@ class PropertyLanguage:
         ck = self._checker
         ck.diags = []
         expr = self._quoted_places(expr, ck)
-        t = ck.infer_top(expr, self.ctl_env if ctl else self.env) if not ck.diags else None
+        env = self.ctl_env if ctl else self.ltl_env if ltl else self.env
+        t = ck.infer_top(expr, env) if not ck.diags else None
         if t is not None:
             ck.unify(t, want, expr.span, what)
         if not ck.diags:
@@ -364,22 +373,22 @@ class PropertyLanguage:
     def compile_checked(self, text: str, expr: A.Expr, span: Span | None) -> Compiled:
         uses_enabled = any(isinstance(n, A.Name) and n.ref is self.special.get("enabled") and n.ref is not None
                            for n in walk(expr))
-        ns = Namespace()
-        comp = _PredicateCompiler(ns, self.ev, self.symbols, capability(self.engine, "functions") or {})
-        body = comp.expr(self._tr.expr(expr))
-        glob = dict(RUNTIME)
-        glob.update(ns.objects)
-        glob["EVAL"] = self.ev.eval
-        glob["CTX"] = self.ctx
-        glob["MK"] = self.ctx.mk
         ev, engine = self.ev, self.engine
         uses_time = self._reads_clock(expr)
-        glob["TIMEFN"] = lambda _u: engine.clock(self.ctx.state)
-        glob["SETTIME"] = lambda s: setattr(ev, "time", engine.clock(s))
-        clock = "    SETTIME(S)\n" if uses_time else ""
-        src = f"def _property(I, S):\n    CTX.sid = I\n    CTX.state = S\n{clock}    return {body}\n"
-        exec(compile(src, f"<property {text[:40]}>", "exec"), glob)  # noqa: S102 - generated from the typed AST
-        raw = glob["_property"]
+        env = {"CTX": self.ctx, "MK": self.ctx.mk, "TIMEFN": lambda _u: engine.clock(self.ctx.state),
+               "SETTIME": lambda s: setattr(ev, "time", engine.clock(s))}
+        prologue = "    CTX.sid = I\n    CTX.state = S\n" + ("    SETTIME(S)\n" if uses_time else "")
+        translated = self._tr.expr(expr)
+        compiler = capability(engine, "predicate_compiler")
+        if compiler is not None:
+            places = {uid: acc.instances for uid, acc in self.symbols.items()}
+            raw = compiler(ev, places).function(translated, env, prologue, f"<property {text[:40]}>")
+        else:  # an engine without the compiler: the tree-walking evaluator, which reads places by accessors
+            def raw(sid, state, node=translated, ctx=self.ctx):
+                ctx.sid, ctx.state = sid, state
+                if uses_time:
+                    ev.time = engine.clock(state)
+                return ev.eval(node, {})
         errors = (MLError, MultisetError, ZeroDivisionError, IndexError, RecursionError)
         reads = sorted({p for n in walk(expr) if isinstance(n, A.Name) and n.ref is not None
                         and n.ref.uid in self.symbols for p in self.symbols[n.ref.uid].places})
@@ -434,83 +443,11 @@ class PropertyLanguage:
                          origin, fallback) from None
 
 
-class _PredicateCompiler(ExprCompiler):
-    """The engine's expression compiler, plus place access and one-clause `fn` (so that `forall P (fn m
-    => ...)` runs as a Python lambda, not in the tree-walking evaluator: 20x faster on DP(10))."""
-
-    def __init__(self, ns, ev, places: dict[int, _Accessor], functions: dict):
-        super().__init__(ns, ev, {}, {}, {})
-        self.places = places
-        self.functions = functions
-        self.locals: dict[int, str] = {}
-
-    def _c_Name(self, e):
-        sym = e.ref
-        if sym is not None and sym.kind == "local":
-            py = self.locals.get(sym.uid)
-            if py is None:
-                raise Unsupported()
-            return py
-        return super()._c_Name(e)
-
-    def fallback(self, e):
-        node = self.ns.ref(e, "X")
-        used = {n.ref.uid for n in walk(e) if isinstance(n, E.Name) and n.ref.kind == "local"}
-        items = ", ".join(f"{uid}: {py}" for uid, py in self.locals.items() if uid in used)
-        return f"EVAL({node}, {{{items}}})"
-
-    def _c_Fn(self, e):
-        if len(e.rules) != 1:
-            raise Unsupported()
-        pat, body = e.rules[0]
-        names = _pattern_names(pat)
-        if names is None:
-            raise Unsupported()
-        saved = dict(self.locals)
-        params = []
-        for uid in names:
-            py = f"_L{uid}" if uid is not None else "_"
-            params.append(py)
-            if uid is not None:
-                self.locals[uid] = py
-        try:
-            code = self.expr(body)
-        finally:
-            self.locals = saved
-        if isinstance(pat, E.PTuple):
-            return f"(lambda _t: (lambda {', '.join(params)}: {code})(*_t))"
-        return f"(lambda {params[0]}: {code})"
-
-    def _c_App(self, e):
-        if isinstance(e.fn, E.Name) and isinstance(e.arg, E.Const):
-            acc = self.places.get(e.fn.ref.uid)
-            if acc is not None and e.arg.value in acc.instances:
-                return f"MK(S, {acc.instances[e.arg.value]})"
-        return super()._c_App(e)
-
-
 def _fix_rule(x, fix):
     """Rewrite the expressions inside a (pattern, expression) rule or (label, expression) field."""
     if isinstance(x, tuple):
         return tuple(fix(y) if isinstance(y, A.Expr) else y for y in x)
     return x
-
-
-def _pattern_names(pat) -> list | None:
-    """Symbol uids bound by a pattern of plain variables (None for '_'), or None for other patterns."""
-    if isinstance(pat, E.PWild):
-        return [None]
-    if isinstance(pat, E.PVar) and pat.ref.kind == "local":
-        return [pat.ref.uid]
-    if isinstance(pat, E.PTuple):
-        out = []
-        for p in pat.items:
-            got = _pattern_names(p)
-            if got is None or len(got) != 1 or isinstance(p, E.PTuple):
-                return None
-            out.extend(got)
-        return out
-    return None
 
 
 def _binding_values(text: str) -> dict[str, str]:

@@ -1,0 +1,109 @@
+"""`kind = "ltl"` in scenario files: an LTL formula over the property language's atoms.
+
+The formula is a CPN ML boolean text in which the temporal operators are functions: ``G p``, ``F p``,
+``X p`` (or ``ALWAYS``, ``EVENTUALLY``, ``NEXT``), ``U (p, q)`` and ``R (p, q)`` (``UNTIL``,
+``RELEASE``), combined with ``not``, ``andalso``, ``orelse`` and ``if``; its largest parts without a
+temporal operator are the atoms, marking predicates as anywhere else (``enabled "Page'T 1"`` included).
+It holds when every infinite path from the initial marking satisfies it; a dead marking repeats forever
+(docs/specs.md). The check runs `cpn.checks.ltl` on the explored graph and gives a violation as a lasso:
+the path to a marking and a cycle back to it (or a path that ends in a dead marking).
+"""
+
+from __future__ import annotations
+
+from cpn.checks.ltl import check_ltl
+from cpn.checks.verdict import Verdict, path_evidence
+from cpn.diagnostics import Diagnostic
+from cpn.errors import ModelError
+from cpn.lang import ast as A
+from cpn.lang import types as T
+from cpn.properties.kinds import Check, _slice, _state_name
+from cpn.properties.predicates import LTL_BINARY, LTL_UNARY, walk
+
+
+class Ltl(Check):
+    def __init__(self, spec, formula: tuple, atoms: list):
+        super().__init__(spec)
+        self.formula = formula
+        self.atoms = atoms
+
+    def decide(self, view) -> Verdict:
+        if not view.complete:
+            return Verdict.unknown(view.reason)
+        truths = [view.truth(a) for a in self.atoms]
+        res = check_ltl(_Graph(view.g), self.formula, [t.__getitem__ for t in truths])
+        if res.holds:
+            return Verdict.holds(f"every path satisfies it ({res.product_states:,} states of the product with "
+                                 f"the {res.automaton_states}-state automaton of its negation)")
+        path = [s for _label, s in res.prefix]
+        hints = {(u, v): a for (_l, u), (a, v) in zip(res.prefix, res.prefix[1:])}
+        stutter = res.cycle and res.cycle[0][0] is None
+        cycle = [] if stutter else [s for _label, s in res.cycle]
+        arcs = None if stutter else [a for a, _s in res.cycle]
+        ev = path_evidence(view.g, path, cycle or None, arcs, hints)
+        end = path[-1]
+        if stutter:
+            msg = f"a path that ends in dead {_state_name(view, end)} does not satisfy it"
+        else:
+            msg = f"a path that cycles through {_state_name(view, end)} does not satisfy it"
+        return Verdict.violated(msg, ev)
+
+
+class _Graph:
+    """An explored graph as the LTL search sees a system: state ids, arcs labelled by their index."""
+
+    def __init__(self, g) -> None:
+        self.offsets, self.dst = g.offsets, g.dst
+
+    def initial_state(self) -> int:
+        return 0
+
+    def successors(self, u: int) -> list:
+        dst = self.dst
+        return [(a, dst[a]) for a in range(self.offsets[u], self.offsets[u + 1])]
+
+
+def build_ltl(spec, lang) -> Ltl:
+    text, origin, span = spec.fields["formula"], spec.texts.get("formula"), spec.spans.get("formula", spec.span)
+    expr = lang.check(text, origin, span, T.BOOL, "an LTL formula", ltl=True)
+    syms = {id(s): n for n, s in lang.ltl_symbols.items()}
+    atoms: list = []
+
+    def op_of(e) -> str | None:
+        if isinstance(e, A.App) and isinstance(e.fn, A.Name) and e.fn.ref is not None and id(e.fn.ref) in syms:
+            return syms[id(e.fn.ref)]
+        return None
+
+    def temporal(e) -> bool:
+        return any(isinstance(n, A.Name) and n.ref is not None and id(n.ref) in syms for n in walk(e))
+
+    def conv(e) -> tuple:
+        if not temporal(e):
+            atoms.append(lang.compile_checked(_slice(text, origin, e), e, span))
+            return ("ap", len(atoms) - 1)
+        op = op_of(e)
+        if op in LTL_BINARY:
+            a, b = e.arg.items
+            return (LTL_BINARY[op], conv(a), conv(b))
+        if op in LTL_UNARY:
+            return (LTL_UNARY[op], conv(e.arg))
+        if isinstance(e, A.App) and isinstance(e.fn, A.Name) and e.fn.name == "not":
+            return ("not", conv(e.arg))
+        if isinstance(e, A.BinOp) and e.op in ("andalso", "orelse"):
+            return ("and" if e.op == "andalso" else "or", conv(e.left), conv(e.right))
+        if isinstance(e, A.If):
+            c = conv(e.cond)
+            return ("or", ("and", c, conv(e.then)), ("and", ("not", c), conv(e.else_)))
+        if isinstance(e, A.Annot):
+            return conv(e.expr)
+        from cpn.properties.predicates import _remap
+
+        raise _remap(ModelError([Diagnostic(
+            "E0702", "a temporal operator can only be combined with not, andalso, orelse and if-then-else",
+            e.span, hint="Move the temporal operator out of the function, let or case expression.")]),
+            text, origin, span)
+
+    return Ltl(spec, conv(expr), atoms)
+
+
+__all__ = ["Ltl", "build_ltl"]
