@@ -310,7 +310,6 @@ def check(path, **overrides) -> list[RunResult]:
     --------
     >>> import cpn
     >>> [(p.spec.name, p.verdict.status.value) for p in cpn.check("specs/examples/dp.toml")[0].results][:1]
-    ... # doctest: +SKIP
     [('the only dead marking: everyone holds the left fork', 'holds')]
     """
     from cpn.gate.scenario import load_scenario
