@@ -2,6 +2,7 @@
 
 Usage:
   python bench/modbus_tcp.py --write-specs     # specs/modbus/tcp*.toml and specs/modbus/mutants/tcp_*.toml
+  python bench/modbus_tcp.py --mutants          # the mutant table of reports/README.md (MODBUS/TCP)
   python bench/modbus_tcp.py --scale [--budget 120] [--rows small|all]
                                                # C x S x depth (plain servers) and C x depth x NS (gateway):
                                                # the full state space, the quotient by the symmetry of the
@@ -10,8 +11,9 @@ Usage:
 Every scenario file carries the whole TCP property set (PROPERTIES); a mutant file is the same with the
 model's TMUTANT switch set and `expect = "violated"` on the properties its bug must break. The --scale
 form explores each configuration with `python -m cpn explore models/modbus/modbus_tcp.cpnet --set ...`
-three ways (time condensation; time condensation and --reduction symmetry; --sweep-line without
-condensation, the clock as the progress measure) and prints the table of reports/README.md ("MODBUS/TCP").
+four ways (time condensation; time condensation and --reduction symmetry; --sweep-line without
+condensation, the clock as the progress measure; --sweep-line with condensation and PROGRESS as the
+measure) and prints the table of reports/README.md ("MODBUS/TCP and the gateway").
 """
 
 from __future__ import annotations
@@ -22,7 +24,6 @@ import os
 import subprocess
 import sys
 import tempfile
-import time
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 MODEL = os.path.join(ROOT, "models", "modbus", "modbus_tcp.cpnet")
@@ -285,9 +286,7 @@ def _explore(sets: dict, extra: list[str], budget: float) -> dict | None:
         cmd = [sys.executable, "-m", "cpn", "explore", MODEL, "--quiet", "--json", out, "--max-seconds", str(budget)]
         for k, v in sets.items():
             cmd += ["--set", f"{k}={v}"]
-        t0 = time.perf_counter()
         proc = subprocess.run(cmd + extra, capture_output=True, text=True)
-        wall = time.perf_counter() - t0
         if not os.path.exists(out):
             print(proc.stderr, file=sys.stderr)
             return None
@@ -295,48 +294,81 @@ def _explore(sets: dict, extra: list[str], budget: float) -> dict | None:
             data = json.load(fh)
     ss = data["statespace"]
     red = data.get("reduction") or {}
-    return {"states": ss["states"], "arcs": ss["arcs"], "complete": ss["complete"], "seconds": ss["seconds"],
-            "wall": wall, "full_states": red.get("full_states"), "dead": data["dead_markings"]["count"]}
+    return {"states": ss["states"], "complete": ss["complete"], "seconds": ss["seconds"],
+            "full_states": red.get("full_states"), "peak": ss.get("peak_states")}
 
 
-SCALE_SRV = [(c, s, d) for c, s, d in [(1, 1, 1), (2, 1, 2), (2, 2, 2), (3, 1, 2), (3, 2, 2), (4, 1, 2), (3, 3, 2),
-                                      (4, 2, 2), (5, 1, 2), (4, 3, 2)]]
+#: a progress measure for the sweep-line under time condensation: requests sent, responses received,
+#: outcomes and serial frames only grow
+PROGRESS = ("size (sum Client'Sent) + size (sum Client'Got) + size (sum Client'Done) + "
+            "ms_to_col (Gateway'SerialId 1)")
+SCALE_SRV = [(1, 1, 1), (2, 1, 2), (2, 2, 2), (3, 1, 2), (3, 2, 2), (4, 1, 2), (3, 3, 2), (4, 2, 2), (5, 1, 2)]
 SCALE_GW = [(1, 1, 1), (1, 2, 3), (2, 1, 1), (2, 2, 3), (3, 1, 1), (3, 2, 3)]
 
 
 def scale(budget: float, rows: str) -> None:
-    print("| family | C | S | depth | NS | full (time condensation) | symmetry: orbits (full graph) | "
-          "sweep-line (no condensation) |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("| family | C | S | depth | NS | full | symmetry: orbits (full graph) | sweep-line, clock: states (peak) "
+          "| sweep-line, progress: states (peak) |")
+    print("|---|---|---|---|---|---|---|---|---|")
     srv = SCALE_SRV if rows == "all" else SCALE_SRV[:4]
     gw = SCALE_GW if rows == "all" else SCALE_GW[:3]
     configs = [("servers", {**COMMON, "NC": c, "NSV": s, "DEPTH": d}, (c, s, d, "-")) for c, s, d in srv]
     configs += [("gateway", {**COMMON, "CONFIG": '"B"', "SCRIPTS": '"gateway"', "NC": c, "DEPTH": d, "NS": ns},
                  (c, 1, d, ns)) for c, d, ns in gw]
+
+    def cell(r, text):
+        if r is None:
+            return "error"
+        return text + (f" in {r['seconds']:.1f} s" if r["complete"] else f" (stopped at {budget:.0f} s)")
+
     for family, sets, (c, s, d, ns) in configs:
         full = _explore(sets, ["--time-condensation"], budget)
         sym = _explore(sets, ["--time-condensation", "--reduction", "symmetry"], budget)
-        sweep = _explore(sets, ["--sweep-line"], budget)
+        clock = _explore(sets, ["--sweep-line"], budget)
+        prog = _explore(sets, ["--time-condensation", "--sweep-line", "--progress", PROGRESS], budget)
+        cells = [cell(full, f"{full['states']:,}") if full else "error",
+                 cell(sym, f"{sym['states']:,} ({sym['full_states'] or 0:,})") if sym else "error",
+                 cell(clock, f"{clock['states']:,} ({clock['peak'] or 0:,})") if clock else "error",
+                 cell(prog, f"{prog['states']:,} ({prog['peak'] or 0:,})") if prog else "error"]
+        print(f"| {family} | {c} | {s} | {d} | {ns} | " + " | ".join(cells) + " |", flush=True)
 
-        def cell(r, key="states"):
-            if r is None:
-                return "error"
-            text = f"{r[key]:,}" if r[key] is not None else "-"
-            return text + (f" in {r['seconds']:.1f} s" if r["complete"] else f" (stopped at {budget:.0f} s)")
-        symtxt = "error" if sym is None else f"{sym['states']:,} ({sym['full_states'] or 0:,}) in {sym['seconds']:.1f} s" + \
-            ("" if sym["complete"] else " (stopped)")
-        print(f"| {family} | {c} | {s} | {d} | {ns} | {cell(full)} | {symtxt} | {cell(sweep)} |", flush=True)
+
+def mutants() -> None:
+    """Each mutant file checked in this process: the properties it breaks, with the length of the shortest
+    trace among them (none for a `reachable` property without a witness)."""
+    sys.path.insert(0, ROOT)
+    from cpn.checks.verdict import Status
+    from cpn.gate.run import run_scenario
+    from cpn.gate.scenario import load_scenario
+
+    short = {key: name.split(":")[0] for key, name, _, _ in PROPERTIES}
+    print("| mutant | bug | configuration | properties violated (shortest trace) | states |")
+    print("|---|---|---|---|---|")
+    for mutant, bug, sets, _ in MUTANTS:
+        scenario = load_scenario(os.path.join(SPECS, "mutants", mutant.replace("-", "_") + ".toml"))
+        result = run_scenario(scenario, scenario.runs[0])
+        names = {name: key for key, name, _, _ in PROPERTIES}
+        violated = [r for r in result.results if r.verdict.status is Status.VIOLATED]
+        keys = [names[r.spec.name] for r in violated]
+        lengths = [len(r.verdict.evidence.path) - 1 for r in violated if r.verdict.evidence is not None]
+        config = ", ".join(f"{k} {v}" for k, v in sets.items() if k in ("NC", "NSV", "DEPTH", "SRV_PAR", "NCLOSE"))
+        cells = ", ".join(f"{short[k]} ({k})" for k in keys)
+        print(f"| {mutant} | {bug} | {config} | {cells} ({min(lengths) if lengths else '-'}) | "
+              f"{result.exploration.graph.n_states:,} |", flush=True)
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--write-specs", action="store_true")
     ap.add_argument("--scale", action="store_true")
+    ap.add_argument("--mutants", action="store_true")
     ap.add_argument("--budget", type=float, default=120)
     ap.add_argument("--rows", choices=["small", "all"], default="small")
     args = ap.parse_args()
     if args.write_specs:
         write_specs()
+    if args.mutants:
+        mutants()
     if args.scale:
         scale(args.budget, args.rows)
 
