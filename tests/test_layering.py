@@ -206,6 +206,40 @@ def test_the_checks_the_property_language_and_the_gate_import_only_downward():
                             MODULE_ORDER["gate"])
     assert any("scenario:2 imports run" in p for p in found)
 
+# what the algorithms, the property language and the gate may import of the engine: its protocol, and the
+# analysis of which of the net's functions read the clock (of the net's declarations, not of an engine)
+ENGINE_DOOR = {"cpn.engine", "cpn.engine.protocol", "cpn.engine.clock"}
+
+
+def _engine_imports(mod: str, own: str, source: str) -> list[str]:
+    """Imports of the engine's modules beyond its door by a module of checks, properties or gate."""
+    if own not in ("checks", "properties", "gate"):
+        return []
+    from cpn import engine
+
+    out = []
+    for node in ast.walk(ast.parse(source)):
+        if isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            names = [node.module] if node.module != "cpn.engine" else \
+                [f"cpn.engine.{a.name}" for a in node.names if a.name not in engine.__all__]
+        elif isinstance(node, ast.Import):
+            names = [a.name for a in node.names]
+        else:
+            continue
+        out += [f"{mod}:{node.lineno} imports {n}: the engine is reached through cpn.engine.protocol"
+                for n in names if n.startswith("cpn.engine.") and n not in ENGINE_DOOR]
+    return out
+
+
+def test_the_checks_and_the_property_language_reach_the_engine_through_its_protocol():
+    problems = _each_module(_engine_imports)
+    assert not problems, "\n".join(problems)
+    # what cpn.properties.predicates imported before the engine declared its predicate compiler
+    assert _engine_imports("cpn.properties.x", "properties", "from cpn.engine.codegen import ExprCompiler\n")
+    assert _engine_imports("cpn.properties.x", "properties", "from cpn.engine import runtime\n")
+    assert not _engine_imports("cpn.properties.x", "properties", "from cpn.engine import Engine, clock\n")
+    assert not _engine_imports("cpn.report.x", "report", "from cpn.engine.reference import ReferenceEngine\n")
+
 # Inside a package: its modules bottom to top (docs/internals.md, "Inside the state space"). A module
 # imports only modules before it in its package's list, at the top of the file or inside a function, so
 # the package has no upward import and no import circle. A module missing from the list fails.

@@ -80,6 +80,13 @@ class EngineAPI:
         (`cpn.engine.timedgroups.TimedGroups`), or None where the engine cannot give them."""
         return None
 
+    def predicate_compiler(self, evaluator, places: dict):
+        """A compiler of property texts in the net's expression form (`cpn.engine.propertycode`), which
+        calls the model's compiled functions where the engine has them."""
+        from cpn.engine.propertycode import PredicateCompiler
+
+        return PredicateCompiler(evaluator, places, getattr(self, "functions", None) or {})
+
     def enabled(self, state) -> list:
         """The enabled binding elements of `state`, in the engine's fixed order."""
         return [self.binding_element(be) for be, _ in self.successors(state)]

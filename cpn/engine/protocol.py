@@ -87,7 +87,7 @@ class Capabilities(Protocol):
     """What an engine may offer beyond `Engine`, and the upper layers use where it does (an engine without
     one is searched and checked without it: they look it up by these public names, never by private ones,
     `tests/test_layering.py`). The compiled engine offers all of them, the reference interpreter
-    `reference` and `arc_tokens`/`binding_env` (`cpn.engine.reference.ReferenceEngine`).
+    `reference`, `predicate_compiler` and `arc_tokens`/`binding_env` (`cpn.engine.reference.ReferenceEngine`).
     """
 
     net: Any  # the cpn.net.Net it runs: the reports draw it and replay traces with an engine of their own
@@ -108,6 +108,11 @@ class Capabilities(Protocol):
 
     def native_code(self) -> tuple:
         """(the C of the net's transitions, None), or (None, why not) (`cpn.engine.ccodegen`)."""
+
+    def predicate_compiler(self, evaluator: Any, places: dict) -> Any:
+        """A compiler of property texts (`cpn.engine.propertycode.PredicateCompiler`): closed expressions
+        of the net's form into functions of a state id and a state; `places` maps the uid of a name that
+        reads a place to its instances (instance number -> place index)."""
 
     def forget_memo(self) -> None:
         """Empty the memo tables of transition results: no result changes, only what is computed again
