@@ -5,6 +5,10 @@ published figures. Each model goes through `cpn.load`, is explored completely, a
 figure (states, arcs, token maxima, dead markings, the Model Checking Contest global properties) is
 compared, one row per instance: match, mismatch, error (the model could not be loaded or explored),
 partial (cut short by --max-states: nothing compared) or skipped.
+
+Where an instance has `formulas/oracle.json` (the Model Checking Contest's published verdicts of its
+property files), every formula of the seven examinations is also answered (`cpn-verify mcc`) and compared:
+agree, disagree, or unknown (a limit stopped it), per instance, per examination and in total.
 """
 
 from __future__ import annotations
@@ -31,14 +35,18 @@ from cpn.cli._common import (
 FIGURES = ("states", "arcs", "arcs_distinct_marking_pairs", "max_tokens_per_marking", "max_tokens_in_place",
            "dead_markings", "deadlock_reachable")
 MAX_STATES_DEFAULT = 3_000_000
+FORMULA_SECONDS_DEFAULT = 120.0
+FORMULA_STATES_DEFAULT = 500_000
 
 # validate's own exit statuses: it verifies no property, so the commands' common list (where 1 is "a
 # property is violated") does not describe it
 EPILOG = """exit statuses:
-  0   every instance compared matches all its published figures (skipped instances aside)
-  1   the corpus does not validate: a published figure differs ('mismatch'), or an instance's model
-      could not be loaded or explored ('error')
-  2   nothing differs, but some state space was cut short by --max-states ('partial': not compared)
+  0   every instance compared matches all its published figures and formula verdicts (skipped
+      instances aside)
+  1   the corpus does not validate: a published figure or formula verdict differs ('mismatch',
+      'disagree'), or an instance's model could not be loaded or explored ('error')
+  2   nothing differs, but some state space was cut short by --max-states ('partial': not compared),
+      or a formula was not answered within its limits ('unknown')
   64  bad usage: DIR has no readable expected.json, or no instance matches --only
   70  internal error (a bug in cpn-verify: please report it)
   73  the --json file cannot be created (checked before any work starts)
@@ -59,6 +67,13 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    help="validate only instances whose name matches NAME (a glob; may be repeated)")
     p.add_argument("--skip-larger-than", type=int, metavar="N",
                    help="skip instances whose published state count exceeds N")
+    p.add_argument("--no-formulas", action="store_true",
+                   help="compare the published figures only, not the contest's formula verdicts")
+    p.add_argument("--formula-seconds", type=float, default=FORMULA_SECONDS_DEFAULT, metavar="S",
+                   help="the time to answer all the formulas of one instance (default "
+                   f"{FORMULA_SECONDS_DEFAULT:g}); those left are 'unknown'")
+    p.add_argument("--formula-max-states", type=int, default=FORMULA_STATES_DEFAULT, metavar="N",
+                   help=f"give up a formula whose search passes N markings (default {FORMULA_STATES_DEFAULT:,})")
     add_output_option(p, "--json", "the results as JSON")
     add_quiet_option(p)
     return p
@@ -126,6 +141,17 @@ class Result:
     found: dict = field(default_factory=dict)
     differences: list[str] = field(default_factory=list)
     reason: str = ""
+    formulas: list[dict] = field(default_factory=list)  # one per formula: id, examination, expected, found, ...
+    formula_seconds: float = 0.0
+    exam_seconds: dict = field(default_factory=dict)  # examination -> seconds to answer its formulas
+
+    def ratios(self) -> dict[str, float]:
+        """Per examination: the time to answer its formulas over the time to explore the state space once
+        (`seconds`, which includes loading the model)."""
+        return {e: t / self.seconds for e, t in self.exam_seconds.items()} if self.seconds else {}
+
+    def formula_counts(self) -> dict[str, int]:
+        return {k: sum(f["result"] == k for f in self.formulas) for k in ("agree", "disagree", "unknown")}
 
 
 def found_figures(fig: Figures, fmt: str) -> dict:
@@ -194,6 +220,37 @@ def validate_instance(directory: str, inst: dict, max_states: int) -> Result:
     return res
 
 
+def validate_formulas(directory: str, res: Result, inst: dict, seconds: float, max_states: int) -> None:
+    """Answer every formula of the instance's property files and compare with `formulas/oracle.json`."""
+    from cpn.cli.mcc import ContestModel, answer_file
+    from cpn.properties.contest import EXAMINATIONS
+
+    folder = os.path.join(directory, os.path.dirname(inst["file"]), "formulas")
+    try:
+        with open(os.path.join(folder, "oracle.json"), encoding="utf-8") as fh:
+            oracle = json.load(fh)["verdicts"]
+    except (OSError, ValueError, KeyError):
+        return
+    t0 = time.perf_counter()
+    model = ContestModel.load(os.path.join(directory, inst["file"]), max_states=max_states,
+                              deadline=time.monotonic() + seconds)
+    for exam in EXAMINATIONS:
+        if exam not in oracle:
+            continue
+        model.forget()  # each examination from scratch: its time against the exploration's is the ratio
+        t1 = time.perf_counter()
+        answers = answer_file(model, os.path.join(folder, f"{exam}.xml"))
+        res.exam_seconds[exam] = time.perf_counter() - t1
+        for a in answers:
+            expected = oracle[exam].get(a.id)
+            found = a.value if not isinstance(a.value, bool) else ("TRUE" if a.value else "FALSE")
+            result = "unknown" if a.value is None else "agree" if found == expected else "disagree"
+            res.formulas.append({"id": a.id, "examination": exam, "expected": expected, "found": found,
+                                 "result": result, "states": a.states, "seconds": round(a.seconds, 4),
+                                 **({"reason": a.reason} if a.reason else {})})
+    res.formula_seconds = time.perf_counter() - t0
+
+
 def select(instances: list[dict], only: list[str] | None, skip_larger_than: int | None) -> list[tuple[dict, str]]:
     """(instance, reason to skip or '') for every instance chosen by --only."""
     out = []
@@ -255,10 +312,20 @@ def run(args) -> int:
             r = Result(inst["name"], inst.get("format", "?"), "skipped", expected=inst, reason=skip)
         else:
             r = validate_instance(directory, inst, args.max_states)
+            if not args.no_formulas and r.status in ("match", "mismatch"):
+                validate_formulas(directory, r, inst, args.formula_seconds, args.formula_max_states)
         results.append(r)
         print(format_row(r), file=out, flush=True)
         for d in r.differences:
             print(f"    {d}", file=out)
+        if r.formulas:
+            n = r.formula_counts()
+            print(f"    formulas: {n['agree']} agree, {n['disagree']} disagree, {n['unknown']} unknown "
+                  f"({r.formula_seconds:.1f} s)", file=out)
+            for f in r.formulas:
+                if f["result"] != "agree":
+                    print(f"    {f['result']}: {f['id']}: published {f['expected']}, found {f['found']}"
+                          + (f" ({f['reason']})" if f.get("reason") else ""), file=out)
         if r.reason and r.status != "match" and not (args.quiet and r.status in ("skipped", "partial")):
             for line in r.reason.splitlines()[:12]:
                 print(f"    {line}", file=out)
@@ -266,13 +333,61 @@ def run(args) -> int:
     total = sum(r.seconds for r in results)
     print(f"\n{counts['match']} match, {counts['mismatch']} mismatch, {counts['error']} error, "
           f"{counts['partial']} partial, {counts['skipped']} skipped; {total:.1f} s", file=out)
+    formulas = formula_totals(results)
+    if formulas:
+        print(format_formula_totals(formulas, args.formula_seconds), file=out)
+        print(format_ratios(results), file=out)
     if "--json" in outputs:
         payload = [{"name": r.name, "format": r.format, "status": r.status, "seconds": round(r.seconds, 3),
-                    "found": r.found, "differences": r.differences, "reason": r.reason} for r in results]
+                    "found": r.found, "differences": r.differences, "reason": r.reason,
+                    **({"formulas": r.formulas, "formula_seconds": round(r.formula_seconds, 3),
+                        "examination_seconds": {e: round(t, 3) for e, t in r.exam_seconds.items()},
+                        "examination_ratio": {e: round(x, 2) for e, x in r.ratios().items()}}
+                       if r.formulas else {})}
+                   for r in results]
         write_output(outputs["--json"], json.dumps({"directory": directory, "max_states": args.max_states,
+                                                    "formula_seconds": args.formula_seconds,
+                                                    "formula_max_states": args.formula_max_states,
+                                                    "formula_totals": formulas,
                                                     "results": payload}, indent=2) + "\n")
-    if counts["mismatch"] or counts["error"]:
+    if counts["mismatch"] or counts["error"] or formulas.get("total", {}).get("disagree"):
         return ExitStatus.VIOLATED
-    if counts["partial"]:
+    if counts["partial"] or formulas.get("total", {}).get("unknown"):
         return ExitStatus.UNKNOWN
     return ExitStatus.OK
+
+
+def formula_totals(results: list[Result]) -> dict[str, dict[str, int]]:
+    """agree / disagree / unknown per examination and in total ('total'), over every instance."""
+    out: dict[str, dict[str, int]] = {}
+    for r in results:
+        for f in r.formulas:
+            for key in (f["examination"], "total"):
+                row = out.setdefault(key, {"agree": 0, "disagree": 0, "unknown": 0})
+                row[f["result"]] += 1
+    if "total" in out:
+        out["total"] = out.pop("total")  # last
+    return out
+
+
+def format_ratios(results: list[Result]) -> str:
+    """Per examination, the median and largest ratio of the time to answer its 16 formulas (from nothing)
+    to the time to explore the whole state space once, over the instances."""
+    per: dict[str, list[tuple[float, str]]] = {}
+    for r in results:
+        for e, x in r.ratios().items():
+            per.setdefault(e, []).append((x, r.name))
+    lines = ["\ntime to answer an examination / time to explore the state space once:",
+             f"  {'examination':<24}  {'median':>7}  {'largest':>8}  instance"]
+    for e, xs in per.items():
+        xs.sort()
+        lines.append(f"  {e:<24}  {xs[len(xs) // 2][0]:>7.2f}  {xs[-1][0]:>8.2f}  {xs[-1][1]}")
+    return "\n".join(lines)
+
+
+def format_formula_totals(totals: dict[str, dict[str, int]], seconds: float) -> str:
+    lines = [f"\nformula verdicts against the published ones (at most {seconds:g} s per instance):",
+             f"  {'examination':<24}  {'agree':>6}  {'disagree':>8}  {'unknown':>7}"]
+    for exam, n in totals.items():
+        lines.append(f"  {exam:<24}  {n['agree']:>6}  {n['disagree']:>8}  {n['unknown']:>7}")
+    return "\n".join(lines)
