@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import weakref
 
-from cpn.arcs import ArcKind
 from cpn.checks.verdict import Status
 from cpn.expr import nodes as E
 from cpn.lang import ast as A
@@ -122,14 +121,16 @@ def is_place_invariant(net, weights: dict) -> bool:
         change = 0
         for a in t.arcs:
             k = weights.get(a.place)
-            if not k or a.kind in (ArcKind.BOTH, ArcKind.INHIBITOR):
+            if not k:
                 continue
-            if a.kind is ArcKind.RESET:
+            if a.kind.empties:
                 return False
+            if a.kind.consumes == a.kind.produces:  # puts back what it takes, or takes nothing
+                continue
             n = token_count(a.expr)
             if n is None:
                 return False
-            change += k * n if a.kind is ArcKind.OUT else -k * n
+            change += k * n if a.kind.produces else -k * n
         if change:
             return False
     return True
@@ -246,13 +247,13 @@ def _farkas(net) -> list[dict] | None:
     for t in net.transitions:
         col: dict[int, int] = {}
         for a in t.arcs:
-            if a.kind in (ArcKind.BOTH, ArcKind.INHIBITOR):
+            if a.kind.consumes == a.kind.produces and not a.kind.empties:
                 continue
-            size = None if a.kind is ArcKind.RESET else token_count(a.expr)
+            size = None if a.kind.empties else token_count(a.expr)
             if size is None:
                 excluded.add(a.place)
                 continue
-            col[a.place] = col.get(a.place, 0) + (size if a.kind is ArcKind.OUT else -size)
+            col[a.place] = col.get(a.place, 0) + (size if a.kind.produces else -size)
         columns.append(col)
     # a row: (the incidence part by column, the weights by place, the support as a bit mask)
     rows = [({j: col[p] for j, col in enumerate(columns) if col.get(p)}, {p: 1}, 1 << p)

@@ -138,3 +138,19 @@ def test_farkas_finds_the_minimal_invariants():
     ring = cpn.loads("colset N = int with 0..3; var n : N; place P : N = 1`0 ++ 1`1; trans t; arc P -> t : n;"
                      " arc t -> P : (n + 1) mod 4;").net
     assert structural_bound(ring, 0) == (2, True)  # one token in, one out: the count never changes
+
+
+def test_inhibitor_double_and_reset_arcs_in_the_incidence_matrix():
+    # an inhibitor or double arc leaves its place's count as it is; a reset arc empties its place by an
+    # amount no matrix holds: no invariant weighs that place
+    from cpn.properties.structure import semi_positive_invariants
+
+    base = MODEL.replace("trans drop [1 = 2];\narc A -> drop : ();\n", "")
+    net = cpn.loads(base + "place E : U = 1`();\ninhibitor E -> move;\narc E <-> back : ();\n").net
+    a, c, e = (net.place(f"S'{x} 1").index for x in "ACE")
+    assert is_place_invariant(net, {a: 1, c: 1}) and is_place_invariant(net, {e: 1})
+    assert sorted(semi_positive_invariants(net), key=len) == [{e: 1}, {a: 1, c: 1}]
+    net = cpn.loads(base + "place E : U = 1`();\nreset E -> move;\n").net
+    a, c, e = (net.place(f"S'{x} 1").index for x in "ACE")
+    assert is_place_invariant(net, {a: 1, c: 1}) and not is_place_invariant(net, {a: 1, c: 1, e: 1})
+    assert semi_positive_invariants(net) == [{a: 1, c: 1}]
