@@ -95,6 +95,9 @@ Gateway'State 1 = 1`GIdle andalso Gateway'Queue 1 = 1`[] end"""}),
      "T4 (CTL): on every path, every request is eventually answered, answered with an exception, timed out "
      "or aborted",
      "ctl", {"formula": """AF (size (sum Client'Done) = NC * NSCRIPT andalso forall Client'Out (fn m => m = 1`[]))"""}),
+    ("eventually-ltl",
+     "T4 (LTL): every request sent is eventually answered, answered with an exception, timed out or aborted",
+     "ltl", {"formula": """G (F (size (sum Client'Done) = size (sum Client'Sent) andalso forall Client'Out (fn m => m = 1`[])))"""}),
     ("no-livelock",
      "T4: no infinite loop (the state space has no cycle)",
      "no_livelock", {}),
@@ -180,7 +183,7 @@ MUTANTS = [
     ("tcp-tid-reuse", "the client numbers a request by its count of outstanding requests plus one, so an id "
      "still outstanding is reused once an earlier request is answered",
      {**ONE, "DEPTH": "2", "SCRIPT": "[(AnySrv, 255, 3, 1), (AnySrv, 255, 3, 1), (AnySrv, 255, 3, 1)]"},
-     ["tid-unique", "no-duplicate", "done", "eventually", "all-answered"]),
+     ["tid-unique", "no-duplicate", "done", "eventually", "eventually-ltl", "all-answered"]),
     ("tcp-wrong-client", "the server sends a response on another client's connection to it",
      {**COMMON, "NC": "2", "NSV": "1", "DEPTH": "1", "SCRIPT": "[(AnySrv, 255, 3, 1)]"},
      ["tid-connection", "match", "no-duplicate", "no-loss"]),
@@ -191,7 +194,7 @@ MUTANTS = [
     ("tcp-depth-off-by-one", "the client checks its limit of outstanding requests with <= instead of <",
      {**ONE, "DEPTH": "1", "SCRIPT": SRV_SCRIPT}, ["depth"]),
     ("tcp-timer-not-cancelled", "the client's time-out of an answered request still fires and reports a "
-     "time-out", {**ONE, "DEPTH": "1", "SCRIPT": "[(AnySrv, 255, 3, 1)]"}, ["one-outcome", "done"]),
+     "time-out", {**ONE, "DEPTH": "1", "SCRIPT": "[(AnySrv, 255, 3, 1)]"}, ["one-outcome", "done", "eventually-ltl"]),
     ("tcp-server-drops-when-busy", "a server that processes one request at a time drops a request that "
      "arrives while it is busy (as a serial slave does) instead of leaving it in the connection",
      {**ONE, "DEPTH": "2", "SRV_PAR": "1", "SCRIPT": SRV_SCRIPT}, ["no-loss", "all-answered"]),
