@@ -41,8 +41,8 @@ def shape(x):
     return out
 
 
-def roundtrip(text):
-    m1 = parse(text, "a.cpnet")
+def roundtrip(text, filename="a.cpnet"):
+    m1 = parse(text, filename)  # a model's own path: the files it uses are found beside it
     out = pretty(m1)
     m2 = parse(out, "b.cpnet")
     assert shape(m1.decls) == shape(m2.decls), out
@@ -52,7 +52,7 @@ def roundtrip(text):
 @pytest.mark.parametrize("path", MODELS, ids=lambda p: os.path.relpath(p, ROOT))
 def test_repository_models_round_trip(path):
     with open(path, encoding="utf-8") as fh:
-        roundtrip(fh.read())
+        roundtrip(fh.read(), path)
 
 
 def test_random_nets_round_trip():
