@@ -248,7 +248,7 @@ MODULE_ORDER: dict[str, list[str]] = {
                    "result", "native", "nativetimed", "threads", "parallel", "distributed", "chooser", "explore",
                    "sweep", "__init__"],
     "checks": ["verdict", "columns", "bounds", "liveness", "fairness", "ctl", "buchi", "ltl", "mcc", "__init__"],
-    "properties": ["spec", "predicates", "kinds", "vacuity", "structure", "reduction", "symmetry", "contest",
+    "properties": ["spec", "predicates", "kinds", "ltl", "build", "vacuity", "structure", "reduction", "symmetry", "contest",
                    "__init__"],
     "gate": ["scenario", "sweep", "run", "mutants", "mutation", "__init__"],
 }

@@ -15,7 +15,8 @@ from cpn.checks.verdict import Status, Verdict, evidence_to
 from cpn.diagnostics import Diagnostic
 from cpn.errors import ConfigurationError, ModelError
 from cpn.gate.scenario import Run, Scenario
-from cpn.properties.kinds import Check, DeadlockFree, GraphView, Reachable, build_checks
+from cpn.properties.build import build_checks
+from cpn.properties.kinds import Check, DeadlockFree, GraphView, Reachable
 from cpn.properties.predicates import PredicateError, PropertyLanguage
 from cpn.properties.reduction import stubborn_plan
 from cpn.properties.spec import PropertySpec

@@ -7,7 +7,8 @@ May import cpn.checks (the algorithms the kinds decide with), cpn.statespace, th
 never the gate (cpn.gate), report or cli.
 """
 
-from cpn.properties.kinds import Check, GraphView, build_checks
+from cpn.properties.build import build_checks
+from cpn.properties.kinds import Check, GraphView
 from cpn.properties.predicates import Compiled, PredicateError, PropertyLanguage
 from cpn.properties.spec import KINDS, PropertySpec, TextOrigin
 
