@@ -347,7 +347,7 @@ def mutants() -> None:
     short = {key: name.split(":")[0] for key, name, _, _ in PROPERTIES}
     print("| mutant | bug | configuration | properties violated (shortest trace) | states |")
     print("|---|---|---|---|---|")
-    for mutant, bug, sets, _ in MUTANTS:
+    for mutant, bug, sets, broken in MUTANTS:
         scenario = load_scenario(os.path.join(SPECS, "mutants", mutant.replace("-", "_") + ".toml"))
         result = run_scenario(scenario, scenario.runs[0])
         names = {name: key for key, name, _, _ in PROPERTIES}
@@ -355,7 +355,9 @@ def mutants() -> None:
         keys = [names[r.spec.name] for r in violated]
         lengths = [len(r.verdict.evidence.path) - 1 for r in violated if r.verdict.evidence is not None]
         config = ", ".join(f"{k} {v}" for k, v in sets.items() if k in ("NC", "NSV", "DEPTH", "SRV_PAR", "NCLOSE"))
-        cells = ", ".join(f"{short[k]} ({k})" for k in keys)
+        # the property written to catch the bug first, in bold
+        keys.sort(key=lambda k: k != broken[0])
+        cells = ", ".join(f"**{short[k]} ({k})**" if k == broken[0] else f"{short[k]} ({k})" for k in keys)
         print(f"| {mutant} | {bug} | {config} | {cells} ({min(lengths) if lengths else '-'}) | "
               f"{result.exploration.graph.n_states:,} |", flush=True)
 
