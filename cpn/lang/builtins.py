@@ -6,8 +6,10 @@ Every function value takes one argument (SML): tuples for several arguments, cur
 
 from __future__ import annotations
 
+from cpn.diagnostics import Span
 from cpn.lang import types as T
-from cpn.values import draws
+from cpn.lang.symbols import ConInfo, Symbol
+from cpn.values import draws, sml_basis
 from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS, MLError
 from cpn.values.multiset import MultisetError
 
@@ -15,10 +17,12 @@ from cpn.values.multiset import MultisetError
 def _tokens(text):
     import re
 
-    return re.findall(r"''?[a-z]|->|\*|\(|\)|[A-Za-z]+", text)
+    return re.findall(r"''?[a-z]|->|\*|\(|\)|[A-Za-z][A-Za-z.]*", text)
 
 
-def parse_type(text: str) -> T.Type:
+def parse_type(text: str | T.Scheme) -> T.Scheme:
+    if isinstance(text, T.Scheme):  # a type the notation cannot write (Date.date's record argument)
+        return text
     toks = _tokens(text)
     tvars: dict[str, T.TVar] = {}
     pos = 0
@@ -47,7 +51,7 @@ def parse_type(text: str) -> T.Type:
 
     def postfix():
         t = atom()
-        while peek() in ("list", "ms"):
+        while peek() in ("list", "ms", "option"):
             t = T.TCon(take(), (t,))
         return t
 
@@ -155,6 +159,50 @@ TYPES: dict[str, str] = {
     "ModelTime.fromInt": "int -> int",
     "ModelTime.toString": "int -> string",
 }
+
+# the SML Basis Library's option, order and Date, which CPN Tools models compute with (cpn.values.sml_basis)
+_DATE, _MONTH = T.TCon("Date.date"), T.TCon("Date.month")
+TYPES.update({
+    "Option.getOpt": "'a option * 'a -> 'a",
+    "getOpt": "'a option * 'a -> 'a",
+    "Option.valOf": "'a option -> 'a",
+    "valOf": "'a option -> 'a",
+    "Option.isSome": "'a option -> bool",
+    "isSome": "'a option -> bool",
+    "Int.fromString": "string -> int option",
+    "IntInf.toLarge": "int -> int",
+    "IntInf.fromLarge": "int -> int",
+    "Int.compare": "int * int -> order",
+    "String.compare": "string * string -> order",
+    "Date.date": T.Scheme([], T.TFun(T.TRecord([
+        ("day", T.INT), ("hour", T.INT), ("minute", T.INT), ("month", _MONTH),
+        ("offset", T.TCon("option", (T.TCon("Time.time"),))), ("second", T.INT), ("year", T.INT)]), _DATE)),
+    **{f"Date.{f}": "Date.date -> int" for f in ("year", "day", "hour", "minute", "second")},
+    "Date.month": "Date.date -> Date.month",
+    "Date.offset": "Date.date -> Time.time option",
+    "Date.compare": "Date.date * Date.date -> order",
+    "Date.fmt": "string -> Date.date -> string",
+    "Date.toString": "Date.date -> string",
+})
+FUNCTIONS.update(sml_basis.FUNCTIONS)
+# the types whose constructors the library declares; a model may declare constructors of the same names
+LIBRARY_CONSTRUCTOR_TYPES: frozenset[str] = frozenset({"exn"} | {t for t, _, _ in sml_basis.CONSTRUCTORS.values()})
+
+
+def library_constructors() -> list[Symbol]:
+    """`NONE`, `SOME`, `LESS`, `EQUAL`, `GREATER` and the months `Date.Jan` .. `Date.Dec`, as symbols."""
+    out = []
+    for name, (tname, tag, has_arg) in sml_basis.CONSTRUCTORS.items():
+        if tname == "option":
+            a = T.TVar()
+            ty = T.Scheme([a], T.TFun(a, T.TCon("option", (a,))) if has_arg else T.TCon("option", (a,)))
+        else:
+            ty = T.TCon(tname)
+        sym = Symbol(name, "con", ty, Span("<standard declarations>", 0, 0))
+        sym.data = ConInfo(tname, tag, "enum" if tname == "Date.month" else "union", has_arg)
+        out.append(sym)
+    return out
+
 
 # CPN Tools' random distribution functions: simulation only (a net that calls them has no state space)
 RANDOM_BUILTINS: frozenset[str] = frozenset(draws.DISTRIBUTIONS)

@@ -55,7 +55,7 @@ class TypeInference:
             if te.name in self.cstypes:
                 return self.cstypes[te.name]
             simple = {"int": T.INT, "bool": T.BOOL, "string": T.STRING, "unit": T.UNIT, "real": T.REAL,
-                      "INT": T.INT, "BOOL": T.BOOL, "STRING": T.STRING, "UNIT": T.UNIT}
+                      "INT": T.INT, "BOOL": T.BOOL, "STRING": T.STRING, "UNIT": T.UNIT, "order": T.TCon("order")}
             if te.name in simple:
                 return simple[te.name]
             self.lookup_colset(te.name, te.span)
@@ -64,7 +64,7 @@ class TypeInference:
             inner = self.type_of_annotation(te.arg)
             if inner is None:
                 return None
-            if te.name in ("list", "ms"):
+            if te.name in ("list", "ms", "option"):
                 return T.TCon(te.name, (inner,))
             self.error("E0201", f"unknown type constructor '{te.name}'", te.span)
             return None
@@ -525,7 +525,7 @@ class TypeInference:
             g = self.globals.get(p.name)
             if g is not None and g.kind == "con" and not g.data.has_arg:
                 p.ref = g
-                return g.type
+                return g.type.instantiate() if isinstance(g.type, T.Scheme) else g.type  # NONE
             t = T.TVar()
             p.ref = self._bind_local(p.name, p.span, binds, t)
             return t
@@ -551,7 +551,7 @@ class TypeInference:
                            hint=f"Did you mean '{cand}'?" if cand else None, name=p.name)
                 raise Abort()
             p.ref = g
-            ft = g.type
+            ft = g.type.instantiate() if isinstance(g.type, T.Scheme) else g.type  # SOME x
             self.must(self.infer_pat(p.arg, binds), ft.arg, p.arg.span, f"the argument of '{p.name}'")
             return ft.res
         if isinstance(p, A.PRecord):

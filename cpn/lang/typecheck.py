@@ -14,7 +14,7 @@ from cpn.errors import ModelError
 from cpn.expr.evaluate import Evaluator, run_deep
 from cpn.lang import ast as A
 from cpn.lang import types as T
-from cpn.lang.builtins import BUILTINS, MLError, parse_type
+from cpn.lang.builtins import BUILTINS, LIBRARY_CONSTRUCTOR_TYPES, MLError, library_constructors, parse_type
 from cpn.lang.checked import Abort, ArcInfo, CheckedModel, Env, PageInfo, TransInfo
 from cpn.lang.colsets import ColourSetConstruction
 from cpn.lang.infer import TypeInference
@@ -63,6 +63,8 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
             self.colsets[name] = cs
             self.cstypes[name] = ty
             self.cs_spans[name] = Span("<standard declarations>", 0, 0)
+        for sym in library_constructors():  # NONE, SOME, LESS, EQUAL, GREATER, Date.Jan, ...
+            self.globals[sym.name] = sym
         # SML's exception Fail of string, which a model may raise and handle like its own
         fail = Symbol("Fail", "con", T.TFun(T.STRING, T.EXN), Span("<standard declarations>", 0, 0))
         fail.data = ConInfo("exn", "Fail#0", "union", True)
@@ -201,7 +203,7 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
     def _declare_global(self, sym: Symbol) -> bool:
         old = self.globals.get(sym.name)
         if old is not None and old.kind in ("var", "con") and sym.kind in ("var", "con") \
-                and not (old.data is not None and getattr(old.data, "colset", None) == "exn"):
+                and not (old.data is not None and getattr(old.data, "colset", None) in LIBRARY_CONSTRUCTOR_TYPES):
             self.error("E0202", f"'{sym.name}' is declared twice", sym.span,
                        notes=[f"first declared at {self._where(old.span)}"],
                        hint="Rename one of them.", name=sym.name)

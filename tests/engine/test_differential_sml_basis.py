@@ -1,0 +1,46 @@
+"""The compiled engine against the reference interpreter on the Standard ML forms and library that CPN Tools
+models compute with (docs/cpnml.md): `val rec`, CPN Tools' list library, `empty` beside a list, `option`,
+`order` and `Date`."""
+
+import pytest
+
+import cpn
+from tests.engine.test_differential import _compare
+
+CASES = {
+    "val_rec_and_list_library": """
+colset C = int with 0..3;
+colset L = list C;
+var x : C;
+var l : L;
+val rec len = fn [] => 0 | _ :: t => 1 + len t;
+fun drop (y : C) (m : L) = if m = [] then empty else if hd m = y then drop y (tl m) else hd m :: drop y (tl m);
+place P : L = 1`[0, 1, 2, 1];
+place N : C;
+trans T [len l > 1];
+arc P -> T : l;
+arc T -> P : listsub (union (intersect l [1, 2]) (remdupl (rmall 0 l))) [hd (filter (fn y => y > 0) l)];
+arc T -> N : len (drop 1 l) mod 4;
+""",
+    "option_order_date": """
+colset C = int with 0..3;
+colset S = string;
+var x : C;
+val start = Date.date {day = 31, hour = 23, minute = 59, month = Date.Dec, offset = NONE, second = 59, year = 1999};
+fun later (s : C) = Date.date {day = Date.day start, hour = Date.hour start, minute = Date.minute start,
+  month = Date.month start, offset = Date.offset start, second = Date.second start + s, year = Date.year start};
+fun num (SOME n) = n | num NONE = 0;
+place P : C = 1`0;
+place Q : S;
+trans T [x < 3 andalso Date.compare (later x, start) <> LESS andalso Int.compare (x, 3) = LESS];
+arc P -> T : x;
+arc T -> P : (x + num (Int.fromString (Int.toString x)) + Option.getOpt (Int.fromString "1", 0)) mod 4;
+arc T -> Q : Date.fmt "%Y-%m-%d %H:%M:%S" (later x) ^ (case Date.month (later x) of Date.Jan => " Jan" | _ => "");
+""",
+}
+
+
+@pytest.mark.parametrize("name", sorted(CASES))
+def test_engines_agree(name):
+    model = cpn.loads(CASES[name], f"{name}.cpnet")
+    _compare(model, condensation=False, limit=80)
