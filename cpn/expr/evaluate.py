@@ -132,6 +132,8 @@ class Evaluator:
             return info.tag
         if kind == "builtin":
             if sym.name in TIME_BUILTINS:
+                if sym.name == "intTime":  # the clock rounded down where '@++' made it a real (simulate)
+                    return lambda _u: self.time if self.time.__class__ is int else int(self.time // 1)
                 return lambda _u: self.time
             return FUNCTIONS[sym.name]
         if kind == "csop":

@@ -15,6 +15,7 @@ from cpn.lang import ast as A
 from cpn.lang import types as T
 from cpn.lang.builtins import RANDOM_BUILTINS
 from cpn.lang.checked import Abort, Env
+from cpn.lang.function_draws import FunctionDraws
 from cpn.lang.symbols import Symbol
 
 # operators with a typing rule of their own (multisets, time), which end a chain of plain operators
@@ -34,20 +35,19 @@ LIST_AS_MS_FUNCTIONS: frozenset[str] = frozenset({"ms_to_list", "ms_to_col", "si
 
 def random_hint(name: str) -> str:
     """What to change so that a state space can hold the draw of random distribution function `name`."""
+    where = ("in an output arc inscription or a transition delay, directly or in a function that is not "
+             "recursive and is called there with all its arguments (not in a guard, an input arc, a 'val' or a "
+             "function given to another), where it is explored as a choice of every value")
     if name.endswith(".ran"):
-        return (f"For a state space, call {name}() directly in an output arc inscription or a transition delay, "
-                "where it is explored as a choice of every value, and pass the value to the function as an "
-                "argument.")
+        return f"For a state space, call {name}() {where}."
     if name in FINITE_DRAWS:
-        return (f"For a state space, call {name} with constant arguments directly in an output arc inscription or "
-                "a transition delay, where it is explored as a choice of every value, and pass the value to the "
-                "function as an argument.")
+        return f"For a state space, call {name} with constant arguments {where}."
     return (f"For a state space, replace {name}(...) by a finite choice: a small colour set "
             "'colset D = int with 1..5;' and 'D.ran()' in an output arc or a delay (every value is explored), "
             "or a bounded 'discrete(a, b)' there.")
 
 
-class TypeInference:
+class TypeInference(FunctionDraws):
     """Inference of expressions, patterns and annotations (mixed into the Checker)."""
 
     def type_of_annotation(self, te: A.TypeExpr) -> T.Type | None:
@@ -164,6 +164,11 @@ class TypeInference:
             self.unknown_name(e.name, env, e.span)
             raise Abort()
         e.ref = sym
+        if sym.kind == "fun":  # which functions call which, and which the net uses (settle_function_draws)
+            if self.current_fun is not None:
+                self.fun_refs.setdefault(self.current_fun, set()).add(sym.name)
+            else:
+                self.fun_used_outside.add(sym.name)
         if sym.kind == "csop":
             cs, op = sym.data
             cst = self.cstypes[cs]
@@ -205,6 +210,9 @@ class TypeInference:
         """A call of one of CPN Tools' random distribution functions: simulate draws it (seeded), explore and
         check refuse the model with one error per such call (`random_draws`); lint warns."""
         if any(span == e.span and name == e.name for name, span in self.random_draws):
+            return
+        if self.current_fun is not None:  # settled once the net's uses of the function are known
+            self.fun_draws.setdefault(self.current_fun, []).append(e)
             return
         self.random_draws.append((e.name, e.span))
         self.warn("W0105", f"'{e.name}' draws a random value: simulate runs the model (one run per --seed), "
@@ -257,6 +265,10 @@ class TypeInference:
             if self.pending and self.pending[-1][0] is e.fn and self._try_select(*self.pending[-1]):
                 self.pending.pop()
             return T.prune(ft).res
+        if self.ran_sink is not None and self.fun_draws:
+            t = self.drawing_call(e, env)
+            if t is not None:
+                return t
         if (isinstance(e.fn, A.Name) and e.fn.name in FINITE_DRAWS and self.ran_sink is not None
                 and getattr(self.resolve_name(e.fn.name, env, e.fn.span), "kind", "builtin") == "builtin"
                 and not self._depends_on_binding(e.arg, env)):
@@ -373,10 +385,14 @@ class TypeInference:
 
     def _i_Fn(self, e, env):
         at, rt = T.TVar(), T.TVar()
-        for pat, body in e.rules:
-            binds: dict[str, Symbol] = {}
-            self.must(self.infer_pat(pat, binds), at, pat.span, "the argument pattern of 'fn'")
-            self.must(self.infer(body, env.child(binds)), rt, body.span, "the rules of 'fn'")
+        sink, self.ran_sink = self.ran_sink, None  # a function may be applied many times: its draws are draws
+        try:
+            for pat, body in e.rules:
+                binds: dict[str, Symbol] = {}
+                self.must(self.infer_pat(pat, binds), at, pat.span, "the argument pattern of 'fn'")
+                self.must(self.infer(body, env.child(binds)), rt, body.span, "the rules of 'fn'")
+        finally:
+            self.ran_sink = sink
         return T.TFun(at, rt)
 
     def _i_Raise(self, e, env):
@@ -401,7 +417,11 @@ class TypeInference:
                 self.must(self.infer_pat(d.pat, binds), t, d.pat.span, "the pattern of 'val'")
                 inner = inner.child(binds)
             elif isinstance(d, A.FunDecl):
-                sym = self.fun_decl(d, inner)
+                sink, self.ran_sink = self.ran_sink, None  # a local function may be called many times: its
+                try:  # draws are draws
+                    sym = self.fun_decl(d, inner)
+                finally:
+                    self.ran_sink = sink
                 if sym is None:
                     raise Abort()
                 inner = inner.child({d.name: sym})

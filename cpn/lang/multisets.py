@@ -184,6 +184,8 @@ class MultisetInference:
                 raise Abort()
             lo, hi = (0 if p < 1.0 else 1), (1 if p > 0.0 else 0)  # 1 with probability p, else 0
         self.choice_variable(e, f"{fname}({lo},{hi})", lo, hi)
+        if any(d.code == "W0104" and d.span == e.span for d in self.diags):
+            return T.INT  # a draw in a function written out at several calls: one warning
         self.warn("W0104", f"{fname}{'(' + ', '.join(map(str, values)) + ')'} is explored as a choice of every value "
                   f"({lo}..{hi}), one binding element each; simulate draws one", e.span,
                   hint="CPN Tools' state space tool cannot analyse random distribution functions: this reading is "

@@ -170,8 +170,8 @@ class PageChecks:
                 return
             finally:
                 self.ran_sink = None
+            expr = _replace_ran(expr)  # CS.ran() and the calls of functions that draw, written out
             if sink:
-                expr = _replace_ran(expr)
                 info.ran.extend((v, cs) for v, cs, _ in sink)
                 for v, _cs, sym in sink:
                     self.variables[v] = sym
@@ -216,7 +216,7 @@ class PageChecks:
                 try:
                     self.real_delay(d.delay, env)
                     self.resolve_pending()
-                    d.delay = d.delay.right
+                    d.delay = _replace_ran(d.delay.right)
                 except Abort:
                     self.pending.clear()
                     ok = False
@@ -540,6 +540,8 @@ def _ran_name(e):
     vsym = getattr(e, "ran_var", None) if isinstance(e, A.App) else None
     if vsym is None:
         return None
+    if isinstance(vsym, A.Expr):  # a call of a function that draws, written out (infer.drawing_call)
+        return _replace_ran(vsym)
     n = A.Name(e.span, vsym.name, ty=e.ty)
     n.ref = vsym
     return n
@@ -570,6 +572,10 @@ def _replace_ran(e):
                 setattr(x, attr, fix(getattr(x, attr)))
         if isinstance(x, A.Case):
             x.rules = [(p, fix(b)) for p, b in x.rules]
+        if isinstance(x, A.Let):  # `let val p = discrete (0, 99) in ...` in a function written out
+            for d in x.decls:
+                if isinstance(d, A.ValDecl):
+                    d.expr = fix(d.expr)
     return e
 
 

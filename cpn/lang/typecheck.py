@@ -49,11 +49,7 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
         for name, (tytext, _) in BUILTINS.items():
             self.builtin_syms[name] = Symbol(name, "builtin", parse_type(tytext))
         self.genv = Env(self.globals)
-        self.ran_counter = 0
-        self.ran_sink: list | None = None
-        self.random_draws: list[tuple[str, Span]] = []  # calls of random distribution functions (simulate only)
-        # real-valued delays, reference variables, side effects: (what, span, hint, name), simulate only
-        self.simulation_only_uses: list[tuple[str, Span, str, str]] = []
+        self.init_draws()  # random draws, simulation-only constructs, draws in functions (cpn.lang.function_draws)
         # CPN Tools' standard declarations; a model may redeclare them
         self.predefined = {"UNIT", "BOOL", "INT", "STRING", "REAL", "TIME", "INTINF"}
         for name, cs, ty in (("UNIT", C.UnitCS("UNIT"), T.UNIT), ("BOOL", C.BoolCS("BOOL"), T.BOOL),
@@ -94,6 +90,7 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
         self.check_instances(top, pages)
         for p in pages.values():
             self.check_instances(p, pages)
+        self.settle_function_draws()
         errors = [d for d in self.diags if d.severity is Severity.ERROR]
         if errors:
             self.note_overrides(errors)
@@ -102,8 +99,7 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
                                self.globals, self.ev, top, pages,
                                [d for d in self.diags if d.severity is Severity.WARNING])
         checked.symmetries = list(self.symmetries)
-        checked.random_draws = list(self.random_draws)
-        checked.simulation_only = list(self.simulation_only_uses)
+        self.record_draws(checked)
         return checked
 
     def top_decl(self, d: A.Decl, top_decls: list, modules: dict) -> None:
@@ -134,7 +130,7 @@ class Checker(ColourSetConstruction, TypeInference, NameResolution, PageChecks, 
         elif isinstance(d, A.LocalDecl):
             self.local_decl(d, top_decls, modules)
         elif isinstance(d, A.FunDecl):
-            if self.fun_decl(d) is None and isinstance(d.name, str):
+            if self.top_fun_decl(d) is None and isinstance(d.name, str):
                 self.failed_names.add(d.name)
         elif isinstance(d, A.ModuleDecl):
             if d.name in modules:

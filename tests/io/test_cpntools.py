@@ -207,8 +207,11 @@ def test_refusals_are_positioned_and_all_reported_in_one_run():
 def test_random_function_called_through_a_declared_function_is_simulated_and_refused_by_explore(tmp_path):
     import cpn
 
+    # called in a guard, the draw is a random draw (called in a delay, it would be a choice of every value,
+    # tests/lang/test_function_draws.py)
     decls = DECLS + '<ml id="M2">fun Delay() = discrete(1,3);</ml>'
-    body = place("P1", "A", "S", "1`0") + trans("T1", "t", time="@+Delay()") + arc("A1", "PtoT", "T1", "P1", "x")
+    body = (place("P1", "A", "S", "1`0") + trans("T1", "t", cond="Delay() > 1")
+            + arc("A1", "PtoT", "T1", "P1", "x"))
     path = tmp_path / "t.cpn"
     path.write_text(cpn_xml(decls, page("PG1", "Top", body)))
     model = cpn.load(path)

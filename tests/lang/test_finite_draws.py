@@ -38,7 +38,7 @@ def test_bernoulli_is_1_with_probability_p(p, values):
 
 
 @pytest.mark.parametrize("text, line, col", [
-    ("fun f () = discrete (1, 2);", 6, 12),
+    ("fun f () = discrete (1, 2);\ntrans T [f () = 1];\narc P -> T : ();", 6, 12),  # a function used in a guard
     ("trans T [discrete (0, 1) = 0];\narc P -> T : ();", 6, 10),
     ("var x : C;\ntrans T;\narc P -> T : ();\narc Q -> T : x;\narc T -> Q : discrete (x, 3);", 10, 14),
 ])

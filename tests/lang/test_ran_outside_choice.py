@@ -22,7 +22,7 @@ arc T -> Q : {out};
 
 
 @pytest.mark.parametrize("decl, guard, out, line", [
-    ("fun pick () = C.ran ();", "", "pick ()", 4),
+    ("fun pick () = C.ran ();", " [pick () = 1]", "1", 4),  # in a guard (in an output arc: a choice)
     ("", " [C.ran () = 1]", "1", 7),
     ("val v = C.ran ();", "", "v", 4),
 ])

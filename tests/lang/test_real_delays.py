@@ -87,3 +87,13 @@ def test_integer_delays_keep_an_integer_model_time(tmp_path):
     [(_, s)] = engine.successors(engine.initial_state())
     [(_, s2)] = engine.successors(s)
     assert (engine.clock(s), engine.clock(s2)) == (0, 3) and isinstance(engine.clock(s2), int)
+
+
+def test_int_time_is_the_real_clock_rounded_down(tmp_path):
+    text = ("colset U = unit timed;\nplace A : U = 1`();\nplace Seen : INT;\ntrans t @++ 1.5;\narc A -> t;\n"
+            "arc t -> A : () @++ 0.25;\narc t -> Seen : intTime ();\n")
+    engine = cpn.load(write(tmp_path, text)).engine(simulation=True, reference=True)
+    s = engine.initial_state()
+    for _ in range(3):  # at 0, 1.75, 3.5
+        [(_, s)] = engine.successors(s)
+    assert engine.clock(s) == 3.5 and engine.format_marking(s, 1) == "1`0++1`1++1`3"

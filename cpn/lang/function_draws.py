@@ -1,0 +1,119 @@
+"""Finite draws inside the model's functions, explored as choices (docs/semantics.md, "Bindings").
+
+A call `f a1 .. an` of a top-level function that draws (`discrete`, `bernoulli` with constant arguments,
+`CS.ran()`, directly or through the functions it calls), with all its arguments, in an output arc inscription
+or a transition delay, is written out there, so that each of its draws becomes a free variable of the
+transition (the mechanism of `CS.ran()`). The draws of a function that the net uses otherwise are random
+draws (simulate only). A mixin of the checker (`cpn.lang.typecheck.Checker`), through `TypeInference`.
+"""
+
+from __future__ import annotations
+
+import copy
+
+from cpn.expr.binding import children
+from cpn.lang import ast as A
+from cpn.lang import types as T
+from cpn.lang.builtins import RANDOM_BUILTINS
+from cpn.lang.checked import Env
+from cpn.lang.symbols import Symbol
+
+
+class FunctionDraws:
+    """Which functions draw, which call which, and which calls are written out."""
+
+    def init_draws(self) -> None:
+        self.ran_counter = 0
+        self.ran_sink: list | None = None
+        self.random_draws: list = []  # (name, span): calls of random distribution functions (simulate only)
+        # real-valued delays, reference variables, side effects: (what, span, hint, name), simulate only
+        self.simulation_only_uses: list = []
+        self.current_fun: str | None = None  # the top-level function being checked
+        self.fun_draws: dict[str, list[A.Name]] = {}  # its draws
+        self.fun_refs: dict[str, set[str]] = {}  # the top-level functions it names
+        self.fun_used_outside: set[str] = set()  # named by the net other than in a call written out
+        self.fun_asts: dict[str, A.FunDecl] = {}  # the text of those that may draw, as written
+
+    def record_draws(self, checked) -> None:
+        checked.random_draws = list(self.random_draws)
+        checked.simulation_only = list(self.simulation_only_uses)
+
+    def top_fun_decl(self, d: A.FunDecl):
+        """`fun_decl` of a top-level function, keeping its text if it may draw and noting its draws."""
+        if isinstance(d.name, str) and not isinstance(d.ref, tuple) and self.may_draw(d):
+            try:
+                self.fun_asts[d.name] = copy.deepcopy(d)  # its text as written, for calls written out
+            except RecursionError:
+                pass  # nested too deeply to be copied: its draws stay draws
+        outer, self.current_fun = self.current_fun, d.name if isinstance(d.name, str) else None
+        try:
+            return self.fun_decl(d)
+        finally:
+            self.current_fun = outer
+
+    def may_draw(self, d: A.FunDecl) -> bool:
+        """Whether a function declaration, not checked yet, names a random draw or a function declared
+        before it that may draw (a cheap look, so that only such functions are kept for `drawing_call`)."""
+        stack = [c.body for c in d.clauses]
+        while stack:
+            x = stack.pop()
+            if isinstance(x, A.Name) and (x.name in RANDOM_BUILTINS or x.name.endswith(".ran")
+                                          or x.name in self.fun_asts):
+                return True
+            stack.extend(c for c in children(x) if c is not None)
+        return False
+
+    def drawing_call(self, e: A.App, env: Env) -> T.Type | None:
+        """A call `f a1 .. an` of a top-level function that draws (discrete, bernoulli, CS.ran(), directly or
+        through other functions), in an output arc inscription or a delay, with all its arguments: the call
+        is written out (`case (a1, .., an) of clause patterns => bodies`, each body in the global scope), so
+        that each draw in it is a choice of every value, as if it were written there (docs/semantics.md).
+        A recursive function, a partial application, or a draw whose arguments depend on the function's
+        arguments stay random draws. Returns the call's type, or None if the call is not written out."""
+        args, fn = [], e
+        while isinstance(fn, A.App):
+            args.append(fn.arg)
+            fn = fn.fn
+        d = self.fun_asts.get(fn.name) if isinstance(fn, A.Name) else None
+        if d is None or len(d.clauses[0].params) != len(args) or self.resolve_name(fn.name, env, fn.span) \
+                is not self.genv.lookup(fn.name) or not self._draws_without_recursion(fn.name):
+            return None
+        args.reverse()
+        subject = args[0] if len(args) == 1 else A.TupleE(e.span, args)
+        st = self.infer(subject, env)
+        rules, rt = [], T.TVar()
+        for c in copy.deepcopy(d.clauses):
+            pat = c.params[0] if len(args) == 1 else A.PTuple(c.span, list(c.params))
+            binds: dict[str, Symbol] = {}
+            self.must(self.infer_pat(pat, binds), st, pat.span, f"the arguments of '{fn.name}'")
+            self.must(self.infer(c.body, self.genv.child(binds)), rt, c.body.span, f"the result of '{fn.name}'")
+            rules.append((pat, c.body))
+        e.ran_var = A.Case(e.span, subject, rules, ty=rt)  # put in place of the call by `_replace_ran`
+        return rt
+
+    def _draws_without_recursion(self, name: str) -> bool:
+        """Whether top-level function `name` draws (itself or through the functions it calls) and is not
+        recursive (a recursive function may draw any number of times)."""
+        seen, stack = set(), list(self.fun_refs.get(name, ()))
+        while stack:
+            f = stack.pop()
+            if f == name:
+                return False
+            if f not in seen:
+                seen.add(f)
+                stack.extend(self.fun_refs.get(f, ()))
+        return any(self.fun_draws.get(f) for f in seen | {name})
+
+    def settle_function_draws(self) -> None:
+        """The draws inside top-level functions: those of a function the net uses other than by a call that
+        is written out (`drawing_call`): in a guard, an input arc, a `val`, an initial marking, a recursive
+        or partial call, directly or through other functions, are random draws (W0105, simulate only)."""
+        used, stack = set(), list(self.fun_used_outside)
+        while stack:
+            f = stack.pop()
+            if f not in used:
+                used.add(f)
+                stack.extend(self.fun_refs.get(f, ()))
+        for f in sorted(used):
+            for e in self.fun_draws.get(f, ()):
+                self.random_draw(e)
