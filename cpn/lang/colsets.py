@@ -49,7 +49,9 @@ class ColourSetConstruction:
         if k == "unit":
             cs, ty = C.UnitCS(name, timed), T.UNIT
         elif k == "bool":
-            cs, ty = C.BoolCS(name, timed), T.BOOL
+            cs, ty = C.BoolCS(name, timed, *b.names), T.BOOL
+            for value, c in zip((False, True), b.names):  # `bool with (no, yes)`: no is false, yes is true
+                self._declare_global(Symbol(c, "con", ty, b.span, ConInfo(name, value, "enum", False)))
         elif k in ("int",):
             lo, hi = self.const_int(b.low, "the lower bound"), self.const_int(b.high, "the upper bound")
             if b.low is not None and (lo is None or hi is None):
@@ -62,7 +64,17 @@ class ColourSetConstruction:
         elif k == "time":
             cs, ty = C.IntCS(name, None, None, timed), T.INT
         elif k == "string":
-            cs, ty = C.StringCS(name, timed), T.STRING
+            lmin, lmax = self.const_int(b.low, "the shortest length"), self.const_int(b.high, "the longest length")
+            if b.low is not None and (lmin is None or lmax is None):
+                return
+            if any(len(c) != 1 for c in b.names) or (b.names and b.names[0] > b.names[1]) or \
+                    (lmin is not None and not 0 <= lmin <= lmax):
+                self.error("E0304", f"colour set '{name}' has an empty or malformed range", b.span,
+                           hint='Write string with "a".."z" (two single characters, the first not after the '
+                                "second) and optionally 'and 3..9' (lengths, the shortest first).")
+                return
+            cs, ty = C.StringCS(name, timed, tuple(b.names) or None, (lmin, lmax) if b.low is not None else None), \
+                T.STRING
         elif k == "real":
             cs, ty = C.RealCS(name, timed), T.REAL
         elif k == "enum":

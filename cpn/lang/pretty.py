@@ -33,7 +33,10 @@ def _colset(d: A.ColsetDecl) -> str:
     k = b.kind
     rng = f" with {expr(b.low)}..{expr(b.high)}" if b.low is not None else ""
     body = {
-        "unit": lambda: "unit", "bool": lambda: "bool", "string": lambda: "string", "real": lambda: "real",
+        "unit": lambda: "unit", "real": lambda: "real",
+        "bool": lambda: "bool" + (f" with ({b.names[0]}, {b.names[1]})" if b.names else ""),
+        "string": lambda: "string" + (f" with {string(b.names[0])}..{string(b.names[1])}" if b.names else "")
+        + (f" and {expr(b.low)}..{expr(b.high)}" if b.low is not None else ""),
         "time": lambda: "time", "int": lambda: "int" + rng,
         "enum": lambda: "with " + " | ".join(b.names),
         "index": lambda: f"index {b.names[0]} with {expr(b.low)}..{expr(b.high)}",

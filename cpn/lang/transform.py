@@ -186,7 +186,8 @@ class ToAst(Transformer_NonRecursive):
 
     @v_args(meta=True)
     def cs_bool(self, meta, items):
-        return self._cs(meta, "bool")
+        """`bool with (no, yes)`: the two booleans, written `no` (false) and `yes` (true)."""
+        return self._cs(meta, "bool", names=[str(n) for n in items if n is not None])
 
     @v_args(meta=True)
     def cs_int(self, meta, items):
@@ -195,7 +196,10 @@ class ToAst(Transformer_NonRecursive):
 
     @v_args(meta=True)
     def cs_string(self, meta, items):
-        return self._cs(meta, "string")
+        """`string with "a".."z" and 3..9`: the strings of those characters, of those lengths."""
+        lo, hi, lmin, lmax = (items + [None] * 4)[:4]
+        chars = [_unescape(str(c)[1:-1]) for c in (lo, hi) if c is not None]
+        return self._cs(meta, "string", names=chars, low=lmin, high=lmax)
 
     @v_args(meta=True)
     def cs_real(self, meta, items):

@@ -93,6 +93,10 @@ class UnitCS(ColourSet):
 class BoolCS(ColourSet):
     kind = "bool"
 
+    def __init__(self, name, timed=False, false="false", true="true"):
+        super().__init__(name, timed)
+        self.names = (false, true)  # `bool with (no, yes)` writes false as no and true as yes
+
     def contains(self, v):
         return isinstance(v, bool)
 
@@ -100,7 +104,7 @@ class BoolCS(ColourSet):
         return [False, True]
 
     def format(self, v):
-        return "true" if v else "false"
+        return self.names[bool(v)]
 
 
 class IntCS(ColourSet):
@@ -138,8 +142,16 @@ class StringCS(ColourSet):
     kind = "string"
     finite = False
 
+    def __init__(self, name, timed=False, chars=None, lengths=None):
+        super().__init__(name, timed)
+        self.chars, self.lengths = chars, lengths  # `string with "a".."z" and 3..9`
+
     def contains(self, v):
-        return isinstance(v, str)
+        if not isinstance(v, str):
+            return False
+        if self.chars is not None and not all(self.chars[0] <= c <= self.chars[1] for c in v):
+            return False
+        return self.lengths is None or self.lengths[0] <= len(v) <= self.lengths[1]
 
     def format(self, v):
         return format_string(v)

@@ -1,6 +1,6 @@
 """The compiled engine against the reference interpreter on the Standard ML forms and library that CPN Tools
 models compute with (docs/cpnml.md): `val rec`, CPN Tools' list library, `empty` beside a list, `option`,
-`order` and `Date`."""
+`order` and `Date`; the colour sets `bool with (no, yes)` and `string with "a".."z" and m..n`."""
 
 import pytest
 
@@ -36,6 +36,20 @@ trans T [x < 3 andalso Date.compare (later x, start) <> LESS andalso Int.compare
 arc P -> T : x;
 arc T -> P : (x + num (Int.fromString (Int.toString x)) + Option.getOpt (Int.fromString "1", 0)) mod 4;
 arc T -> Q : Date.fmt "%Y-%m-%d %H:%M:%S" (later x) ^ (case Date.month (later x) of Date.Jan => " Jan" | _ => "");
+""",
+    "bool_and_string_with": """
+colset Answer = bool with (no, yes);
+colset Lower = string with "a".."c" and 0..3;
+var a : Answer;
+var s : Lower;
+fun flip no = yes | flip yes = no;
+place P : Answer = 1`no ++ 1`yes;
+place Q : Lower = 1`"" ++ 1`"b";
+trans T [not a orelse String.size s < 2];
+arc P -> T : a;
+arc Q -> T : s;
+arc T -> P : flip a;
+arc T -> Q : if a = yes then s ^ "a" else s;
 """,
 }
 

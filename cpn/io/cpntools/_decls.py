@@ -324,6 +324,10 @@ class _Declarations:
             lo_hi = mls(w)
             if k.tag == "int" and len(lo_hi) == 2:
                 return f"int with {lo_hi[0]}..{lo_hi[1]}"
+            if k.tag == "string" and len(lo_hi) == 2:  # `string with "a".."z" and 3..9`
+                lengths = mls(w.find("and")) if w.find("and") is not None else []
+                return f"string with {lo_hi[0]}..{lo_hi[1]}" + (
+                    f" and {lengths[0]}..{lengths[1]}" if len(lengths) == 2 else "")
             return None
         if k.tag == "enum":
             return "with " + " | ".join(ids(k))
