@@ -46,6 +46,15 @@ class ColourSetConstruction:
         cs: C.ColourSet | None = None
         ty: T.Type | None = None
         k = b.kind
+        if k == "datatype":
+            if b.pred is not None or any(arg == name for _, arg in b.fields):
+                at = b.pred.span if b.pred is not None else b.span
+                self.error("E0206", f"datatype '{name}': a constructor's argument must be a colour set (no tuple, "
+                           "list or the datatype itself)", at,
+                           hint=f"Declare a colour set for the argument ('colset {name}Arg = product A * B;') and "
+                                f"write 'Con of {name}Arg', or declare '{name}' as a union colour set.")
+                return
+            k = "union"
         if k == "unit":
             cs, ty = C.UnitCS(name, timed), T.UNIT
         elif k == "bool":

@@ -31,6 +31,9 @@ def name(n: str) -> str:
 def _colset(d: A.ColsetDecl) -> str:
     b = d.body
     k = b.kind
+    if k == "datatype":
+        cons = " | ".join(f"{c} of {a}" if a else c for c, a in b.fields)
+        return f"datatype {d.name} = {cons}{' | ...' if b.pred is not None else ''};"
     rng = f" with {expr(b.low)}..{expr(b.high)}" if b.low is not None else ""
     body = {
         "unit": lambda: "unit", "real": lambda: "real",

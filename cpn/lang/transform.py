@@ -138,6 +138,11 @@ def _join(left, token, right) -> Tree:
     return Tree("binop", [left, token, right], _span_meta(left, right))
 
 
+# SML's base types, written in a datatype's constructor arguments, as CPN Tools' standard colour sets
+_BASE_TYPES: dict[str, str] = {"int": "INT", "string": "STRING", "bool": "BOOL", "unit": "UNIT", "real": "REAL",
+                               "intinf": "INTINF"}
+
+
 class ToAst(Transformer_NonRecursive):
     """Parse tree to AST; non-recursive, so that a 5,000-term chain is no 5,000 Python frames deep."""
 
@@ -176,6 +181,22 @@ class ToAst(Transformer_NonRecursive):
     def colset_decl(self, meta, items):
         name, body, timed = items
         return A.ColsetDecl(self.span(meta), str(name), body, timed is not None)
+
+    @v_args(meta=True)
+    def datatype_decl(self, meta, items):
+        """`datatype M = Ping | Data of INT`: the union colour set `union Ping + Data : INT`; an argument
+        that is no colour set name (`of INT * STRING`) is kept for the checker to refuse (`pred`)."""
+        fields, bad = [], None
+        for con, te in items[1:]:
+            if te is None or isinstance(te, A.TName):
+                fields.append((con, None if te is None else _BASE_TYPES.get(te.name, te.name)))
+            else:
+                bad = bad or te
+        return A.ColsetDecl(self.span(meta), str(items[0]),
+                            A.ColsetBody(self.span(meta), "datatype", fields=fields, pred=bad), False)
+
+    def dtcon(self, items):
+        return (str(items[0]), items[1])
 
     def _cs(self, meta, kind, **kw):
         return A.ColsetBody(self.span(meta), kind, **kw)

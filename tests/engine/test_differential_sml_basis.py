@@ -1,6 +1,6 @@
 """The compiled engine against the reference interpreter on the Standard ML forms and library that CPN Tools
 models compute with (docs/cpnml.md): `val rec`, CPN Tools' list library, `empty` beside a list, `option`,
-`order` and `Date`; the colour sets `bool with (no, yes)` and `string with "a".."z" and m..n`."""
+`order` and `Date`; `datatype`; the colour sets `bool with (no, yes)` and `string with "a".."z" and m..n`."""
 
 import pytest
 
@@ -50,6 +50,16 @@ arc P -> T : a;
 arc Q -> T : s;
 arc T -> P : flip a;
 arc T -> Q : if a = yes then s ^ "a" else s;
+""",
+    "datatype": """
+colset C = int with 0..3;
+datatype Msg = Ping | Data of C;
+var m : Msg;
+fun next Ping = Data 0 | next (Data n) = if n < 3 then Data (n + 1) else Ping;
+place P : Msg = 1`Ping ++ 1`(Data 2);
+trans T [m <> Data 1];
+arc P -> T : m;
+arc T -> P : next m;
 """,
 }
 

@@ -127,7 +127,7 @@ class _Declarations:
                 if lay is not None and el.find("by") is None:
                     needed |= words(lay.text)
             elif el.tag == "ml":
-                heads = {name for name, _ in ml.declared_functions(el.text)}
+                heads = {name for name, _ in ml.declared_functions(el.text)} | ml.datatype_names(el.text)
                 mls.append((el, heads, words(el.text)))
         changed = True
         while changed:

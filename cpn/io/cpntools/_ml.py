@@ -149,6 +149,15 @@ def _nest(kw: str | None, blocks: list[str]) -> bool:
     return True
 
 
+def datatype_names(text: str) -> set[str]:
+    """The type names and constructors that the `datatype` declarations of an ML text declare."""
+    out: set[str] = set()
+    for m in re.finditer(r"\bdatatype\s+([A-Za-z][\w']*)\s*=([^;]*)", strip_comments(text)):
+        out.add(m.group(1))
+        out |= {c.group(1) for c in re.finditer(r"(?:^|\|)\s*([A-Za-z][\w']*)", m.group(2))}
+    return out
+
+
 def declared_functions(text: str) -> list[tuple[str, str]]:
     """(name, body text) for each top-level `fun NAME` / `val NAME` of an ML declaration text.
 
