@@ -1,4 +1,4 @@
-"""CTL labelling against a brute-force fixpoint evaluator on random hand-made graphs (issue 10).
+"""CTL labelling against a brute-force fixpoint evaluator on random hand-made graphs.
 
 The brute force evaluates every operator by the fixpoint characterisations (Emerson-Lei for the fair
 EG), iterating to stability with no SCC decomposition: a different algorithm from `cpn.checks.ctl`.

@@ -1,4 +1,4 @@
-"""Each property kind on small nets with hand-checked verdicts, holding and violated (issue 10)."""
+"""Each property kind on small nets with hand-checked verdicts, holding and violated."""
 
 import pytest
 

@@ -1,5 +1,5 @@
 """The verdicts agree with CPN Tools' published state-space report of the CPN book's LimitProtocol
-(Jensen & Kristensen 2009, ch. 7; shared/validation/expected.json) (issue 10)."""
+(Jensen & Kristensen 2009, ch. 7; shared/validation/expected.json)."""
 
 import os
 

@@ -1,4 +1,4 @@
-"""Every TOML example of docs/specs.md and docs/ci-guide.md is a valid scenario (issue 10)."""
+"""Every TOML example of docs/specs.md and docs/ci-guide.md is a valid scenario."""
 
 import pathlib
 import re

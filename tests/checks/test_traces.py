@@ -1,4 +1,4 @@
-"""Counterexamples replay through the engine and are shortest; partial searches never hold (issue 10)."""
+"""Counterexamples replay through the engine and are shortest; partial searches never hold."""
 
 from collections import deque
 

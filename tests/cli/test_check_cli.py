@@ -1,4 +1,4 @@
-"""`cpn-verify check`: exit statuses, positioned errors, reports, JUnit, SARIF, baseline (issue 10)."""
+"""`cpn-verify check`: exit statuses, positioned errors, reports, JUnit, SARIF, baseline."""
 
 import json
 import os

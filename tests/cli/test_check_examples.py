@@ -1,4 +1,4 @@
-"""The repository's scenarios hold, and the broken example of the CI guide fails readably (issue 10)."""
+"""The repository's scenarios hold, and the broken example of the CI guide fails readably."""
 
 import json
 import os

@@ -1,4 +1,4 @@
-"""PNML as GreatSPN writes it (issue 15): one-component tuples around every term of a sort that is not a
+"""PNML as GreatSPN writes it: one-component tuples around every term of a sort that is not a
 product, and partition elements used as colours inside tuples with sums of constants."""
 
 from __future__ import annotations

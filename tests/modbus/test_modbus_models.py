@@ -1,4 +1,4 @@
-"""The MODBUS, mMODBUS and Modbus-A models (issue 11): key figures and the thesis's claims on small scenarios.
+"""The MODBUS, mMODBUS and Modbus-A models: key figures and the thesis's claims on small scenarios.
 
 The claims are checked here in Python over the explored graph (markings without time stamps), so that
 the models are guarded whatever the state of the scenario checker; specs/modbus/ states the same
@@ -120,14 +120,14 @@ def test_a2_claims_and_the_protocol_rules(a2):
 
 
 def test_every_frame_reaches_every_slave_and_each_filters_it(a2):
-    # issue 23 item 2: before, the bus gave a copy only to the owner, so S2 (not for this slave) was dead
+    # before, the bus gave a copy only to the owner, so S2 (not for this slave) was dead
     assert a2.fired("Slave'Discard 1") and a2.fired("Slave'Discard 2")
     rounds = {tuple(ks) for s in a2.states() for (ks, f) in a2.view(s, "Modbus'b2s 1") if f[SRC] == 0 and f[ID] > 3}
     assert (1, 2) in rounds  # a unicast frame's round starts at slave 1 whatever its address
 
 
 def test_late_slave_races_the_timeout_and_the_retry(a2):
-    # issue 23 item 1: slave 1 may take TLATE > RESP_TO: the time-out, the retry (lost by the busy slave)
+    # slave 1 may take TLATE > RESP_TO: the time-out, the retry (lost by the busy slave)
     # and a reply arriving during the retry are all reachable
     assert a2.fired("Master'ResponseTimeout 1") and a2.fired("Master'Retry 1")
     assert a2.fired("Slave'Lost 1")
@@ -154,7 +154,7 @@ def test_stale_reply_during_the_next_transaction_is_not_the_answer():
 
 
 def test_corrupted_frames_are_discarded_by_slaves_and_frame_errors_at_the_master(a2):
-    # issue 23 item 3: a corrupted frame reaches every slave (each discards it) and the master (M8)
+    # a corrupted frame reaches every slave (each discards it) and the master (M8)
     assert a2.fired("Bus'CorruptMaster 1") and a2.fired("Bus'CorruptSlave 1")
     assert a2.fired("Master'FrameError 1")
     seen = {k for s in a2.states() for (ks, f) in a2.view(s, "Modbus'b2s 1") if not f[OK] for k in ks}
@@ -162,7 +162,7 @@ def test_corrupted_frames_are_discarded_by_slaves_and_frame_errors_at_the_master
 
 
 def test_retries_matter_timed_states_and_dead_markings_grow_with_po():
-    # issue 23 item 1: the thesis's trend A.3 (PO 0) < A.2 (PO 2) < A.4 (PO 5), in states and dead markings,
+    # the thesis's trend A.3 (PO 0) < A.2 (PO 2) < A.4 (PO 5), in states and dead markings,
     # on the timed state space (CPN Tools' figures); the old model had 221 / 311 / 446 states and 3 dead
     # markings each
     figures = []
@@ -328,7 +328,7 @@ def test_frames_in_any_order_each_sent_once():
 
 
 def test_modbus_a_loads_long_chains():
-    # issue 11: the initial marking of 200 slaves (range was a recursive CPN ML function: it failed past
+    # the initial marking of 200 slaves (range was a recursive CPN ML function: it failed past
     # about 100 slaves); the reset then travels the whole chain
     model = cpn.load(MODBUS_A, set={"N": "200", "MAXN": "200"})
     engine = model.engine(time_condensation=True)

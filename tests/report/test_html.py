@@ -1,4 +1,4 @@
-"""Issue 12: the HTML report, its drawings (net, state space, message sequence charts) and charts."""
+"""The HTML report, its drawings (net, state space, message sequence charts) and charts."""
 
 import os
 import pathlib

@@ -1,4 +1,4 @@
-"""Issue 12: the HTML pages of the bundled models rendered in headless Chromium.
+"""The HTML pages of the bundled models rendered in headless Chromium.
 
 Fails on any JavaScript error or console error, on a request for anything but the page itself, on a
 drawing that renders blank, on a page wider than the window (laptop 1366 px, phone 390 px) and on

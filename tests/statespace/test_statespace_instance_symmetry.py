@@ -1,4 +1,4 @@
-"""Symmetry of module instances (issue 14, item 4), cross-checked against the full graph: on random nets
+"""Symmetry of module instances, cross-checked against the full graph: on random nets
 with one module instance per value of a symmetric colour set, and on a small client/lock net, the full
 counts computed from the orbit sizes equal the full exploration's, the dead markings are the same up to
 symmetry, the integer bounds and dead transition instances of the quotient's report are the full graph's,

@@ -1,4 +1,4 @@
-"""The partitioned search (issue 14, item 1): with 1 and 2 worker processes, the same states, arcs, dead
+"""The partitioned search: with 1 and 2 worker processes, the same states, arcs, dead
 markings, bounds and report as the one-process search, on the repository's models and a corpus sample;
 limits stop it and say so; what it cannot run falls back to one process with a note."""
 

@@ -1,4 +1,4 @@
-"""The partitioned search on Ray (issue 14, item 2): actors on a local Ray instance (2 CPUs, no dashboard,
+"""The partitioned search on Ray: actors on a local Ray instance (2 CPUs, no dashboard,
 started once for this module) give the same state space and report as one process."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Stubborn sets (issue 14, item 3): the reduced graph has the full graph's dead markings and, with the
+"""Stubborn sets: the reduced graph has the full graph's dead markings and, with the
 visibility condition, the same markings of the visible places (so the same invariant verdicts)."""
 
 from __future__ import annotations

@@ -1,4 +1,4 @@
-"""Issue 14, item 5: the sweep-line method gives the full search's counts, dead markings and bounds on
+"""The sweep-line method gives the full search's counts, dead markings and bounds on
 random timed nets and the repository's timed models; regress arcs are detected and handled."""
 
 import os

@@ -1,4 +1,4 @@
-"""Symmetry reduction (issue 14, item 4), cross-checked against the full graph: the full counts computed
+"""Symmetry reduction, cross-checked against the full graph: the full counts computed
 from the orbit sizes equal the full exploration's, the dead markings are the same up to symmetry, and the
 integer bounds, token maxima, dead and live transition instances and fairness are equal; every lifted
 trace replays in the full graph. On random symmetric nets and on the corpus's symmetric nets."""
