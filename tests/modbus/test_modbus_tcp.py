@@ -6,6 +6,8 @@ with a shortest counterexample."""
 
 import importlib.util
 import os
+import subprocess
+import sys
 from collections import deque
 
 import pytest
@@ -127,3 +129,14 @@ def test_the_nominal_model_breaks_none_of_the_properties_on_a_mutant_configurati
     nominal = type(run)(run.name + " nominal", run.params, {**run.values, "TMUTANT": '"none"'})
     result = run_scenario(scenario, nominal)
     assert {r.verdict.status for r in result.results} == {Status.HOLDS}, mutant
+
+
+def test_committed_tcp_reports_are_what_check_writes(tmp_path):
+    r = subprocess.run([sys.executable, "-m", "cpn", "check", "specs/modbus/tcp_gateway.toml", "--no-timings", "-q",
+                        "--reports", str(tmp_path)], cwd=ROOT, capture_output=True, text=True)
+    assert r.returncode == 0, r.stdout + r.stderr
+    written = sorted(os.listdir(tmp_path))
+    assert len(written) == 12   # four runs, three reports each
+    for name in written:
+        with open(os.path.join(ROOT, "reports", "modbus", name), encoding="utf-8") as fh:
+            assert (tmp_path / name).read_text(encoding="utf-8") == fh.read(), name
