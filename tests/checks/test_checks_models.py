@@ -2,16 +2,11 @@
 
 import os
 
-import pytest
-
 import cpn
 from cpn.checks import Fairness
 from cpn.report import build_report
 from cpn.statespace import ExploreOptions, Explorer
 from tests._shared import SHARED, needs_shared
-
-if not hasattr(cpn, "load"):
-    pytest.skip("cpn.load is not available yet", allow_module_level=True)
 
 MODELS = os.path.join(os.path.dirname(__file__), "..", "statespace", "models")
 NETS = os.path.join(os.path.dirname(__file__), "..", "..", "bench", "nets")
@@ -87,10 +82,7 @@ LIMIT = os.path.join(SHARED, "validation", "CPNBook-LimitProtocol", "7-2LimitPro
 
 @needs_shared
 def test_limit_protocol_matches_the_published_cpn_tools_report():
-    try:
-        e = cpn.load(LIMIT).engine(time_condensation=False)
-    except Exception as exc:  # the .cpn reader is another layer's work
-        pytest.skip(f".cpn models do not load yet: {exc}")
+    e = cpn.load(LIMIT).engine(time_condensation=False)
     r = build_report(Explorer(e).run(), model="7-2LimitProtocol.cpn")
     x = r.exploration
     assert (x.n_states, x.n_arcs) == (13_215, 52_784)
