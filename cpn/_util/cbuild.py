@@ -38,7 +38,7 @@ _OPT_LEVELS = ("-O0", "-O1", "-O2", "-O3", "-Os")
 
 def cflags() -> list[str]:
     """The compiler flags: CFLAGS after the optimisation level, `-O2` unless CPN_CC_OPT names another
-    (the test suite builds with `-O1`, whose compilations take about a third less time: tests/conftest.py)."""
+    (the test suite builds with `-O0`, whose compilations take less time: tests/conftest.py)."""
     opt = os.environ.get("CPN_CC_OPT", "-O2")
     return [opt if opt in _OPT_LEVELS else "-O2", *CFLAGS]
 
