@@ -51,6 +51,45 @@ def nnf(f: tuple, negate: bool = False) -> tuple:
     raise ValueError(f"unknown LTL operator {op!r}")
 
 
+def simplify(f: tuple) -> tuple:
+    """A formula in negation normal form rewritten by laws that keep its meaning and shrink its
+    automaton: constants folded, ``a U F b = F b``, ``a R G b = G b``, ``F G F b = G F b``,
+    ``G F G b = F G b``, ``a U a = a`` and ``a R a = a``."""
+    op = f[0]
+    if op in ("true", "false", "ap", "not"):
+        return f
+    args = [simplify(x) for x in f[1:]]
+    if op == "X":
+        a = args[0]
+        return a if a in (TRUE, FALSE) else ("X", a)
+    a, b = args
+    if op == "and":
+        if FALSE in (a, b):
+            return FALSE
+        return b if a == TRUE or a == b else a if b == TRUE else ("and", a, b)
+    if op == "or":
+        if TRUE in (a, b):
+            return TRUE
+        return b if a == FALSE or a == b else a if b == FALSE else ("or", a, b)
+    if a == b or b in (TRUE, FALSE):
+        return b
+    if op == "U":
+        if a == FALSE:
+            return b
+        if b[0] == "U" and b[1] == TRUE:  # a U F c = F c
+            return b
+        if a == TRUE and b[0] == "R" and b[1] == FALSE and b[2][0] == "U" and b[2][1] == TRUE:
+            return b  # F G F c = G F c
+        return ("U", a, b)
+    if a == TRUE:
+        return b
+    if b[0] == "R" and b[1] == FALSE:  # a R G c = G c
+        return b
+    if a == FALSE and b[0] == "U" and b[1] == TRUE and b[2][0] == "R" and b[2][1] == FALSE:
+        return b  # G F G c = F G c
+    return ("R", a, b)
+
+
 def atoms(f: tuple) -> set[int]:
     """The atomic propositions of f."""
     if f[0] == "ap":
@@ -79,19 +118,17 @@ def text(f: tuple, names=None) -> str:
 # ----------------------------------------------------------------------------- automata
 @dataclass
 class Automaton:
-    """A generalised Büchi automaton with labels on states.
+    """A generalised Büchi automaton with labels and acceptance sets on its edges.
 
-    State q may be entered on a system state whose true propositions (a bitmask) contain all of
-    `pos[q]` and none of `neg[q]`; `initial` are the states a run may start in (reading the first system
-    state), `succ[q]` the states after q; `acc[q]` is the bitmask of the acceptance sets q belongs to, of
-    `n_acc` sets (a run is accepting if it visits every set infinitely often).
+    A state is what the run still promises about the present and the future (the tableau's obligations).
+    `edges[q]` lists (pos, neg, acc, r): from state q, a system state whose true propositions (a bitmask)
+    contain all of `pos` and none of `neg` may be read, moving to state r; `acc` is the bitmask of the
+    acceptance sets the edge belongs to, of `n_acc` sets (a run is accepting if it takes an edge of every
+    set infinitely often). Runs start in `initial`.
     """
 
-    pos: list[int]
-    neg: list[int]
-    initial: list[int]
-    succ: list[list[int]]
-    acc: list[int]
+    edges: list[list[tuple[int, int, int, int]]]
+    initial: int
     n_acc: int
 
     @property
@@ -99,11 +136,11 @@ class Automaton:
         return (1 << self.n_acc) - 1
 
     def __len__(self) -> int:
-        return len(self.pos)
+        return len(self.edges)
 
-    def enters(self, q: int, mask: int) -> bool:
-        """Whether q may be entered on a system state whose true propositions are `mask`."""
-        return mask & self.pos[q] == self.pos[q] and not mask & self.neg[q]
+    def moves(self, q: int, mask: int) -> list[tuple[int, int]]:
+        """(acceptance sets, next state) of the edges from q that read a state with propositions `mask`."""
+        return [(acc, r) for pos, neg, acc, r in self.edges[q] if mask & pos == pos and not mask & neg]
 
 
 @dataclass
@@ -118,8 +155,9 @@ _INIT = -1
 
 
 def translate(f: tuple) -> Automaton:
-    """The generalised Büchi automaton of the formula f (any form: it is put in negation normal form)."""
-    g = nnf(f)
+    """The generalised Büchi automaton of the formula f (any form: it is put in negation normal form and
+    simplified)."""
+    g = simplify(nnf(f))
     done: list[_Node] = []  # finished tableau nodes; their index is their name
 
     def expand(node: _Node) -> None:
@@ -163,27 +201,57 @@ def translate(f: tuple) -> Automaton:
 
     expand(_Node({_INIT}, {g}, set(), set()))
     untils = sorted({h for d in done for h in d.old if h[0] == "U"}, key=repr)
-    n = len(done)
-    pos, neg, acc = [0] * n, [0] * n, [0] * n
-    succ: list[list[int]] = [[] for _ in range(n)]
-    initial = []
-    for q, d in enumerate(done):
+    # a state per distinct obligation set: a node expands the obligations its predecessors left
+    states: dict = {frozenset({g}): 0}
+    for d in done:
+        states.setdefault(frozenset(d.nxt), len(states))
+    edges: list[set] = [set() for _ in states]
+    for d in done:
+        pos = neg = acc = 0
         for h in d.old:
             if h[0] == "ap":
-                pos[q] |= 1 << h[1]
+                pos |= 1 << h[1]
             elif h[0] == "not":
-                neg[q] |= 1 << h[1][1]
-        for src in sorted(d.incoming):
-            if src == _INIT:
-                initial.append(q)
-            else:
-                succ[src].append(q)
+                neg |= 1 << h[1][1]
         for k, u in enumerate(untils):
             if u not in d.old or u[2] in d.old:
-                acc[q] |= 1 << k
-    if not untils:
-        return Automaton(pos, neg, initial, succ, [1] * n, 1)
-    return Automaton(pos, neg, initial, succ, acc, len(untils))
+                acc |= 1 << k
+        if not untils:
+            acc = 1
+        target = states[frozenset(d.nxt)]
+        for src in d.incoming:
+            q = 0 if src == _INIT else states[frozenset(done[src].nxt)]
+            edges[q].add((pos, neg, acc, target))
+    return _prune(Automaton([sorted(e) for e in edges], 0, max(1, len(untils))))
+
+
+def _prune(a: Automaton) -> Automaton:
+    """The automaton without the states from which no accepting cycle can be reached (no accepting run
+    goes through them), nor the edges into them."""
+    n = len(a)
+    succ = [{e[3] for e in a.edges[q]} for q in range(n)]
+    reach = [{q} for q in range(n)]
+    changed = True
+    while changed:  # transitive closure: automata are small
+        changed = False
+        for q in range(n):
+            more = set().union(*(reach[r] for r in succ[q])) if succ[q] else set()
+            if not more <= reach[q]:
+                reach[q] |= more
+                changed = True
+    good: set = set()
+    for q in range(n):
+        comp = {r for r in reach[q] if q in reach[r]}
+        mask = 0
+        for u in comp:
+            for _p, _n, acc, r in a.edges[u]:
+                if r in comp:
+                    mask |= acc
+        if mask == a.full:
+            good |= comp
+    useful = [bool(reach[q] & good) for q in range(n)]
+    return Automaton([[e for e in a.edges[q] if useful[e[3]]] if useful[q] else [] for q in range(n)], a.initial,
+                     a.n_acc)
 
 
 def _negation(h: tuple) -> tuple:
@@ -205,26 +273,27 @@ def accepts(a: Automaton, prefix: list, cycle: list) -> bool:
     def nxt(k: int) -> int:
         return k + 1 if k + 1 < n else loop
 
-    start = [(0, q) for q in a.initial if a.enters(q, word[0])]
-    succ = {}
-    seen, stack = set(start), list(start)
+    start = (0, a.initial)
+    succ: dict = {}
+    seen, stack = {start}, [start]
     while stack:
         k, q = stack.pop()
-        out = [(nxt(k), r) for r in a.succ[q] if a.enters(r, word[nxt(k)])]
+        out = [(acc, (nxt(k), r)) for acc, r in a.moves(q, word[k])]
         succ[(k, q)] = out
-        for v in out:
+        for _acc, v in out:
             if v not in seen:
                 seen.add(v)
                 stack.append(v)
-    # an accepting cycle: an SCC (of the reachable product) that is nontrivial and meets every set
+    plain = {v: [w for _acc, w in out] for v, out in succ.items()}
     for v in seen:
-        comp = {w for w in _reach(succ, v) if v in _reach(succ, w)}
-        if any(w in comp for u in comp for w in succ[u]):
-            mask = 0
-            for _k, q in comp:
-                mask |= a.acc[q]
-            if mask == a.full:
-                return True
+        comp = {w for w in _reach(plain, v) if v in _reach(plain, w)}
+        mask = 0
+        for u in comp:
+            for acc, w in succ[u]:
+                if w in comp:
+                    mask |= acc
+        if mask == a.full and any(w in comp for u in comp for w in plain[u]):
+            return True
     return False
 
 

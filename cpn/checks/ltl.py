@@ -145,75 +145,69 @@ class _Search:
         return out if out else [(None, s)]
 
     def successors(self, v: tuple) -> list:
-        """(label, product state) after product state v = (system state, automaton state)."""
+        """(label, product state, acceptance sets) after product state v = (system state, automaton
+        state): the automaton reads the present system state, the system moves."""
         s, q = v
-        aut = self.aut
-        out = []
-        for label, t in self.steps(s):
-            m = self.mask(t)
-            for r in aut.succ[q]:
-                if aut.enters(r, m):
-                    out.append((label, (t, r)))
-        return out
+        moves = {}
+        for acc, r in self.aut.moves(q, self.mask(s)):
+            moves[r] = moves.get(r, 0) | acc  # one edge per target, with every set some edge to it meets
+        if not moves:
+            return []
+        return [(label, (t, r), acc) for label, t in self.steps(s) for r, acc in moves.items()]
 
     def run(self):
         """None when the product has no accepting cycle, else the lasso (prefix, cycle)."""
         aut = self.aut
-        s0 = self.system.initial_state()
-        m0 = self.mask(s0)
         full = aut.full
         index = self.index
-        roots: list[list] = []  # [depth-first number, acceptance sets met]
+        roots: list[list] = []  # [depth-first number, sets met inside its SCC, sets of the arc into it]
         live: list = []  # states of the SCCs not yet finished, in depth-first order
         todo: list = []  # the depth-first path: [product state, its successors, next position, label in]
 
-        def push(v, label) -> None:
+        def push(v, label, acc) -> None:
             index[v] = len(index)
             if self.max_states is not None and len(index) > self.max_states:
                 raise _Stop(f"the product reached {self.max_states:,} states")
             if self.deadline is not None and len(index) % 256 == 0 and time.monotonic() > self.deadline:
                 raise _Stop("the time limit was reached")
-            roots.append([index[v], aut.acc[v[1]]])
+            roots.append([index[v], 0, acc])
             live.append(v)
             todo.append([v, self.successors(v), 0, label])
 
-        for q in aut.initial:
-            if not aut.enters(q, m0) or (s0, q) in index:
+        push((self.system.initial_state(), aut.initial), None, 0)
+        while todo:
+            top = todo[-1]
+            v, succ, k = top[0], top[1], top[2]
+            if k == len(succ):
+                todo.pop()
+                if roots[-1][0] == index[v]:
+                    roots.pop()
+                    while True:
+                        w = live.pop()
+                        index[w] = _DONE
+                        if w == v:
+                            break
                 continue
-
-            push((s0, q), None)
-            while todo:
-                top = todo[-1]
-                v, succ, k = top[0], top[1], top[2]
-                if k == len(succ):
-                    todo.pop()
-                    if roots[-1][0] == index[v]:
-                        roots.pop()
-                        while True:
-                            w = live.pop()
-                            index[w] = _DONE
-                            if w == v:
-                                break
-                    continue
-                top[2] = k + 1
-                label, w = succ[k]
-                iw = index.get(w)
-                if iw is None:
-                    push(w, label)
-                    continue
-                if iw == _DONE:
-                    continue
-                met = 0
-                while roots[-1][0] > iw:
-                    met |= roots.pop()[1]
-                roots[-1][1] |= met
-                if roots[-1][1] == full:
-                    return self.lasso(todo, live, roots[-1][0])
+            top[2] = k + 1
+            label, w, acc = succ[k]
+            iw = index.get(w)
+            if iw is None:
+                push(w, label, acc)
+                continue
+            if iw == _DONE:
+                continue
+            met = acc
+            while roots[-1][0] > iw:
+                r = roots.pop()
+                met |= r[1] | r[2]
+            roots[-1][1] |= met
+            if roots[-1][1] == full:
+                return self.lasso(todo, live, roots[-1][0])
         return None
 
     def lasso(self, todo: list, live: list, root: int):
         """The counterexample when the SCC of the root with depth-first number `root` is accepting:
-        the depth-first path to the root, then a cycle in the SCC through every acceptance set."""
+        the depth-first path to the root, then a cycle in the SCC through an arc of every acceptance set."""
         index, aut = self.index, self.aut
         prefix = []
         for v, _succ, _k, label in todo:
@@ -225,41 +219,39 @@ class _Search:
         cycle: list = []
         cur = start
         need = aut.full
-        for k in range(aut.n_acc):
-            if not need >> k & 1:
-                continue
-            seg = self._path(cur, lambda v, k=k: aut.acc[v[1]] >> k & 1, inside, at_least_one=False)
-            for _label, v in seg:
-                need &= ~aut.acc[v[1]]
+        while need:
+            k = (need & -need).bit_length() - 1
+            seg = self._path(cur, inside, lambda acc, k=k: acc >> k & 1)
+            for _label, _v, acc in seg:
+                need &= ~acc
             cycle.extend(seg)
-            cur = seg[-1][1] if seg else cur
-            if cur == start and cycle:
-                need &= ~aut.acc[start[1]]
-        cycle.extend(self._path(cur, lambda v: v == start, inside, at_least_one=True))
-        return ([(label, v[0]) for label, v in prefix], [(label, v[0]) for label, v in cycle])
+            cur = seg[-1][1]
+        if cur != start or not cycle:
+            cycle.extend(self._path(cur, inside, None, start))
+        return ([(label, v[0]) for label, v in prefix], [(label, v[0]) for label, v, _acc in cycle])
 
-    def _path(self, frm, goal, inside: set, at_least_one: bool) -> list:
-        """The shortest steps (label, product state) from frm to a goal state, inside the SCC."""
-        if not at_least_one and goal(frm):
-            return []
+    def _path(self, frm, inside: set, arc_goal, to=None) -> list:
+        """The shortest steps (label, product state, sets) from frm inside the SCC, ending with an arc
+        that `arc_goal` accepts (by its sets), or at state `to` (at least one step)."""
         parent: dict = {}
         queue = deque([frm])
+        seen = {frm}
         while queue:
             u = queue.popleft()
-            for label, w in self.successors(u):
-                if w not in inside or w in parent:
+            for label, w, acc in self.successors(u):
+                if w not in inside:
                     continue
-                parent[w] = (u, label)
-                if goal(w):
-                    out = []
-                    while True:
-                        p, lab = parent[w]
-                        out.append((lab, w))
-                        if p == frm:
-                            return out[::-1]
-                        w = p
-                queue.append(w)
-        raise AssertionError("a state of an accepting SCC reaches every state of it")
+                if (arc_goal is not None and arc_goal(acc)) or (to is not None and w == to):
+                    out = [(label, w, acc)]
+                    while u != frm:
+                        u, step = parent[u]
+                        out.append(step)
+                    return out[::-1]
+                if w not in seen:
+                    seen.add(w)
+                    parent[w] = (u, (label, w, acc))
+                    queue.append(w)
+        raise AssertionError("a state of an accepting SCC reaches every state and arc of it")
 
 
 __all__ = ["Cache", "LtlResult", "check_ltl"]

@@ -93,8 +93,19 @@ def test_negation_normal_form_pushes_negations_to_the_propositions():
 
 def test_a_contradiction_has_no_run_and_a_tautology_accepts_every_word():
     never = translate(("and", ("ap", 0), ("not", ("ap", 0))))
-    assert not never.initial
+    assert not never.edges[never.initial]  # no edge: no run
     always = translate(("or", ("G", ("ap", 0)), ("F", ("not", ("ap", 0)))))
     rng = random.Random(1)
     for _ in range(20):
         assert accepts(always, *random_word(rng, 1))
+
+
+def test_simplification_shrinks_the_automaton_and_keeps_the_meaning():
+    from cpn.checks.buchi import simplify
+
+    p, q = ("ap", 0), ("ap", 1)
+    f = ("U", ("F", ("G", ("F", p))), ("F", q))  # (F G F p) U (F q) = F q
+    assert simplify(nnf(f)) == nnf(("F", q))
+    assert len(translate(f)) == len(translate(("F", q)))
+    assert simplify(nnf(("F", ("G", ("F", p))))) == nnf(("G", ("F", p)))
+    assert simplify(nnf(("G", ("F", ("G", p))))) == nnf(("F", ("G", p)))
