@@ -12,11 +12,13 @@ deadlock as repeating its last marking forever (docs/mcc.md).
 from __future__ import annotations
 
 import argparse
+import operator
 import sys
 import time
 from array import array
 from collections import deque
 from dataclasses import dataclass
+from operator import itemgetter
 
 from cpn.cli._common import ExitStatus, UsageError, add_quiet_option
 from cpn.properties import contest as c
@@ -84,12 +86,19 @@ class ContestModel:
         self._counts: dict = {}
         self._fire: dict = {}
         self._graph = None
+        self._kripke = None
+        self._rows = None
+        self.explored = 0  # the states of the whole state space, once it was built
+        self._columns = None
+        self._arc_transitions = None
         self._file = ""
 
     def forget(self) -> None:
         """Forget the markings generated so far (to time a property file on its own)."""
         self.cache = self._new_cache()
-        self._counts, self._fire, self._graph = {}, {}, None
+        self._counts, self._fire, self._graph, self._columns, self._kripke = {}, {}, None, None, None
+        self._rows = None
+        self.explored = 0
 
     @classmethod
     def load(cls, path: str, **kw) -> ContestModel:
@@ -139,7 +148,12 @@ class ContestModel:
             return lambda s, v=f.value: v
         if isinstance(f, (c.Tokens, c.PlaceBound)):
             idx = [self._index(self.place, p, "place", f) for p in f.places]
-            return lambda s: sum(self.counts(s)[i] for i in idx)
+            if not idx:
+                return lambda s: 0
+            if len(idx) == 1:
+                return lambda s, i=idx[0]: self.counts(s)[i]
+            pick = itemgetter(*idx)
+            return lambda s: sum(pick(self.counts(s)))
         if isinstance(f, c.Fireable):
             want = frozenset(self._index(self.transition, t, "transition", f) for t in f.transitions)
             return lambda s: not want.isdisjoint(self.fireable(s))
@@ -205,50 +219,147 @@ class ContestModel:
         return False
 
     def graph(self):
-        """The whole state space as (states, offsets, dst), dead markings with a self-loop (built once)."""
+        """The whole state space as (states, offsets, dst), built once by the explorer (natively where it
+        can); `_arc_transitions` holds the transition instance of every arc."""
         if self._graph is None:
-            s0 = self.cache.initial_state()
-            ids = {s0: 0}
-            states = [s0]
-            offsets, dst = array("q", [0]), array("i")
-            k = 0
-            while k < len(states):
-                s = states[k]
-                succ = self.cache.successors(s)
-                if not succ and self.ctl_stutter:
-                    dst.append(k)
-                for _be, t in succ:
-                    j = ids.get(t)
-                    if j is None:
-                        j = ids[t] = len(states)
-                        states.append(t)
-                        self._tick(len(states))
-                    dst.append(j)
-                offsets.append(len(dst))
-                k += 1
-            self._graph = (states, offsets, dst)
+            if self.ctl_stutter:
+                return self._python_graph()
+            from cpn.statespace import ExploreOptions, Explorer
+            from cpn.statespace.options import default_max_memory_mb
+
+            seconds = None if self.deadline is None else max(0.001, self.deadline - time.monotonic())
+            x = Explorer(self.engine, ExploreOptions(max_states=self.max_states, max_seconds=seconds,
+                                                     max_memory_mb=default_max_memory_mb())).run()
+            if not x.complete:
+                raise CannotCompute(f"the state space is partial: {x.stop_reason.describe(x.options)}")
+            g = x.graph
+            table = {be: self.transition_of(be) for be in set(g.bes)}
+            self._arc_transitions = array("i", map(table.__getitem__, g.bes))
+            self.explored = x.n_states
+            self._graph = (g.states, g.offsets, g.dst)
         return self._graph
+
+    def _python_graph(self):
+        """The state space built through `successors`, a dead marking with a self-loop (the stuttering
+        reading of CTL, which the contest does not use: kept to compare the two readings)."""
+        s0 = self.cache.initial_state()
+        ids = {s0: 0}
+        states = [s0]
+        offsets, dst, trans = array("q", [0]), array("i"), array("i")
+        k = 0
+        while k < len(states):
+            s = states[k]
+            succ = self.cache.successors(s)
+            if not succ:
+                dst.append(k)
+                trans.append(-1)
+            for be, t in succ:
+                trans.append(self.transition_of(be))
+                j = ids.get(t)
+                if j is None:
+                    j = ids[t] = len(states)
+                    states.append(t)
+                    self._tick(len(states))
+                dst.append(j)
+            offsets.append(len(dst))
+            k += 1
+        self._graph = (states, offsets, dst)
+        self._arc_transitions = trans
+        return self._graph
+
+    # ------------------------------------------------------------------ atoms over the whole state space
+    def vector(self, f: c.Node):
+        """The value of a state formula (a bytearray) or integer expression (a list) in every state of
+        the state space, in `graph()` order, computed a column at a time."""
+        states, offsets, _dst = self.graph()
+        n = len(states)
+        if isinstance(f, c.Bool):
+            return bytearray([f.value]) * n
+        if isinstance(f, c.IntConst):
+            return [f.value] * n
+        if isinstance(f, c.Not):
+            return self.vector(f.arg).translate(_NOT)
+        if isinstance(f, (c.And, c.Or)):
+            parts = [int.from_bytes(self.vector(a), "little") for a in f.args]
+            acc = parts[0]
+            for x in parts[1:]:
+                acc = acc & x if isinstance(f, c.And) else acc | x
+            return bytearray(acc.to_bytes(n, "little"))
+        if isinstance(f, c.IntLe):
+            return bytearray(map(operator.le, self.vector(f.left), self.vector(f.right)))
+        if isinstance(f, (c.Tokens, c.PlaceBound)):
+            cols = self.columns()
+            idx = [self._index(self.place, p, "place", f) for p in f.places]
+            if not idx:
+                return [0] * n
+            if len(idx) == 1:
+                return list(cols[idx[0]])
+            return list(map(sum, zip(*(cols[i] for i in idx))))
+        if isinstance(f, c.Fireable):
+            rows = self.enabled_rows()
+            acc = 0
+            for t in {self._index(self.transition, t, "transition", f) for t in f.transitions}:
+                acc |= int.from_bytes(rows[t], "little")
+            return bytearray(acc.to_bytes(n, "little"))
+        raise CannotCompute(f"not a state formula: {c.show(f)}")
+
+    def columns(self) -> list:
+        """Per place, its number of tokens in every state of the state space: with the compiled engine's
+        layout (item p of a state is the intern id of place p's multiset) a column at a time from its
+        tables, else a state at a time."""
+        if self._columns is None:
+            from cpn.checks.columns import has_place_columns, state_chunks
+            from cpn.engine.protocol import capability
+
+            states = self.graph()[0]
+            counts = getattr(capability(self.engine, "store"), "counts", None)
+            if counts is not None and len(counts) == len(self.engine.places) and has_place_columns(self.engine,
+                                                                                                    states):
+                cols: list = [[] for _ in counts]
+                for chunk in state_chunks(states):
+                    for p, col in enumerate(cols):
+                        col.extend(map(counts[p].__getitem__, map(itemgetter(p), chunk)))
+                self._columns = cols
+            else:
+                self._columns = list(zip(*map(self.counts, states))) if len(states) else []
+        return self._columns
+
+    def enabled_rows(self) -> list:
+        """Per transition instance, the states (a bytearray) where it has an enabled binding."""
+        if self._rows is None:
+            states, offsets, _dst = self.graph()
+            n = len(states)
+            rows = [bytearray(n) for _ in self.engine.transitions]
+            trans = self._arc_transitions
+            for u in range(n):
+                for a in range(offsets[u], offsets[u + 1]):
+                    rows[trans[a]][u] = 1
+            self._rows = rows
+        return self._rows
 
     def answer(self, prop: c.ContestProperty) -> Answer:
         t0 = time.perf_counter()
         before = self.cache.expanded
+        built = self._graph
         self._file = prop.file
         try:
             value, technique = self._answer(prop.formula)
             ans = Answer(prop.id, value, technique=technique)
         except CannotCompute as exc:
             ans = Answer(prop.id, None, reason=str(exc))
-        ans.states = self.cache.expanded - before
+        ans.states = self.cache.expanded - before + (self.explored if built is None and self._graph is not None else 0)
         ans.seconds = time.perf_counter() - t0
         return ans
 
     def _answer(self, f: c.Node) -> tuple[object, str]:
         if isinstance(f, c.PlaceBound):
-            value = self.predicate(f)
-            states, _off, _dst = self.graph()
-            return max(map(value, states)), ""
+            return max(self.vector(f)), ""
         if isinstance(f, c.Quant) and isinstance(f.arg, c.Temporal) and f.arg.op in ("F", "G") \
                 and c.is_state_formula(f.arg.args[0]):
+            if f.path == "E" and f.arg.op == "F" and self._graph is not None:
+                return any(self.vector(f.arg.args[0])), ""  # the state space is there: one pass over it
+            if f.path == "A" and f.arg.op == "G" and self._graph is not None:
+                return all(self.vector(f.arg.args[0])), ""
             p = self.predicate(f.arg.args[0])
             if f.path == "E" and f.arg.op == "F":
                 return self.reach(p), "TOPOLOGICAL"
@@ -273,9 +384,13 @@ class ContestModel:
 
         states, offsets, dst = self.graph()
         atoms: list[bytearray] = []
-        formula = _to_ctl(f, atoms, lambda g: bytearray(map(bool, map(self.predicate(g), states))))
-        k = ctl.Kripke(len(states), offsets, dst, labels=array("i", bytes(4 * len(dst))))
-        return bool(k.label(formula, atoms)[0])
+        formula = _to_ctl(f, atoms, self.vector)
+        if self._kripke is None:
+            self._kripke = ctl.Kripke(len(states), offsets, dst, labels=array("i", bytes(4 * len(dst))))
+        return bool(self._kripke.label(formula, atoms)[0])
+
+
+_NOT = bytes([1, 0] + [0] * 254)
 
 
 def _body(name: str) -> str:
