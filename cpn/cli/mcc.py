@@ -27,9 +27,20 @@ TECHNIQUES = "TECHNIQUES EXPLICIT SEQUENTIAL_PROCESSING"
 DEFAULT_MAX_STATES = 3_000_000
 
 
+EPILOG = """exit statuses:
+  0   every formula answered (TRUE, FALSE or a bound: a FALSE answer is an answer, not a failure)
+  2   some formula could not be answered within the limits (CANNOT_COMPUTE)
+  64  bad usage, or a file that does not exist
+  65  a model or property file that cannot be read, or a formula naming a place or transition the
+      model does not have (every such name is reported, with its line and column, before any answer)
+  70  internal error (a bug in cpn-verify: please report it)
+"""
+
+
 def add_parser(subparsers) -> argparse.ArgumentParser:
     p = subparsers.add_parser("mcc", help="answer a Model Checking Contest property file on a PNML model",
-                              description=__doc__.split("\n\n")[1], formatter_class=argparse.RawDescriptionHelpFormatter)
+                              description=__doc__.split("\n\n")[1], epilog=EPILOG,
+                              formatter_class=argparse.RawDescriptionHelpFormatter)
     p.add_argument("model", metavar="MODEL", help="the PNML model (P/T or symmetric net)")
     p.add_argument("properties", metavar="PROPERTIES", help="the contest's XML property file")
     p.add_argument("--max-states", type=int, default=DEFAULT_MAX_STATES, metavar="N",
