@@ -167,3 +167,15 @@ def test_the_reports_are_those_of_loading_afresh_for_every_run(tmp_path, monkeyp
     assert fresh[0] == once[0] == 0
     assert fresh[1] == once[1]
     assert len(fresh[2]) >= 3 * len(RUNS) and fresh[2] == once[2]
+
+
+def test_mutate_loads_the_original_once_for_the_runs_of_its_gate(monkeypatch):
+    from cpn.gate.mutation import mutate
+    from cpn.gate.scenario import load_scenario
+
+    here = pathlib.Path(__file__).parent.parent / "mutate"
+    source = (here / "counter.cpnet").read_text(encoding="utf-8")
+    counts = _count(monkeypatch)
+    report = mutate([load_scenario(here / "weak.toml"), load_scenario(here / "strong.toml")], max_mutants=1, seed=1)
+    assert report.models[0].runs == 2 and len(report.models[0].outcomes) == 1
+    assert counts["parse"].count(source) == 1 and len(counts["check"]) == 1  # not once per run
