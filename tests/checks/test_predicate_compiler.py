@@ -12,7 +12,7 @@ from cpn.diagnostics import Span
 from cpn.engine.protocol import has
 from cpn.lang import types as T
 from cpn.properties.predicates import PropertyLanguage
-from cpn.statespace import Explorer, ExploreOptions
+from cpn.statespace import ExploreOptions, Explorer
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
 TEXTS = [
