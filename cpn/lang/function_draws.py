@@ -26,6 +26,7 @@ class FunctionDraws:
         self.ran_counter = 0
         self.ran_sink: list | None = None
         self.random_draws: list = []  # (name, span): calls of random distribution functions (simulate only)
+        self.choice_draws: list = []  # (call, span): discrete, bernoulli explored as a choice (our extension)
         # real-valued delays, reference variables, side effects: (what, span, hint, name), simulate only
         self.simulation_only_uses: list = []
         self.current_fun: str | None = None  # the top-level function being checked
@@ -36,6 +37,7 @@ class FunctionDraws:
 
     def record_draws(self, checked) -> None:
         checked.random_draws = list(self.random_draws)
+        checked.choice_draws = list(self.choice_draws)
         checked.simulation_only = list(self.simulation_only_uses)
 
     def top_fun_decl(self, d: A.FunDecl):

@@ -186,6 +186,7 @@ class MultisetInference:
         self.choice_variable(e, f"{fname}({lo},{hi})", lo, hi)
         if any(d.code == "W0104" and d.span == e.span for d in self.diags):
             return T.INT  # a draw in a function written out at several calls: one warning
+        self.choice_draws.append((f"{fname}({', '.join(map(str, values))})", e.span))
         self.warn("W0104", f"{fname}{'(' + ', '.join(map(str, values)) + ')'} is explored as a choice of every value "
                   f"({lo}..{hi}), one binding element each; simulate draws one", e.span,
                   hint="CPN Tools' state space tool cannot analyse random distribution functions: this reading is "

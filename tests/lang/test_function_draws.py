@@ -98,3 +98,20 @@ def test_names_in_the_function_are_the_functions_not_the_transitions():
                  "trans T;\narc P -> T : x;\narc T -> Q : f 1;\n")
     e, succ = first_successors(model)
     assert {e.format_marking(s, 1) for _, s in succ} == {"1`101", "1`102"}
+
+
+def test_the_report_notes_the_draws_explored_as_a_choice(tmp_path):
+    import json
+
+    from cpn.cli.main import main
+
+    path = tmp_path / "f.cpnet"
+    path.write_text(HEAD + "fun pick () = discrete (1, 3);\ntrans T;\narc P -> T : x;\narc T -> Q : pick ();\n")
+    out = tmp_path / "r.json"
+    assert main(["explore", str(path), "--json", str(out)]) == 0
+    [note] = [n for n in json.loads(out.read_text())["notes"] if "choice" in n]
+    assert "discrete(1, 3) at" in note and "f.cpnet:8:15" in note and "CPN Tools" in note
+    plain = tmp_path / "p.cpnet"
+    plain.write_text(HEAD + "trans T;\narc P -> T : x;\n")
+    assert main(["explore", str(plain), "--json", str(out)]) == 0
+    assert not [n for n in json.loads(out.read_text())["notes"] if "choice" in n]
