@@ -85,14 +85,21 @@ class _Stop(Exception):
 
 
 def check_ltl(system, formula: tuple, propositions: list[Callable[[Hashable], bool]],
-              max_states: int | None = None, deadline: float | None = None) -> LtlResult:
+              max_states: int | None = None, deadline: float | None = None,
+              weak_fairness: list[tuple[Callable, Callable]] | None = None) -> LtlResult:
     """Whether every infinite path of `system` from its initial state satisfies `formula` (see the module).
 
     `max_states` bounds the product states generated, `deadline` (a `time.monotonic()` value) the time;
-    either stops the search with `holds` None.
+    either stops the search with `holds` None. `weak_fairness` lists (enabled(state), occurs(label))
+    pairs, one per transition under weak fairness: only the paths on which each such transition, if it
+    is enabled in every state from some point on, occurs infinitely often count. A strongly connected
+    part of the product then has a fair accepting cycle when its arcs meet every acceptance set and, for
+    each pair, one of its arcs occurs or one of its states does not enable the transition; this is
+    decided when the part is complete (not at its first accepting cycle).
     """
     aut = translate(("not", formula))
     search = _Search(system, aut, propositions, max_states, deadline)
+    search.weak = list(weak_fairness or [])
     try:
         found = search.run()
     except _Stop as stop:
@@ -128,6 +135,7 @@ class _Search:
         self.deadline = deadline
         self.masks: dict = {}  # system state -> bitmask of its true propositions
         self.index: dict = {}  # product state -> depth-first number, or _DONE
+        self.weak: list = []  # (enabled(state), occurs(label)) per transition under weak fairness
 
     def mask(self, s) -> int:
         m = self.masks.get(s)
@@ -181,6 +189,9 @@ class _Search:
             if k == len(succ):
                 todo.pop()
                 if roots[-1][0] == index[v]:
+                    if self.weak and roots[-1][1] == full and self._fair(live, index[v]):
+                        todo.append(top)
+                        return self.lasso(todo, live, index[v])
                     roots.pop()
                     while True:
                         w = live.pop()
@@ -201,9 +212,22 @@ class _Search:
                 r = roots.pop()
                 met |= r[1] | r[2]
             roots[-1][1] |= met
-            if roots[-1][1] == full:
+            if roots[-1][1] == full and not self.weak:
                 return self.lasso(todo, live, roots[-1][0])
         return None
+
+    def _fair(self, live: list, root: int) -> bool:
+        """Whether the finished SCC of the root (the live states from depth-first number `root`) meets
+        every weak fairness pair: one of its arcs occurs, or one of its states does not enable it."""
+        index = self.index
+        inside = {v for v in live if index[v] >= root}
+        labels = []
+        for v in inside:
+            labels.extend(label for label, w, _acc in self.successors(v) if w in inside)
+        if not labels:
+            return False  # a single state without a self-loop: no cycle
+        return all(any(map(occurs, labels)) or not all(enabled(v[0]) for v in inside)
+                   for enabled, occurs in self.weak)
 
     def lasso(self, todo: list, live: list, root: int):
         """The counterexample when the SCC of the root with depth-first number `root` is accepting:
@@ -221,9 +245,16 @@ class _Search:
         need = aut.full
         while need:
             k = (need & -need).bit_length() - 1
-            seg = self._path(cur, inside, lambda acc, k=k: acc >> k & 1)
+            seg = self._path(cur, inside, lambda label, w, acc, k=k: acc >> k & 1)
             for _label, _v, acc in seg:
                 need &= ~acc
+            cycle.extend(seg)
+            cur = seg[-1][1]
+        for enabled, occurs in self.weak:
+            # the transition occurs on the cycle, or the cycle passes a state where it is not enabled
+            if any(occurs(label) or not enabled(v[0]) for label, v, _acc in cycle):
+                continue
+            seg = self._path(cur, inside, lambda label, w, acc, e=enabled, o=occurs: o(label) or not e(w[0]))
             cycle.extend(seg)
             cur = seg[-1][1]
         if cur != start or not cycle:
@@ -232,7 +263,7 @@ class _Search:
 
     def _path(self, frm, inside: set, arc_goal, to=None) -> list:
         """The shortest steps (label, product state, sets) from frm inside the SCC, ending with an arc
-        that `arc_goal` accepts (by its sets), or at state `to` (at least one step)."""
+        that `arc_goal(label, target, sets)` accepts, or at state `to` (at least one step)."""
         parent: dict = {}
         queue = deque([frm])
         seen = {frm}
@@ -241,7 +272,7 @@ class _Search:
             for label, w, acc in self.successors(u):
                 if w not in inside:
                     continue
-                if (arc_goal is not None and arc_goal(acc)) or (to is not None and w == to):
+                if (arc_goal is not None and arc_goal(label, w, acc)) or (to is not None and w == to):
                     out = [(label, w, acc)]
                     while u != frm:
                         u, step = parent[u]

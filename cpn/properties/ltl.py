@@ -5,7 +5,8 @@ The formula is a CPN ML boolean text in which the temporal operators are functio
 ``RELEASE``), combined with ``not``, ``andalso``, ``orelse`` and ``if``; its largest parts without a
 temporal operator are the atoms, marking predicates as anywhere else (``enabled "Page'T 1"`` included).
 It holds when every infinite path from the initial marking satisfies it; a dead marking repeats forever
-(docs/specs.md). The check runs `cpn.checks.ltl` on the explored graph and gives a violation as a lasso:
+(docs/specs.md). `weak_fairness = ["Page'T", ...]` keeps only the paths on which each listed transition,
+if it is enabled in every marking from some point on, occurs infinitely often. The check runs `cpn.checks.ltl` on the explored graph and gives a violation as a lasso:
 the path to a marking and a cycle back to it (or a path that ends in a dead marking).
 """
 
@@ -22,16 +23,18 @@ from cpn.properties.predicates import LTL_BINARY, LTL_UNARY, walk
 
 
 class Ltl(Check):
-    def __init__(self, spec, formula: tuple, atoms: list):
+    def __init__(self, spec, formula: tuple, atoms: list, weak: list[set] | None = None):
         super().__init__(spec)
         self.formula = formula
         self.atoms = atoms
+        self.weak = weak or []  # per weak fairness entry, its transition instances
 
     def decide(self, view) -> Verdict:
         if not view.complete:
             return Verdict.unknown(view.reason)
         truths = [view.truth(a) for a in self.atoms]
-        res = check_ltl(_Graph(view.g), self.formula, [t.__getitem__ for t in truths])
+        res = check_ltl(_Graph(view.g), self.formula, [t.__getitem__ for t in truths],
+                        weak_fairness=[_weak(view, ts) for ts in self.weak])
         if res.holds:
             return Verdict.holds(f"every path satisfies it ({res.product_states:,} states of the product with "
                                  f"the {res.automaton_states}-state automaton of its negation)")
@@ -47,6 +50,18 @@ class Ltl(Check):
         else:
             msg = f"a path that cycles through {_state_name(view, end)} does not satisfy it"
         return Verdict.violated(msg, ev)
+
+
+def _weak(view, transitions: set) -> tuple:
+    """(enabled(state), occurs(arc)) of a set of transition instances, over the explored graph."""
+    labels, offsets = view.labels(), view.g.offsets
+    enabled = bytearray(view.g.n_states)
+    for u in range(view.g.n_states):
+        for a in range(offsets[u], offsets[u + 1]):
+            if labels[a] in transitions:
+                enabled[u] = 1
+                break
+    return enabled.__getitem__, lambda a: a is not None and labels[a] in transitions
 
 
 class _Graph:
@@ -103,7 +118,16 @@ def build_ltl(spec, lang) -> Ltl:
             e.span, hint="Move the temporal operator out of the function, let or case expression.")]),
             text, origin, span)
 
-    return Ltl(spec, conv(expr), atoms)
+    formula = conv(expr)
+    weak = []
+    for name in spec.fields.get("weak_fairness", []):
+        ts = lang.resolve_transitions(name)
+        if ts is None:
+            from cpn.properties.build import _names
+
+            _names(spec, lang, "weak_fairness")  # E0703 for every name not in the net, with a did-you-mean
+        weak.append(set(ts))
+    return Ltl(spec, formula, atoms, weak)
 
 
 __all__ = ["Ltl", "build_ltl"]

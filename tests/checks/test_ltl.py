@@ -114,3 +114,54 @@ def test_on_a_net_through_the_engine_protocol():
     steps = [engine.format_binding_element(label) for label, _s in res.prefix[1:] + res.cycle]
     assert any(s.startswith("Top'go") for s in steps)
     assert system.expanded == 2
+
+
+def _fair_lasso(k: Kripke, cycle_states: list, closing: int, targets: list) -> bool:
+    """Whether the cycle (states, then back to `closing`) is weakly fair to 'moving to t' for each t."""
+    ring = cycle_states + [closing]
+    steps = list(itertools.pairwise(ring))
+    for t in targets:
+        occurs = any(b == t and b in k.succ[a] for a, b in steps)
+        disabled = any(t not in k.succ[s] for s in cycle_states)
+        if not (occurs or disabled):
+            return False
+    return True
+
+
+@pytest.mark.parametrize("seed", range(4))
+def test_weak_fairness_against_the_fair_lassos_of_the_system(seed):
+    rng = random.Random(500 + seed)
+    fair_violations = 0
+    for _ in range(60):
+        k = random_kripke(rng, rng.randrange(2, 5), 2)
+        f = random_formula(rng, 3, 2)
+        targets = [0]
+        weak = [(lambda s, t=t, k=k: t in k.succ[s], lambda label, t=t: label is not None and label.endswith(f"->{t}"))
+                for t in targets]
+        res = check_ltl(k, f, k.props(2), weak_fairness=weak)
+        bad = []
+        for p, c in lassos(k, 6):
+            if not holds_on_lasso(f, word(k, p), word(k, c)) and _fair_lasso(k, c, c[0], targets):
+                bad.append((p, c))
+        if res.holds:
+            assert not bad, (f, k.succ, k.labels, bad[0])
+            continue
+        fair_violations += 1
+        states = [s for _label, s in res.prefix]
+        cycle = [s for _label, s in res.cycle]
+        assert cycle and cycle[-1] == states[-1]
+        loop = [states[-1]] + cycle[:-1]
+        assert not holds_on_lasso(f, word(k, states[:-1]), word(k, loop))
+        labels = [label for label, _s in res.cycle]
+        for t in targets:  # the lasso's cycle is fair: the move to t occurs, or t is not enabled somewhere
+            assert any(lab is not None and lab.endswith(f"->{t}") for lab in labels) or \
+                any(t not in k.succ[s] for s in loop)
+    assert fair_violations
+
+
+def test_weak_fairness_rules_out_a_transition_that_is_ignored_forever():
+    # 0 loops on itself or moves to 1, where p holds forever: F p fails only by ignoring the move to 1
+    k = Kripke({0: [0, 1], 1: [1]}, {0: set(), 1: {0}})
+    assert check_ltl(k, ("F", ("ap", 0)), k.props(1)).holds is False
+    weak = [(lambda s: 1 in k.succ[s] and s != 1, lambda label: label == "0->1")]
+    assert check_ltl(k, ("F", ("ap", 0)), k.props(1), weak_fairness=weak).holds

@@ -83,3 +83,29 @@ def test_a_temporal_operator_inside_a_function_is_refused_at_its_place(tmp_path)
         run_scenario(s, s.runs[0], {})
     d = err.value.diagnostics[0]
     assert d.code == "E0702" and d.span.line == 5
+
+
+SPIN = ("colset U = unit; place A : U = 1`(); place B : U;"
+        " trans spin; trans go; arc A -> spin; arc spin -> A; arc A -> go; arc go -> B;")
+
+
+def test_weak_fairness_keeps_only_the_paths_that_do_not_ignore_a_transition_forever(tmp_path):
+    (tmp_path / "m.cpnet").write_text(SPIN, encoding="utf-8")
+    body = ('model = "m.cpnet"\n[[property]]\nname = "plain"\nkind = "ltl"\nformula = "F (size (Top\'B 1) = 1)"\n'
+            '[[property]]\nname = "fair"\nkind = "ltl"\nformula = "F (size (Top\'B 1) = 1)"\n'
+            'weak_fairness = ["Top\'go"]\n')
+    s = loads_scenario(body, str(tmp_path / "s.toml"))
+    by = {p.spec.name: p.verdict for p in run_scenario(s, s.runs[0], {}).results}
+    assert by["plain"].status is Status.VIOLATED  # spin forever
+    assert by["fair"].status is Status.HOLDS
+
+
+def test_a_weak_fairness_name_not_in_the_net_is_an_error_with_a_suggestion(tmp_path):
+    (tmp_path / "m.cpnet").write_text(SPIN, encoding="utf-8")
+    body = ('model = "m.cpnet"\n[[property]]\nname = "fair"\nkind = "ltl"\nformula = "F (size (Top\'B 1) = 1)"\n'
+            'weak_fairness = ["Top\'goo"]\n')
+    with pytest.raises(ModelError) as err:
+        s = loads_scenario(body, str(tmp_path / "s.toml"))
+        run_scenario(s, s.runs[0], {})
+    d = err.value.diagnostics[0]
+    assert d.code == "E0703" and "Top'go" in (d.hint or "") and d.span.line == 6
