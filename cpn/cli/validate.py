@@ -35,7 +35,7 @@ from cpn.cli._common import (
 FIGURES = ("states", "arcs", "arcs_distinct_marking_pairs", "max_tokens_per_marking", "max_tokens_in_place",
            "dead_markings", "deadlock_reachable")
 MAX_STATES_DEFAULT = 3_000_000
-FORMULA_SECONDS_DEFAULT = 120.0
+FORMULA_SECONDS_DEFAULT = 300.0
 FORMULA_STATES_DEFAULT = 500_000
 
 # validate's own exit statuses: it verifies no property, so the commands' common list (where 1 is "a
