@@ -94,8 +94,8 @@ class FunctionDraws:
         return rt
 
     def _draws_without_recursion(self, name: str) -> bool:
-        """Whether top-level function `name` draws (itself or through the functions it calls) and is not
-        recursive (a recursive function may draw any number of times)."""
+        """Whether top-level function `name` draws (itself or through the functions it calls), only draws
+        that can be a choice, and is not recursive (a recursive function may draw any number of times)."""
         seen, stack = set(), list(self.fun_refs.get(name, ()))
         while stack:
             f = stack.pop()
@@ -104,7 +104,18 @@ class FunctionDraws:
             if f not in seen:
                 seen.add(f)
                 stack.extend(self.fun_refs.get(f, ()))
-        return any(self.fun_draws.get(f) for f in seen | {name})
+        draws = [e for f in seen | {name} for e in self.fun_draws.get(f, ())]
+        return bool(draws) and all(self._finite(e.name) for e in draws)
+
+    def _finite(self, name: str) -> bool:
+        """Whether a draw can be a choice: discrete, bernoulli, or CS.ran() of a colour set small enough to try
+        every value (a function that draws from anything else keeps its draws: simulate only)."""
+        from cpn.lang.infer import FINITE_DRAWS
+
+        if name in FINITE_DRAWS:
+            return True
+        cs = self.colsets.get(name.rsplit(".", 1)[0]) if name.endswith(".ran") else None
+        return cs is not None and cs.values() is not None
 
     def settle_function_draws(self) -> None:
         """The draws inside top-level functions: those of a function the net uses other than by a call that

@@ -73,15 +73,17 @@ def test_a_function_calling_a_function_that_draws():
     ("fun each l = map (fn y => y + discrete (0, 1)) l;", "arc T -> Q : hd (each [x]);"),
     # drawn once when the model is loaded
     ("fun pick () = discrete (1, 3);\nval v = pick ();", "arc T -> Q : v;"),
+    # a continuous draw beside a finite one: the function is not written out
+    ("fun both () = discrete (1, 3) + round (uniform (0.0, 1.0));", "arc T -> Q : both ();"),
 ])
 def test_draws_that_are_no_choice_stay_random_draws(decls, use):
     line, col = 8, decls.index("discrete") + 1
     model = load(f"{decls}\ntrans T;\narc P -> T : x;\n{use}\n")
-    assert [(w.code, w.span.line, w.span.col) for w in model.warnings if w.code == "W0105"] == [
+    assert [(w.code, w.span.line, w.span.col) for w in model.warnings if "'discrete'" in w.message] == [
         ("W0105", line, col)]
     with pytest.raises(ModelError) as info:
         model.engine()
-    [d] = info.value.diagnostics
+    [d] = [d for d in info.value.diagnostics if "discrete" in d.message]
     assert d.code == "E0206" and "'discrete' draws a random value" in d.message
     assert (d.span.line, d.span.col) == (line, col)
     assert model.engine(simulation=True, reference=True) is not None
@@ -115,3 +117,10 @@ def test_the_report_notes_the_draws_explored_as_a_choice(tmp_path):
     plain.write_text(HEAD + "trans T;\narc P -> T : x;\n")
     assert main(["explore", str(plain), "--json", str(out)]) == 0
     assert not [n for n in json.loads(out.read_text())["notes"] if "choice" in n]
+
+
+def test_a_function_drawing_from_a_colour_set_too_large_to_try_stays_a_random_draw():
+    model = load("colset S = string;\nfun name () = S.ran ();\nplace R : S;\ntrans T;\narc P -> T : x;\n"
+                 "arc T -> R : name ();\n")
+    assert [(w.code, w.span.line) for w in model.warnings] == [("W0105", 9)]
+    assert model.engine(simulation=True, reference=True) is not None
