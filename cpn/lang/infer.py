@@ -369,7 +369,10 @@ class TypeInference(FunctionDraws):
     def _i_Case(self, e, env):
         st = self.infer(e.subject, env)
         rt = None
-        for _i, (pat, body) in enumerate(e.rules):
+        # a rule whose body is `empty` after one that is not: `empty` beside a list is `[]` (_empty_as_list)
+        first = next((i for i, (_p, b) in enumerate(e.rules) if not self._is_empty_ms(b, env)), 0)
+        for _i in [first] + [i for i in range(len(e.rules)) if i != first]:
+            pat, body = e.rules[_i]
             binds: dict[str, Symbol] = {}
             self.must(self.infer_pat(pat, binds), st, pat.span, "a case pattern")
             inner = env.child(binds)

@@ -51,6 +51,7 @@ def test_listsub_of_an_element_the_list_has_not_is_a_run_time_error():
     "if l <> [] then hd l :: drop1 (tl l) else empty",
     "case l of [] => [] | h :: t => if h = 1 then drop1 t else h :: drop1 t",
     "case l of h :: t => if h = 1 then drop1 t else h :: drop1 t | _ => empty",
+    "case l of [] => empty | h :: t => if h = 1 then drop1 t else h :: drop1 t",
 ])
 def test_empty_beside_a_list_is_the_empty_list(body):
     text = (f"fun drop1 (l : IL) = {body};\n"
