@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from cpn._util import did_you_mean
 from cpn.diagnostics import Diagnostic, Span
+from cpn.lang import ast as A
 from cpn.lang.builtins import COLSET_OPS, record_setter
 from cpn.lang.checked import Env
 from cpn.lang.symbols import Symbol
@@ -115,4 +116,19 @@ class NameResolution:
         for names in reversed(scopes):  # inner scopes shadow outer ones
             cands.update({n: self.describe(s) for n, s in names.items()})
         hint = suggestion(name, cands) or "Declare it with 'val', 'var' or 'fun' before its first use."
+        if self._declared_below(name, span):
+            hint = (f"'{name}' is declared further down: a declaration sees only the declarations above it, as in "
+                    "SML. Move that declaration above this one.")
         self._unknown("name", name, span, f"unknown name '{name}'", hint)
+
+    def _declared_below(self, name: str, span: Span) -> bool:
+        """Whether a top-level val, fun or var after `span` declares `name` (a use before the declaration)."""
+        model = getattr(self, "model", None)
+        for d in getattr(model, "decls", ()):
+            at = getattr(d, "span", None)
+            if at is None or at.file != span.file or (at.line, at.col) <= (span.line, span.col):
+                continue
+            names = [n for n, _ in getattr(d, "names", ())] if isinstance(d, A.VarDecl) else [getattr(d, "name", None)]
+            if name in names:
+                return True
+        return False
