@@ -89,7 +89,8 @@ def check_ltl(system, formula: tuple, propositions: list[Callable[[Hashable], bo
               weak_fairness: list[tuple[Callable, Callable]] | None = None) -> LtlResult:
     """Whether every infinite path of `system` from its initial state satisfies `formula` (see the module).
 
-    `max_states` bounds the product states generated, `deadline` (a `time.monotonic()` value) the time;
+    `max_states` bounds the system states the search reaches (the product has up to that many times the
+    automaton's states), `deadline` (a `time.monotonic()` value) the time;
     either stops the search with `holds` None. `weak_fairness` lists (enabled(state), occurs(label))
     pairs, one per transition under weak fairness: only the paths on which each such transition, if it
     is enabled in every state from some point on, occurs infinitely often count. A strongly connected
@@ -174,8 +175,8 @@ class _Search:
 
         def push(v, label, acc) -> None:
             index[v] = len(index)
-            if self.max_states is not None and len(index) > self.max_states:
-                raise _Stop(f"the product reached {self.max_states:,} states")
+            if self.max_states is not None and len(self.masks) > self.max_states:
+                raise _Stop(f"the search reached more than {self.max_states:,} markings")
             if self.deadline is not None and len(index) % 256 == 0 and time.monotonic() > self.deadline:
                 raise _Stop("the time limit was reached")
             roots.append([index[v], 0, acc])
