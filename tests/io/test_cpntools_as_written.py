@@ -279,7 +279,7 @@ def test_time_intervals_on_a_transition_and_an_output_arc(tmp_path):
     assert len(succ) == 4 and len({s for _, s in succ}) == 3
 
 
-def test_discrete_on_an_output_arc_is_a_choice_and_inside_a_function_only_simulated(tmp_path):
+def test_discrete_on_an_output_arc_is_a_choice_and_inside_a_function_called_in_a_guard_only_simulated(tmp_path):
     body = (place("P1", "A", "S", "1`0") + place("P2", "B", "INT") + trans("T1", "t", cond="[x = 0]")
             + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P2", "discrete(1, 3)"))
     model = load(tmp_path, cpn_xml(DECLS, page("PG1", "Top", body)))
@@ -287,7 +287,13 @@ def test_discrete_on_an_output_arc_is_a_choice_and_inside_a_function_only_simula
     e = model.engine()
     assert len(list(e.successors(e.initial_state()))) == 3
     decls = DECLS + '<ml id="M2">fun roll () = discrete(1, 6)</ml>'
-    body = body.replace("discrete(1, 3)", "roll ()")
+    # called on the output arc, the function is written out there: a choice of its six values
+    model = load(tmp_path, cpn_xml(decls, page("PG1", "Top", body.replace("discrete(1, 3)", "roll ()"))))
+    assert [w.code for w in model.warnings] == ["W0104"]
+    e = model.engine()
+    assert len(list(e.successors(e.initial_state()))) == 6
+    # called in a guard, it is a random draw
+    body = body.replace("discrete(1, 3)", "x").replace("[x = 0]", "[x = 0 andalso roll () > 1]")
     model = load(tmp_path, cpn_xml(decls, page("PG1", "Top", body)))
     assert [w.code for w in model.warnings] == ["W0105"]
     with pytest.raises(ModelError) as info:
