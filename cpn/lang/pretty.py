@@ -82,6 +82,8 @@ def decl(d: A.Decl, indent: str = "") -> str:
     if isinstance(d, A.TransDecl):
         guard = f" [{', '.join(expr(g) for g in d.guards)}]" if d.guards else ""
         delay = f" @+ {atom(d.delay)}" if d.delay is not None else ""
+        if isinstance(d.delay, A.BinOp) and d.delay.op == "@++":  # a real-valued delay (transform.delay)
+            delay = f" @++ {atom(d.delay.right)}"
         prio = f" priority {atom(d.priority)}" if d.priority is not None else ""
         return f"{indent}trans {name(d.name)}{guard}{delay}{prio};"
     if isinstance(d, A.ArcDecl):

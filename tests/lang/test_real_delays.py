@@ -97,3 +97,12 @@ def test_int_time_is_the_real_clock_rounded_down(tmp_path):
     for _ in range(3):  # at 0, 1.75, 3.5
         [(_, s)] = engine.successors(s)
     assert engine.clock(s) == 3.5 and engine.format_marking(s, 1) == "1`0++1`1++1`3"
+
+
+def test_real_delays_print_back_as_written():
+    from cpn.lang.parser import parse
+    from cpn.lang.pretty import pretty
+
+    text = pretty(parse(NET, "r.cpnet"))
+    assert "trans t @++ 1.5;" in text and "() @++ 0.25" in text
+    assert pretty(parse(text, "r.cpnet")) == text
