@@ -24,6 +24,7 @@ from cpn.checks import (
     live_transitions,
     scc_summary,
 )
+from cpn.engine.protocol import capability
 from cpn.report.reduction import reduction_text
 from cpn.statespace import Exploration, Trace, shortest_trace
 
@@ -111,6 +112,18 @@ REPORT_PARTS: tuple = ("transitions", "scc", "bounds", "dead_markings", "dead_tr
                        "home_markings", "fairness", "trace")
 
 
+def _choice_draw_notes(engine) -> list[str]:
+    """A note naming the draws of the model explored as a choice of every value (cpn-verify's reading of
+    `discrete` and `bernoulli`, beyond CPN Tools: docs/semantics.md, Bindings), if it has any."""
+    net = capability(engine, "net")
+    choices = getattr(getattr(net, "checked", None), "choice_draws", ()) if net is not None else ()
+    if not choices:
+        return []
+    where = ", ".join(f"{call} at {span.file}:{span.line}:{span.col}" for call, span in choices[:3])
+    return [f"random draws explored as a choice of every value (cpn-verify's reading; CPN Tools' state space "
+            f"tool cannot analyse them): {where}{', ...' if len(choices) > 3 else ''}"]
+
+
 def build_report(x: Exploration, model: str = "<unsaved net>", options: dict | None = None,
                  trace_to_dead: bool = True, dead_listed: int | None = DEAD_LISTED, progress=None) -> Report:
     """Compute every section of the standard report from an exploration.
@@ -188,7 +201,7 @@ def build_report(x: Exploration, model: str = "<unsaved net>", options: dict | N
     trace = listed[0].trace if listed else None
     done("trace")
     analysis = time.perf_counter() - t0
-    notes = list(x.notes)
+    notes = list(x.notes) + _choice_draw_notes(x.engine)
     if x.reduction is not None:
         notes.insert(0, reduction_text(x))
     if x.time_growth is not None:

@@ -401,11 +401,6 @@ class Explorer:
             self.progress(Progress(len(g.states), len(g.dst), len(g.states) - g.expanded, seconds,
                                    current_rss_mb()))
         notes = list(self._reduction_notes)
-        choices = getattr(getattr(getattr(self.engine, "net", None), "checked", None), "choice_draws", ())
-        if choices:  # cpn-verify's reading of random draws, beyond CPN Tools (docs/semantics.md, Bindings)
-            where = ", ".join(f"{call} at {span.file}:{span.line}:{span.col}" for call, span in choices[:3])
-            notes.append(f"random draws explored as a choice of every value (cpn-verify's reading; CPN Tools' state "
-                         f"space tool cannot analyse them): {where}{', ...' if len(choices) > 3 else ''}")
         asked_c = self.options.backend is Backend.C
         if self._reads_clock and self.options.detect_time_growth and stop is not StopReason.COMPLETE:
             engine = self.engine
