@@ -12,6 +12,7 @@ the path to a marking and a cycle back to it (or a path that ends in a dead mark
 
 from __future__ import annotations
 
+from cpn._util import did_you_mean
 from cpn.checks.ltl import check_ltl
 from cpn.checks.verdict import Verdict, path_evidence
 from cpn.diagnostics import Diagnostic
@@ -119,14 +120,20 @@ def build_ltl(spec, lang) -> Ltl:
             text, origin, span)
 
     formula = conv(expr)
-    weak = []
+    weak, diags = [], []
     for name in spec.fields.get("weak_fairness", []):
         ts = lang.resolve_transitions(name)
         if ts is None:
-            from cpn.properties.build import _names
-
-            _names(spec, lang, "weak_fairness")  # E0703 for every name not in the net, with a did-you-mean
-        weak.append(set(ts))
+            near = did_you_mean(name, list(lang.transition_names))
+            diags.append(Diagnostic("E0703", f"no transition instance '{name}' in the net",
+                                    spec.spans.get("weak_fairness", spec.span),
+                                    hint=f"Did you mean '{near}'?" if near else
+                                    "Name it as the report prints it: \"Page'trans 1\", or \"Page'trans\" for "
+                                    "every instance."))
+        else:
+            weak.append(set(ts))
+    if diags:
+        raise ModelError(diags)
     return Ltl(spec, formula, atoms, weak)
 
 
