@@ -3,7 +3,7 @@
 Usage:
   python bench/modbus_tcp.py --write-specs     # specs/modbus/tcp*.toml and specs/modbus/mutants/tcp_*.toml
   python bench/modbus_tcp.py --mutants          # the mutant table of reports/README.md (MODBUS/TCP)
-  python bench/modbus_tcp.py --scale [--budget 120] [--rows small|all]
+  python bench/modbus_tcp.py --scale [--budget 120] [--rows small|all|gateway]
                                                # C x S x depth (plain servers) and C x depth x NS (gateway):
                                                # the full state space, the quotient by the symmetry of the
                                                # Client and Server instances, and the sweep-line on the clock
@@ -306,15 +306,15 @@ def _explore(sets: dict, extra: list[str], budget: float) -> dict | None:
 PROGRESS = ("size (sum Client'Sent) + size (sum Client'Got) + size (sum Client'Done) + "
             "ms_to_col (Gateway'SerialId 1)")
 SCALE_SRV = [(1, 1, 1), (2, 1, 2), (2, 2, 2), (3, 1, 2), (3, 2, 2), (4, 1, 2), (3, 3, 2), (4, 2, 2), (5, 1, 2)]
-SCALE_GW = [(1, 1, 1), (1, 2, 3), (2, 1, 1), (2, 2, 3), (3, 1, 1), (3, 2, 3)]
+SCALE_GW = [(1, 1, 1), (1, 2, 3), (2, 1, 1), (2, 2, 3), (3, 1, 1), (3, 2, 3), (4, 2, 3), (5, 2, 3)]
 
 
 def scale(budget: float, rows: str) -> None:
     print("| family | C | S | depth | NS | full | symmetry: orbits (full graph) | sweep-line, clock: states (peak) "
           "| sweep-line, progress: states (peak) |")
     print("|---|---|---|---|---|---|---|---|---|")
-    srv = SCALE_SRV if rows == "all" else SCALE_SRV[:4]
-    gw = SCALE_GW if rows == "all" else SCALE_GW[:3]
+    srv = SCALE_SRV if rows == "all" else [] if rows == "gateway" else SCALE_SRV[:4]
+    gw = SCALE_GW if rows in ("all", "gateway") else SCALE_GW[:3]
     configs = [("servers", {**COMMON, "NC": c, "NSV": s, "DEPTH": d}, (c, s, d, "-")) for c, s, d in srv]
     configs += [("gateway", {**COMMON, "CONFIG": '"B"', "SCRIPTS": '"gateway"', "NC": c, "DEPTH": d, "NS": ns},
                  (c, 1, d, ns)) for c, d, ns in gw]
@@ -368,7 +368,7 @@ def main() -> None:
     ap.add_argument("--scale", action="store_true")
     ap.add_argument("--mutants", action="store_true")
     ap.add_argument("--budget", type=float, default=120)
-    ap.add_argument("--rows", choices=["small", "all"], default="small")
+    ap.add_argument("--rows", choices=["small", "all", "gateway"], default="small")
     args = ap.parse_args()
     if args.write_specs:
         write_specs()
