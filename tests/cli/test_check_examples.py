@@ -70,6 +70,7 @@ GATE_MUTANT = "specs/modbus/mutants/bcast-as-unicast.toml"
 # run_scenario and asserts the gate's verdict (no state space is searched twice in the suite): the file
 # and the test that runs it
 MUTANTS_TEST = ("tests/modbus/test_modbus_mutants.py", "test_mutant_is_caught_by_the_property_it_breaks")
+TCP_MUTANTS_TEST = ("tests/modbus/test_modbus_tcp.py", "test_each_tcp_mutant_is_caught_by_the_property_written_for_it")
 RUN_ELSEWHERE = {
     "specs/modbus/modbus_a_100.toml": ("tests/modbus/test_modbus_a_reserved_ids.py",
                                        "test_the_100_slave_scenario_holds_and_exercises_the_reserved_ids"),
@@ -83,7 +84,9 @@ def _run_elsewhere(spec: str):
     """The (test file, test) that runs scenario `spec` in full instead of the gate test, or None."""
     if spec in RUN_ELSEWHERE:
         return RUN_ELSEWHERE[spec]
-    return MUTANTS_TEST if "/mutants/" in spec and spec != GATE_MUTANT else None
+    if "/mutants/" not in spec or spec == GATE_MUTANT:
+        return None
+    return TCP_MUTANTS_TEST if pathlib.Path(spec).name.startswith("tcp_") else MUTANTS_TEST
 
 
 def test_the_repository_gate_passes(tmp_path, capsys, monkeypatch):
@@ -120,7 +123,7 @@ def test_the_scenarios_the_gate_test_leaves_out_are_run_elsewhere():
     for spec, (path, test) in left_out.items():
         text = (ROOT / path).read_text(encoding="utf-8")
         assert f"\ndef {test}(" in text, f"{path} has no {test}, which runs {spec} for the gate test"
-        if (path, test) != MUTANTS_TEST:
+        if (path, test) not in (MUTANTS_TEST, TCP_MUTANTS_TEST):
             assert f'"{pathlib.Path(spec).stem}' in text, f"{path} does not name {spec}"
     where = importlib.util.spec_from_file_location("mutants_test", ROOT / MUTANTS_TEST[0])
     module = importlib.util.module_from_spec(where)
