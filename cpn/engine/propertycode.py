@@ -79,8 +79,8 @@ class _PredicateExprCompiler(ExprCompiler):
             raise Unsupported()
         saved = dict(self.locals)
         params = []
-        for uid in names:
-            py = f"_L{uid}" if uid is not None else "_"
+        for i, uid in enumerate(names):
+            py = f"_L{uid}" if uid is not None else f"_W{i}"  # one name per '_': Python refuses a repeated one
             params.append(py)
             if uid is not None:
                 self.locals[uid] = py

@@ -59,3 +59,14 @@ def test_the_engines_compiler_and_the_evaluator_agree(reference):
 def test_the_property_language_imports_no_code_generator():
     source = (ROOT / "cpn/properties/predicates.py").read_text(encoding="utf-8")
     assert "cpn.engine.codegen" not in source and "cpn.engine.runtime" not in source
+
+
+def test_a_function_with_two_wildcards_in_its_tuple_pattern_compiles():
+    # 'fn (_, _, l) => ...' became a Python lambda with the parameter '_' twice, a SyntaxError at compile time
+    model = cpn.loads("colset I = int; colset T = product I * I * I; var a, b, c : I;\n"
+                      "place P : T = 1`(1,2,3); trans t [c < 4];\narc P -> t : (a,b,c); arc t -> P : (a,b,c+1);")
+    engine = model.engine()
+    states = list(Explorer(engine, ExploreOptions()).run().graph.states)
+    text = "List.all (fn (_, _, l) => l < 4) (ms_to_list (Top'P 1))"
+    got = _values(engine, states, text)
+    assert got == [True, False] and got == _values(WithoutCompiler(engine), states, text)
