@@ -78,6 +78,7 @@ class ContestModel:
     the markings generated so far (shared by the formulas), and the whole state space once built."""
 
     def __init__(self, engine, node_names: dict[str, str], max_states: int = DEFAULT_MAX_STATES,
+                 graph_max_states: int | None = None,
                  deadline: float | None = None, ctl_stutter: bool = False) -> None:
         from cpn.checks.ltl import Cache
 
@@ -86,7 +87,9 @@ class ContestModel:
         self.engine = engine
         self.cache = Cache(engine)
         self._new_cache = lambda: Cache(engine)
-        self.max_states = max_states
+        self.max_states = max_states  # the markings one search through `successors` may generate
+        # the states of the whole state space built by the explorer (natively, far cheaper per state)
+        self.graph_max_states = graph_max_states or max_states
         self.deadline = deadline
         self._tnames = {t.name: i for i, t in enumerate(engine.transitions)}
         self._be_transition: dict[int, int] = {}
@@ -239,7 +242,7 @@ class ContestModel:
             from cpn.statespace.options import default_max_memory_mb
 
             seconds = None if self.deadline is None else max(0.001, self.deadline - time.monotonic())
-            x = Explorer(self.engine, ExploreOptions(max_states=self.max_states, max_seconds=seconds,
+            x = Explorer(self.engine, ExploreOptions(max_states=self.graph_max_states, max_seconds=seconds,
                                                      max_memory_mb=default_max_memory_mb())).run()
             if not x.complete:
                 raise CannotCompute(f"the state space is partial: {x.stop_reason.describe(x.options)}")

@@ -73,7 +73,8 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    help="the time to answer all the formulas of one instance (default "
                    f"{FORMULA_SECONDS_DEFAULT:g}); those left are 'unknown'")
     p.add_argument("--formula-max-states", type=int, default=FORMULA_STATES_DEFAULT, metavar="N",
-                   help=f"give up a formula whose search passes N markings (default {FORMULA_STATES_DEFAULT:,})")
+                   help=f"give up a formula whose search through the engine passes N markings (default "
+                   f"{FORMULA_STATES_DEFAULT:,}; the whole state space, for CTL and UpperBounds, is bounded by --max-states)")
     add_output_option(p, "--json", "the results as JSON")
     add_quiet_option(p)
     return p
@@ -220,7 +221,8 @@ def validate_instance(directory: str, inst: dict, max_states: int) -> Result:
     return res
 
 
-def validate_formulas(directory: str, res: Result, inst: dict, seconds: float, max_states: int) -> None:
+def validate_formulas(directory: str, res: Result, inst: dict, seconds: float, max_states: int,
+                      graph_max_states: int | None = None) -> None:
     """Answer every formula of the instance's property files and compare with `formulas/oracle.json`."""
     from cpn.cli.mcc import ContestModel, answer_file
     from cpn.properties.contest import EXAMINATIONS
@@ -233,7 +235,7 @@ def validate_formulas(directory: str, res: Result, inst: dict, seconds: float, m
         return
     t0 = time.perf_counter()
     model = ContestModel.load(os.path.join(directory, inst["file"]), max_states=max_states,
-                              deadline=time.monotonic() + seconds)
+                              graph_max_states=graph_max_states, deadline=time.monotonic() + seconds)
     for exam in EXAMINATIONS:
         if exam not in oracle:
             continue
@@ -313,7 +315,8 @@ def run(args) -> int:
         else:
             r = validate_instance(directory, inst, args.max_states)
             if not args.no_formulas and r.status in ("match", "mismatch"):
-                validate_formulas(directory, r, inst, args.formula_seconds, args.formula_max_states)
+                validate_formulas(directory, r, inst, args.formula_seconds, args.formula_max_states,
+                                  args.max_states)
         results.append(r)
         print(format_row(r), file=out, flush=True)
         for d in r.differences:
