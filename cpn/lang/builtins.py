@@ -206,6 +206,8 @@ def library_constructors() -> list[Symbol]:
 
 # CPN Tools' random distribution functions: simulation only (a net that calls them has no state space)
 RANDOM_BUILTINS: frozenset[str] = frozenset(draws.DISTRIBUTIONS)
+# the draws over a finite set of values, explored as a choice of every value where that is exact
+FINITE_DRAWS: frozenset[str] = frozenset({"discrete", "bernoulli"})
 TYPES.update({name: ty for name, (ty, _) in draws.DISTRIBUTIONS.items()})
 # the engines find every library function in one table; the draws are defined beside the generator they use
 FUNCTIONS.update(draws.FUNCTIONS)

@@ -14,7 +14,7 @@ import copy
 from cpn.expr.binding import children
 from cpn.lang import ast as A
 from cpn.lang import types as T
-from cpn.lang.builtins import RANDOM_BUILTINS
+from cpn.lang.builtins import FINITE_DRAWS, RANDOM_BUILTINS
 from cpn.lang.checked import Env
 from cpn.lang.symbols import Symbol
 
@@ -110,7 +110,6 @@ class FunctionDraws:
     def _finite(self, name: str) -> bool:
         """Whether a draw can be a choice: discrete, bernoulli, or CS.ran() of a colour set small enough to try
         every value (a function that draws from anything else keeps its draws: simulate only)."""
-        from cpn.lang.infer import FINITE_DRAWS
 
         if name in FINITE_DRAWS:
             return True

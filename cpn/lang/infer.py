@@ -13,7 +13,7 @@ from cpn.diagnostics import Span
 from cpn.expr.binding import children
 from cpn.lang import ast as A
 from cpn.lang import types as T
-from cpn.lang.builtins import RANDOM_BUILTINS
+from cpn.lang.builtins import FINITE_DRAWS, RANDOM_BUILTINS
 from cpn.lang.checked import Abort, Env
 from cpn.lang.function_draws import FunctionDraws
 from cpn.lang.symbols import Symbol
@@ -27,7 +27,6 @@ def _not_plain(node: A.BinOp) -> bool:
 
 
 # CPN Tools' random draws over finitely many integers, explored as a choice of every value where CS.ran() is one
-FINITE_DRAWS: frozenset[str] = frozenset({"discrete", "bernoulli"})
 
 # The library functions on multisets that CPN Tools models also give a list (a multiset is a list there)
 LIST_AS_MS_FUNCTIONS: frozenset[str] = frozenset({"ms_to_list", "ms_to_col", "size"})
