@@ -315,7 +315,7 @@ def test_no_upward_import_and_no_circle_inside_a_package():
 def test_no_import_circle_inside_any_other_package():
     # the packages without a MODULE_ORDER of their own still have no import circle among their modules
     problems = []
-    for folder in sorted(p for p in ROOT.iterdir() if p.is_dir() and (p / "__init__.py").exists()):
+    for folder in sorted(p for p in ROOT.iterdir() if p.is_dir() and any(p.glob("*.py"))):  # cli/ has no __init__
         if folder.name in MODULE_ORDER:
             continue
         modules = {p.stem: p.read_text(encoding="utf-8") for p in sorted(folder.glob("*.py"))}
