@@ -241,7 +241,9 @@ class ContestModel:
             from cpn.statespace import ExploreOptions, Explorer
             from cpn.statespace.options import default_max_memory_mb
 
-            seconds = None if self.deadline is None else max(0.001, self.deadline - time.monotonic())
+            seconds = None if self.deadline is None else self.deadline - time.monotonic()
+            if seconds is not None and seconds <= 0:
+                raise CannotCompute("the time limit was reached")
             x = Explorer(self.engine, ExploreOptions(max_states=self.graph_max_states, max_seconds=seconds,
                                                      max_memory_mb=default_max_memory_mb())).run()
             if not x.complete:
