@@ -87,6 +87,7 @@ def run(args) -> int:
 def _run(args) -> int:
     from cpn import __version__
     from cpn.diagnostics import render
+    from cpn.engine.clock import TimeCondensationRefused
     from cpn.errors import ConfigurationError, EvaluationError, ModelError
     from cpn.gate.run import run_scenario
     from cpn.gate.scenario import load_scenario, scenario_files
@@ -159,7 +160,9 @@ def _run(args) -> int:
                 continue
             except ConfigurationError as err:
                 print(f"{scenario.path}: {err.render()}", file=sys.stderr)
-                if getattr(err, "code", None) == "E0305":  # a value of --set that the model refuses
+                # a value of --set that the model refuses, or time condensation asked of a model that reads
+                # the clock: usage refusals (64), as `explore` reports them
+                if getattr(err, "code", None) == "E0305" or isinstance(err, TimeCondensationRefused):
                     usage_errors += 1
                 else:
                     bad_files += 1
