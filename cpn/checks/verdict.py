@@ -10,6 +10,7 @@ from __future__ import annotations
 import enum
 from dataclasses import dataclass, field
 
+from cpn.diagnostics import Span
 from cpn.statespace.graph import StateGraph
 
 
@@ -53,6 +54,7 @@ class Verdict:
     message: str
     evidence: Evidence | None = None
     details: dict = field(default_factory=dict)
+    at: Span | None = None  # an error's position in the scenario: the text that raised (else the property's)
 
     @classmethod
     def holds(cls, message: str = "", evidence: Evidence | None = None, **details) -> Verdict:

@@ -225,7 +225,7 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
                 verdict.message += f" (graph reduced by {how}, {x.n_states:,} states: this property is preserved)"
         except PredicateError as exc:
             ev = evidence_to(x.graph, exc.state_id) if exc.state_id is not None else None
-            verdict = Verdict(Status.ERROR, str(exc), ev)
+            verdict = Verdict(Status.ERROR, str(exc), ev, at=exc.span)
         try:
             warnings = vacuity(c, view, verdict) + structural(c, view, verdict) if x.reduction is None else []
         except PredicateError:  # a premise alone fails in a marking where the whole text does not

@@ -249,7 +249,7 @@ def sweep_run(scenario, engine, lang: PropertyLanguage, checks: list[Check], opt
         try:
             verdict = decide(c, x, monitor, engine, note)
         except PredicateError as exc:
-            verdict = Verdict(Status.ERROR, str(exc))
+            verdict = Verdict(Status.ERROR, str(exc), at=exc.span)
         results.append((c, verdict, time.perf_counter() - t))
     return x, results, explore_seconds, time.perf_counter() - t1
 

@@ -45,9 +45,10 @@ _INSTANCE = re.compile(r"^(.*) (\d+)$")
 class PredicateError(Exception):
     """A property text raised an ML exception in some marking."""
 
-    def __init__(self, message: str, state_id: int | None):
+    def __init__(self, message: str, state_id: int | None, span: Span | None = None):
         super().__init__(message)
         self.state_id = state_id
+        self.span = span  # the text's value in the scenario file, where the reports place the error
 
 
 class MarkingContext:
@@ -398,7 +399,7 @@ class PropertyLanguage:
                 try:
                     return raw(sid, state)
                 except errors as exc:
-                    raise PredicateError(f"evaluating '{text}' failed: {exc}", sid) from None
+                    raise PredicateError(f"evaluating '{text}' failed: {exc}", sid, span) from None
         else:
             # The value depends only on the markings of the places the text reads, which states share:
             # memoised by their intern ids, as the engine memoises a transition's bindings.
@@ -415,7 +416,7 @@ class PropertyLanguage:
                     try:
                         v = raw(sid, state)
                     except errors as exc:
-                        raise PredicateError(f"evaluating '{text}' failed: {exc}", sid) from None
+                        raise PredicateError(f"evaluating '{text}' failed: {exc}", sid, span) from None
                     memo[key] = v
                 return v
 

@@ -234,7 +234,8 @@ def run_report(result, timings: bool = True) -> dict:
     props = []
     for r in result.results:
         v = r.verdict
-        doc = {"name": r.spec.name, "kind": r.spec.kind, "line": r.spec.span.line, "column": r.spec.span.col,
+        at = v.at or r.spec.span  # an error is placed at the text that raised
+        doc = {"name": r.spec.name, "kind": r.spec.kind, "line": at.line, "column": at.col,
                "verdict": v.status.value, "message": v.message}
         if r.spec.expect != "holds":
             doc["expect"] = r.spec.expect
