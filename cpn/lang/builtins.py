@@ -9,7 +9,7 @@ from __future__ import annotations
 from cpn.diagnostics import Span
 from cpn.lang import types as T
 from cpn.lang.symbols import ConInfo, Symbol
-from cpn.values import draws, sml_basis
+from cpn.values import draws, effects, sml_basis
 from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS, MLError
 from cpn.values.multiset import MultisetError
 
@@ -212,6 +212,12 @@ TYPES.update({name: ty for name, (ty, _) in draws.DISTRIBUTIONS.items()})
 # the engines find every library function in one table; the draws are defined beside the generator they use
 FUNCTIONS.update(draws.FUNCTIONS)
 
+# the machine's clock and text output (cpn.values.effects); those with no state-space meaning are
+# simulation only, with what they do and what to change
+TYPES.update({name: ty for name, (ty, _) in effects.BUILTINS.items()})
+FUNCTIONS.update(effects.FUNCTIONS)
+SIMULATION_ONLY_BUILTINS: dict[str, tuple[str, str]] = dict(effects.SIMULATION_ONLY)
+
 # name -> (type, implementation)
 BUILTINS: dict[str, tuple[str, object]] = {name: (ty, FUNCTIONS[name]) for name, ty in TYPES.items()}
 
@@ -238,5 +244,5 @@ def record_setter(cs, op: str) -> str | None:
     return None
 
 
-__all__ = ["BUILTINS", "COLSET_OPS", "MLError", "MultisetError", "RANDOM_BUILTINS", "parse_type",
-           "record_setter", "TIME_BUILTINS"]
+__all__ = ["BUILTINS", "COLSET_OPS", "MLError", "MultisetError", "RANDOM_BUILTINS", "SIMULATION_ONLY_BUILTINS",
+           "parse_type", "record_setter", "TIME_BUILTINS"]

@@ -31,6 +31,7 @@ class FunctionDraws:
         self.simulation_only_uses: list = []
         self.current_fun: str | None = None  # the top-level function being checked
         self.fun_draws: dict[str, list[A.Name]] = {}  # its draws
+        self.fun_effects: dict[str, list[A.Name]] = {}  # its uses of the clock or text output (simulate only)
         self.fun_refs: dict[str, set[str]] = {}  # the top-level functions it names
         self.fun_used_outside: set[str] = set()  # named by the net other than in a call written out
         self.fun_asts: dict[str, A.FunDecl] = {}  # the text of those that may draw, as written
@@ -129,3 +130,5 @@ class FunctionDraws:
         for f in sorted(used):
             for e in self.fun_draws.get(f, ()):
                 self.random_draw(e)
+            for e in self.fun_effects.get(f, ()):
+                self.effect_builtin(e)

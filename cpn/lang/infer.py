@@ -13,7 +13,7 @@ from cpn.diagnostics import Span
 from cpn.expr.binding import children
 from cpn.lang import ast as A
 from cpn.lang import types as T
-from cpn.lang.builtins import FINITE_DRAWS, RANDOM_BUILTINS
+from cpn.lang.builtins import FINITE_DRAWS, RANDOM_BUILTINS, SIMULATION_ONLY_BUILTINS
 from cpn.lang.checked import Abort, Env
 from cpn.lang.function_draws import FunctionDraws
 from cpn.lang.symbols import Symbol
@@ -189,6 +189,8 @@ class TypeInference(FunctionDraws):
                     "mkstr": T.TFun(cst, T.STRING), "lt": T.TFun(T.TTuple([cst, cst]), T.BOOL)}[op]
         if sym.kind == "builtin" and sym.name in RANDOM_BUILTINS:
             self.random_draw(e)
+        if sym.kind == "builtin" and sym.name in SIMULATION_ONLY_BUILTINS:
+            self.effect_builtin(e)
         t = sym.type
         return t.instantiate() if isinstance(t, T.Scheme) else t
 
@@ -227,6 +229,16 @@ class TypeInference(FunctionDraws):
         self.simulation_only_uses.append((what, span, hint, name))
         self.warn("W0106", f"{what}: simulate runs the model, explore and check cannot analyse it", span,
                   hint=hint, name=name)
+
+    def effect_builtin(self, e: A.Name) -> None:
+        """A use of a library function with no state-space meaning (the machine's clock, text output): simulate
+        runs it, explore and check refuse the net with one error per use (W0106 in lint), at the built-in
+        itself. Inside a top-level function it counts where the net uses the function (`settle_function_draws`)."""
+        if self.current_fun is not None:
+            self.fun_effects.setdefault(self.current_fun, []).append(e)
+            return
+        what, hint = SIMULATION_ONLY_BUILTINS[e.name]
+        self.simulation_only(f"'{e.name}' {what}", e.span, hint, e.name)
 
     def real_delay(self, e: A.BinOp, env: Env) -> None:
         """The delay of `e @++ d` (CPN Tools' real-valued delay): a real; simulation only."""
