@@ -129,6 +129,8 @@ class _Declarations:
             elif el.tag == "ml":
                 heads = {name for name, _ in ml.declared_functions(el.text)} | ml.datatype_names(el.text)
                 mls.append((el, heads, words(el.text)))
+            elif el.tag == "use":  # a used file is always read: the declarations it names are needed
+                needed |= words(self._use_file(el)[4] or "")
         changed = True
         while changed:
             changed = False
@@ -483,29 +485,8 @@ class _Declarations:
         return out
 
     def _use(self, el: Element) -> None:
-        mlel = el.find("ml")
-        raw = _clean(mlel.text if mlel is not None else el.text)
-        written = raw.strip().strip(";").strip()
-        fname = written.strip('"')
-        here = os.path.dirname(os.path.abspath(self.path))
-        candidates = [os.path.join(here, fname)]
-        if not (written.startswith('"') and written.endswith('"')):
-            # `use (buildpath^"session/logging.sml")`: the path the constants give (often a folder of the
-            # author's machine), else the literal part, else the file name, beside the model
-            value = self._string_expr(written, self._string_vals())
-            literal = "".join(re.findall(r'"([^"\\]*)"', written))
-            fname = value if value is not None else literal or written
-            candidates = [os.path.join(here, fname)] + [os.path.join(here, p) for p in
-                                                        (literal.lstrip("/"), os.path.basename(literal)) if p]
+        written, fname, here, candidates, content, full, why = self._use_file(el)
         origin = self._origin(el, None, f"use \"{fname}\"")
-        content = None
-        for full in dict.fromkeys(candidates):
-            try:
-                with open(full, encoding="utf-8", errors="replace") as f:
-                    content = f.read()
-                break
-            except OSError as exc:
-                why = exc.strerror
         if content is None:
             base = os.path.basename(fname)
             tried = "; tried " + ", ".join(f"'{os.path.relpath(c, here)}'" for c in dict.fromkeys(candidates)) \
@@ -521,5 +502,32 @@ class _Declarations:
         shown = os.path.join(os.path.dirname(self.path), fname)
         start = Origin(1, 1, origin.element, None, f"'use \"{fname}\"'", file=shown)
         self._ml(el, content, _text_origin_from(1, 1, content[: len(content) - len(content.lstrip())], start))
+
+    def _use_file(self, el: Element) -> tuple:
+        """The file a `use` element names: (as written, its name, the model's folder, the paths tried, its
+        text or None, the path read, why none could be read)."""
+        mlel = el.find("ml")
+        raw = _clean(mlel.text if mlel is not None else el.text)
+        written = raw.strip().strip(";").strip()
+        fname = written.strip('"')
+        here = os.path.dirname(os.path.abspath(self.path))
+        candidates = [os.path.join(here, fname)]
+        if not (written.startswith('"') and written.endswith('"')):
+            # `use (buildpath^"session/logging.sml")`: the path the constants give (often a folder of the
+            # author's machine), else the literal part, else the file name, beside the model
+            value = self._string_expr(written, self._string_vals())
+            literal = "".join(re.findall(r'"([^"\\]*)"', written))
+            fname = value if value is not None else literal or written
+            candidates = [os.path.join(here, fname)] + [os.path.join(here, p) for p in
+                                                        (literal.lstrip("/"), os.path.basename(literal)) if p]
+        content, full, why = None, None, ""
+        for full in dict.fromkeys(candidates):
+            try:
+                with open(full, encoding="utf-8", errors="replace") as f:
+                    content = f.read()
+                break
+            except OSError as exc:
+                why = exc.strerror
+        return written, fname, here, candidates, content, full, why
 
     # -- pages -----------------------------------------------------------------------------------
