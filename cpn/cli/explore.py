@@ -89,6 +89,9 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     add_output_option(p, "--json", "the result as JSON")
     add_output_option(p, "--dot", "the state space and SCC graph as DOT (small nets)")
     add_output_option(p, "--graphml", "the state space and SCC graph as GraphML (small nets)")
+    p.add_argument("--max-export-states", type=int, metavar="N", default=None,
+                   help="draw --dot and --graphml for a state space of up to N states (default: 10,000; "
+                   "0: no limit); above it they are skipped with a warning")
     add_output_option(p, "--html", "the report as one self-contained HTML page (the net, the state space, "
                       "a chart of the trace to each dead marking)")
     add_output_option(p, "--msc", "the trace to the first dead marking as a message sequence chart (SVG)")
@@ -119,6 +122,8 @@ def run(args) -> int:
     check_parallel(args)
     if args.max_listed is not None and args.max_listed < 0:
         raise UsageError(f"--max-listed must not be negative, got {args.max_listed}")
+    if getattr(args, "max_export_states", None) is not None and args.max_export_states < 0:
+        raise UsageError(f"--max-export-states must not be negative, got {args.max_export_states}")
     if getattr(args, "max_successors", None) is not None and args.max_successors <= 0:
         raise UsageError(f"--max-successors must be positive, got {args.max_successors}")
     if getattr(args, "until_time", None) is not None and args.until_time < 0:
@@ -231,12 +236,15 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
     for option, render, kind in (("--dot", render_dot, "DOT"), ("--graphml", render_graphml, "GraphML")):
         if option not in outputs:
             continue
+        limit = getattr(args, "max_export_states", None)
         try:
-            text = render(report)
+            text = render(report, limit)
         except TooLargeToExport:
-            print(f"note: {kind} export skipped: the state space has {x.n_states:,} states and exports are "
-                  f"limited to {MAX_EXPORT_STATES:,} (a drawing that large is unreadable); use --json "
-                  "for the figures or a --max-states limit for a partial drawing", file=sys.stderr)
+            # a warning, so printed even with --quiet: the file asked for is not written
+            limit = MAX_EXPORT_STATES if limit is None else limit
+            print(f"warning: {option}: {kind} export skipped: the state space has {x.n_states:,} states, above "
+                  f"the limit of {limit:,} for drawings; raise it with --max-export-states {x.n_states} (0: no "
+                  "limit), or draw a partial state space with --max-states", file=sys.stderr)
             continue
         write_output(outputs[option], text)
     _write_pictures(report, outputs, quiet)

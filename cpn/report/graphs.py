@@ -1,45 +1,57 @@
 """The state graph and the SCC graph as networkx graphs, written as DOT or GraphML (small nets only).
 
-Imports `cpn.report.model` and networkx.
+Imports `cpn.engine.protocol`, `cpn.report.model` and networkx.
 """
 
 from __future__ import annotations
 
+from cpn.engine.protocol import capability
 from cpn.report.model import Report
 
-MAX_EXPORT_STATES: int = 10_000
+MAX_EXPORT_STATES: int = 10_000  # the default limit (explore --max-export-states)
 
 
 class TooLargeToExport(ValueError):
-    """The state space has more states than MAX_EXPORT_STATES."""
+    """The state space has more states than the export limit."""
 
 
-def state_graph(r: Report):
+def _check_size(r: Report, max_states: int | None) -> None:
+    """Refuse a state space above `max_states` (None: MAX_EXPORT_STATES; 0: no limit)."""
+    limit = MAX_EXPORT_STATES if max_states is None else max_states
+    if limit and r.exploration.n_states > limit:
+        raise TooLargeToExport(r.exploration.n_states)
+
+
+def state_graph(r: Report, max_states: int | None = None):
+    """The state space; a timed model's states carry their clock (a `time` attribute and the label's second
+    line, `@ time`), except under time condensation."""
     import networkx as nx
 
+    _check_size(r, max_states)
     x = r.exploration
-    if x.n_states > MAX_EXPORT_STATES:
-        raise TooLargeToExport(x.n_states)
     engine = x.engine
     g = x.graph
+    # a condensed state's clock is shifted to 0: no clock to show
+    timed = bool(getattr(engine, "is_timed", False)) and not capability(engine, "time_condensation", False)
     G = nx.MultiDiGraph(name="state space")
     dead = set(r.dead.states)
     for i, s in enumerate(g.states):
         label = "\\n".join(f"{p.name}: {engine.format_marking(s, k)}" for k, p in enumerate(engine.places))
-        G.add_node(f"s{i + 1}", label=f"{i + 1}\\n{label}", scc=r.scc.decomposition.comp[i] + 1,
-                   dead=i in dead, expanded=g.is_expanded(i))
+        attrs = {"time": engine.clock(s)} if timed else {}
+        head = f"{i + 1}\\n@ {engine.clock(s)}" if timed else f"{i + 1}"
+        G.add_node(f"s{i + 1}", label=f"{head}\\n{label}", scc=r.scc.decomposition.comp[i] + 1,
+                   dead=i in dead, expanded=g.is_expanded(i), **attrs)
     for i in range(g.expanded):
         for be, j in g.out_arcs(i):
             G.add_edge(f"s{i + 1}", f"s{j + 1}", label=engine.format_binding_element(be))
     return G
 
 
-def scc_graph(r: Report):
+def scc_graph(r: Report, max_states: int | None = None):
     import networkx as nx
 
+    _check_size(r, max_states)
     x = r.exploration
-    if x.n_states > MAX_EXPORT_STATES:
-        raise TooLargeToExport(x.n_states)
     dec = r.scc.decomposition
     g = x.graph
     G = nx.DiGraph(name="SCC graph")
@@ -55,16 +67,17 @@ def scc_graph(r: Report):
     return G
 
 
-def _combined(r: Report):
+def _combined(r: Report, max_states: int | None):
     import networkx as nx
 
-    return nx.union(state_graph(r), nx.MultiDiGraph(scc_graph(r)))
+    return nx.union(state_graph(r, max_states), nx.MultiDiGraph(scc_graph(r, max_states)))
 
 
-def render_dot(r: Report) -> str:
-    """DOT text with two digraphs: the state space, then the SCC graph."""
+def render_dot(r: Report, max_states: int | None = None) -> str:
+    """DOT text with two digraphs: the state space, then the SCC graph (TooLargeToExport above `max_states`
+    states; None: MAX_EXPORT_STATES, 0: no limit)."""
     parts = []
-    for name, G in (("statespace", state_graph(r)), ("sccgraph", scc_graph(r))):
+    for name, G in (("statespace", state_graph(r, max_states)), ("sccgraph", scc_graph(r, max_states))):
         lines = [f"digraph {name} {{"]
         for n, d in G.nodes(data=True):
             lines.append(f'  "{n}" [label="{_esc(d.get("label", n))}"];')
@@ -76,11 +89,12 @@ def render_dot(r: Report) -> str:
     return "\n".join(parts) + "\n"
 
 
-def render_graphml(r: Report) -> str:
-    """GraphML text holding the state space and the SCC graph (nodes 'scc<k>') side by side."""
+def render_graphml(r: Report, max_states: int | None = None) -> str:
+    """GraphML text holding the state space and the SCC graph (nodes 'scc<k>') side by side (TooLargeToExport
+    above `max_states` states; None: MAX_EXPORT_STATES, 0: no limit)."""
     import networkx as nx
 
-    G = nx.MultiDiGraph(_combined(r))
+    G = nx.MultiDiGraph(_combined(r, max_states))
     return "\n".join(nx.generate_graphml(G)) + "\n"
 
 
