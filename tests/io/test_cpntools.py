@@ -192,7 +192,7 @@ def refused(xml: str) -> ModelError:
 
 def test_refusals_are_positioned_and_all_reported_in_one_run():
     body = (place("P1", "A", "S", "1`0")
-            + trans("T1", "t", code="input (x);\noutput (y);\naction (print(Int.toString x); x+1);")
+            + trans("T1", "t", code="input (x);\noutput (y);\naction (send(Int.toString x); x+1);")
             + trans("T2", "u", time="@++1.5")
             + trans("T3", "v", channel="ch.?x")
             + arc("A1", "TtoP", "T2", "P1", "exponential(1.0)"))

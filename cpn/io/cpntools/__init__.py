@@ -31,6 +31,7 @@ from cpn.io.cpntools._text import (
     _timed_literals,
 )
 from cpn.io.cpntools._xml import Element, parse_xml
+from cpn.values.effects import SIMULATION_ONLY
 
 __all__ = ["Origin", "Translation", "translate", "translate_file", "translate_text", "remap_error"]
 
@@ -439,8 +440,10 @@ class _Translator(_Declarations):
             return
         if self._refuse_random(act, origin, f"the code segment of {what}", effects=False):
             return
-        effects = sorted({n for n, _ in ml.names(act) if n.split(".")[0] in ml.SIDE_EFFECT_NAMES
-                          or n in ml.SIDE_EFFECT_NAMES or self._side_effect_via(n)})
+        # text output and the machine's clock are left to the front end: simulate runs them (the output
+        # dropped), explore and check refuse them at the call
+        effects = sorted({n for n, _ in ml.names(act) if n not in SIMULATION_ONLY and (
+            n.split(".")[0] in ml.SIDE_EFFECT_NAMES or n in ml.SIDE_EFFECT_NAMES or self._side_effect_via(n))})
         if effects or ":=" in ml.strip_comments(act) or re.search(r"!\s*[A-Za-z(]", ml.strip_comments(act)):
             used = ", ".join(effects) if effects else "a reference variable"
             self.error(origin, f"{what} has a code segment that binds the output variable(s) {', '.join(outs)} "

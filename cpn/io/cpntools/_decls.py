@@ -14,6 +14,7 @@ from cpn.io.cpntools import _ml as ml
 from cpn.io.cpntools._text import Origin, _clean, _short, _text_origin_from
 from cpn.io.cpntools._xml import Element
 from cpn.values.draws import DISTRIBUTIONS
+from cpn.values.effects import SIMULATION_ONLY
 
 
 class _Declarations:
@@ -73,6 +74,8 @@ class _Declarations:
         for _name, body in funs:
             for n, _ in ml.names(body):
                 if n in DISTRIBUTIONS:  # SML/NJ's Random.rand, Random.randRange, ...: as the distributions
+                    continue
+                if n in SIMULATION_ONLY:  # text output, the machine's clock: simulated, refused by explore
                     continue
                 if n.split(".")[0] in ml.RANDOM_STRUCTURES or n.split(".")[0] in ml.SIDE_EFFECT_NAMES:
                     library.add(n)
