@@ -116,7 +116,7 @@ def _build(spec: PropertySpec, lang: PropertyLanguage) -> Check:
         pred = _pred(spec, lang, "expr", T.BOOL, "a home predicate") if "expr" in f else None
         return Home(spec, pred)
     if k == "no_livelock":
-        return NoLivelock(spec, set(_names(spec, lang, "progress")) if f.get("progress") else None)
+        return NoLivelock(spec, _patterns(spec, lang, "progress") if f.get("progress") else None)
     if k == "ctl":
         return _ctl(spec, lang)
     if k == "ltl":
@@ -222,15 +222,27 @@ def _ctl(spec, lang) -> Check:
         raise _ctl_error(e, text, origin, span)
 
     formula = conv(expr)
-    fairness = []
-    for name in spec.fields.get("fairness", []):
+    return Ctl(spec, formula, atoms, _patterns(spec, lang, "fairness") if spec.fields.get("fairness") else [])
+
+
+def _patterns(spec: PropertySpec, lang: PropertyLanguage, key: str) -> list:
+    """The binding-element tests of a list of transitions and binding elements (`fairness`, `progress`):
+    "Page'trans 1", "Page'trans" (every instance), "Page'trans 1: {var=value}" (the bindings with that value)."""
+    from cpn._util import did_you_mean
+
+    diags = []
+    for name in spec.fields[key]:
         if lang.resolve_transitions(name) is None and not lang._known_be(name):
-            raise ModelError([Diagnostic("E0703", f"no transition instance or binding element '{name}' in the net",
-                                         _element_span(spec, "fairness", name),
-                                         hint="Write \"Page'trans 1\", \"Page'trans\" (every instance) or "
-                                              "\"Page'trans 1: {var=value}\" (the bindings with that value).")])
-        fairness.append(lang.binding_pattern(name))
-    return Ctl(spec, formula, atoms, fairness)
+            tname = name.partition(":")[0].strip()
+            cand = None if tname in lang.transition_names else did_you_mean(tname, list(lang.transition_names))
+            diags.append(Diagnostic("E0703", f"no transition instance or binding element '{name}' in the net",
+                                    _element_span(spec, key, name),
+                                    hint=f"Did you mean '{cand}'?" if cand else
+                                    "Write \"Page'trans 1\", \"Page'trans\" (every instance) or "
+                                    "\"Page'trans 1: {var=value}\" (the bindings with that value)."))
+    if diags:
+        raise ModelError(diags)
+    return [lang.binding_pattern(name) for name in spec.fields[key]]
 
 
 __all__ = ["build_checks"]

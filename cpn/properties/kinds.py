@@ -465,9 +465,9 @@ class Home(Check):
 
 
 class NoLivelock(Check):
-    def __init__(self, spec, progress: set[int] | None):
+    def __init__(self, spec, progress: list | None):
         super().__init__(spec)
-        self.progress = progress
+        self.progress = progress  # binding-element tests (PropertyLanguage.binding_pattern), as fairness's
 
     def decide(self, view):
         g = view.g
@@ -475,8 +475,9 @@ class NoLivelock(Check):
         labels = None
         avoid = -1
         if self.progress:
-            t_of = view.labels()
-            labels = array("b", (1 if t in self.progress else 0 for t in t_of))
+            bes = g.bes
+            good = {be for be in set(bes) if any(test(be) for test in self.progress)}
+            labels = array("b", (1 if be in good else 0 for be in bes))
             avoid = 1
         dec = strongly_connected_components(n, g.offsets, g.dst, labels, avoid)
         best = None
