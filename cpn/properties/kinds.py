@@ -54,10 +54,15 @@ class GraphView:
             self._labels = self.lang.transition_index.arc_transitions(self.g.bes)
         return self._labels
 
-    def kripke(self, fairness: list | None = None) -> Kripke:
-        """The graph for CTL; with fairness (binding-element tests), arcs are labelled by binding element."""
+    def predecessors(self) -> tuple:
+        """The arcs into every state, in CSR form: (pred_off, pred) (cpn.checks.ctl.reverse_csr)."""
         if self._pred is None:
             self._pred = reverse_csr(self.g.n_states, self.g.offsets, self.g.dst)
+        return self._pred
+
+    def kripke(self, fairness: list | None = None) -> Kripke:
+        """The graph for CTL; with fairness (binding-element tests), arcs are labelled by binding element."""
+        self.predecessors()
         if fairness:
             bes = self.g.bes
             distinct = sorted(set(bes))
@@ -420,11 +425,47 @@ class LiveTransitions(Check):
         if not bad:
             return Verdict.holds(f"{len(wanted)} transition instance{'s' if len(wanted) != 1 else ''} live")
         t = bad[0]
-        c = next(c for c, s in zip(terms, present) if t not in s)
-        at = min(dec.nodes(c))
+        at = _nearest_never(view, t)
         names = ", ".join(view.engine.transitions[i].name for i in bad)
         return Verdict.violated(f"not live: {names}; {view.engine.transitions[t].name} can never occur after "
                                 f"{_state_name(view, at)}", evidence_to(g, at))
+
+
+def _nearest_never(view, t: int) -> int:
+    """The marking nearest to the initial one (fewest steps; then the smallest number) from which transition
+    instance t can never occur: it reaches no arc of t. Called only when such a marking exists."""
+    g = view.g
+    n = g.n_states
+    labels = view.labels()
+    pred_off, pred = view.predecessors()
+    can = bytearray(n)  # 1: an occurrence of t is reachable from the marking
+    todo = []
+    for u in range(n):
+        if t in labels[g.offsets[u]:g.offsets[u + 1]]:
+            can[u] = 1
+            todo.append(u)
+    while todo:
+        v = todo.pop()
+        for k in range(pred_off[v], pred_off[v + 1]):
+            u = pred[k]
+            if not can[u]:
+                can[u] = 1
+                todo.append(u)
+    frontier = [0]
+    seen = bytearray(n)
+    seen[0] = 1
+    while frontier:  # breadth first, level by level
+        hits = [u for u in frontier if not can[u]]
+        if hits:
+            return min(hits)
+        nxt = []
+        for u in frontier:
+            for v in g.dst[g.offsets[u]:g.offsets[u + 1]]:
+                if not seen[v]:
+                    seen[v] = 1
+                    nxt.append(v)
+        frontier = nxt
+    raise AssertionError("no marking from which the transition can never occur")
 
 
 class Home(Check):
