@@ -282,8 +282,12 @@ def test_scenario_files_name_existing_models_and_properties():
         assert os.path.exists(model), path
         assert scenario["property"], path
         for prop in scenario["property"]:
-            # a MODBUS.md property, or a path the configuration excludes (a protocol fact, bench/modbus.py DEAD)
-            assert prop["name"].startswith(("S-P", "M-P", "SS-P", "MA", "dead (a protocol fact")), (path, prop["name"])
+            # a MODBUS.md property, or a path the configuration excludes (a protocol fact, bench/modbus.py DEAD);
+            # the TCP files: the rules T1-T6 and MBAP of docs/modbus_tcp.md, and the seed's conflict as a finding
+            serial = ("S-P", "M-P", "SS-P", "MA", "dead (a protocol fact")
+            tcp = tuple(f"T{i}{c}" for i in range(1, 7) for c in ": ") + ("MBAP:", "finding (")
+            names = tcp if os.path.basename(path).startswith("tcp") else serial
+            assert prop["name"].startswith(names), (path, prop["name"])
 
 
 def test_modbus_a_42_slaves_reproduces_the_papers_checkpoints():
