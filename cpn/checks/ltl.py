@@ -86,7 +86,8 @@ class _Stop(Exception):
 
 def check_ltl(system, formula: tuple, propositions: list[Callable[[Hashable], bool]],
               max_states: int | None = None, deadline: float | None = None,
-              weak_fairness: list[tuple[Callable, Callable]] | None = None) -> LtlResult:
+              weak_fairness: list[tuple[Callable, Callable]] | None = None,
+              strong_fairness: list[tuple[Callable, Callable]] | None = None) -> LtlResult:
     """Whether every infinite path of `system` from its initial state satisfies `formula` (see the module).
 
     `max_states` bounds the system states the search reaches (the product has up to that many times the
@@ -96,11 +97,18 @@ def check_ltl(system, formula: tuple, propositions: list[Callable[[Hashable], bo
     is enabled in every state from some point on, occurs infinitely often count. A strongly connected
     part of the product then has a fair accepting cycle when its arcs meet every acceptance set and, for
     each pair, one of its arcs occurs or one of its states does not enable the transition; this is
-    decided when the part is complete (not at its first accepting cycle).
+    decided when the part is complete (not at its first accepting cycle). `strong_fairness` lists such
+    pairs for transitions under strong fairness: a transition enabled infinitely often occurs infinitely
+    often. A complete part whose arcs meet every acceptance set is then searched for a fair sub-part: if a
+    listed transition is enabled in one of its states but occurs on none of its arcs, the states that
+    enable it are removed and the SCCs of the rest are searched in turn (the standard refinement for
+    Streett conditions); a fair cycle lies in a sub-part where every listed transition that is enabled
+    also occurs.
     """
     aut = translate(("not", formula))
     search = _Search(system, aut, propositions, max_states, deadline)
     search.weak = list(weak_fairness or [])
+    search.strong = list(strong_fairness or [])
     try:
         found = search.run()
     except _Stop as stop:
@@ -137,6 +145,7 @@ class _Search:
         self.masks: dict = {}  # system state -> bitmask of its true propositions
         self.index: dict = {}  # product state -> depth-first number, or _DONE
         self.weak: list = []  # (enabled(state), occurs(label)) per transition under weak fairness
+        self.strong: list = []  # the same under strong fairness
 
     def mask(self, s) -> int:
         m = self.masks.get(s)
@@ -172,6 +181,7 @@ class _Search:
         roots: list[list] = []  # [depth-first number, sets met inside its SCC, sets of the arc into it]
         live: list = []  # states of the SCCs not yet finished, in depth-first order
         todo: list = []  # the depth-first path: [product state, its successors, next position, label in]
+        fair = bool(self.weak or self.strong)  # then an accepting SCC is judged when it is complete
 
         def push(v, label, acc) -> None:
             index[v] = len(index)
@@ -190,9 +200,12 @@ class _Search:
             if k == len(succ):
                 todo.pop()
                 if roots[-1][0] == index[v]:
-                    if self.weak and roots[-1][1] == full and self._fair(live, index[v]):
-                        todo.append(top)
-                        return self.lasso(todo, live, index[v])
+                    if fair and roots[-1][1] == full:
+                        scc = {w for w in live if index[w] >= index[v]}
+                        part = self._fair_part(scc)
+                        if part is not None:
+                            todo.append(top)
+                            return self.lasso(todo, index[v], scc, part)
                     roots.pop()
                     while True:
                         w = live.pop()
@@ -213,34 +226,94 @@ class _Search:
                 r = roots.pop()
                 met |= r[1] | r[2]
             roots[-1][1] |= met
-            if roots[-1][1] == full and not self.weak:
-                return self.lasso(todo, live, roots[-1][0])
+            if roots[-1][1] == full and not fair:
+                root = roots[-1][0]
+                scc = {w for w in live if index[w] >= root}
+                return self.lasso(todo, root, scc, scc)
         return None
 
-    def _fair(self, live: list, root: int) -> bool:
-        """Whether the finished SCC of the root (the live states from depth-first number `root`) meets
-        every weak fairness pair: one of its arcs occurs, or one of its states does not enable it."""
-        index = self.index
-        inside = {v for v in live if index[v] >= root}
-        labels = []
-        for v in inside:
-            labels.extend(label for label, w, _acc in self.successors(v) if w in inside)
-        if not labels:
-            return False  # a single state without a self-loop: no cycle
-        return all(any(map(occurs, labels)) or not all(enabled(v[0]) for v in inside)
-                   for enabled, occurs in self.weak)
+    def _fair_part(self, scc: set) -> set | None:
+        """A part of the finished SCC `scc` (itself, or an SCC of it after the refinement) whose arcs meet
+        every acceptance set, every weak pair (one of its arcs occurs, or one of its states does not enable
+        the transition) and every strong pair (one of its arcs occurs, or none of its states enables the
+        transition); None when there is none."""
+        work = [scc]
+        while work:
+            part = work.pop()
+            met, labels = 0, []
+            for v in part:
+                for label, w, acc in self.successors(v):
+                    if w in part:
+                        met |= acc
+                        labels.append(label)
+            if not labels or met != self.aut.full:
+                continue  # a single state without a self-loop has no cycle
+            if any(not any(map(occurs, labels)) and all(enabled(v[0]) for v in part)
+                   for enabled, occurs in self.weak):
+                continue  # so do all its sub-parts: the transition is enabled in each of their states
+            ignored = [enabled for enabled, occurs in self.strong if not any(map(occurs, labels))]
+            drop = {v for v in part if any(enabled(v[0]) for enabled in ignored)}
+            if not drop:
+                return part
+            work.extend(self._components(part - drop))
+        return None
 
-    def lasso(self, todo: list, live: list, root: int):
-        """The counterexample when the SCC of the root with depth-first number `root` is accepting:
-        the depth-first path to the root, then a cycle in the SCC through an arc of every acceptance set."""
+    def _components(self, states: set) -> list[set]:
+        """The SCCs of the product restricted to `states` (Tarjan's algorithm, iterative)."""
+        index: dict = {}
+        low: dict = {}
+        stack: list = []
+        on: set = set()
+        out: list = []
+        for s0 in states:
+            if s0 in index:
+                continue
+            work = [(s0, iter([w for _l, w, _a in self.successors(s0) if w in states]))]
+            index[s0] = low[s0] = len(index)
+            stack.append(s0)
+            on.add(s0)
+            while work:
+                v, it = work[-1]
+                for w in it:
+                    if w not in index:
+                        index[w] = low[w] = len(index)
+                        stack.append(w)
+                        on.add(w)
+                        work.append((w, iter([x for _l, x, _a in self.successors(w) if x in states])))
+                        break
+                    if w in on:
+                        low[v] = min(low[v], index[w])
+                else:
+                    work.pop()
+                    if work:
+                        u = work[-1][0]
+                        low[u] = min(low[u], low[v])
+                    if low[v] == index[v]:
+                        comp = set()
+                        while True:
+                            w = stack.pop()
+                            on.discard(w)
+                            comp.add(w)
+                            if w == v:
+                                break
+                        out.append(comp)
+        return out
+
+    def lasso(self, todo: list, root: int, scc: set, inside: set):
+        """The counterexample when `inside`, a part of the SCC `scc` of the root with depth-first number
+        `root`, has a fair accepting cycle: the depth-first path to the root, a path in the SCC to a state
+        of the part, then a cycle in the part through an arc of every acceptance set and fair to every
+        weak and strong pair."""
         index, aut = self.index, self.aut
         prefix = []
         for v, _succ, _k, label in todo:
             prefix.append((label, v))
             if index[v] == root:
                 break
+        if prefix[-1][1] not in inside:
+            prefix.extend((label, w) for label, w, _acc in
+                          self._path(prefix[-1][1], scc, lambda label, w, acc: w in inside))
         start = prefix[-1][1]
-        inside = {v for v in live if index[v] >= root}
         cycle: list = []
         cur = start
         need = aut.full
@@ -256,6 +329,14 @@ class _Search:
             if any(occurs(label) or not enabled(v[0]) for label, v, _acc in cycle):
                 continue
             seg = self._path(cur, inside, lambda label, w, acc, e=enabled, o=occurs: o(label) or not e(w[0]))
+            cycle.extend(seg)
+            cur = seg[-1][1]
+        for _enabled, occurs in self.strong:
+            # in a fair part a transition that is enabled somewhere occurs on some arc: the cycle takes one
+            if any(occurs(label) for label, _v, _acc in cycle) or \
+                    not any(occurs(label) for v in inside for label, w, _a in self.successors(v) if w in inside):
+                continue
+            seg = self._path(cur, inside, lambda label, w, acc, o=occurs: o(label))
             cycle.extend(seg)
             cur = seg[-1][1]
         if cur != start or not cycle:
