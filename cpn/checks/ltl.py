@@ -87,7 +87,8 @@ class _Stop(Exception):
 def check_ltl(system, formula: tuple, propositions: list[Callable[[Hashable], bool]],
               max_states: int | None = None, deadline: float | None = None,
               weak_fairness: list[tuple[Callable, Callable]] | None = None,
-              strong_fairness: list[tuple[Callable, Callable]] | None = None) -> LtlResult:
+              strong_fairness: list[tuple[Callable, Callable]] | None = None,
+              step_propositions: list[Callable[[Hashable], bool]] | None = None) -> LtlResult:
     """Whether every infinite path of `system` from its initial state satisfies `formula` (see the module).
 
     `max_states` bounds the system states the search reaches (the product has up to that many times the
@@ -97,7 +98,9 @@ def check_ltl(system, formula: tuple, propositions: list[Callable[[Hashable], bo
     is enabled in every state from some point on, occurs infinitely often count. A strongly connected
     part of the product then has a fair accepting cycle when its arcs meet every acceptance set and, for
     each pair, one of its arcs occurs or one of its states does not enable the transition; this is
-    decided when the part is complete (not at its first accepting cycle). `strong_fairness` lists such
+    decided when the part is complete (not at its first accepting cycle). `step_propositions` are
+    tests of a step's label (None for a dead state's stutter step): ``("ap", len(propositions) + j)``
+    holds in a position of a path when the step that leaves it satisfies `step_propositions[j]`. `strong_fairness` lists such
     pairs for transitions under strong fairness: a transition enabled infinitely often occurs infinitely
     often. A complete part whose arcs meet every acceptance set is then searched for a fair sub-part: if a
     listed transition is enabled in one of its states but occurs on none of its arcs, the states that
@@ -106,7 +109,7 @@ def check_ltl(system, formula: tuple, propositions: list[Callable[[Hashable], bo
     also occurs.
     """
     aut = translate(("not", formula))
-    search = _Search(system, aut, propositions, max_states, deadline)
+    search = _Search(system, aut, propositions, max_states, deadline, step_propositions or [])
     search.weak = list(weak_fairness or [])
     search.strong = list(strong_fairness or [])
     try:
@@ -136,10 +139,12 @@ _DONE = -1  # the index of a product state whose SCC is finished
 
 
 class _Search:
-    def __init__(self, system, aut: Automaton, propositions, max_states, deadline) -> None:
+    def __init__(self, system, aut: Automaton, propositions, max_states, deadline, step_props) -> None:
         self.system = system
         self.aut = aut
         self.props = propositions
+        self.step_props = step_props
+        self.step_masks: dict = {}  # label -> bitmask of its true step propositions
         self.max_states = max_states
         self.deadline = deadline
         self.masks: dict = {}  # system state -> bitmask of its true propositions
@@ -157,6 +162,16 @@ class _Search:
             self.masks[s] = m
         return m
 
+    def step_mask(self, label) -> int:
+        m = self.step_masks.get(label)
+        if m is None:
+            m = 0
+            for i, p in enumerate(self.step_props, len(self.props)):
+                if label is not None and p(label):
+                    m |= 1 << i
+            self.step_masks[label] = m
+        return m
+
     def steps(self, s) -> list:
         """The system's steps from s, a dead state stuttering."""
         out = self.system.successors(s)
@@ -164,14 +179,21 @@ class _Search:
 
     def successors(self, v: tuple) -> list:
         """(label, product state, acceptance sets) after product state v = (system state, automaton
-        state): the automaton reads the present system state, the system moves."""
+        state): the automaton reads the present system state and the step that leaves it, the system
+        moves."""
         s, q = v
-        moves = {}
-        for acc, r in self.aut.moves(q, self.mask(s)):
-            moves[r] = moves.get(r, 0) | acc  # one edge per target, with every set some edge to it meets
-        if not moves:
-            return []
-        return [(label, (t, r), acc) for label, t in self.steps(s) for r, acc in moves.items()]
+        base = self.mask(s)
+        by_mask: dict = {}
+        out = []
+        for label, t in self.steps(s):
+            m = base | self.step_mask(label) if self.step_props else base
+            moves = by_mask.get(m)
+            if moves is None:
+                moves = by_mask[m] = {}
+                for acc, r in self.aut.moves(q, m):
+                    moves[r] = moves.get(r, 0) | acc  # one edge per target, with every set some edge to it meets
+            out.extend((label, (t, r), acc) for r, acc in moves.items())
+        return out
 
     def run(self):
         """None when the product has no accepting cycle, else the lasso (prefix, cycle)."""
