@@ -481,7 +481,7 @@ def _check_fields(r: _Reader, table: tuple, kind: str, f: dict) -> bool:
     for k in integers:
         if k in f and (isinstance(f[k], bool) or not isinstance(f[k], (int, str))):
             bad(k, "an integer or a CPN ML integer expression")
-    for k in ("expected", "transitions", "progress", "fairness", "weak_fairness"):
+    for k in ("expected", "transitions", "progress", "fairness", "weak_fairness", "strong_fairness"):
         if k in f and (not isinstance(f[k], list) or not all(isinstance(x, str) for x in f[k])):
             bad(k, "a list of transition names", hint=f'Write {k} = ["Page\'Trans 1", "Module\'Trans"].')
     if "initial" in f and not isinstance(f["initial"], bool):

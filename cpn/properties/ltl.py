@@ -6,7 +6,8 @@ The formula is a CPN ML boolean text in which the temporal operators are functio
 temporal operator are the atoms, marking predicates as anywhere else (``enabled "Page'T 1"`` included).
 It holds when every infinite path from the initial marking satisfies it; a dead marking repeats forever
 (docs/specs.md). `weak_fairness = ["Page'T", ...]` keeps only the paths on which each listed transition,
-if it is enabled in every marking from some point on, occurs infinitely often. The check runs `cpn.checks.ltl` on the explored graph and gives a violation as a lasso:
+if it is enabled in every marking from some point on, occurs infinitely often; `strong_fairness = [...]`
+the paths on which each, if it is enabled infinitely often, occurs infinitely often. The check runs `cpn.checks.ltl` on the explored graph and gives a violation as a lasso:
 the path to a marking and a cycle back to it (or a path that ends in a dead marking).
 """
 
@@ -24,18 +25,21 @@ from cpn.properties.predicates import LTL_BINARY, LTL_UNARY, walk
 
 
 class Ltl(Check):
-    def __init__(self, spec, formula: tuple, atoms: list, weak: list[set] | None = None):
+    def __init__(self, spec, formula: tuple, atoms: list, weak: list[set] | None = None,
+                 strong: list[set] | None = None):
         super().__init__(spec)
         self.formula = formula
         self.atoms = atoms
         self.weak = weak or []  # per weak fairness entry, its transition instances
+        self.strong = strong or []  # the same for strong fairness
 
     def decide(self, view) -> Verdict:
         if not view.complete:
             return Verdict.unknown(view.reason)
         truths = [view.truth(a) for a in self.atoms]
         res = check_ltl(_Graph(view.g), self.formula, [t.__getitem__ for t in truths],
-                        weak_fairness=[_weak(view, ts) for ts in self.weak])
+                        weak_fairness=[_weak(view, ts) for ts in self.weak],
+                        strong_fairness=[_weak(view, ts) for ts in self.strong])
         if res.holds:
             return Verdict.holds(f"every path satisfies it ({res.product_states:,} states of the product with "
                                  f"the {res.automaton_states}-state automaton of its negation)")
@@ -120,21 +124,23 @@ def build_ltl(spec, lang) -> Ltl:
             text, origin, span)
 
     formula = conv(expr)
-    weak, diags = [], []
-    for name in spec.fields.get("weak_fairness", []):
-        ts = lang.resolve_transitions(name)
-        if ts is None:
-            near = did_you_mean(name, list(lang.transition_names))
-            diags.append(Diagnostic("E0703", f"no transition instance '{name}' in the net",
-                                    spec.spans.get("weak_fairness", spec.span),
-                                    hint=f"Did you mean '{near}'?" if near else
-                                    "Name it as the report prints it: \"Page'trans 1\", or \"Page'trans\" for "
-                                    "every instance."))
-        else:
-            weak.append(set(ts))
+    fairness: dict[str, list[set]] = {"weak_fairness": [], "strong_fairness": []}
+    diags = []
+    for key, sets in fairness.items():
+        for name in spec.fields.get(key, []):
+            ts = lang.resolve_transitions(name)
+            if ts is None:
+                near = did_you_mean(name, list(lang.transition_names))
+                diags.append(Diagnostic("E0703", f"no transition instance '{name}' in the net",
+                                        spec.spans.get(key, spec.span),
+                                        hint=f"Did you mean '{near}'?" if near else
+                                        "Name it as the report prints it: \"Page'trans 1\", or \"Page'trans\" "
+                                        "for every instance."))
+            else:
+                sets.append(set(ts))
     if diags:
         raise ModelError(diags)
-    return Ltl(spec, formula, atoms, weak)
+    return Ltl(spec, formula, atoms, fairness["weak_fairness"], fairness["strong_fairness"])
 
 
 __all__ = ["Ltl", "build_ltl"]

@@ -23,7 +23,7 @@ KINDS: dict[str, tuple[set, set]] = {
     "home": (set(), {"expr", "initial"}),
     "no_livelock": (set(), {"progress"}),
     "ctl": ({"formula"}, {"fairness"}),
-    "ltl": ({"formula"}, {"weak_fairness"}),
+    "ltl": ({"formula"}, {"weak_fairness", "strong_fairness"}),
 }
 # a `bound` property's limits (docs/specs.md): an exact one is written `upper_equals`, ...; `upper`, ... are
 # its older spellings, still read with the same meaning
