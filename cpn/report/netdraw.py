@@ -185,70 +185,205 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
     dead = set(dead_transitions)
     occurrences = occurrences or {}
     units, top = instance_tree(net)
+    nodes = _net_nodes(net)
+    collapsed = _collapsed(units, top, net, dead)
+    sheet = _Sheet(net, units, top, nodes, collapsed, dead, max_row_width)
+    width, height, items = sheet.measure(top, 0)
+    routes, offset = _place_items(items, nodes)
+    body: list[str] = [S.arrow_defs("na", {"line": S.LINE, "bad": S.BAD})]
+    body += [_module_box(units, key, top, box, net, dead, bounds)
+             for key, box in sorted(offset.items(), key=lambda kv: kv[1][4])
+             if not (key == top and not units[key].children)]
+    hidden = {("p", i) for k in collapsed for i in _all(units, k, "places")} | \
+             {("t", i) for k in collapsed for i in _all(units, k, "transitions")}
+    nodes = {n: node for n, node in nodes.items() if n not in hidden}
+    titles = [(x + 10, y + 4, x + 10 + S.text_width(_box_title(units[key]), 13), y + 22)
+              for key, (x, y, _w, _h, _depth, _lines) in offset.items()]  # inscriptions keep off them too
+    arcs, right = _arcs(net, nodes, {e: [(x, y) for _, x, y in sorted(pts)] for e, pts in routes.items()},
+                        titles)
+    body += arcs
+    for node in nodes.values():
+        if node.kind == "place":
+            body.append(_place(net.places[node.index], node, bounds))
+        else:
+            t = net.transitions[node.index]
+            body.append(_transition(t, node, t.name in dead, occurrences.get(t.name)))
+    right = max([right] + [_right_edge(node) for node in nodes.values()])  # labels may stick out of the boxes
+    return S.document(max(width, right + 6) + 2, height + 2, body, f"the net {net.name}", cls="drawing net")
+
+
+def _net_nodes(net) -> dict:
+    """Every place and transition instance as a _Node sized for its shape and its label lines."""
     nodes: dict = {}
     for p in net.places:
-        lines = [(p.colset_name, "cs", False)]
-        if p.initial:
-            lines.append((S.clip(_initial_text(p), INSCRIPTION_CHARS), "init", True))
-        sw = max(76, S.text_width(p.place, 13) + 30)
-        w = max([sw] + [S.text_width(t, 12, m) + 8 for t, _, m in lines])
-        nodes[("p", p.index)] = _Node("place", p.index, w, PLACE_H + LABEL_LINE * len(lines), PLACE_H, lines, sw)
+        nodes[("p", p.index)] = _place_node(p)
     for t in net.transitions:
-        lines = []
-        for g in t.guards or []:
-            lines.append((S.clip("[" + inscription(net, g) + "]", INSCRIPTION_CHARS), "guard", True))
-        if t.delay is not None:
-            lines.append((S.clip("@+" + inscription(net, t.delay), INSCRIPTION_CHARS), "guard", True))
-        sw = max(80, S.text_width(t.transition, 13) + 26)
-        w = max([sw] + [S.text_width(s, 12, m) + 8 for s, _, m in lines])
-        nodes[("t", t.index)] = _Node("trans", t.index, w, TRANS_H + LABEL_LINE * len(lines), TRANS_H, lines, sw)
+        nodes[("t", t.index)] = _transition_node(net, t)
+    return nodes
 
-    body: list[str] = []
-    boxes: list[str] = []
+
+def _place_node(p) -> _Node:
+    lines = [(p.colset_name, "cs", False)]
+    if p.initial:
+        lines.append((S.clip(_initial_text(p), INSCRIPTION_CHARS), "init", True))
+    sw = max(76, S.text_width(p.place, 13) + 30)
+    w = max([sw] + [S.text_width(t, 12, m) + 8 for t, _, m in lines])
+    return _Node("place", p.index, w, PLACE_H + LABEL_LINE * len(lines), PLACE_H, lines, sw)
+
+
+def _transition_node(net, t) -> _Node:
+    lines = []
+    for g in t.guards or []:
+        lines.append((S.clip("[" + inscription(net, g) + "]", INSCRIPTION_CHARS), "guard", True))
+    if t.delay is not None:
+        lines.append((S.clip("@+" + inscription(net, t.delay), INSCRIPTION_CHARS), "guard", True))
+    sw = max(80, S.text_width(t.transition, 13) + 26)
+    w = max([sw] + [S.text_width(s, 12, m) + 8 for s, _, m in lines])
+    return _Node("trans", t.index, w, TRANS_H + LABEL_LINE * len(lines), TRANS_H, lines, sw)
+
+
+def _place_items(items: list, nodes: dict) -> tuple[dict, dict]:
+    """Put the measured nodes at their absolute positions; returns the arcs' bends and the boxes.
+
+    routes: edge -> [(bend number, x, y)]; offset: unit key -> (x, y, w, h, depth, summary lines).
+    """
+    routes: dict = {}
     offset: dict = {}
-    collapsed = _collapsed(units, top, net, dead)
+    for kind, k, x, y, extra in items:
+        if kind == "bend":
+            routes.setdefault(k[0], []).append((k[1], x, y))
+        elif kind == "node":
+            node = nodes[k]
+            node.side = extra
+            if extra:
+                node.x, node.y = x - node.side_size()[0] / 2 + node.shape_w / 2, y
+            else:
+                node.x, node.y = x, y - node.h / 2 + node.shape_h / 2
+        else:
+            offset[k] = (x, y) + extra
+    return routes, offset
 
-    def measure(key, depth) -> tuple[float, float, list]:
+
+def _module_box(units: dict, key, top, box: tuple, net, dead: set, bounds: dict) -> str:
+    """The SVG box of one module instance: its frame and title, or the summary of a collapsed one."""
+    x, y, w, h, depth, lines = box
+    u = units[key]
+    fill = "#fbfcfd" if depth % 2 == 0 else "#f3f5f7"
+    tip = f"module instance {u.label} (module {u.module}, instance {key[1]})"
+    extra = ""
+    if lines is not None:  # a collapsed instance: its summary instead of its nodes
+        tip += "\n" + "\n".join(_collapsed_tip(units, key, net, dead, bounds))
+        extra = "".join(S.text(x + 10, y + HEADER + 12 + LABEL_LINE * k, t, 12, "start",
+                               fill=S.BAD if bad else S.MUTED) for k, (t, bad) in enumerate(lines))
+    return (f'<g class="module{" collapsed" if lines is not None else ""}">'
+            f'<rect x="{S.fmt(x)}" y="{S.fmt(y)}" width="{S.fmt(w)}" '
+            f'height="{S.fmt(h)}" rx="8" fill="{fill}" stroke="{S.BOX_STROKE}"'
+            + (' stroke-dasharray="5 3"' if lines is not None else "") + "/>"
+            + S.text(x + 10, y + 18, _box_title(u), 13, "start", weight="600", fill=S.MUTED)
+            + extra + S.title(tip) + "</g>")
+
+
+def _right_edge(node: _Node) -> float:
+    """The right end of a node with its labels."""
+    if node.side:
+        return node.x + node.side_size()[0] - node.shape_w / 2
+    return node.x + node.w / 2
+
+
+@dataclass
+class _Sheet:
+    """What the layout of the module instances' boxes needs: the net, its instance tree and its nodes."""
+
+    net: object
+    units: dict
+    top: tuple
+    nodes: dict
+    collapsed: dict
+    dead: set
+    max_row_width: float
+
+    def measure(self, key, depth) -> tuple[float, float, list]:
         """Lay out unit `key`; returns its size and the (kind, key, x, y) items relative to its corner."""
-        u = units[key]
-        if key in collapsed:
-            lines = _summary(units, key, collapsed[key], net, dead)
-            w = max([220.0, S.text_width(_box_title(u), 13) + 20] + [S.text_width(t, 12) + 20 for t, _ in lines])
-            h = HEADER + LABEL_LINE * len(lines) + 10
-            return w, h, [("box", key, 0.0, 0.0, (w, h, depth, lines))]
+        u = self.units[key]
+        if key in self.collapsed:
+            return self._summary_box(key, depth)
         own = [("p", i) for i in u.places] + [("t", i) for i in u.transitions]
-        edges = []
-        own_set = set(own)
-        for i in u.transitions:
-            for a in net.transitions[i].arcs:
-                pk = ("p", a.place)
-                if pk not in own_set:
-                    continue
-                edges.append((("t", i), pk) if a.kind == "out" else (pk, ("t", i)))
-        roots = [("p", i) for i in u.places if net.places[i].initial]
+        edges = self._edges(u, set(own))
         # Nodes without an arc inside this instance (sockets and fused places used by the instances
         # below) go in a row above the rest, close to the boxes that use them.
         linked = {n for e in edges for n in e}
         row = [n for n in own if n not in linked] if u.children else []
         flow = [n for n in own if n not in row]
+        lay, side = self._flow_layout(u, flow, edges, depth)
+        pos, bends, lw, lh = self._arrange(row, lay, side, depth)
+        kids = [self.measure(c, depth + 1) for c in u.children]
+        corners, kw, kh = pack_rows([(w, h) for w, h, _ in kids], max(lw, self.max_row_width - 2 * PAD * depth))
+        header = HEADER if key != self.top or u.children else 0
+        inner_w = max(lw, kw, S.text_width(_box_title(u), 13) + 10)
+        w = inner_w + 2 * PAD
+        h = header + lh + (PAD if lh and kids else 0) + kh + PAD + (0 if header else PAD)
+        items = [("box", key, 0.0, 0.0, (w, h, depth, None))]
+        dx = PAD + (inner_w - lw) / 2
+        for n, (x, y, sd) in pos.items():
+            items.append(("node", n, dx + x, header + (PAD if not header else 0) + y, sd))
+        for b, (x, y) in bends.items():
+            items.append(("bend", b, dx + x, header + (PAD if not header else 0) + y, None))
+        ky = header + (PAD if not header else 0) + lh + (PAD if lh and kids else 0)
+        for (cx, cy), (_cw, _ch, citems) in zip(corners, kids):
+            for kind, k, x, y, extra in citems:
+                items.append((kind, k, PAD + cx + x, ky + cy + y, extra))
+        return w, h, items
+
+    def _summary_box(self, key, depth) -> tuple[float, float, list]:
+        """The size and item of a collapsed instance: one box with its summary lines."""
+        lines = _summary(self.units, key, self.collapsed[key], self.net, self.dead)
+        w = max([220.0, S.text_width(_box_title(self.units[key]), 13) + 20]
+                + [S.text_width(t, 12) + 20 for t, _ in lines])
+        h = HEADER + LABEL_LINE * len(lines) + 10
+        return w, h, [("box", key, 0.0, 0.0, (w, h, depth, lines))]
+
+    def _edges(self, u: Unit, own_set: set) -> list:
+        """The arcs between the unit's own nodes, as (source, target) node keys."""
+        edges = []
+        for i in u.transitions:
+            for a in self.net.transitions[i].arcs:
+                pk = ("p", a.place)
+                if pk not in own_set:
+                    continue
+                edges.append((("t", i), pk) if a.kind == "out" else (pk, ("t", i)))
+        return edges
+
+    def _flow_layout(self, u: Unit, flow: list, edges: list, depth):
+        """The layered layout of the unit's linked nodes, left to right, or top to bottom when too wide.
+
+        Returns the layout (None without nodes) and whether the labels go at the right of the nodes.
+        """
+        if not flow:
+            return None, False
+        net, nodes = self.net, self.nodes
+        roots = [("p", i) for i in u.places if net.places[i].initial]
         # the gap between layers leaves room for the widest (wrapped) inscription of the unit's arcs
         widest = max([S.text_width(line, 12, True) for i in u.transitions for a in net.transitions[i].arcs
                       for line in wrap(inscription(net, a.expr))] + [0])
         gap = min(190.0, max(84.0, widest + 36))
         lay = layered_layout(flow, edges, {n: (nodes[n].w, nodes[n].h) for n in flow}, roots=roots,
-                             gap_x=gap, gap_y=30, margin=0, direction="LR") if flow else None
-        side = False
-        if lay and lay.width > max_row_width - 2 * PAD * (depth + 1):
-            # a long chain: top to bottom instead, with each node's labels at its right
-            side = True
-            lay = layered_layout(flow, edges, {n: nodes[n].side_size() for n in flow}, roots=roots,
-                                 gap_x=150, gap_y=58, margin=0, direction="TB",
-                                 max_width=max_row_width - 2 * PAD * (depth + 1))
+                             gap_x=gap, gap_y=30, margin=0, direction="LR")
+        if lay.width <= self.max_row_width - 2 * PAD * (depth + 1):
+            return lay, False
+        # a long chain: top to bottom instead, with each node's labels at its right
+        lay = layered_layout(flow, edges, {n: nodes[n].side_size() for n in flow}, roots=roots,
+                             gap_x=150, gap_y=58, margin=0, direction="TB",
+                             max_width=self.max_row_width - 2 * PAD * (depth + 1))
+        return lay, True
+
+    def _arrange(self, row: list, lay, side: bool, depth) -> tuple[dict, dict, float, float]:
+        """The unlinked row above the laid-out flow: node centres, arc bends, and the size of both."""
+        nodes = self.nodes
         pos: dict = {}
         lw = lh = 0.0
         if row:
-            corners, lw, lh = pack_rows([(nodes[n].w, nodes[n].h) for n in row], max_row_width - 2 * PAD * depth,
-                                        gap=48)
+            corners, lw, lh = pack_rows([(nodes[n].w, nodes[n].h) for n in row],
+                                        self.max_row_width - 2 * PAD * depth, gap=48)
             for n, (cx, cy) in zip(row, corners):
                 pos[n] = (cx + nodes[n].w / 2, cy + nodes[n].h / 2, False)
         bends: dict = {}
@@ -265,78 +400,7 @@ def draw_net(net, bounds: dict | None = None, dead_transitions=(), occurrences: 
             for n in row:
                 x, y, sd = pos[n]
                 pos[n] = (x + shift, y, sd)
-        kids = [measure(c, depth + 1) for c in u.children]
-        corners, kw, kh = pack_rows([(w, h) for w, h, _ in kids], max(lw, max_row_width - 2 * PAD * depth))
-        header = HEADER if key != top or u.children else 0
-        inner_w = max(lw, kw, S.text_width(_box_title(u), 13) + 10)
-        w = inner_w + 2 * PAD
-        h = header + lh + (PAD if lh and kids else 0) + kh + PAD + (0 if header else PAD)
-        items = [("box", key, 0.0, 0.0, (w, h, depth, None))]
-        dx = PAD + (inner_w - lw) / 2
-        for n, (x, y, sd) in pos.items():
-            items.append(("node", n, dx + x, header + (PAD if not header else 0) + y, sd))
-        for b, (x, y) in bends.items():
-            items.append(("bend", b, dx + x, header + (PAD if not header else 0) + y, None))
-        ky = header + (PAD if not header else 0) + lh + (PAD if lh and kids else 0)
-        for (cx, cy), (_cw, _ch, citems) in zip(corners, kids):
-            for kind, k, x, y, extra in citems:
-                items.append((kind, k, PAD + cx + x, ky + cy + y, extra))
-        return w, h, items
-
-    width, height, items = measure(top, 0)
-    routes: dict = {}
-    for kind, k, x, y, extra in items:
-        if kind == "bend":
-            routes.setdefault(k[0], []).append((k[1], x, y))
-        elif kind == "node":
-            node = nodes[k]
-            node.side = extra
-            if extra:
-                node.x, node.y = x - node.side_size()[0] / 2 + node.shape_w / 2, y
-            else:
-                node.x, node.y = x, y - node.h / 2 + node.shape_h / 2
-        else:
-            offset[k] = (x, y) + extra
-    for key, (x, y, w, h, depth, lines) in sorted(offset.items(), key=lambda kv: kv[1][4]):
-        u = units[key]
-        if key == top and not u.children:
-            continue
-        fill = "#fbfcfd" if depth % 2 == 0 else "#f3f5f7"
-        tip = f"module instance {u.label} (module {u.module}, instance {key[1]})"
-        extra = ""
-        if lines is not None:  # a collapsed instance: its summary instead of its nodes
-            tip += "\n" + "\n".join(_collapsed_tip(units, key, net, dead, bounds))
-            extra = "".join(S.text(x + 10, y + HEADER + 12 + LABEL_LINE * k, t, 12, "start",
-                                   fill=S.BAD if bad else S.MUTED) for k, (t, bad) in enumerate(lines))
-        boxes.append(f'<g class="module{" collapsed" if lines is not None else ""}">'
-                     f'<rect x="{S.fmt(x)}" y="{S.fmt(y)}" width="{S.fmt(w)}" '
-                     f'height="{S.fmt(h)}" rx="8" fill="{fill}" stroke="{S.BOX_STROKE}"'
-                     + (' stroke-dasharray="5 3"' if lines is not None else "") + "/>"
-                     + S.text(x + 10, y + 18, _box_title(u), 13, "start", weight="600", fill=S.MUTED)
-                     + extra + S.title(tip) + "</g>")
-
-    body.append(S.arrow_defs("na", {"line": S.LINE, "bad": S.BAD}))
-    body += boxes
-    hidden = {("p", i) for k in collapsed for i in _all(units, k, "places")} | \
-             {("t", i) for k in collapsed for i in _all(units, k, "transitions")}
-    nodes = {n: node for n, node in nodes.items() if n not in hidden}
-    titles = [(x + 10, y + 4, x + 10 + S.text_width(_box_title(units[key]), 13), y + 22)
-              for key, (x, y, _w, _h, _depth, _lines) in offset.items()]  # inscriptions keep off them too
-    arcs, right = _arcs(net, nodes, {e: [(x, y) for _, x, y in sorted(pts)] for e, pts in routes.items()},
-                        titles)
-    body += arcs
-    for node in nodes.values():
-        if node.kind == "place":
-            body.append(_place(net.places[node.index], node, bounds))
-        else:
-            t = net.transitions[node.index]
-            body.append(_transition(t, node, t.name in dead, occurrences.get(t.name)))
-    for node in nodes.values():  # labels may stick out of the laid-out boxes
-        if node.side:
-            right = max(right, node.x + node.side_size()[0] - node.shape_w / 2)
-        else:
-            right = max(right, node.x + node.w / 2)
-    return S.document(max(width, right + 6) + 2, height + 2, body, f"the net {net.name}", cls="drawing net")
+        return pos, bends, lw, lh
 
 
 FULL_INSTANCES = 3  # of a module with more instances, at most this many are drawn in full
