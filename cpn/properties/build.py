@@ -198,14 +198,7 @@ def _ctl(spec, lang) -> Check:
             op = ctl_syms[id(e.fn.ref)]
             if op in CTL_ARC:
                 pat, phi = e.arg.items
-                if not (isinstance(pat, A.Const) and isinstance(pat.value, str)) or (
-                        lang.resolve_transitions(pat.value) is None and not lang._known_be(pat.value)):
-                    from cpn.properties.predicates import _remap
-
-                    raise _remap(ModelError([Diagnostic(
-                        "E0703", f"'{op}' takes a transition or binding element of the net as a string literal",
-                        pat.span, hint="For example: EXB (\"Slave'Reply\", true).")]), text, origin, span)
-                return Temporal(op, (conv(phi),), lang.binding_pattern(pat.value))
+                return Temporal(op, (conv(phi),), lang.arc_pattern(op, pat, text, origin, span))
             if op in CTL_BINARY:
                 a, b = e.arg.items
                 return Temporal(op, (conv(a), conv(b)))

@@ -4,6 +4,8 @@ The formula is a CPN ML boolean text in which the temporal operators are functio
 ``X p`` (or ``ALWAYS``, ``EVENTUALLY``, ``NEXT``), ``U (p, q)`` and ``R (p, q)`` (``UNTIL``,
 ``RELEASE``), combined with ``not``, ``andalso``, ``orelse`` and ``if``; its largest parts without a
 temporal operator are the atoms, marking predicates as anywhere else (``enabled "Page'T 1"`` included).
+``EXB ("Page'T 1: {x=1}", p)`` and ``AXB (...)`` are `ctl`'s binding-element operators read on the path:
+the step that leaves the position is such an occurrence and ``X p`` holds, or it is not or ``X p`` holds.
 It holds when every infinite path from the initial marking satisfies it; a dead marking repeats forever
 (docs/specs.md). `weak_fairness = ["Page'T", ...]` keeps only the paths on which each listed transition,
 if it is enabled in every marking from some point on, occurs infinitely often; `strong_fairness = [...]`
@@ -21,15 +23,16 @@ from cpn.errors import ModelError
 from cpn.lang import ast as A
 from cpn.lang import types as T
 from cpn.properties.kinds import Check, _slice, _state_name
-from cpn.properties.predicates import LTL_BINARY, LTL_UNARY, walk
+from cpn.properties.predicates import CTL_ARC, LTL_BINARY, LTL_UNARY, walk
 
 
 class Ltl(Check):
     def __init__(self, spec, formula: tuple, atoms: list, weak: list[set] | None = None,
-                 strong: list[set] | None = None):
+                 strong: list[set] | None = None, steps: list | None = None):
         super().__init__(spec)
         self.formula = formula
         self.atoms = atoms
+        self.steps = steps or []  # binding-element tests of EXB and AXB: atoms len(atoms) + j
         self.weak = weak or []  # per weak fairness entry, its transition instances
         self.strong = strong or []  # the same for strong fairness
 
@@ -39,7 +42,8 @@ class Ltl(Check):
         truths = [view.truth(a) for a in self.atoms]
         res = check_ltl(_Graph(view.g), self.formula, [t.__getitem__ for t in truths],
                         weak_fairness=[_weak(view, ts) for ts in self.weak],
-                        strong_fairness=[_weak(view, ts) for ts in self.strong])
+                        strong_fairness=[_weak(view, ts) for ts in self.strong],
+                        step_propositions=[_occurs(view, test) for test in self.steps])
         if res.holds:
             return Verdict.holds(f"every path satisfies it ({res.product_states:,} states of the product with "
                                  f"the {res.automaton_states}-state automaton of its negation)")
@@ -69,6 +73,12 @@ def _weak(view, transitions: set) -> tuple:
     return enabled.__getitem__, lambda a: a is not None and labels[a] in transitions
 
 
+def _occurs(view, test) -> tuple:
+    """The test of an arc (a label of `_Graph`): whether its binding element passes `test`."""
+    bes = view.g.bes
+    return lambda a: test(bes[a])
+
+
 class _Graph:
     """An explored graph as the LTL search sees a system: state ids, arcs labelled by their index."""
 
@@ -88,6 +98,7 @@ def build_ltl(spec, lang) -> Ltl:
     expr = lang.check(text, origin, span, T.BOOL, "an LTL formula", ltl=True)
     syms = {id(s): n for n, s in lang.ltl_symbols.items()}
     atoms: list = []
+    steps: list = []  # binding-element tests; ("step", j) until the atoms are counted
 
     def op_of(e) -> str | None:
         if isinstance(e, A.App) and isinstance(e.fn, A.Name) and e.fn.ref is not None and id(e.fn.ref) in syms:
@@ -102,6 +113,11 @@ def build_ltl(spec, lang) -> Ltl:
             atoms.append(lang.compile_checked(_slice(text, origin, e), e, span))
             return ("ap", len(atoms) - 1)
         op = op_of(e)
+        if op in CTL_ARC:  # on a path: its next step is (EXB) or, if it is, leads to (AXB) ...
+            pat, phi = e.arg.items
+            steps.append(lang.arc_pattern(op, pat, text, origin, span))
+            occurs, after = ("step", len(steps) - 1), ("X", conv(phi))
+            return ("and", occurs, after) if op == "EXB" else ("or", ("not", occurs), after)
         if op in LTL_BINARY:
             a, b = e.arg.items
             return (LTL_BINARY[op], conv(a), conv(b))
@@ -123,7 +139,7 @@ def build_ltl(spec, lang) -> Ltl:
             e.span, hint="Move the temporal operator out of the function, let or case expression.")]),
             text, origin, span)
 
-    formula = conv(expr)
+    formula = _numbered(conv(expr), len(atoms))
     fairness: dict[str, list[set]] = {"weak_fairness": [], "strong_fairness": []}
     diags = []
     for key, sets in fairness.items():
@@ -140,7 +156,16 @@ def build_ltl(spec, lang) -> Ltl:
                 sets.append(set(ts))
     if diags:
         raise ModelError(diags)
-    return Ltl(spec, formula, atoms, fairness["weak_fairness"], fairness["strong_fairness"])
+    return Ltl(spec, formula, atoms, fairness["weak_fairness"], fairness["strong_fairness"], steps)
+
+
+def _numbered(f: tuple, n_atoms: int) -> tuple:
+    """The formula with its step atoms ("step", j) numbered after the marking atoms: ("ap", n_atoms + j)."""
+    if f[0] == "step":
+        return ("ap", n_atoms + f[1])
+    if f[0] == "ap":
+        return f
+    return (f[0], *(_numbered(a, n_atoms) for a in f[1:]))
 
 
 __all__ = ["Ltl", "build_ltl"]

@@ -211,9 +211,9 @@ class PropertyLanguage:
             self.ctl_symbols[name] = Symbol(name, "builtin", T.TFun(T.TTuple([T.STRING, T.BOOL]), T.BOOL))
         self.ctl_env = self.env.child(self.ctl_symbols)
         self.ltl_symbols: dict[str, Symbol] = {}
-        for name in LTL_UNARY.keys() | LTL_BINARY.keys():
+        for name in LTL_UNARY.keys() | LTL_BINARY.keys() | CTL_ARC:
             if name not in checked.globals:
-                arg = T.BOOL if name in LTL_UNARY else T.TTuple([T.BOOL, T.BOOL])
+                arg = T.BOOL if name in LTL_UNARY else T.TTuple([T.STRING if name in CTL_ARC else T.BOOL, T.BOOL])
                 self.ltl_symbols[name] = Symbol(name, "builtin", T.TFun(arg, T.BOOL))
         self.ltl_env = self.env.child(self.ltl_symbols)
 
@@ -237,6 +237,17 @@ class PropertyLanguage:
             return lambda: any(ctx.transition_of(be) in wanted for be in ctx.enabled_bes())
         match = self.binding_pattern(text)
         return lambda: any(match(be) for be in ctx.enabled_bes())
+
+    def arc_pattern(self, op: str, pat: A.Expr, text: str, origin, span: Span) -> Callable[[int], bool]:
+        """The binding-element test of `EXB`'s or `AXB`'s first argument `pat` in the property text `text`
+        (a CTL or LTL formula); an error at its place unless it is a string literal naming a transition
+        or binding element of the net."""
+        if not (isinstance(pat, A.Const) and isinstance(pat.value, str)) or (
+                self.resolve_transitions(pat.value) is None and not self._known_be(pat.value)):
+            raise _remap(ModelError([Diagnostic(
+                "E0703", f"'{op}' takes a transition or binding element of the net as a string literal",
+                pat.span, hint=f"For example: {op} (\"Slave'Reply\", true).")]), text, origin, span)
+        return self.binding_pattern(pat.value)
 
     def binding_pattern(self, text: str) -> Callable[[int], bool]:
         """A test of binding elements for `Page'trans n: {var=value, ...}`, where the braces may list only
