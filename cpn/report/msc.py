@@ -225,19 +225,7 @@ def render_chart(chart: Chart, marked_step: int | None = None, caption: str = ""
         width = max(width, 1.1 * S.text_width(caption, 14) + 24)
     xs = [LEFT + col * i + col / 2 for i in range(n_lines)]
     top = HEAD + (22 if caption else 0)
-    ys = {}
-    y = top + 30
-    last_time = None
-    time_marks = []
-    for ev in chart.events:
-        if chart.timed and last_time is not None and ev.time != last_time:
-            y += TIME_GAP
-            time_marks.append((y - TIME_GAP / 2 - 4, ev.time))
-        elif chart.timed and last_time is None:
-            time_marks.append((y - 18, ev.time))
-        ys[ev.step] = y
-        last_time = ev.time
-        y += ROW
+    ys, time_marks, y = _rows(chart, top)
     pending = Counter(m.dst_line for m in chart.messages if m.dst is None)
     pending_y = y - ROW + 22  # where the arrows of tokens still in their places end, below the last step
     height = y + 30 + 9 * max(0, max(pending.values(), default=0) - 1)
@@ -250,15 +238,7 @@ def render_chart(chart: Chart, marked_step: int | None = None, caption: str = ""
     if caption:
         body.append(S.text(10, 20, caption, 14, "start", weight="600"))
     body.append(S.text(12, top - 14, "time" if chart.timed else "step", 12, "start", fill=S.MUTED))
-    for i, (label, sub) in enumerate(chart.lifelines):
-        x = xs[i]
-        bw = col - 24
-        body.append(f'<g class="lifeline"><rect x="{S.fmt(x - bw / 2)}" y="{S.fmt(top - 46)}" width="{S.fmt(bw)}" '
-                    f'height="{36 if sub else 28}" rx="5" fill="{S.PLACE_FILL}" stroke="{S.ACCENT}"/>'
-                    + S.text(x, top - 28, S.clip(label, 26), 13, weight="600")
-                    + (S.text(x, top - 14, S.clip(sub, 28), 11, fill=S.MUTED) if sub else "")
-                    + f'<line x1="{S.fmt(x)}" y1="{S.fmt(top - 10)}" x2="{S.fmt(x)}" y2="{S.fmt(height - 16)}" '
-                    f'stroke="{S.BOX_STROKE}" stroke-dasharray="4 4"/></g>')
+    body += [_lifeline(label, sub, xs[i], col, top, height) for i, (label, sub) in enumerate(chart.lifelines)]
     for ty, t in time_marks:
         body.append(f'<line class="time" x1="{LEFT - 6}" y1="{S.fmt(ty)}" x2="{S.fmt(width - 10)}" '
                     f'y2="{S.fmt(ty)}" stroke="#d5dbe1"/>'
@@ -267,56 +247,9 @@ def render_chart(chart: Chart, marked_step: int | None = None, caption: str = ""
     taken: set = set()  # (step, side) where a message label already sits
     open_ends: dict = defaultdict(int)  # lifeline -> pending messages that end on it so far
     for m in chart.messages:
-        x1, y1, x2 = xs[m.src_line], ys[m.src], xs[m.dst_line]
-        if m.dst is None:  # still in its place: open at the last step, below it
-            first_end = not open_ends[m.dst_line]
-            y2 = pending_y + 9 * open_ends[m.dst_line]
-            open_ends[m.dst_line] += 1
-        else:
-            y2 = ys[m.dst]
-        sgn = 1 if x2 > x1 else -1
-        # from under the sending event to the edge of the receiving one (an open end: to its lifeline)
-        x1, x2 = x1 + sgn * 8, x2 - sgn * (10 if m.dst is None else widths[m.dst] / 2 + 1)
-        text = S.clip(m.label, MESSAGE_CHARS)
-        # A row holds one event, so a label fits in the row of its sender (beside the sending event, toward
-        # the receiver) or else in the row of its receiver (beside the receiving event, toward the sender).
-        if (m.src, sgn) not in taken:
-            taken.add((m.src, sgn))
-            label = S.text(xs[m.src_line] + sgn * (widths[m.src] / 2 + 6), y1 - 4, text, 12,
-                           "start" if sgn > 0 else "end", mono=True, halo=True, fill=S.ACCENT)
-        elif m.dst is not None and (m.dst, -sgn) not in taken:
-            taken.add((m.dst, -sgn))
-            label = S.text(xs[m.dst_line] - sgn * (widths[m.dst] / 2 + 6), y2 - 6, text, 12,
-                           "end" if sgn > 0 else "start", mono=True, halo=True, fill=S.ACCENT)
-        else:
-            label = S.text((x1 + x2) / 2, (y1 + y2) / 2 - 5, text, 12, mono=True, halo=True, fill=S.ACCENT)
-        line = f'x1="{S.fmt(x1)}" y1="{S.fmt(y1)}" x2="{S.fmt(x2)}" y2="{S.fmt(y2)}"'
-        if m.fate == "pending":
-            tip = f"{m.label}: still there at the end of the trace (produced at step {m.src})"
-            drawn = (f'<line {line} stroke="{S.ACCENT}" stroke-width="1.6" stroke-dasharray="6 4" '
-                     f'marker-end="url(#{prefix}-open)"/>'
-                     + (S.text(x2 - sgn * 4, y2 + 4, "pending", 11, "end" if sgn > 0 else "start",
-                               fill=S.MUTED, halo=True) if first_end else ""))
-        elif m.fate == "lost":
-            tip = f"{m.label} (produced at step {m.src}, lost at step {m.dst}: taken, and nothing put anywhere)"
-            drawn = (f'<line {line} stroke="{S.ACCENT}" stroke-width="1.6"/>'
-                     f'<path class="lost" d="M{S.fmt(x2 - sgn * 6 - 5)},{S.fmt(y2 - 5)} l10,10 m0,-10 l-10,10" '
-                     f'stroke="{S.BAD}" stroke-width="2.2"/>')
-        else:
-            tip = f"{m.label} (produced at step {m.src}, consumed at step {m.dst})"
-            drawn = f'<line {line} stroke="{S.ACCENT}" stroke-width="1.6" marker-end="url(#{prefix}-msg)"/>'
-        body.append(f'<g class="message {m.fate}">{S.title(tip)}{drawn}{label}</g>')
+        body.append(_message(m, xs, ys, widths, taken, open_ends, pending_y, prefix))
     for ev in chart.events:
-        x, y = xs[ev.line], ys[ev.step]
-        bad = ev.step == marked_step
-        w = widths[ev.step]
-        tip = [f"step {ev.step}: {ev.text}"] + ([f"model time {ev.time}"] if ev.time is not None else [])
-        tip += [f"{p}: {a} -> {b}" for p, a, b in ev.changes[:20]]
-        body.append(f'<g class="event{" marked" if bad else ""}">{S.title(chr(10).join(tip))}'
-                    f'<rect x="{S.fmt(x - w / 2)}" y="{S.fmt(y - 12)}" width="{S.fmt(w)}" height="24" rx="4" '
-                    f'fill="{S.BAD if bad else S.TRANS_FILL}" stroke="{S.BAD if bad else S.WARN}"/>'
-                    + S.text(x, y + 4, ev.label, 12, fill="#fff" if bad else S.INK, weight="600") + "</g>")
-        body.append(S.text(LEFT - 12, y + 4, str(ev.step), 12, "end", fill=S.BAD if bad else S.MUTED))
+        body += _event(ev, xs[ev.line], ys[ev.step], widths[ev.step], ev.step == marked_step)
     if marked_step is not None and marked_step in ys:
         y = ys[marked_step]
         body.append(f'<rect class="marked-band" x="{LEFT - 34}" y="{S.fmt(y - 16)}" width="{S.fmt(width - LEFT + 30)}" height="32" '
@@ -330,3 +263,94 @@ def render_chart(chart: Chart, marked_step: int | None = None, caption: str = ""
         body.append(S.text(LEFT, top, "no step: the trace ends at the initial marking", 13, "start", fill=S.MUTED))
     label = f"message sequence chart, {len(chart.events)} steps"
     return S.document(width, height, body, label, cls="drawing msc", standalone=standalone)
+
+
+def _rows(chart: Chart, top: float) -> tuple[dict, list, float]:
+    """The y of each step (a gap where model time advances), the time marks, and the y below the last."""
+    ys = {}
+    y = top + 30
+    last_time = None
+    time_marks = []
+    for ev in chart.events:
+        if chart.timed and last_time is not None and ev.time != last_time:
+            y += TIME_GAP
+            time_marks.append((y - TIME_GAP / 2 - 4, ev.time))
+        elif chart.timed and last_time is None:
+            time_marks.append((y - 18, ev.time))
+        ys[ev.step] = y
+        last_time = ev.time
+        y += ROW
+    return ys, time_marks, y
+
+
+def _lifeline(label: str, sub: str, x: float, col: float, top: float, height: float) -> str:
+    """A lifeline's head (the instance's name, its module under it) and its dashed line."""
+    bw = col - 24
+    return (f'<g class="lifeline"><rect x="{S.fmt(x - bw / 2)}" y="{S.fmt(top - 46)}" width="{S.fmt(bw)}" '
+            f'height="{36 if sub else 28}" rx="5" fill="{S.PLACE_FILL}" stroke="{S.ACCENT}"/>'
+            + S.text(x, top - 28, S.clip(label, 26), 13, weight="600")
+            + (S.text(x, top - 14, S.clip(sub, 28), 11, fill=S.MUTED) if sub else "")
+            + f'<line x1="{S.fmt(x)}" y1="{S.fmt(top - 10)}" x2="{S.fmt(x)}" y2="{S.fmt(height - 16)}" '
+            f'stroke="{S.BOX_STROKE}" stroke-dasharray="4 4"/></g>')
+
+
+def _message(m, xs: list, ys: dict, widths: dict, taken: set, open_ends: dict, pending_y: float,
+             prefix: str) -> str:
+    """The arrow of one token from its sender to its receiver (open when still in its place, a cross when
+    lost), with its label; `taken` and `open_ends` record the places already used."""
+    x1, y1, x2 = xs[m.src_line], ys[m.src], xs[m.dst_line]
+    first_end = False
+    if m.dst is None:  # still in its place: open at the last step, below it
+        first_end = not open_ends[m.dst_line]
+        y2 = pending_y + 9 * open_ends[m.dst_line]
+        open_ends[m.dst_line] += 1
+    else:
+        y2 = ys[m.dst]
+    sgn = 1 if x2 > x1 else -1
+    # from under the sending event to the edge of the receiving one (an open end: to its lifeline)
+    x1, x2 = x1 + sgn * 8, x2 - sgn * (10 if m.dst is None else widths[m.dst] / 2 + 1)
+    label = _message_label(m, xs, widths, taken, sgn, (x1, y1, x2, y2))
+    line = f'x1="{S.fmt(x1)}" y1="{S.fmt(y1)}" x2="{S.fmt(x2)}" y2="{S.fmt(y2)}"'
+    if m.fate == "pending":
+        tip = f"{m.label}: still there at the end of the trace (produced at step {m.src})"
+        drawn = (f'<line {line} stroke="{S.ACCENT}" stroke-width="1.6" stroke-dasharray="6 4" '
+                 f'marker-end="url(#{prefix}-open)"/>'
+                 + (S.text(x2 - sgn * 4, y2 + 4, "pending", 11, "end" if sgn > 0 else "start",
+                           fill=S.MUTED, halo=True) if first_end else ""))
+    elif m.fate == "lost":
+        tip = f"{m.label} (produced at step {m.src}, lost at step {m.dst}: taken, and nothing put anywhere)"
+        drawn = (f'<line {line} stroke="{S.ACCENT}" stroke-width="1.6"/>'
+                 f'<path class="lost" d="M{S.fmt(x2 - sgn * 6 - 5)},{S.fmt(y2 - 5)} l10,10 m0,-10 l-10,10" '
+                 f'stroke="{S.BAD}" stroke-width="2.2"/>')
+    else:
+        tip = f"{m.label} (produced at step {m.src}, consumed at step {m.dst})"
+        drawn = f'<line {line} stroke="{S.ACCENT}" stroke-width="1.6" marker-end="url(#{prefix}-msg)"/>'
+    return f'<g class="message {m.fate}">{S.title(tip)}{drawn}{label}</g>'
+
+
+def _message_label(m, xs: list, widths: dict, taken: set, sgn: int, ends: tuple) -> str:
+    """A message's label: beside the sending event, else beside the receiving one, else mid-arrow."""
+    x1, y1, x2, y2 = ends
+    text = S.clip(m.label, MESSAGE_CHARS)
+    # A row holds one event, so a label fits in the row of its sender (beside the sending event, toward
+    # the receiver) or else in the row of its receiver (beside the receiving event, toward the sender).
+    if (m.src, sgn) not in taken:
+        taken.add((m.src, sgn))
+        return S.text(xs[m.src_line] + sgn * (widths[m.src] / 2 + 6), y1 - 4, text, 12,
+                      "start" if sgn > 0 else "end", mono=True, halo=True, fill=S.ACCENT)
+    if m.dst is not None and (m.dst, -sgn) not in taken:
+        taken.add((m.dst, -sgn))
+        return S.text(xs[m.dst_line] - sgn * (widths[m.dst] / 2 + 6), y2 - 6, text, 12,
+                      "end" if sgn > 0 else "start", mono=True, halo=True, fill=S.ACCENT)
+    return S.text((x1 + x2) / 2, (y1 + y2) / 2 - 5, text, 12, mono=True, halo=True, fill=S.ACCENT)
+
+
+def _event(ev: Event, x: float, y: float, w: float, bad: bool) -> list[str]:
+    """A step's box on its lifeline (red when it is the marked step) and its number in the left margin."""
+    tip = [f"step {ev.step}: {ev.text}"] + ([f"model time {ev.time}"] if ev.time is not None else [])
+    tip += [f"{p}: {a} -> {b}" for p, a, b in ev.changes[:20]]
+    return [f'<g class="event{" marked" if bad else ""}">{S.title(chr(10).join(tip))}'
+            f'<rect x="{S.fmt(x - w / 2)}" y="{S.fmt(y - 12)}" width="{S.fmt(w)}" height="24" rx="4" '
+            f'fill="{S.BAD if bad else S.TRANS_FILL}" stroke="{S.BAD if bad else S.WARN}"/>'
+            + S.text(x, y + 4, ev.label, 12, fill="#fff" if bad else S.INK, weight="600") + "</g>",
+            S.text(LEFT - 12, y + 4, str(ev.step), 12, "end", fill=S.BAD if bad else S.MUTED)]
