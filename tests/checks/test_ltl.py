@@ -54,6 +54,17 @@ def word(k: Kripke, states: list) -> list:
     return [k.labels[s] for s in states]
 
 
+def lasso_path(k: Kripke, res) -> tuple[list, list]:
+    """The states of a counterexample's prefix and cycle, checked to be a path of the system from 0 whose
+    cycle returns to the end of the prefix (a dead end stutters)."""
+    states = [s for _label, s in res.prefix]
+    cycle = [s for _label, s in res.cycle]
+    assert states[0] == 0 and cycle and cycle[-1] == states[-1]
+    for a, b in itertools.pairwise(states + cycle):
+        assert b in (k.succ[a] or [a])
+    return states, cycle
+
+
 @pytest.mark.parametrize("seed", range(6))
 def test_random_formulas_on_random_systems_agree_with_their_paths(seed):
     rng = random.Random(100 + seed)
@@ -69,12 +80,7 @@ def test_random_formulas_on_random_systems_agree_with_their_paths(seed):
             continue
         violated += 1
         # the counterexample is a path of the system, closing a cycle, on which the formula is false
-        states = [s for _label, s in res.prefix]
-        assert states[0] == 0
-        cycle = [s for _label, s in res.cycle]
-        assert cycle and cycle[-1] == states[-1]
-        for a, b in itertools.pairwise(states + cycle):
-            assert b in (k.succ[a] or [a])
+        states, cycle = lasso_path(k, res)
         assert not holds_on_lasso(f, word(k, states[:-1]), word(k, [states[-1]] + cycle[:-1])), (f, res)
     assert violated and held  # both outcomes were exercised
 

@@ -3,13 +3,12 @@ elements that occur): random formulas on random small systems against the lassos
 
 from __future__ import annotations
 
-import itertools
 import random
 
 import pytest
 
 from cpn.checks.ltl import check_ltl
-from tests.checks.test_ltl import Kripke, random_kripke
+from tests.checks.test_ltl import Kripke, lasso_path, random_kripke
 from tests.checks.test_ltl_buchi import holds_on_lasso, random_formula
 from tests.checks.test_ltl_strong import all_lassos
 
@@ -42,11 +41,7 @@ def test_step_atoms_against_the_lassos_of_the_system(seed):
                 assert holds_on_lasso(f, word[:len(p)], word[len(p):]), (f, k.succ, k.labels, t, p, c)
             continue
         violated += 1
-        states = [s for _label, s in res.prefix]
-        cycle = [s for _label, s in res.cycle]
-        assert states[0] == 0 and cycle and cycle[-1] == states[-1]
-        for a, b in itertools.pairwise(states + cycle):
-            assert b in (k.succ[a] or [a])
+        states, cycle = lasso_path(k, res)
         ring = states + cycle
         word = step_word(k, ring[:-1], ring[1:], tests)
         assert not holds_on_lasso(f, word[:len(states) - 1], word[len(states) - 1:]), (f, k.succ, t, res)

@@ -10,7 +10,7 @@ import random
 import pytest
 
 from cpn.checks.ltl import check_ltl
-from tests.checks.test_ltl import Kripke, random_kripke, word
+from tests.checks.test_ltl import Kripke, lasso_path, random_kripke, word
 from tests.checks.test_ltl_buchi import holds_on_lasso, random_formula
 
 
@@ -56,12 +56,7 @@ def test_strong_fairness_against_the_fair_lassos_of_the_system(seed):
                     (f, k.succ, k.labels, targets, p, c)
             continue
         violated += 1
-        states = [s for _label, s in res.prefix]
-        assert states[0] == 0
-        cycle = [s for _label, s in res.cycle]
-        assert cycle and cycle[-1] == states[-1]
-        for a, b in itertools.pairwise(states + cycle):
-            assert b in (k.succ[a] or [a])
+        states, cycle = lasso_path(k, res)
         loop = [states[-1]] + cycle[:-1]
         assert not holds_on_lasso(f, word(k, states[:-1]), word(k, loop)), (f, res)
         assert strongly_fair(k, loop, [label for label, _s in res.cycle], targets), (f, k.succ, targets, res)
