@@ -102,10 +102,31 @@ def layered_layout(nodes: list, edges: list[tuple], size: dict, layer: dict | No
     for n in nodes:
         rows[level[n]].append(n)
     depth = sorted(rows)
+    budget = 2 * len(nodes) if max_bends is None else max_bends
+    nbrs, chains = _bend_chains(edges, level, size, rows, depth, budget)
+    _order_rows(rows, depth, nbrs, level, sweeps)
+    out = Layout(layer=dict(layer))
+    where, y = _coordinates(rows, depth, nbrs, size, gap_x, gap_y, margin, max_width)
+    if where:
+        left = min(where[n][0] - size[n][0] / 2 for n in where)
+        for n, (x, yy) in where.items():
+            where[n] = (x - left + margin, yy)
+        out.pos = {n: where[n] for n in nodes}
+        out.routes = {e: [where[d] for d in chain] for e, chain in chains.items()}
+        out.width = max(where[n][0] + size[n][0] / 2 for n in where) + margin
+        out.height = y - gap_y + margin
+    return out
+
+
+def _bend_chains(edges: list, level: dict, size: dict, rows: dict, depth: list, budget: int) -> tuple[dict, dict]:
+    """The neighbours of each node, with a chain of bend points for each edge that spans layers.
+
+    The shortest edges get their bends first, while `budget` bends remain; each bend is added to
+    `level`, `size` and `rows` like a small node. Returns the neighbours and (u, v) -> bend chain.
+    """
     index_of = {r: k for k, r in enumerate(depth)}
     nbrs = defaultdict(set)
     chains: dict = {}
-    budget = 2 * len(nodes) if max_bends is None else max_bends
     by_span = sorted((e for e in dict.fromkeys(edges) if e[0] != e[1]),
                      key=lambda e: abs(index_of[level[e[0]]] - index_of[level[e[1]]]))
     for u, v in by_span:
@@ -131,62 +152,70 @@ def layered_layout(nodes: list, edges: list[tuple], size: dict, layer: dict | No
         nbrs[prev].add(v)
         nbrs[v].add(prev)
         chains[(u, v)] = chain
+    return nbrs, chains
+
+
+def _order_rows(rows: dict, depth: list, nbrs: dict, level: dict, sweeps: int) -> None:
+    """Order each layer by the barycentre of its neighbours' ranks, sweeping down then up `sweeps` times."""
     rank = {n: i for r in depth for i, n in enumerate(rows[r])}
-
-    def reorder(r: int, other: set) -> None:
-        keyed = []
-        for i, n in enumerate(rows[r]):
-            ks = [rank[m] for m in nbrs[n] if level[m] in other]
-            keyed.append((sum(ks) / len(ks) if ks else i, i, n))
-        keyed.sort(key=lambda t: (t[0], t[1]))
-        rows[r] = [n for _, _, n in keyed]
-        for i, n in enumerate(rows[r]):
-            rank[n] = i
-
     for _ in range(sweeps):
         for k, r in enumerate(depth[1:], 1):
-            reorder(r, set(depth[:k]))
+            _reorder(rows, r, set(depth[:k]), nbrs, level, rank)
         for k in range(len(depth) - 2, -1, -1):
-            reorder(depth[k], set(depth[k + 1:]))
+            _reorder(rows, depth[k], set(depth[k + 1:]), nbrs, level, rank)
 
-    out = Layout(layer=dict(layer))
+
+def _reorder(rows: dict, r: int, other: set, nbrs: dict, level: dict, rank: dict) -> None:
+    """Sort layer `r` by the mean rank of each node's neighbours in the layers `other` (ties: as it was)."""
+    keyed = []
+    for i, n in enumerate(rows[r]):
+        ks = [rank[m] for m in nbrs[n] if level[m] in other]
+        keyed.append((sum(ks) / len(ks) if ks else i, i, n))
+    keyed.sort(key=lambda t: (t[0], t[1]))
+    rows[r] = [n for _, _, n in keyed]
+    for i, n in enumerate(rows[r]):
+        rank[n] = i
+
+
+def _coordinates(rows: dict, depth: list, nbrs: dict, size: dict, gap_x: float, gap_y: float,
+                 margin: float, max_width: float | None) -> tuple[dict, float]:
+    """Node centres, layer by layer (a layer wider than max_width wrapped onto several rows), and the y
+    below the last row."""
     y = margin
     placed: dict = {}
     where: dict = {}
     for r in depth:
         for row in _chunks(rows[r], size, gap_x, max_width):
             h = max(size[n][1] for n in row)
-            want = []
-            for n in row:
-                xs = [placed[m] for m in nbrs[n] if m in placed]
-                want.append(sum(xs) / len(xs) if xs else None)
-            xs: list[float] = []
-            for i, n in enumerate(row):
-                pad = gap_x / 3 if i and _is_bend(n) and _is_bend(row[i - 1]) else gap_x  # bends pack closer
-                lo = -1e18 if i == 0 else xs[-1] + (size[row[i - 1]][0] + size[n][0]) / 2 + pad
-                xs.append(max(lo, want[i] if want[i] is not None else lo if i else 0.0))
-            diffs = [w - x for w, x in zip(want, xs) if w is not None]
-            shift = sum(diffs) / len(diffs) if diffs else 0.0
-            if max_width is not None:  # keep the row inside [0, max_width]
-                lo_x = xs[0] + shift - size[row[0]][0] / 2
-                hi_x = xs[-1] + shift + size[row[-1]][0] / 2
-                over = max(0.0, hi_x - max_width)
-                shift -= over
-                if lo_x - over < 0:
-                    shift -= lo_x - over
-            for n, x in zip(row, xs):
-                placed[n] = x + shift
-                where[n] = (x + shift, y + h / 2)
+            for n, x in zip(row, _row_xs(row, nbrs, size, placed, gap_x, max_width)):
+                placed[n] = x
+                where[n] = (x, y + h / 2)
             y += h + gap_y
-    if where:
-        left = min(where[n][0] - size[n][0] / 2 for n in where)
-        for n, (x, yy) in where.items():
-            where[n] = (x - left + margin, yy)
-        out.pos = {n: where[n] for n in nodes}
-        out.routes = {e: [where[d] for d in chain] for e, chain in chains.items()}
-        out.width = max(where[n][0] + size[n][0] / 2 for n in where) + margin
-        out.height = y - gap_y + margin
-    return out
+    return where, y
+
+
+def _row_xs(row: list, nbrs: dict, size: dict, placed: dict, gap_x: float, max_width: float | None) -> list:
+    """The x of each node of a row: near the mean x of its neighbours already placed, without overlaps,
+    the whole row shifted toward those wishes (and kept inside [0, max_width])."""
+    want = []
+    for n in row:
+        xs = [placed[m] for m in nbrs[n] if m in placed]
+        want.append(sum(xs) / len(xs) if xs else None)
+    xs: list[float] = []
+    for i, n in enumerate(row):
+        pad = gap_x / 3 if i and _is_bend(n) and _is_bend(row[i - 1]) else gap_x  # bends pack closer
+        lo = -1e18 if i == 0 else xs[-1] + (size[row[i - 1]][0] + size[n][0]) / 2 + pad
+        xs.append(max(lo, want[i] if want[i] is not None else lo if i else 0.0))
+    diffs = [w - x for w, x in zip(want, xs) if w is not None]
+    shift = sum(diffs) / len(diffs) if diffs else 0.0
+    if max_width is not None:  # keep the row inside [0, max_width]
+        lo_x = xs[0] + shift - size[row[0]][0] / 2
+        hi_x = xs[-1] + shift + size[row[-1]][0] / 2
+        over = max(0.0, hi_x - max_width)
+        shift -= over
+        if lo_x - over < 0:
+            shift -= lo_x - over
+    return [x + shift for x in xs]
 
 
 def _chunks(row: list, size: dict, gap: float, max_width: float | None) -> list[list]:
