@@ -25,63 +25,28 @@ def to_json(r: Report) -> dict:
     (2, 1, [])
     """
     x = r.exploration
-    g = x.graph
-    dec = r.scc.decomposition
-    terminal = r.scc.terminal
-    home = r.home
     out = {
         "schema": SCHEMA_VERSION,
         "model": r.model,
         "options": r.options,
-        "statespace": {
-            "states": x.n_states,
-            "arcs": x.n_arcs,
-            "complete": x.complete,
-            "stop_reason": x.stop_reason.value,
-            "stop_message": x.stop_reason.describe(x.options),
-            "unexpanded": x.unexpanded,
-            "restricted": x.restricted,
-            "restriction": x.options.restriction(),
-            "seconds": round(x.seconds, 3),
-            "peak_memory_mb": round(x.peak_memory_mb, 1),
-            "timed": r.timed,
-            "time_condensation": bool(x.options.time_condensation),
-            "untimed_states": x.untimed_states,
-            "time_growth": x.time_growth,
-            "reads_clock": bool(getattr(r.engine, "reads_clock", False)),
-            "levels": x.levels,
-        },
+        "statespace": _statespace(r),
         "scc": {
             "nodes": r.scc.nodes,
             "arcs": r.scc.arcs,
-            "terminal": terminal,
+            "terminal": r.scc.terminal,
             "nontrivial": r.scc.nontrivial,
             "arcs_distinct_pairs": r.scc.arc_pairs,
             "seconds": round(r.scc.seconds, 3),
         },
         "bounds": {b.place: {"upper": b.upper, "lower": b.lower} for b in r.bounds.places},
         "multiset_bounds": _multiset_bounds(r),
-        "dead_markings": {
-            "count": r.dead.count,
-            "examples": [i + 1 for i in r.dead.states[:EXAMPLES]],
-            "untimed_count": r.dead.untimed_count,
-            "unexpanded": r.dead.unexpanded,
-            "trace": r.dead_trace.to_json() if r.dead_trace is not None else None,
-            "listed_cap": r.dead_listed_cap,
-            "listed": [{"node": d.state + 1, "marking": d.marking, "time": d.time, "trace": d.trace.to_json()}
-                       for d in r.dead_listed],
-        },
+        "dead_markings": _dead_markings(r),
         "dead_transitions": r.dead_transitions,
         "live_transitions": r.live_transitions,
-        "home_markings": {
-            "count": None if home.states is None else len(home.states),
-            "examples": None if home.states is None else [i + 1 for i in home.states[:EXAMPLES]],
-            "initial_is_home": home.initial_is_home,
-            "all": None if home.states is None else len(home.states) == g.n_states,
-        },
+        "home_markings": _home_markings(r),
         "fairness": (None if r.fairness is None
                      else {name: cls.value for name, cls in r.fairness.items()}),
-        "infinite_occurrence_sequences": (None if not r.fairness_known else any(dec.nontrivial)),
+        "infinite_occurrence_sequences": (None if not r.fairness_known else any(r.scc.decomposition.nontrivial)),
         "tokens": {
             "max_per_marking": r.bounds.max_tokens_per_marking,
             "max_in_place": r.bounds.max_tokens_in_place,
@@ -98,19 +63,7 @@ def to_json(r: Report) -> dict:
             "not_preserved": list(REDUCED_SECTIONS), "why": NOT_PRESERVED},
     }
     if r.symmetric:
-        from cpn.properties.symmetry import INSTANCE_NOT_PRESERVED, NOT_PRESERVED_SECTIONS, PRESERVED
-        from cpn.properties.symmetry import NOT_PRESERVED as SYM_NOT_PRESERVED
-
-        st = x.reduction_stats or {}
-        moved = r.moves_instances
-        lost = list(NOT_PRESERVED_SECTIONS) + (list(INSTANCE_NOT_PRESERVED) if moved else [])
-        out["reduction"] = {"name": "symmetry", **st,
-                            "preserves": [p for p in PRESERVED if not (moved and p in INSTANCE_NOT_PRESERVED)],
-                            "not_preserved": lost, "why": SYM_NOT_PRESERVED}
-        for key in lost:
-            out[key] = None
-        out["statespace"].update(quotient=True, full_states=st.get("full_states"), full_arcs=st.get("full_arcs"))
-        out["dead_markings"]["full_count"] = r.full_dead_count
+        _symmetry_quotient(out, r)
     if r.reduced:
         # a reduced graph says nothing about these: null, never the reduced graph's figures
         for key in ("scc", "bounds", "multiset_bounds", "dead_transitions", "live_transitions", "home_markings",
@@ -118,6 +71,71 @@ def to_json(r: Report) -> dict:
             out[key] = None
         out["statespace"]["reduced"] = True
     return out
+
+
+def _statespace(r: Report) -> dict:
+    """The search's figures, how it stopped and the options that shaped the graph."""
+    x = r.exploration
+    return {
+        "states": x.n_states,
+        "arcs": x.n_arcs,
+        "complete": x.complete,
+        "stop_reason": x.stop_reason.value,
+        "stop_message": x.stop_reason.describe(x.options),
+        "unexpanded": x.unexpanded,
+        "restricted": x.restricted,
+        "restriction": x.options.restriction(),
+        "seconds": round(x.seconds, 3),
+        "peak_memory_mb": round(x.peak_memory_mb, 1),
+        "timed": r.timed,
+        "time_condensation": bool(x.options.time_condensation),
+        "untimed_states": x.untimed_states,
+        "time_growth": x.time_growth,
+        "reads_clock": bool(getattr(r.engine, "reads_clock", False)),
+        "levels": x.levels,
+    }
+
+
+def _dead_markings(r: Report) -> dict:
+    """The dead markings: count, example nodes, a shortest trace and the listed ones with their traces."""
+    return {
+        "count": r.dead.count,
+        "examples": [i + 1 for i in r.dead.states[:EXAMPLES]],
+        "untimed_count": r.dead.untimed_count,
+        "unexpanded": r.dead.unexpanded,
+        "trace": r.dead_trace.to_json() if r.dead_trace is not None else None,
+        "listed_cap": r.dead_listed_cap,
+        "listed": [{"node": d.state + 1, "marking": d.marking, "time": d.time, "trace": d.trace.to_json()}
+                   for d in r.dead_listed],
+    }
+
+
+def _home_markings(r: Report) -> dict:
+    """The home markings (null figures when they are unknown)."""
+    home = r.home
+    return {
+        "count": None if home.states is None else len(home.states),
+        "examples": None if home.states is None else [i + 1 for i in home.states[:EXAMPLES]],
+        "initial_is_home": home.initial_is_home,
+        "all": None if home.states is None else len(home.states) == r.exploration.graph.n_states,
+    }
+
+
+def _symmetry_quotient(out: dict, r: Report) -> None:
+    """A graph of orbits: the reduction's figures, the full counts, and null for the sections it loses."""
+    from cpn.properties.symmetry import INSTANCE_NOT_PRESERVED, NOT_PRESERVED_SECTIONS, PRESERVED
+    from cpn.properties.symmetry import NOT_PRESERVED as SYM_NOT_PRESERVED
+
+    st = r.exploration.reduction_stats or {}
+    moved = r.moves_instances
+    lost = list(NOT_PRESERVED_SECTIONS) + (list(INSTANCE_NOT_PRESERVED) if moved else [])
+    out["reduction"] = {"name": "symmetry", **st,
+                        "preserves": [p for p in PRESERVED if not (moved and p in INSTANCE_NOT_PRESERVED)],
+                        "not_preserved": lost, "why": SYM_NOT_PRESERVED}
+    for key in lost:
+        out[key] = None
+    out["statespace"].update(quotient=True, full_states=st.get("full_states"), full_arcs=st.get("full_arcs"))
+    out["dead_markings"]["full_count"] = r.full_dead_count
 
 
 def _multiset_bounds(r: Report) -> dict:
