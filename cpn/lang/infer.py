@@ -22,6 +22,30 @@ from cpn.lang.symbols import Symbol
 _MS_OPS: frozenset[str] = frozenset({"++", "--", "+++", "@+", "@++", "@@"})
 
 
+def _ms_form(e: A.Expr) -> bool:
+    """An operand that `infer_ms` reads in a multiset context of its own (not a plain expression)."""
+    return (isinstance(e, A.BinOp) and e.op in _MS_OPS and e.op != "++") or isinstance(e, A.If)
+
+
+def _is_list_con(t: T.Type) -> bool:
+    t = T.prune(t)
+    return isinstance(t, T.TCon) and t.name == "list"
+
+
+def _may_hold_lists(t: T.Type) -> bool:
+    """Whether t, an element type, may be a list type (so that a multiset of lists read as a list fits)."""
+    t = T.prune(t)
+    return isinstance(t, T.TVar) or _is_list_con(t)
+
+
+def _wants_list_of_lists(t: T.Type) -> bool:
+    """Whether t, the other operand of '@', may be a list of lists or a multiset (read as a list)."""
+    t = T.prune(t)
+    if isinstance(t, T.TVar) or (isinstance(t, T.TCon) and t.name == "ms"):
+        return True
+    return _is_list_con(t) and _may_hold_lists(t.args[0])
+
+
 def _not_plain(node: A.BinOp) -> bool:
     return node.op in _MS_OPS
 
@@ -94,9 +118,11 @@ class TypeInference(FunctionDraws):
             return t
         except Abort:
             self.pending.clear()
+            self.appends.clear()
             return None
 
     def resolve_pending(self) -> None:
+        self.resolve_appends()
         progress = True
         while self.pending and progress:
             progress = False
@@ -303,6 +329,9 @@ class TypeInference(FunctionDraws):
                 return self.cstypes[cs]
         ft = self.infer(e.fn, env)
         at = self.infer(e.arg, env)
+        pf0 = T.prune(ft)
+        if isinstance(pf0, T.TFun) and _is_list_con(pf0.arg) and _may_hold_lists(T.prune(pf0.arg).args[0]):
+            self.force_ms(at)  # `length (l1 ++ l2)` still reads the multiset of the two lists as a list
         r = T.TVar()
         pf = T.prune(ft)
         if isinstance(pf, T.TFun):
@@ -366,6 +395,8 @@ class TypeInference(FunctionDraws):
         return x
 
     def _join_branches(self, e, a, b, ta, tb):
+        self.force_ms(ta)
+        self.force_ms(tb)
         pa, pb = T.prune(ta), T.prune(tb)
         is_ms = lambda t: isinstance(t, T.TCon) and t.name == "ms"  # noqa: E731
         if is_ms(pa) and not is_ms(pb) and not isinstance(pb, T.TVar):
@@ -432,10 +463,13 @@ class TypeInference(FunctionDraws):
                 inner = inner.child(binds)
             elif isinstance(d, A.FunDecl):
                 sink, self.ran_sink = self.ran_sink, None  # a local function may be called many times: its
-                try:  # draws are draws
+                outer_appends = self.appends[:]  # draws are draws; the enclosing code's open `l1 ++ l2`
+                self.appends.clear()  # are decided by the enclosing code, not at the end of this function
+                try:
                     sym = self.fun_decl(d, inner)
                 finally:
                     self.ran_sink = sink
+                    self.appends[:0] = outer_appends
                 if sym is None:
                     raise Abort()
                 inner = inner.child({d.name: sym})
@@ -499,6 +533,8 @@ class TypeInference(FunctionDraws):
 
     def _i_BinOp(self, e, env):
         op = e.op
+        if op == "++" and not any(_ms_form(x) for x in (e.left, e.right)):
+            return self.infer_plus(e, env)
         if op in ("++", "--", "+++"):
             elem = T.TVar()
             e.left = self.infer_ms(e.left, elem, env, f"the left operand of '{op}'")
@@ -526,6 +562,15 @@ class TypeInference(FunctionDraws):
             rt = self.infer(node.right, env)
             if op in ("::", "@", "^^"):
                 # a multiset where a list is expected: CPN Tools' multisets are lists (``x :: 1`y``)
+                # an open `l1 ++ l2` (MultisetInference.infer_plus) is such a multiset where that reading fits
+                if op == "::":
+                    if _may_hold_lists(t):
+                        self.force_ms(rt)
+                else:
+                    if _wants_list_of_lists(rt):
+                        self.force_ms(t)
+                    if _wants_list_of_lists(t):
+                        self.force_ms(rt)
                 pl, pr = T.prune(t), T.prune(rt)
                 if op != "::" and isinstance(pl, T.TCon) and pl.name == "ms":
                     node.left = self.ms_as_list(node.left, pl)

@@ -59,7 +59,11 @@ class MultisetInference:
                 return A.ToMs(e.span, e, ty=T.ms(elem))
             e.ty = T.ms(elem)
             return e
-        t = self.infer(e, env)
+        return self.ms_of_typed(e, self.infer(e, env), elem, what)
+
+    def ms_of_typed(self, e: A.Expr, t: T.Type, elem: T.Type, what: str) -> A.Expr:
+        """`infer_ms` for a plain expression e already inferred to type t."""
+        self.force_ms(t)
         pt = T.prune(t)
         if _is_ms(pt):
             self.must(pt.args[0], elem, e.span, what)
@@ -75,6 +79,58 @@ class MultisetInference:
             return self.list_as_multiset(e, elem)
         self.must(t, elem, e.span, what)
         return A.ToMs(e.span, e, ty=T.ms(elem))
+
+    @property
+    def appends(self) -> list[tuple]:
+        """The open readings of `l1 ++ l2` (`infer_plus`), decided by `resolve_appends`."""
+        return self.__dict__.setdefault("_open_appends", [])
+
+    def infer_plus(self, e: A.BinOp, env: Env) -> T.Type:
+        """`a ++ b` outside a multiset context. CPN Tools' multisets are lists and its `++` is list append
+        (`type 'a ms = 'a list`, `ms1 ++ ms2 = ms1 @ ms2`): when both operands are lists of the same type,
+        the reading is left open (a variable with `append` set) and decided by the context, a list where a
+        list is expected (`a @ b`, left operand first), otherwise the multiset of the two lists as before."""
+        lt, rt = self.infer(e.left, env), self.infer(e.right, env)
+        pl, pr = T.prune(lt), T.prune(rt)
+        el = pl.append if isinstance(pl, T.TVar) and pl.append is not None else pl if _is_list(pl) else None
+        er = pr.append if isinstance(pr, T.TVar) and pr.append is not None else pr if _is_list(pr) else None
+        if el is None or er is None:
+            elem = T.TVar()
+            e.left = self.ms_of_typed(e.left, lt, elem, "the left operand of '++'")
+            e.right = self.ms_of_typed(e.right, rt, elem, "the right operand of '++'")
+            return T.ms(elem)
+        self.must(er, el, e.right.span, "the right operand of '++' (a list like its left operand)")
+        r = T.TVar()
+        r.append = el
+        self.appends.append((e, r, el, (pl, pr)))
+        return r
+
+    def force_ms(self, t: T.Type) -> None:
+        """Decide an open `l1 ++ l2` (see `infer_plus`) as the multiset of the two lists."""
+        p = T.prune(t)
+        if isinstance(p, T.TVar) and p.append is not None:
+            T.unify(p, T.ms(p.append))
+
+    def resolve_appends(self) -> None:
+        """Decide every open `l1 ++ l2`, outermost first: a multiset unless the context made it a list."""
+        while self.appends:
+            e, r, el, operands = self.appends.pop()
+            self.force_ms(r)
+            decided = T.prune(r)
+            inner = [isinstance(x, T.TVar) for x in operands]  # an operand that is itself an open `++`
+            for x, is_inner in zip(operands, inner):
+                if is_inner:
+                    T.unify(x, decided)
+            if _is_ms(decided):
+                mst = T.ms(el)
+                if not inner[0]:
+                    e.left = A.ToMs(e.left.span, e.left, ty=mst)
+                if not inner[1]:
+                    e.right = A.ToMs(e.right.span, e.right, ty=mst)
+                e.ty = mst
+            else:
+                e.op = "@"
+                e.ty = decided
 
     def list_as_multiset(self, e: A.Expr, elem: T.Type) -> A.Expr:
         """The multiset of the elements of list expression e: a list literal becomes ``1`a ++ 1`b`` (so that

@@ -14,7 +14,7 @@ class Type:
 
 
 class TVar(Type):
-    __slots__ = ("id", "inst", "eq", "overload")
+    __slots__ = ("id", "inst", "eq", "overload", "append")
     _ids = itertools.count()
 
     def __init__(self, eq: bool = False, overload: tuple[str, ...] | None = None):
@@ -22,6 +22,9 @@ class TVar(Type):
         self.inst: Type | None = None
         self.eq = eq  # an equality type variable (''a)
         self.overload = overload  # e.g. ('int', 'real') for +, defaulting to the first
+        # `l1 ++ l2` of two lists of type `append`: `append` itself where a list is expected (CPN Tools'
+        # multisets are lists, `++` appends them), else `append ms` (the default, decided by the checker)
+        self.append: Type | None = None
 
 
 class TCon(Type):
@@ -115,6 +118,18 @@ def _bind(v: TVar, t: Type) -> None:
     if _occurs(v, t):
         raise UnifyError("a value cannot contain itself (recursive type)")
     t = prune(t)
+    if v.append is not None:
+        if isinstance(t, TVar):
+            if t.append is None:
+                _bind(t, v)  # the plain variable takes the reading of '++' still to be decided
+                return
+            unify(t.append, v.append)
+        elif isinstance(t, TCon) and t.name == "list":
+            unify(t, v.append)
+        elif isinstance(t, TCon) and t.name == "ms":
+            unify(t, TCon("ms", (v.append,)))
+        else:
+            raise UnifyError("")
     if v.overload is not None:
         if isinstance(t, TVar):
             if t.overload is None:
@@ -241,6 +256,8 @@ def show(t: Type, names: dict | None = None) -> str:
     if isinstance(t, TVar):
         if t.overload:
             return t.overload[0]
+        if t.append is not None:
+            return show(TCon("ms", (t.append,)), names)
         if t not in names:
             names[t] = ("''" if t.eq else "'") + "abcdefghijklmnopqrstuvwxyz"[len(names) % 26]
         return names[t]
