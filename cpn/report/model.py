@@ -7,6 +7,7 @@ return text; they compute nothing.
 from __future__ import annotations
 
 import time
+from contextlib import contextmanager
 from dataclasses import dataclass, field
 
 from cpn.checks import (
@@ -146,61 +147,77 @@ def build_report(x: Exploration, model: str = "<unsaved net>", options: dict | N
     (1, [], '1`0++1`1++1`2++1`3')
     """
     t0 = time.perf_counter()
-    parts: dict[str, float] = {}
-    clock = [t0]
-
-    def start(part: str) -> None:
-        if progress is not None:
-            progress(part, 0, 1)
-
-    def done(part: str) -> None:
-        now = time.perf_counter()
-        parts[part] = now - clock[0]
-        clock[0] = now
-        if progress is not None:
-            progress(part, 1, 1)
-
+    clock = _PartClock(t0, progress)
     engine = x.engine
     names = [t.name for t in engine.transitions]
-    start("transitions")
-    tindex = TransitionIndex(engine)
-    arc_t = tindex.arc_transitions(x.graph.bes)
-    done("transitions")
-    start("scc")
-    scc = scc_summary(x)
-    done("scc")
-    start("bounds")
-    bounds = boundedness(x)
-    done("bounds")
-    start("dead_markings")
-    dead = dead_markings(x)
-    done("dead_markings")
-    start("dead_transitions")
-    dead_t = [names[t] for t in dead_transitions(x, tindex)]
-    done("dead_transitions")
-    start("live_transitions")
-    live = live_transitions(x, scc, arc_t)
-    live_names = None if live is None else [names[t] for t in live]
-    done("live_transitions")
-    start("home_markings")
-    home = home_markings(x, scc)
-    done("home_markings")
-    start("fairness")
-    fair: dict | None = None
-    moves = x.graph.symmetry is not None and x.graph.symmetry.moves_instances
-    if x.complete and not moves:
-        step = None if progress is None else (lambda k, total: progress("fairness", k, total))
-        f = fairness(x, scc.decomposition, arc_t, progress=step)
-        fair = None if f is None else {names[t]: cls for t, cls in f.items()}
-    done("fairness")
-    start("trace")
-    listed = []
-    if trace_to_dead:
-        chosen = dead.states if dead_listed is None else dead.states[:dead_listed]
-        listed = [dead_marking(x, i) for i in chosen]
-    trace = listed[0].trace if listed else None
-    done("trace")
+    with clock.part("transitions"):
+        tindex = TransitionIndex(engine)
+        arc_t = tindex.arc_transitions(x.graph.bes)
+    with clock.part("scc"):
+        scc = scc_summary(x)
+    with clock.part("bounds"):
+        bounds = boundedness(x)
+    with clock.part("dead_markings"):
+        dead = dead_markings(x)
+    with clock.part("dead_transitions"):
+        dead_t = [names[t] for t in dead_transitions(x, tindex)]
+    with clock.part("live_transitions"):
+        live = live_transitions(x, scc, arc_t)
+        live_names = None if live is None else [names[t] for t in live]
+    with clock.part("home_markings"):
+        home = home_markings(x, scc)
+    with clock.part("fairness"):
+        fair = _fairness(x, scc, arc_t, names, progress)
+    with clock.part("trace"):
+        listed = []
+        if trace_to_dead:
+            chosen = dead.states if dead_listed is None else dead.states[:dead_listed]
+            listed = [dead_marking(x, i) for i in chosen]
+        trace = listed[0].trace if listed else None
     analysis = time.perf_counter() - t0
+    return Report(
+        model=model, options=dict(options or {}), exploration=x, scc=scc, bounds=bounds, dead=dead,
+        dead_transitions=dead_t, live_transitions=live_names, home=home, fairness=fair,
+        fairness_known=x.complete, dead_trace=trace, seconds=x.seconds + analysis,
+        analysis_seconds=analysis, generated=time.strftime("%a %b %d %H:%M:%S %Y"), notes=_notes(x),
+        backend_notes=list(getattr(x, "backend_notes", ())),
+        dead_listed=listed, dead_listed_cap=dead_listed, part_seconds=clock.seconds,
+    )
+
+
+class _PartClock:
+    """Times the parts of the analysis one after the other, and tells `progress` as each starts and ends."""
+
+    def __init__(self, t0: float, progress) -> None:
+        self.seconds: dict[str, float] = {}
+        self._last = t0
+        self._progress = progress
+
+    @contextmanager
+    def part(self, name: str):
+        if self._progress is not None:
+            self._progress(name, 0, 1)
+        yield
+        now = time.perf_counter()
+        self.seconds[name] = now - self._last
+        self._last = now
+        if self._progress is not None:
+            self._progress(name, 1, 1)
+
+
+def _fairness(x: Exploration, scc, arc_t, names: list, progress) -> dict | None:
+    """Each transition instance's fairness class by name; None on a partial space, under a symmetry that
+    moves module instances, or without infinite occurrence sequences."""
+    moves = x.graph.symmetry is not None and x.graph.symmetry.moves_instances
+    if not x.complete or moves:
+        return None
+    step = None if progress is None else (lambda k, total: progress("fairness", k, total))
+    f = fairness(x, scc.decomposition, arc_t, progress=step)
+    return None if f is None else {names[t]: cls for t, cls in f.items()}
+
+
+def _notes(x: Exploration) -> list[str]:
+    """The report's notes: the reduction, the search's own notes, random draws and a growth of time only."""
     notes = list(x.notes) + _choice_draw_notes(x.engine)
     if x.reduction is not None:
         notes.insert(0, reduction_text(x))
@@ -212,14 +229,7 @@ def build_report(x: Exploration, model: str = "<unsaved net>", options: dict | N
             f"clocks (now {x.time_growth['frontier_min_clock']}). Run again with --time-condensation "
             "(CPN Tools' CreationTime reduction) to get a finite state space."
         )
-    return Report(
-        model=model, options=dict(options or {}), exploration=x, scc=scc, bounds=bounds, dead=dead,
-        dead_transitions=dead_t, live_transitions=live_names, home=home, fairness=fair,
-        fairness_known=x.complete, dead_trace=trace, seconds=x.seconds + analysis,
-        analysis_seconds=analysis, generated=time.strftime("%a %b %d %H:%M:%S %Y"), notes=notes,
-        backend_notes=list(getattr(x, "backend_notes", ())),
-        dead_listed=listed, dead_listed_cap=dead_listed, part_seconds=parts,
-    )
+    return notes
 
 
 def dead_marking(x: Exploration, state: int) -> DeadMarking:
