@@ -85,18 +85,61 @@ def run(args) -> int:
 
 
 def _run(args) -> int:
-    from cpn import __version__
-    from cpn.diagnostics import render
-    from cpn.engine.clock import TimeCondensationRefused
-    from cpn.errors import ConfigurationError, EvaluationError, ModelError
-    from cpn.gate.run import run_scenario
-    from cpn.gate.scenario import load_scenario, scenario_files
     from cpn.report.verdicts import report_name, run_report
 
     check_limits(args)
     check_parallel(args)
     sets = sets_of(args)
     outputs = {o.option: o for o in prepare_outputs(("--junit", args.junit), ("--sarif", args.sarif))}
+    files = _scenario_paths(args)
+    _prepare_folders(args)
+    overrides = _overrides(args, sets)
+    pages: list = []
+    stdout_taken = any(o.to_stdout for o in outputs.values())
+    docs: list[dict] = []
+    timings = not args.no_timings
+    scenarios, bad_files = _load_scenarios(files, sets)
+    usage_errors = 0
+    for scenario in scenarios:
+        if not scenario.properties:
+            from cpn.diagnostics import render
+
+            print(render(_no_property(scenario), scenario.source), file=sys.stderr)
+        for r in scenario.runs:
+            result, failure = _run_one(scenario, r, overrides, args.quiet)
+            if result is None:
+                usage_errors += failure == "usage"
+                bad_files += failure == "bad"
+                continue
+            doc = run_report(result, timings=timings)
+            docs.append(doc)
+            if not stdout_taken:  # --quiet keeps results: where a property fails, and its trace
+                _print_run(doc, args.trace_format)
+            if not args.no_reports:
+                _write_reports(args.reports, report_name(r.name), doc)
+            if args.html and result.exploration.graph is not None:  # a sweep-line run has no graph to draw
+                pages.append(_write_html_page(args.html, result, report_name(r.name)))
+    if not stdout_taken:
+        _print_summary(docs, timings)
+    _write_outputs(outputs, docs, timings)
+    if args.html:
+        from cpn.report.html import write_index
+
+        write_index(args.html, pages)
+    if args.baseline and not stdout_taken:
+        _print_baseline(args.baseline, docs)
+    statuses = {d["verdict"] for d in docs}
+    found = [ExitStatus.USAGE if usage_errors else ExitStatus.OK,
+             ExitStatus.DATAERR if bad_files or "error" in statuses else ExitStatus.OK,
+             ExitStatus.VIOLATED if "violated" in statuses else ExitStatus.OK,
+             ExitStatus.UNKNOWN if "unknown" in statuses else ExitStatus.OK]
+    return ExitStatus.worst(found)
+
+
+def _scenario_paths(args) -> list:
+    """The scenario files named (or under specs/), refused with a usage error when there are none."""
+    from cpn.gate.scenario import scenario_files
+
     paths = args.paths or [DEFAULT_DIR]
     for p in paths:
         if not os.path.exists(p):
@@ -105,31 +148,44 @@ def _run(args) -> int:
     files = scenario_files(paths)
     if not files:
         raise UsageError(f"no scenario (*.toml) in {', '.join(paths)}")
+    return files
+
+
+def _prepare_folders(args) -> None:
+    """Check --baseline, and make the --reports and --html folders, before any run: a long check must
+    never be lost to a bad path."""
     if args.baseline is not None and not os.path.isdir(args.baseline):
         what = "it is a file, not a folder" if os.path.exists(args.baseline) else "no such folder"
         raise UsageError(f"--baseline {args.baseline}: {what}\nhint: name the --reports folder of an "
                          "earlier run of 'cpn-verify check' (its JSON reports are compared with this run's)")
-    # before any run: a long check must never be lost to a bad path
     if not args.no_reports:
         _prepare_folder(args.reports, "--reports",
                         "" if args.reports != "reports" else " (the default, reports/ in the working directory; "
                         "give --reports DIR, or --no-reports)")
     if args.html:
         _prepare_folder(args.html, "--html")
-    overrides = {"max_states": args.max_states, "max_arcs": args.max_arcs, "max_seconds": args.max_seconds,
-                 # the default limits apply only where a scenario sets none
-                 "default_max_memory_mb" if args.max_memory_is_default else "max_memory_mb": args.max_memory,
-                 "default_max_seconds": args.max_seconds_default if args.max_seconds is None else None,
-                 "stop_at_first_violation": True if args.stop_at_first_violation else None,
-                 "workers": args.workers, "ray": args.ray,
-                 "sweep_line": True if args.sweep_line or args.progress else None, "progress": args.progress,
-                 "set": sets or None}
-    pages: list = []
-    stdout_taken = any(o.to_stdout for o in outputs.values())
-    docs: list[dict] = []
+
+
+def _overrides(args, sets: dict) -> dict:
+    """What the command line sets for every run, over the scenarios' own settings."""
+    return {"max_states": args.max_states, "max_arcs": args.max_arcs, "max_seconds": args.max_seconds,
+            # the default limits apply only where a scenario sets none
+            "default_max_memory_mb" if args.max_memory_is_default else "max_memory_mb": args.max_memory,
+            "default_max_seconds": args.max_seconds_default if args.max_seconds is None else None,
+            "stop_at_first_violation": True if args.stop_at_first_violation else None,
+            "workers": args.workers, "ray": args.ray,
+            "sweep_line": True if args.sweep_line or args.progress else None, "progress": args.progress,
+            "set": sets or None}
+
+
+def _load_scenarios(files: list, sets: dict) -> tuple[list, int]:
+    """The scenarios that load, with the --set values applied and unique run names, and the number of
+    files refused (each refusal printed)."""
+    from cpn.diagnostics import render
+    from cpn.errors import ModelError
+    from cpn.gate.scenario import load_scenario
+
     bad_files = 0
-    usage_errors = 0
-    timings = not args.no_timings
     scenarios = []
     for path in files:
         try:
@@ -145,41 +201,39 @@ def _run(args) -> int:
         print(render(diag, scenario.source), file=sys.stderr)
         scenarios.remove(scenario)
         bad_files += 1
-    for scenario in scenarios:
-        if not scenario.properties:
-            print(render(_no_property(scenario), scenario.source), file=sys.stderr)
-        for r in scenario.runs:
-            display = ProgressLine() if (not args.quiet and sys.stderr.isatty()) else None
-            try:
-                result = run_scenario(scenario, r, overrides, progress=display)
-            except (ModelError, EvaluationError) as err:
-                if len(scenario.runs) > 1:
-                    print(f"in run {r.name}:", file=sys.stderr)
-                print(err.render(), file=sys.stderr)
-                bad_files += 1
-                continue
-            except ConfigurationError as err:
-                print(f"{scenario.path}: {err.render()}", file=sys.stderr)
-                # a value of --set that the model refuses, or time condensation asked of a model that reads
-                # the clock: usage refusals (64), as `explore` reports them
-                if getattr(err, "code", None) == "E0305" or isinstance(err, TimeCondensationRefused):
-                    usage_errors += 1
-                else:
-                    bad_files += 1
-                continue
-            finally:
-                if display is not None:
-                    display.close()
-            doc = run_report(result, timings=timings)
-            docs.append(doc)
-            if not stdout_taken:  # --quiet keeps results: where a property fails, and its trace
-                _print_run(doc, args.trace_format)
-            if not args.no_reports:
-                _write_reports(args.reports, report_name(r.name), doc)
-            if args.html and result.exploration.graph is not None:  # a sweep-line run has no graph to draw
-                pages.append(_write_html_page(args.html, result, report_name(r.name)))
-    if not stdout_taken:
-        _print_summary(docs, timings)
+    return scenarios, bad_files
+
+
+def _run_one(scenario, r, overrides: dict, quiet: bool):
+    """Run `r` of `scenario`: (its result, None), or (None, "bad" or "usage") with the error printed."""
+    from cpn.engine.clock import TimeCondensationRefused
+    from cpn.errors import ConfigurationError, EvaluationError, ModelError
+    from cpn.gate.run import run_scenario
+
+    display = ProgressLine() if (not quiet and sys.stderr.isatty()) else None
+    try:
+        return run_scenario(scenario, r, overrides, progress=display), None
+    except (ModelError, EvaluationError) as err:
+        if len(scenario.runs) > 1:
+            print(f"in run {r.name}:", file=sys.stderr)
+        print(err.render(), file=sys.stderr)
+        return None, "bad"
+    except ConfigurationError as err:
+        print(f"{scenario.path}: {err.render()}", file=sys.stderr)
+        # a value of --set that the model refuses, or time condensation asked of a model that reads
+        # the clock: usage refusals (64), as `explore` reports them
+        if getattr(err, "code", None) == "E0305" or isinstance(err, TimeCondensationRefused):
+            return None, "usage"
+        return None, "bad"
+    finally:
+        if display is not None:
+            display.close()
+
+
+def _write_outputs(outputs: dict, docs: list[dict], timings: bool) -> None:
+    """The JUnit and SARIF files of the whole check, where asked."""
+    from cpn import __version__
+
     if "--junit" in outputs:
         from cpn.report.junit import render_junit
 
@@ -189,18 +243,6 @@ def _run(args) -> int:
 
         write_output(outputs["--sarif"], json.dumps(render_sarif(docs, __version__), indent=2, ensure_ascii=False)
                      + "\n")
-    if args.html:
-        from cpn.report.html import write_index
-
-        write_index(args.html, pages)
-    if args.baseline and not stdout_taken:
-        _print_baseline(args.baseline, docs)
-    statuses = {d["verdict"] for d in docs}
-    found = [ExitStatus.USAGE if usage_errors else ExitStatus.OK,
-             ExitStatus.DATAERR if bad_files or "error" in statuses else ExitStatus.OK,
-             ExitStatus.VIOLATED if "violated" in statuses else ExitStatus.OK,
-             ExitStatus.UNKNOWN if "unknown" in statuses else ExitStatus.OK]
-    return ExitStatus.worst(found)
 
 
 def _apply_sets(scenario, sets: dict[str, str]) -> None:
