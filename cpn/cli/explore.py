@@ -46,6 +46,14 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     p.add_argument("model", metavar="MODEL", help="model file (.cpnet, .pnml or .cpn)")
     add_set_option(p)
     add_limit_options(p)
+    _add_search_options(p)
+    add_parallel_options(p)
+    _add_report_options(p)
+    return p
+
+
+def _add_search_options(p) -> None:
+    """The options that choose which state space is built, and how."""
     p.add_argument("--time-condensation", action="store_true",
                    help="identify states that differ only by a uniform time shift (CPN Tools' CreationTime)")
     p.add_argument("--reduction", choices=["stubborn", "symmetry"], default=None,
@@ -85,7 +93,10 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    "in C generated from the net (built with the system C compiler, cached), 'python' in "
                    "Python; 'auto' (the default) is 'c' where it can run, generating the C once the search "
                    "is large, and says why not elsewhere (with --verbose); the state space is the same")
-    add_parallel_options(p)
+
+
+def _add_report_options(p) -> None:
+    """The output files and what the text report shows."""
     add_output_option(p, "--json", "the result as JSON")
     add_output_option(p, "--dot", "the state space and SCC graph as DOT (small nets)")
     add_output_option(p, "--graphml", "the state space and SCC graph as GraphML (small nets)")
@@ -106,7 +117,6 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
                    "transition instances) at N entries and say how many were left out, and list N dead "
                    "markings with a trace (default: 20 colours, 100 steps, 100 names, 10 dead markings; "
                    "0: no cap); the JSON keeps every colour, step and name")
-    return p
 
 
 def load_engine(path: str, sets: dict[str, str], time_condensation: bool):
@@ -184,10 +194,7 @@ def _branching_options(engine, options, names: str | None, max_successors: int |
 
 def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
     """Explore, report and export for an already built engine (the part of `run` after loading)."""
-    from cpn.errors import EvaluationError
     from cpn.report import build_report, render_text, to_json
-    from cpn.report.graphs import MAX_EXPORT_STATES, TooLargeToExport, render_dot, render_graphml
-    from cpn.statespace import Explorer
 
     outputs = {o.option: o for o in explore_outputs(args)}
     quiet = bool(getattr(args, "quiet", False))
@@ -195,7 +202,38 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
                                  getattr(args, "max_successors", None))
     if options.until_time is not None and not getattr(engine, "is_timed", False) and not quiet:
         print("note: the model is untimed (its clock is always 0): --until-time has no effect", file=sys.stderr)
-    display = ProgressLine() if (not quiet and sys.stderr.isatty()) else None
+    live = not quiet and sys.stderr.isatty()
+    x = _search(engine, options, live)
+    printed = set()
+    if not quiet or options.backend == "c":
+        for note in x.notes + (x.backend_notes if getattr(args, "verbose", False) else []):
+            print(f"note: {note}", file=sys.stderr)
+            printed.add(note)
+    # --max-listed N: every text cap and the number of dead markings listed become N (0: no cap)
+    max_listed = getattr(args, "max_listed", None)
+    caps = {} if max_listed is None else {"max_listed": max_listed if max_listed > 0 else None}
+    report_line = _ReportLine() if live else None
+    try:
+        report = build_report(x, model=os.path.abspath(args.model), options=_report_options(args, sets),
+                              progress=report_line, **({} if max_listed is None else {"dead_listed": caps["max_listed"]}))
+    finally:
+        if report_line:
+            report_line.close()
+    if not any(o.to_stdout for o in outputs.values()):
+        sys.stdout.write(render_text(report, marking_changes=bool(getattr(args, "trace_to_dead", False)), **caps))
+    if "--json" in outputs:
+        write_output(outputs["--json"], json.dumps(to_json(report), indent=2, ensure_ascii=False) + "\n")
+    _write_graphs(report, outputs, getattr(args, "max_export_states", None))
+    _write_pictures(report, outputs, quiet)
+    return _result_status(x, report, printed, bool(getattr(args, "max_memory_is_default", False)))
+
+
+def _search(engine, options, live: bool):
+    """The exploration, with a live progress line on stderr when `live`."""
+    from cpn.errors import EvaluationError
+    from cpn.statespace import Explorer
+
+    display = ProgressLine() if live else None
     try:
         x = Explorer(engine, options, progress=display).run()
     except EvaluationError:
@@ -204,50 +242,44 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
         raise
     if display:
         display.close()
-    printed = set()
-    if not quiet or options.backend == "c":
-        for note in x.notes + (x.backend_notes if getattr(args, "verbose", False) else []):
-            print(f"note: {note}", file=sys.stderr)
-            printed.add(note)
-    memory_default = bool(getattr(args, "max_memory_is_default", False))
-    opts = {"set": sets or {}, "max_states": args.max_states, "max_arcs": args.max_arcs,
+    return x
+
+
+def _report_options(args, sets: dict[str, str] | None) -> dict:
+    """The options of the command line that shaped the state space, as the report records them."""
+    return {"set": sets or {}, "max_states": args.max_states, "max_arcs": args.max_arcs,
             "max_seconds": args.max_seconds, "max_memory_mb": args.max_memory,
-            "max_memory_is_default": memory_default,
+            "max_memory_is_default": bool(getattr(args, "max_memory_is_default", False)),
             "time_condensation": bool(args.time_condensation),
             "until_time": getattr(args, "until_time", None),
             "branch_transitions": getattr(args, "branch_transitions", None),
             "max_successors": getattr(args, "max_successors", None),
             "reduction": getattr(args, "reduction", None),
             "symmetry": [str(s) for s in getattr(args, "symmetric_colour_sets", ()) or ()] or None}
-    # --max-listed N: every text cap and the number of dead markings listed become N (0: no cap)
-    max_listed = getattr(args, "max_listed", None)
-    caps = {} if max_listed is None else {"max_listed": max_listed if max_listed > 0 else None}
-    report_line = _ReportLine() if display else None
-    try:
-        report = build_report(x, model=os.path.abspath(args.model), options=opts, progress=report_line,
-                              **({} if max_listed is None else {"dead_listed": caps["max_listed"]}))
-    finally:
-        if report_line:
-            report_line.close()
-    if not any(o.to_stdout for o in outputs.values()):
-        sys.stdout.write(render_text(report, marking_changes=bool(getattr(args, "trace_to_dead", False)), **caps))
-    if "--json" in outputs:
-        write_output(outputs["--json"], json.dumps(to_json(report), indent=2, ensure_ascii=False) + "\n")
+
+
+def _write_graphs(report, outputs: dict, limit: int | None) -> None:
+    """--dot and --graphml, each skipped with a warning when the state space is above the drawing limit."""
+    from cpn.report.graphs import MAX_EXPORT_STATES, TooLargeToExport, render_dot, render_graphml
+
+    n_states = report.exploration.n_states
     for option, render, kind in (("--dot", render_dot, "DOT"), ("--graphml", render_graphml, "GraphML")):
         if option not in outputs:
             continue
-        limit = getattr(args, "max_export_states", None)
         try:
             text = render(report, limit)
         except TooLargeToExport:
             # a warning, so printed even with --quiet: the file asked for is not written
-            limit = MAX_EXPORT_STATES if limit is None else limit
-            print(f"warning: {option}: {kind} export skipped: the state space has {x.n_states:,} states, above "
-                  f"the limit of {limit:,} for drawings; raise it with --max-export-states {x.n_states} (0: no "
+            shown = MAX_EXPORT_STATES if limit is None else limit
+            print(f"warning: {option}: {kind} export skipped: the state space has {n_states:,} states, above "
+                  f"the limit of {shown:,} for drawings; raise it with --max-export-states {n_states} (0: no "
                   "limit), or draw a partial state space with --max-states", file=sys.stderr)
             continue
         write_output(outputs[option], text)
-    _write_pictures(report, outputs, quiet)
+
+
+def _result_status(x, report, printed: set, memory_default: bool) -> int:
+    """OK for a complete state space; UNKNOWN, with a warning, for a partial or restricted one."""
     if not x.complete:
         # a warning about the result, so printed even with --quiet
         reason = x.stop_reason.describe(x.options)
