@@ -74,33 +74,14 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
 
 
 def run(args) -> int:
-    from cpn.cli.check import _apply_sets
     from cpn.errors import ConfigurationError, EvaluationError, ModelError
     from cpn.gate.mutation import mutate
-    from cpn.gate.scenario import load_scenario, scenario_files
-    from cpn.report.mutation import mutation_document, render_html, render_markdown, render_text
+    from cpn.report.mutation import mutation_document
 
     _check_options(args)
     sets = sets_of(args)
     outputs = prepare_outputs(("--json", args.json), ("--markdown", args.markdown), ("--html", args.html))
-    for p in args.paths:
-        if not os.path.exists(p):
-            raise UsageError(f"no such scenario file or folder: '{p}'")
-    files = scenario_files(args.paths)
-    if not files:
-        raise UsageError(f"no scenario (*.toml) in {', '.join(args.paths)}")
-    scenarios = []
-    bad = 0
-    for path in files:
-        try:
-            scenario = load_scenario(path)
-        except ModelError as err:
-            print(err.render(), file=sys.stderr)
-            bad += 1
-            continue
-        if sets:
-            _apply_sets(scenario, sets)
-        scenarios.append(scenario)
+    scenarios, bad = _load_scenarios(args.paths, sets)
     progress = _Progress() if (not args.quiet and sys.stderr.isatty()) else None
     try:
         report = mutate(scenarios, seed=args.seed, max_mutants=args.max_mutants, max_seconds=args.max_seconds,
@@ -115,7 +96,43 @@ def run(args) -> int:
     finally:
         if progress is not None:
             progress.close()
-    doc = mutation_document(report, timings=not args.no_timings)
+    _write_documents(mutation_document(report, timings=not args.no_timings), outputs, args)
+    return _status(report, bad, args.fail_under)
+
+
+def _load_scenarios(paths: list, sets: dict) -> tuple[list, int]:
+    """The scenarios under `paths` that load, with the --set values applied, and the number refused (each
+    refusal printed); a usage error when a path does not exist or names no scenario."""
+    from cpn.cli.check import _apply_sets
+    from cpn.errors import ModelError
+    from cpn.gate.scenario import load_scenario, scenario_files
+
+    for p in paths:
+        if not os.path.exists(p):
+            raise UsageError(f"no such scenario file or folder: '{p}'")
+    files = scenario_files(paths)
+    if not files:
+        raise UsageError(f"no scenario (*.toml) in {', '.join(paths)}")
+    scenarios = []
+    bad = 0
+    for path in files:
+        try:
+            scenario = load_scenario(path)
+        except ModelError as err:
+            print(err.render(), file=sys.stderr)
+            bad += 1
+            continue
+        if sets:
+            _apply_sets(scenario, sets)
+        scenarios.append(scenario)
+    return scenarios, bad
+
+
+def _write_documents(doc: dict, outputs: list, args) -> None:
+    """The text on standard output (unless an output file takes it), then the --json, --markdown and
+    --html files."""
+    from cpn.report.mutation import render_html, render_markdown, render_text
+
     renders = {"--json": lambda: json.dumps(doc, indent=2, ensure_ascii=False) + "\n",
                "--markdown": lambda: render_markdown(doc), "--html": lambda: render_html(doc)}
     if not any(o.to_stdout for o in outputs):
@@ -124,6 +141,10 @@ def run(args) -> int:
         write_output(o, renders[o.option]())
         if not o.to_stdout and not args.quiet:
             print(f"wrote {o.path}", file=sys.stderr)
+
+
+def _status(report, bad: int, fail_under: float | None) -> int:
+    """The exit status: refused files, the original models' problems, mutants not run, --fail-under."""
     found = [ExitStatus.DATAERR if bad else ExitStatus.OK]
     for m in report.models:
         if m.problem is not None:
@@ -132,14 +153,14 @@ def run(args) -> int:
                                                                                               ExitStatus.DATAERR))
     if report.not_run:
         found.append(ExitStatus.UNKNOWN)
-    if args.fail_under is not None:
+    if fail_under is not None:
         score = report.score
         if score is None:
             print("no mutant was decided (killed or survived): there is no score to compare with --fail-under",
                   file=sys.stderr)
             found.append(ExitStatus.UNKNOWN)
-        elif score < args.fail_under:
-            print(f"the mutation score {score:.1f}% is below --fail-under {args.fail_under:g}%", file=sys.stderr)
+        elif score < fail_under:
+            print(f"the mutation score {score:.1f}% is below --fail-under {fail_under:g}%", file=sys.stderr)
             found.append(ExitStatus.VIOLATED)
     return ExitStatus.worst(found)
 
