@@ -297,41 +297,15 @@ def run(args) -> int:
     outputs = {o.option: o for o in prepare_outputs(("--json", args.json))}
     text = not ("--json" in outputs and outputs["--json"].to_stdout)
     out = sys.stdout if text else sys.stderr
-    spec = os.path.join(directory, "expected.json")
-    try:
-        with open(spec, encoding="utf-8") as fh:
-            corpus = json.load(fh)
-    except (OSError, ValueError) as exc:
-        raise UsageError(f"cannot read {spec}: {exc}") from None
-    instances = corpus["instances"] if isinstance(corpus, dict) else corpus
-    chosen = select(instances, args.only, args.skip_larger_than)
+    chosen = select(_read_instances(directory), args.only, args.skip_larger_than)
     if not chosen:
         raise UsageError("no instance matches --only")
     print(_row([n for n, _w, _a in _COLS]), file=out)
     results = []
     for inst, skip in chosen:
-        if skip:
-            r = Result(inst["name"], inst.get("format", "?"), "skipped", expected=inst, reason=skip)
-        else:
-            r = validate_instance(directory, inst, args.max_states)
-            if not args.no_formulas and r.status in ("match", "mismatch"):
-                validate_formulas(directory, r, inst, args.formula_seconds, args.formula_max_states,
-                                  args.max_states)
+        r = _validate(directory, inst, skip, args)
         results.append(r)
-        print(format_row(r), file=out, flush=True)
-        for d in r.differences:
-            print(f"    {d}", file=out)
-        if r.formulas:
-            n = r.formula_counts()
-            print(f"    formulas: {n['agree']} agree, {n['disagree']} disagree, {n['unknown']} unknown "
-                  f"({r.formula_seconds:.1f} s)", file=out)
-            for f in r.formulas:
-                if f["result"] != "agree":
-                    print(f"    {f['result']}: {f['id']}: published {f['expected']}, found {f['found']}"
-                          + (f" ({f['reason']})" if f.get("reason") else ""), file=out)
-        if r.reason and r.status != "match" and not (args.quiet and r.status in ("skipped", "partial")):
-            for line in r.reason.splitlines()[:12]:
-                print(f"    {line}", file=out)
+        _print_result(r, out, args.quiet)
     counts = {s: sum(r.status == s for r in results) for s in ("match", "mismatch", "error", "partial", "skipped")}
     total = sum(r.seconds for r in results)
     print(f"\n{counts['match']} match, {counts['mismatch']} mismatch, {counts['error']} error, "
@@ -341,23 +315,66 @@ def run(args) -> int:
         print(format_formula_totals(formulas, args.formula_seconds), file=out)
         print(format_ratios(results), file=out)
     if "--json" in outputs:
-        payload = [{"name": r.name, "format": r.format, "status": r.status, "seconds": round(r.seconds, 3),
-                    "found": r.found, "differences": r.differences, "reason": r.reason,
-                    **({"formulas": r.formulas, "formula_seconds": round(r.formula_seconds, 3),
-                        "examination_seconds": {e: round(t, 3) for e, t in r.exam_seconds.items()},
-                        "examination_ratio": {e: round(x, 2) for e, x in r.ratios().items()}}
-                       if r.formulas else {})}
-                   for r in results]
         write_output(outputs["--json"], json.dumps({"directory": directory, "max_states": args.max_states,
                                                     "formula_seconds": args.formula_seconds,
                                                     "formula_max_states": args.formula_max_states,
                                                     "formula_totals": formulas,
-                                                    "results": payload}, indent=2) + "\n")
+                                                    "results": [_result_json(r) for r in results]}, indent=2)
+                     + "\n")
     if counts["mismatch"] or counts["error"] or formulas.get("total", {}).get("disagree"):
         return ExitStatus.VIOLATED
     if counts["partial"] or formulas.get("total", {}).get("unknown"):
         return ExitStatus.UNKNOWN
     return ExitStatus.OK
+
+
+def _read_instances(directory: str) -> list[dict]:
+    """The instances of DIR/expected.json; a usage error when it cannot be read."""
+    spec = os.path.join(directory, "expected.json")
+    try:
+        with open(spec, encoding="utf-8") as fh:
+            corpus = json.load(fh)
+    except (OSError, ValueError) as exc:
+        raise UsageError(f"cannot read {spec}: {exc}") from None
+    return corpus["instances"] if isinstance(corpus, dict) else corpus
+
+
+def _validate(directory: str, inst: dict, skip: str | None, args) -> Result:
+    """One instance's row: skipped, or its figures compared (and its formulas, unless --no-formulas)."""
+    if skip:
+        return Result(inst["name"], inst.get("format", "?"), "skipped", expected=inst, reason=skip)
+    r = validate_instance(directory, inst, args.max_states)
+    if not args.no_formulas and r.status in ("match", "mismatch"):
+        validate_formulas(directory, r, inst, args.formula_seconds, args.formula_max_states, args.max_states)
+    return r
+
+
+def _print_result(r: Result, out, quiet: bool) -> None:
+    """An instance's row, its differences, its formulas' counts and disagreements, and why it failed."""
+    print(format_row(r), file=out, flush=True)
+    for d in r.differences:
+        print(f"    {d}", file=out)
+    if r.formulas:
+        n = r.formula_counts()
+        print(f"    formulas: {n['agree']} agree, {n['disagree']} disagree, {n['unknown']} unknown "
+              f"({r.formula_seconds:.1f} s)", file=out)
+        for f in r.formulas:
+            if f["result"] != "agree":
+                print(f"    {f['result']}: {f['id']}: published {f['expected']}, found {f['found']}"
+                      + (f" ({f['reason']})" if f.get("reason") else ""), file=out)
+    if r.reason and r.status != "match" and not (quiet and r.status in ("skipped", "partial")):
+        for line in r.reason.splitlines()[:12]:
+            print(f"    {line}", file=out)
+
+
+def _result_json(r: Result) -> dict:
+    """An instance's entry in the --json file."""
+    return {"name": r.name, "format": r.format, "status": r.status, "seconds": round(r.seconds, 3),
+            "found": r.found, "differences": r.differences, "reason": r.reason,
+            **({"formulas": r.formulas, "formula_seconds": round(r.formula_seconds, 3),
+                "examination_seconds": {e: round(t, 3) for e, t in r.exam_seconds.items()},
+                "examination_ratio": {e: round(x, 2) for e, x in r.ratios().items()}}
+               if r.formulas else {})}
 
 
 def formula_totals(results: list[Result]) -> dict[str, dict[str, int]]:
