@@ -432,40 +432,14 @@ class LiveTransitions(Check):
 
 
 def _nearest_never(view, t: int) -> int:
-    """The marking nearest to the initial one (fewest steps; then the smallest number) from which transition
-    instance t can never occur: it reaches no arc of t. Called only when such a marking exists."""
+    """The marking nearest to the initial one from which transition instance t can never occur (it reaches
+    no arc of t): E[true U "t occurs"] is false there. States are numbered breadth first, so the smallest
+    such number is the nearest. Called only when such a marking exists."""
     g = view.g
-    n = g.n_states
     labels = view.labels()
-    pred_off, pred = view.predecessors()
-    can = bytearray(n)  # 1: an occurrence of t is reachable from the marking
-    todo = []
-    for u in range(n):
-        if t in labels[g.offsets[u]:g.offsets[u + 1]]:
-            can[u] = 1
-            todo.append(u)
-    while todo:
-        v = todo.pop()
-        for k in range(pred_off[v], pred_off[v + 1]):
-            u = pred[k]
-            if not can[u]:
-                can[u] = 1
-                todo.append(u)
-    frontier = [0]
-    seen = bytearray(n)
-    seen[0] = 1
-    while frontier:  # breadth first, level by level
-        hits = [u for u in frontier if not can[u]]
-        if hits:
-            return min(hits)
-        nxt = []
-        for u in frontier:
-            for v in g.dst[g.offsets[u]:g.offsets[u + 1]]:
-                if not seen[v]:
-                    seen[v] = 1
-                    nxt.append(v)
-        frontier = nxt
-    raise AssertionError("no marking from which the transition can never occur")
+    occurs = bytearray(t in labels[g.offsets[u]:g.offsets[u + 1]] for u in range(g.n_states))
+    can = view.kripke().eu(bytearray([1]) * g.n_states, occurs)
+    return can.index(0)
 
 
 class Home(Check):

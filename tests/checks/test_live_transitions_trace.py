@@ -5,6 +5,7 @@ from pathlib import Path
 
 from cpn.gate.run import run_scenario
 from cpn.gate.scenario import load_scenario
+from tests._graphs import bfs_distances
 from tests.checks._nets import scenario
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -39,21 +40,6 @@ def _never_occurs_after(r, state: int, transition: str) -> bool:
     return True
 
 
-def _depth(r, state: int) -> int:
-    """The number of steps of a shortest path from the initial marking to `state` (a BFS of the graph)."""
-    g = r.exploration.graph
-    dist, frontier = {0: 0}, [0]
-    while frontier:
-        nxt = []
-        for u in frontier:
-            for _be, v in g.out_arcs(u):
-                if v not in dist:
-                    dist[v] = dist[u] + 1
-                    nxt.append(v)
-        frontier = nxt
-    return dist[state]
-
-
 def test_stations_take_1_gets_the_one_step_trace(tmp_path):
     r, v = _verdict(_stations(tmp_path, "Station'Take 1"))
     assert v.status.value == "violated"
@@ -67,7 +53,8 @@ def test_the_trace_is_the_shortest_to_such_a_marking(tmp_path):
     r, v = _verdict(_stations(tmp_path, "Station'Take 1"))
     g = r.exploration.graph
     targets = [s for s in range(g.n_states) if _never_occurs_after(r, s, "Station'Take 1")]
-    assert len(v.evidence.path) - 1 == min(_depth(r, s) for s in targets)
+    dist = bfs_distances(g)
+    assert len(v.evidence.path) - 1 == min(dist[s] for s in targets)
 
 
 def test_a_transition_dead_from_the_start_gets_an_empty_trace(tmp_path):

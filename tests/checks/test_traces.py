@@ -1,6 +1,5 @@
 """Counterexamples replay through the engine and are shortest; partial searches never hold."""
 
-from collections import deque
 
 from hypothesis import given, settings
 from hypothesis import strategies as st
@@ -8,6 +7,7 @@ from hypothesis import strategies as st
 from cpn.checks.verdict import Status
 from cpn.gate.run import run_scenario
 from cpn.gate.scenario import loads_scenario
+from tests._graphs import bfs_distances
 from tests.engine.randomnets import random_net
 
 
@@ -16,19 +16,6 @@ def _run(tmp_path, seed, body, **overrides):
     model.write_text(random_net(seed), encoding="utf-8")
     s = loads_scenario(f'model = "{model.name}"\n' + body, str(tmp_path / "r.toml"))
     return run_scenario(s, s.runs[0], {"max_states": 3000, **overrides})
-
-
-def _distances(g):
-    dist = [-1] * g.n_states
-    dist[0] = 0
-    queue = deque([0])
-    while queue:
-        u = queue.popleft()
-        for _, v in g.out_arcs(u):
-            if dist[v] < 0:
-                dist[v] = dist[u] + 1
-                queue.append(v)
-    return dist
 
 
 def _replays(engine, g, ev) -> bool:
@@ -74,7 +61,7 @@ def test_traces_replay_and_are_shortest(tmp_path_factory, seed, k):
     tmp = tmp_path_factory.mktemp("t")
     r = _run(tmp, seed, BODY.format(k=k))
     g = r.exploration.graph
-    dist = _distances(g)
+    dist = bfs_distances(g)
     by = {p.spec.name: p.verdict for p in r.results}
     pred = [sum(r.engine.marking(s)[0].values()) <= k for s in g.states]
     for name, v in by.items():

@@ -6,13 +6,13 @@ property set of a thesis scenario; the Modbus-A ones are the fault variants of M
 import importlib.util
 import os
 import tomllib
-from collections import deque
 
 import pytest
 
 from cpn.checks.verdict import Status
 from cpn.gate.run import run_scenario
 from cpn.gate.scenario import load_scenario
+from tests._graphs import bfs_distances
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 MUTANTS = os.path.join(ROOT, "specs", "modbus", "mutants")
@@ -42,19 +42,6 @@ CAUGHT_ON_PARTIAL_SEARCHES_ONLY: set[str] = set()
 CATALOGUE = [m for m, _, _ in bench.MUTANTS]
 # the MODBUS/TCP mutants (tcp_*.toml) are bench/modbus_tcp.py's, checked by tests/modbus/test_modbus_tcp.py
 FILES = sorted(f[:-5] for f in os.listdir(MUTANTS) if f.endswith(".toml") and not f.startswith("tcp_"))
-
-
-def _distances(g):
-    dist = [-1] * g.n_states
-    dist[0] = 0
-    queue = deque([0])
-    while queue:
-        u = queue.popleft()
-        for _, v in g.out_arcs(u):
-            if dist[v] < 0:
-                dist[v] = dist[u] + 1
-                queue.append(v)
-    return dist
 
 
 def test_every_mutant_file_is_listed():
@@ -103,7 +90,7 @@ def test_mutant_is_caught_by_the_property_it_breaks(name):
         ev = r.verdict.evidence
         assert ev is not None and ev.path[0] == 0, r.spec.name
         if r.spec.kind in ("invariant", "bound"):  # decided on the fly: the shortest trace to a bad marking
-            dist = dist or _distances(result.exploration.graph)
+            dist = dist or bfs_distances(result.exploration.graph)
             assert len(ev.path) - 1 == dist[ev.path[-1]], r.spec.name
 
 

@@ -8,7 +8,6 @@ import importlib.util
 import os
 import subprocess
 import sys
-from collections import deque
 
 import pytest
 
@@ -16,6 +15,7 @@ import cpn
 from cpn.checks.verdict import Status
 from cpn.gate.run import run_scenario
 from cpn.gate.scenario import load_scenario
+from tests._graphs import bfs_distances
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 MODEL = os.path.join(ROOT, "models", "modbus", "modbus_tcp.cpnet")
@@ -78,19 +78,6 @@ def test_symmetry_quotient_decides_every_property_with_the_full_graph_counts():
     assert all(r.verdict.status is Status.HOLDS for r in quotient.results)
 
 
-def _distances(g):
-    dist = [-1] * g.n_states
-    dist[0] = 0
-    queue = deque([0])
-    while queue:
-        u = queue.popleft()
-        for _, v in g.out_arcs(u):
-            if dist[v] < 0:
-                dist[v] = dist[u] + 1
-                queue.append(v)
-    return dist
-
-
 def test_every_tcp_mutant_has_its_file_and_the_files_are_what_the_bench_writes():
     files = sorted(f for f in os.listdir(os.path.join(SPECS, "mutants")) if f.startswith("tcp_"))
     assert files == sorted(m.replace("-", "_") + ".toml" for m, _, _, _ in bench.MUTANTS)
@@ -116,7 +103,7 @@ def test_each_tcp_mutant_is_caught_by_the_property_written_for_it(mutant, sets, 
         ev = r.verdict.evidence
         assert ev is not None and ev.path[0] == 0, r.spec.name
         if r.spec.kind in ("invariant", "bound"):   # decided on the fly: the shortest trace to a bad marking
-            dist = dist or _distances(result.exploration.graph)
+            dist = dist or bfs_distances(result.exploration.graph)
             assert len(ev.path) - 1 == dist[ev.path[-1]], r.spec.name
 
 
