@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
 import sys
 
 from cpn.cli._common import (
@@ -23,6 +22,7 @@ from cpn.cli._common import (
     sets_of,
     write_output,
 )
+from cpn.cli._scenarios import load_scenarios, scenario_paths
 
 DESCRIPTION = """Generate mutants of the model each scenario checks (a guard negated, weakened or
 strengthened, a comparison off by one, an arc removed, a constant or a delay changed, a token dropped
@@ -81,7 +81,7 @@ def run(args) -> int:
     _check_options(args)
     sets = sets_of(args)
     outputs = prepare_outputs(("--json", args.json), ("--markdown", args.markdown), ("--html", args.html))
-    scenarios, bad = _load_scenarios(args.paths, sets)
+    scenarios, bad = load_scenarios(scenario_paths(args.paths), sets, unique=False)
     progress = _Progress() if (not args.quiet and sys.stderr.isatty()) else None
     try:
         report = mutate(scenarios, seed=args.seed, max_mutants=args.max_mutants, max_seconds=args.max_seconds,
@@ -98,34 +98,6 @@ def run(args) -> int:
             progress.close()
     _write_documents(mutation_document(report, timings=not args.no_timings), outputs, args)
     return _status(report, bad, args.fail_under)
-
-
-def _load_scenarios(paths: list, sets: dict) -> tuple[list, int]:
-    """The scenarios under `paths` that load, with the --set values applied, and the number refused (each
-    refusal printed); a usage error when a path does not exist or names no scenario."""
-    from cpn.cli.check import _apply_sets
-    from cpn.errors import ModelError
-    from cpn.gate.scenario import load_scenario, scenario_files
-
-    for p in paths:
-        if not os.path.exists(p):
-            raise UsageError(f"no such scenario file or folder: '{p}'")
-    files = scenario_files(paths)
-    if not files:
-        raise UsageError(f"no scenario (*.toml) in {', '.join(paths)}")
-    scenarios = []
-    bad = 0
-    for path in files:
-        try:
-            scenario = load_scenario(path)
-        except ModelError as err:
-            print(err.render(), file=sys.stderr)
-            bad += 1
-            continue
-        if sets:
-            _apply_sets(scenario, sets)
-        scenarios.append(scenario)
-    return scenarios, bad
 
 
 def _write_documents(doc: dict, outputs: list, args) -> None:
