@@ -238,13 +238,71 @@ class _Declarations:
 
     # -- declarations ----------------------------------------------------------------------------
 
-    def _decls(self, node: Element, block: str | None = None) -> None:
+    def _decl_items(self, node: Element) -> list[tuple[str, Element]]:
+        """The globbox in order, blocks flattened: ("block", block) before its elements, ("decl", element)."""
+        items: list[tuple[str, Element]] = []
         for c in node.children:
             if c.tag == "block":
+                items.append(("block", c))
+                items += self._decl_items(c)
+            else:
+                items.append(("decl", c))
+        return items
+
+    @staticmethod
+    def _top_names(el: Element) -> set[str]:
+        """The names a globbox element declares at the top level."""
+        if el.tag == "ml":
+            return {n for n, _ in ml.declared_functions(el.text)} | ml.datatype_names(el.text)
+        if el.tag in ("color", "globref"):
+            idel = el.find("id")
+            return {idel.text.strip()} if idel is not None else set()
+        return set()
+
+    def _forward_order(self, items: list[tuple[str, Element]]) -> list[tuple[str, Element]]:
+        """Put an ML declaration that names a value declared only further down right after that declaration.
+
+        CPN Tools checks the globbox by dependency, not in the order it is drawn: the XPDL converter appends
+        `val startDate = Date.date {...}` at the end of the globbox, below the functions that use it. A name
+        declared above as well (shadowed), or bound inside the declaration itself, keeps the order as written.
+        """
+        order = list(items)
+        for _ in range(len(order)):
+            moved = False
+            declared: set[str] = set()
+            for i, (kind, el) in enumerate(order):
+                if kind != "decl":
+                    continue
+                if el.tag == "ml":
+                    text = ml.strip_comments(el.text)
+                    used = {part for n, _ in ml.names(text) for part in n.split(".")} - declared
+                    target = None
+                    for j in range(i + 1, len(order)):
+                        k2, el2 = order[j]
+                        if k2 != "decl":
+                            continue
+                        later = (self._top_names(el2) & used) - self._top_names(el)
+                        later = {n for n in later if not re.search(
+                            r"(?<![\w'.])(?:val|fun|and|fn|rec|let)\s+(?:\(\s*)?" + re.escape(n) + r"(?![\w'])", text)
+                            and not re.search(r"\bfun\s+[A-Za-z][\w']*\s*\([^)]*(?<![\w'])" + re.escape(n)
+                                              + r"(?![\w'])", text)}
+                        if later:
+                            target = j
+                    if target is not None:
+                        order.insert(target, order.pop(i))  # after the last declaration it needs
+                        moved = True
+                        break
+                declared |= self._top_names(el)
+            if not moved:
+                break
+        return order
+
+    def _decls(self, node: Element, block: str | None = None) -> None:
+        for kind, c in self._forward_order(self._decl_items(node)):
+            if kind == "block":
                 idel = c.find("id")
                 name = idel.text.strip() if idel is not None else ""
                 self.out.raw(f"(* block {name} *)" if name else "(* block *)")
-                self._decls(c, name)
             elif c.tag == "color":
                 self._color(c)
             elif c.tag == "var":
