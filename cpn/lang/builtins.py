@@ -157,8 +157,10 @@ TYPES: dict[str, str] = {
     "time": "unit -> int",
     # CPN Tools' ModelTime: the model time, an integer here (a real where '@++' makes it one in simulate)
     "ModelTime.fromInt": "int -> int",
-    "ModelTime.toString": "int -> string",
 }
+# ModelTime.toString of an integer model time, or of a real one (CPN Tools' option realtimestamp, '@++')
+_MT = T.TVar(overload=("int", "real"))
+TYPES["ModelTime.toString"] = T.Scheme([_MT], T.TFun(_MT, T.TCon("string")))
 
 # the SML Basis Library's option, order and Date, which CPN Tools models compute with (cpn.values.sml_basis)
 _DATE, _MONTH = T.TCon("Date.date"), T.TCon("Date.month")

@@ -105,8 +105,8 @@ def _admits_eq(t: Type) -> bool:
     t = prune(t)
     if isinstance(t, TFun):
         return False
-    if isinstance(t, TCon):
-        return t.name != "real" and all(_admits_eq(a) for a in t.args)
+    if isinstance(t, TCon):  # reals too: CPN Tools defines '=' and '<>' on every colour set
+        return all(_admits_eq(a) for a in t.args)
     if isinstance(t, TTuple):
         return all(_admits_eq(a) for a in t.items)
     if isinstance(t, TRecord):

@@ -119,6 +119,10 @@ class _Translator(_Declarations):
         top = self.pages[roots[0]] if roots else None
         if top is not None:
             self.out.raw(f"net {ml.quote(top.name)};")
+        if getattr(self, "real_time", False):
+            # with real-valued time stamps CPN Tools' time() is a real; the model time is an integer in a state
+            # space (where the net has no '@++') and a real in simulate, and Real.fromInt keeps it as it is
+            self.out.raw("val time = fn () => Real.fromInt (time ());  (* option realtimestamp: time () is a real *)")
         self.out.raw()
         gb = cpnet.find("globbox")
         if gb is not None:
@@ -161,6 +165,7 @@ class _Translator(_Declarations):
                             "integer delays give the same state space, '@++' delays are simulated only")
                     self.notes.append(note)
                     self.out.raw(f"(* note: {note} *)")
+                    self.real_time = True
 
     # -- a first pass over all ML text: which globrefs are assigned, which functions are random ------
 
