@@ -18,6 +18,7 @@ from cpn._util.deep import left_spine
 from cpn.engine import plan
 from cpn.expr import binding as B
 from cpn.expr import nodes as A
+from cpn.expr.forms import FORMS
 from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS
 
 _PY_BINOPS = {"+": "+", "-": "-", "*": "*", "^": "+", "^^": "+", "@": "+", "=": "==", "<>": "!=",
@@ -113,7 +114,13 @@ class ExprCompiler:
             return self.fallback(e)
         self._nesting += 1
         try:
-            return getattr(self, "_c_" + type(e).__name__)(e)
+            m = getattr(self, "_c_" + type(e).__name__, None)
+            if m is not None:
+                return m(e)
+            code = FORMS[e.__class__].compile(self, e)  # a form that declares its own rules (cpn.expr.forms)
+            if code is None:
+                raise Unsupported()
+            return code
         except Unsupported:
             return self.fallback(e)
         finally:
@@ -202,12 +209,6 @@ class ExprCompiler:
         raise Unsupported()
 
     def _c_Let(self, e):
-        raise Unsupported()
-
-    def _c_Raise(self, e):
-        raise Unsupported()
-
-    def _c_Handle(self, e):
         raise Unsupported()
 
     def _c_Fn(self, e):

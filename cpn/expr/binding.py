@@ -19,6 +19,7 @@ Examples
 from __future__ import annotations
 
 from cpn.expr import nodes as N
+from cpn.expr.forms import form_of
 
 
 def is_var(e: N.Expr) -> bool:
@@ -115,10 +116,6 @@ def children(e: N.Expr) -> list[N.Expr]:
         return [e.subject] + [b for _, b in e.rules]
     if isinstance(e, N.Fn):
         return [b for _, b in e.rules]
-    if isinstance(e, N.Raise):
-        return [e.expr]
-    if isinstance(e, N.Handle):
-        return [e.expr] + [b for _, b in e.rules]
     if isinstance(e, N.Let):
         out = []
         for d in e.decls:
@@ -129,7 +126,8 @@ def children(e: N.Expr) -> list[N.Expr]:
         return out + [e.body]
     if isinstance(e, (N.Annot, N.ToMs)):
         return [e.expr]
-    return []
+    form = form_of(e)  # a form that declares its own rules (cpn.expr.forms)
+    return [] if form is None else form.children(e)
 
 
 def guard_conjuncts(guards: list[N.Expr]) -> list[N.Expr]:

@@ -23,8 +23,9 @@ from cpn._util.deep import left_spine
 from cpn._util.deep import run_deep as _run_deep
 from cpn._util.deep import run_deep_again as _run_deep_again
 from cpn.expr import nodes as A
+from cpn.expr.forms import FORMS
 from cpn.values import draws
-from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS, MLError, MLRaise, binop
+from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS, MLError, binop
 from cpn.values.multiset import Multiset, TimedMultiset
 
 
@@ -99,7 +100,9 @@ class Evaluator:
 
     # ------------------------------------------------------------------ expressions
     def eval(self, e: A.Expr, env: dict) -> Any:
-        m = getattr(self, "_e_" + type(e).__name__)
+        m = getattr(self, "_e_" + type(e).__name__, None)
+        if m is None:  # a form that declares its own rules (cpn.expr.forms)
+            return FORMS[e.__class__].evaluate(self, e, env)
         return m(e, env)
 
     def _e_Const(self, e, env):
@@ -233,19 +236,6 @@ class Evaluator:
 
     def _e_Fn(self, e, env):
         return Closure([([p], b) for p, b in e.rules], env, self, "fn")
-
-    def _e_Raise(self, e, env):
-        raise MLRaise(self.eval(e.expr, env), f"{e.span.file}:{e.span.line}:{e.span.col}")
-
-    def _e_Handle(self, e, env):
-        try:
-            return self.eval(e.expr, env)
-        except MLRaise as exc:
-            for pat, body in e.rules:
-                env2 = dict(env)
-                if self.match(pat, exc.value, env2):
-                    return self.eval(body, env2)
-            raise
 
     def _e_Let(self, e, env):
         env = dict(env)

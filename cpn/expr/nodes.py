@@ -151,23 +151,6 @@ class Fn(Expr):
 
 
 @dataclass(slots=True, eq=False)
-class Raise(Expr):
-    """`raise e`: e is an exception value (the tag ``"E#uid"`` of its constructor, or ``(tag, argument)``)."""
-
-    expr: Expr
-    ty: Any = None
-
-
-@dataclass(slots=True, eq=False)
-class Handle(Expr):
-    """`e handle pat => e1 | ...`: the rules see the exceptions raised by `raise` while evaluating e."""
-
-    expr: Expr
-    rules: list[tuple[Pat, Expr]]
-    ty: Any = None
-
-
-@dataclass(slots=True, eq=False)
 class Let(Expr):
     decls: list[Decl]
     body: Expr

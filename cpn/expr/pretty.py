@@ -14,8 +14,11 @@ Examples
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 from cpn._util.deep import left_spine
 from cpn.expr import nodes as N
+from cpn.expr.forms import form_of
 
 
 def string(s: str) -> str:
@@ -66,10 +69,6 @@ def expr(e: N.Expr) -> str:
         return f"(case {expr(e.subject)} of " + " | ".join(f"{pat(p)} => {expr(b)}" for p, b in e.rules) + ")"
     if isinstance(e, N.Fn):
         return "(fn " + " | ".join(f"{pat(p)} => {expr(b)}" for p, b in e.rules) + ")"
-    if isinstance(e, N.Raise):
-        return f"(raise {expr(e.expr)})"
-    if isinstance(e, N.Handle):
-        return f"({expr(e.expr)} handle " + " | ".join(f"{pat(p)} => {expr(b)}" for p, b in e.rules) + ")"
     if isinstance(e, N.Let):
         body = expr(e.body.items[0]) + "".join("; " + expr(x) for x in e.body.items[1:]) \
             if isinstance(e.body, N.Seq) else expr(e.body)
@@ -82,6 +81,9 @@ def expr(e: N.Expr) -> str:
         return expr(e.expr)
     if isinstance(e, N.OpFun):
         return f"(op {e.op})"
+    form = form_of(e)  # a form that declares its own rules (cpn.expr.forms)
+    if form is not None:
+        return form.show(e, PRINTER)
     raise TypeError(f"cannot print {type(e).__name__}")
 
 
@@ -149,5 +151,8 @@ def declaration(d: N.Decl, sep: str = " | ") -> str:
         return exception(d)
     return clauses(d, sep) + ";"
 
+
+#: what a form's printing rule calls back (`cpn.expr.form.Form.show`)
+PRINTER = SimpleNamespace(expr=expr, atom=atom, pat=pat, ty=ty)
 
 __all__ = ["atom", "clauses", "const", "declaration", "exception", "expr", "pat", "string", "ty"]

@@ -11,6 +11,7 @@ from cpn._util import did_you_mean
 from cpn._util.deep import left_spine
 from cpn.diagnostics import Span
 from cpn.expr.binding import children
+from cpn.expr.forms import FORMS
 from cpn.lang import ast as A
 from cpn.lang import types as T
 from cpn.lang.builtins import FINITE_DRAWS, RANDOM_BUILTINS, SIMULATION_ONLY_BUILTINS
@@ -72,6 +73,8 @@ def random_hint(name: str) -> str:
 
 class TypeInference(FunctionDraws):
     """Inference of expressions, patterns and annotations (mixed into the Checker)."""
+
+    types = T  # the types, for the type rules of the forms that declare their own (cpn.expr.forms)
 
     def type_of_annotation(self, te: A.TypeExpr) -> T.Type | None:
         if isinstance(te, A.TName):
@@ -176,7 +179,9 @@ class TypeInference(FunctionDraws):
 
     # ------------------------------------------------------------------ expressions
     def infer(self, e: A.Expr, env: Env) -> T.Type:
-        t = getattr(self, "_i_" + type(e).__name__)(e, env)
+        m = getattr(self, "_i_" + type(e).__name__, None)
+        # a form that declares its own rules (cpn.expr.forms)
+        t = FORMS[e.__class__].infer(self, e, env) if m is None else m(e, env)
         e.ty = t
         return t
 
@@ -439,19 +444,6 @@ class TypeInference(FunctionDraws):
         finally:
             self.ran_sink = sink
         return T.TFun(at, rt)
-
-    def _i_Raise(self, e, env):
-        self.must(self.infer(e.expr, env), T.EXN, e.expr.span, "the operand of 'raise' (an exception)")
-        return T.TVar()
-
-    def _i_Handle(self, e, env):
-        t = self.infer(e.expr, env)
-        for pat, body in e.rules:
-            binds: dict[str, Symbol] = {}
-            self.must(self.infer_pat(pat, binds), T.EXN, pat.span, "a pattern of 'handle' (an exception)")
-            self.must(self.infer(body, env.child(binds)), t, body.span,
-                      "the rules of 'handle' (each must have the type of the expression it handles)")
-        return t
 
     def _i_Let(self, e, env):
         inner = env.child()

@@ -1,4 +1,5 @@
-"""The lark `Transformer` from parse trees to `cpn.lang.ast`; the only module that knows rule names."""
+"""The lark `Transformer` from parse trees to `cpn.lang.ast`; the only module that knows rule names, with the
+expression forms that declare their own (`cpn.expr.forms`)."""
 
 from __future__ import annotations
 
@@ -6,6 +7,7 @@ from lark import Token, Transformer_NonRecursive, Tree, v_args
 from lark.tree import Meta
 
 from cpn.diagnostics import Span
+from cpn.expr.forms import BY_RULE
 from cpn.lang import ast as A
 
 
@@ -158,6 +160,13 @@ class ToAst(Transformer_NonRecursive):
 
     def tspan(self, tok: Token) -> Span:
         return Span(self.file, tok.line, tok.column, tok.end_line, _end_col(tok))
+
+    def __default__(self, data, children, meta):
+        """A rule without a method here: an expression form that declares its own (cpn.expr.forms)."""
+        form = BY_RULE.get(data)
+        if form is None:
+            return super().__default__(data, children, meta)
+        return form.parse(self.span(meta), list(children))
 
     # -- statements
     def start(self, items):
@@ -583,14 +592,6 @@ class ToAst(Transformer_NonRecursive):
 
     def local_part(self, items):
         return list(items)
-
-    @v_args(meta=True)
-    def raise_(self, meta, items):
-        return A.Raise(self.span(meta), items[0])
-
-    @v_args(meta=True)
-    def handle(self, meta, items):
-        return A.Handle(self.span(meta), items[0], items[1])
 
     # -- patterns
     @v_args(meta=True)

@@ -1,0 +1,86 @@
+"""What an expression form of CPN ML declares, and the table of the forms that declared it.
+
+A form (one node class of `cpn.expr`, or a family of them in one module under `cpn/expr/forms/`) says, in
+one place, how it is built from the parse tree, its subexpressions, its type rule, its value, its Python
+code and its text. The modules that walk the tree look a node's form up (`form_of`) instead of naming its
+class: the transformer from the parse tree (`cpn.lang.transform`), the type checker (`cpn.lang.infer`), the
+evaluator, the binding analysis and the printer of `cpn.expr`, and the compiler of `cpn.engine.codegen`.
+So a new form is its grammar rule, its module, and its line in `cpn/expr/forms/__init__.py`.
+
+Nothing here imports the language or the engine: a rule receives the object that applies it (the type
+checker, the evaluator, the expression compiler, the printer) and calls back into it.
+
+Examples
+--------
+>>> from cpn.expr import forms
+>>> handle = forms.BY_RULE["handle"]
+>>> handle.node.__name__, forms.form_of(handle.node(None, None, [])) is handle
+('Handle', True)
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from cpn.expr.nodes import Expr
+
+
+class Form:
+    """The rules of one expression form; a subclass overrides those its node needs.
+
+    `node` is the node class, `rule` the name (the alias in `cpn/lang/grammar.lark`) of the parse-tree rule
+    the parser builds it from, None if the parser does not build it (a node the type checker inserts).
+    """
+
+    node: type[Expr]
+    rule: str | None = None
+
+    def parse(self, span, items: list) -> Expr:
+        """The node of a parse-tree rule: `items` are its children, already transformed."""
+        return self.node(span, *items)
+
+    def children(self, e) -> list[Expr]:
+        """The subexpressions of e, the bodies of its rules included (`cpn.expr.binding.children`)."""
+        return []
+
+    def infer(self, tc, e, env) -> Any:
+        """The type of e. `tc` is the language's type checker: `tc.infer(x, env)`, `tc.must(found, expected,
+        span, what)`, `tc.infer_pat(p, binds)`, `tc.types` (the types, `cpn.lang.types`); `env.child(binds)`."""
+        raise NotImplementedError(f"no type rule for {type(e).__name__}")
+
+    def evaluate(self, ev, e, env: dict) -> Any:
+        """The value of e: `ev` is the evaluator (`ev.eval(x, env)`, `ev.match(p, v, env)`)."""
+        raise NotImplementedError(f"no evaluation of {type(e).__name__}")
+
+    def compile(self, ec, e) -> str | None:
+        """A Python expression computing e (`ec.expr(x)` compiles a subexpression), or None to leave e to
+        the evaluator, as the compiler of `cpn.engine.codegen` does with what it cannot compile."""
+        return None
+
+    def show(self, e, pp) -> str:
+        """The canonical text of e: `pp` is the printer (`pp.expr`, `pp.atom`, `pp.pat`, `pp.ty`)."""
+        raise NotImplementedError(f"cannot print {type(e).__name__}")
+
+
+#: node class -> its form
+FORMS: dict[type, Form] = {}
+#: parse-tree rule -> the form built from it
+BY_RULE: dict[str, Form] = {}
+
+
+def register(cls: type[Form]) -> type[Form]:
+    """Class decorator: enters a form in the tables (once per node class and per rule)."""
+    form = cls()
+    if form.node in FORMS:
+        raise ValueError(f"two forms of {form.node.__name__}")
+    FORMS[form.node] = form
+    if form.rule is not None:
+        if form.rule in BY_RULE:
+            raise ValueError(f"two forms built from rule {form.rule!r}")
+        BY_RULE[form.rule] = form
+    return cls
+
+
+def form_of(e) -> Form | None:
+    """The registered form of a node, or None for a node its walkers still name."""
+    return FORMS.get(e.__class__)

@@ -1,0 +1,10 @@
+"""The expression forms that declare their rules in a module of their own (`cpn.expr.form`).
+
+Importing this package registers every form below; the walkers of the tree import it to look forms up.
+A new form is a module here, its line below, and its rule in `cpn/lang/grammar.lark`.
+"""
+
+from cpn.expr.form import BY_RULE, FORMS, Form, form_of, register
+from cpn.expr.forms import exceptions  # noqa: F401 - registers raise and handle
+
+__all__ = ["BY_RULE", "FORMS", "Form", "form_of", "register"]

@@ -1,0 +1,84 @@
+"""`raise e` and `e handle pat => e1 | ...`: SML's exceptions (docs/language.md).
+
+An exception value is the tag ``"E#uid"`` of its constructor, or ``(tag, argument)``; `raise` throws it as
+`cpn.values.builtins.MLRaise`, `handle` catches it while evaluating its expression. The compiled engine
+leaves both to the evaluator, the C generator leaves the transition to Python.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from cpn.expr.form import Form, register
+from cpn.expr.nodes import Expr, Pat
+from cpn.values.builtins import MLRaise
+
+
+@dataclass(slots=True, eq=False)
+class Raise(Expr):
+    """`raise e`: e is an exception value (the tag ``"E#uid"`` of its constructor, or ``(tag, argument)``)."""
+
+    expr: Expr
+    ty: Any = None
+
+
+@dataclass(slots=True, eq=False)
+class Handle(Expr):
+    """`e handle pat => e1 | ...`: the rules see the exceptions raised by `raise` while evaluating e."""
+
+    expr: Expr
+    rules: list[tuple[Pat, Expr]]
+    ty: Any = None
+
+
+@register
+class RaiseForm(Form):
+    node = Raise
+    rule = "raise_"
+
+    def children(self, e):
+        return [e.expr]
+
+    def infer(self, tc, e, env):
+        T = tc.types
+        tc.must(tc.infer(e.expr, env), T.EXN, e.expr.span, "the operand of 'raise' (an exception)")
+        return T.TVar()
+
+    def evaluate(self, ev, e, env):
+        raise MLRaise(ev.eval(e.expr, env), f"{e.span.file}:{e.span.line}:{e.span.col}")
+
+    def show(self, e, pp):
+        return f"(raise {pp.expr(e.expr)})"
+
+
+@register
+class HandleForm(Form):
+    node = Handle
+    rule = "handle"
+
+    def children(self, e):
+        return [e.expr] + [b for _, b in e.rules]
+
+    def infer(self, tc, e, env):
+        T = tc.types
+        t = tc.infer(e.expr, env)
+        for pat, body in e.rules:
+            binds: dict = {}
+            tc.must(tc.infer_pat(pat, binds), T.EXN, pat.span, "a pattern of 'handle' (an exception)")
+            tc.must(tc.infer(body, env.child(binds)), t, body.span,
+                    "the rules of 'handle' (each must have the type of the expression it handles)")
+        return t
+
+    def evaluate(self, ev, e, env):
+        try:
+            return ev.eval(e.expr, env)
+        except MLRaise as exc:
+            for pat, body in e.rules:
+                env2 = dict(env)
+                if ev.match(pat, exc.value, env2):
+                    return ev.eval(body, env2)
+            raise
+
+    def show(self, e, pp):
+        return f"({pp.expr(e.expr)} handle " + " | ".join(f"{pp.pat(p)} => {pp.expr(b)}" for p, b in e.rules) + ")"
