@@ -12,7 +12,7 @@ import sys
 
 from cpn.cli._common import ExitStatus, UsageError, write_output
 from cpn.cli._search_args import ProgressLine, explore_options, explore_outputs
-from cpn.report._words import noun
+from cpn.report.words import noun
 
 # options of `explore` that need the whole graph, restrict it or partition it, and so do not combine with
 # the sweep-line

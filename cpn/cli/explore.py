@@ -28,7 +28,7 @@ from cpn.cli._common import (
     write_output,
 )
 from cpn.cli._search_args import ProgressLine, explore_options, explore_outputs
-from cpn.report._words import noun
+from cpn.report.words import noun
 
 __all__ = ["add_parser", "explore_engine", "load_engine", "parse_sets", "run"]
 

@@ -23,7 +23,7 @@ from cpn.cli._common import (
     sets_of,
     write_output,
 )
-from cpn.report._words import noun
+from cpn.report.words import noun
 
 
 def add_parser(subparsers) -> argparse.ArgumentParser:

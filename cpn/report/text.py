@@ -10,9 +10,9 @@ many entries were left out; the JSON result keeps everything. Imports `cpn.repor
 from __future__ import annotations
 
 from cpn.diagnostics import display_width, ljust_cells
-from cpn.report._words import noun
 from cpn.report.model import Report
 from cpn.report.reduction import NOT_PRESERVED, SYM_NOT_PRESERVED
+from cpn.report.words import noun
 
 RULE = "-" * 72
 NAME_WIDTH = 24  # CPN Tools wraps place and transition names of 24 or more characters

@@ -1,4 +1,5 @@
-"""Small wording helpers shared by the report renderers and the command line. Standard library only."""
+"""Wording helpers of the reports, public so that the command line words its messages the same way
+(`noun`). Standard library only."""
 
 from __future__ import annotations
 
