@@ -49,3 +49,13 @@ def test_a_name_declared_nowhere_is_still_an_error(tmp_path):
     with pytest.raises(ModelError) as exc:
         cpn.load(str(model))
     assert "start" in str(exc.value)
+
+
+def test_a_library_name_redeclared_below_is_the_library_one_above(tmp_path):
+    decls = ('<ml id="M2">fun shifted n = n + length (filter (fn x => x > 1) [1, 2, 3])</ml>'
+             '<ml id="M3">fun filter p (l : INT list) = if p 0 then l else l;</ml>')
+    text = translate_text(_model(decls)).text
+    assert text.index("fun shifted n") < text.index("fun filter")
+    model = tmp_path / "m.cpn"
+    model.write_text(_model(decls))
+    assert cpn.load(str(model)).net.places[0].initial == {6: 1}

@@ -13,8 +13,12 @@ from cpn.diagnostics import Diagnostic, Span
 from cpn.io.cpntools import _ml as ml
 from cpn.io.cpntools._text import Origin, _clean, _short, _text_origin_from
 from cpn.io.cpntools._xml import Element
+from cpn.values import sml_basis
+from cpn.values.builtins import FUNCTIONS as LIBRARY
 from cpn.values.draws import DISTRIBUTIONS
 from cpn.values.effects import SIMULATION_ONLY
+
+_LIBRARY_NAMES = set(LIBRARY) | set(sml_basis.FUNCTIONS) | set(sml_basis.CONSTRUCTORS) | set(DISTRIBUTIONS)
 
 
 class _Declarations:
@@ -275,7 +279,8 @@ class _Declarations:
                     continue
                 if el.tag == "ml":
                     text = ml.strip_comments(el.text)
-                    used = {part for n, _ in ml.names(text) for part in n.split(".")} - declared
+                    # a library name (`filter`) that a later declaration redeclares is the library's here
+                    used = {part for n, _ in ml.names(text) for part in n.split(".")} - declared - _LIBRARY_NAMES
                     target = None
                     for j in range(i + 1, len(order)):
                         k2, el2 = order[j]
