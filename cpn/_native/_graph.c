@@ -570,3 +570,229 @@ int64_t gr_max_sum(const uint8_t *arena, int64_t n, int size, int nf, const int3
     }
     return best;
 }
+
+/* ---------------------------------------------------------------- CTL fixpoints
+ * Over the predecessors in CSR form (gr_reverse) and 0/1 bytes per state; the results are those of the
+ * Python labelling (cpn/checks/ctl.py's Kripke), which tests compare on random graphs. */
+
+/* E[phi U psi]: out holds the psi-states on entry; every phi-state with a path through phi-states to one
+ * of them is added (a breadth-first search backwards). 0, or -1 without memory. */
+int gr_eu(int64_t n, const int64_t *poff, const int32_t *pred, const uint8_t *phi, uint8_t *out) {
+    int32_t *queue = (int32_t *)malloc((size_t)(n ? n : 1) * 4);
+    if (!queue) return -1;
+    int64_t head = 0, tail = 0;
+    for (int64_t v = 0; v < n; v++)
+        if (out[v]) queue[tail++] = (int32_t)v;
+    while (head < tail) {
+        int32_t v = queue[head++];
+        for (int64_t i = poff[v]; i < poff[v + 1]; i++) {
+            int32_t u = pred[i];
+            if (!out[u] && phi[u]) {
+                out[u] = 1;
+                queue[tail++] = u;
+            }
+        }
+    }
+    free(queue);
+    return 0;
+}
+
+/* EX target: out[u] = 1 for every state u with an arc into a target state (out zeroed by the caller). */
+void gr_ex(int64_t n, const int64_t *poff, const int32_t *pred, const uint8_t *target, uint8_t *out) {
+    for (int64_t v = 0; v < n; v++)
+        if (target[v])
+            for (int64_t i = poff[v]; i < poff[v + 1]; i++) out[pred[i]] = 1;
+}
+
+/* EG phi without fairness: the largest set of phi-states each of which is dead or has an arc into the
+ * set (a path staying in phi forever or to a dead phi-state), computed by counting each state's arcs
+ * into the set and removing the states whose count falls to zero. The same states as the dead
+ * phi-states and the nontrivial SCCs of the phi-sub-graph closed backwards within phi. out gets the
+ * set; 0, or -1 without memory. */
+int gr_eg(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, const int64_t *poff,
+          const int32_t *pred, const uint8_t *dead, const uint8_t *phi, uint8_t *out) {
+    int64_t *count = (int64_t *)calloc((size_t)(n ? n : 1), 8);
+    int32_t *queue = (int32_t *)malloc((size_t)(n ? n : 1) * 4);
+    if (!count || !queue) {
+        free(count);
+        free(queue);
+        return -1;
+    }
+    int64_t head = 0, tail = 0;
+    for (int64_t v = 0; v < n; v++) {
+        out[v] = phi[v] ? 1 : 0;
+        if (!phi[v] || dead[v]) continue;
+        int64_t k = 0;
+        for (int64_t i = ARCS_FROM(v); i < ARCS_TO(v); i++) k += phi[dst[i]] ? 1 : 0;
+        count[v] = k;
+        if (k == 0) {
+            out[v] = 0;
+            queue[tail++] = (int32_t)v;
+        }
+    }
+    while (head < tail) {
+        int32_t v = queue[head++];
+        for (int64_t i = poff[v]; i < poff[v + 1]; i++) {
+            int32_t u = pred[i];
+            if (out[u] && !dead[u] && --count[u] == 0) {
+                out[u] = 0;
+                queue[tail++] = u;
+            }
+        }
+    }
+    free(count);
+    free(queue);
+    return 0;
+}
+
+/* Per label t < ntrans, the states with an arc labelled t: out[t * n + u] = 1 (out zeroed by the caller;
+ * every label below ntrans). */
+void gr_label_rows(int64_t n, int64_t nexp, const int64_t *off, const void *labels, int lw, int ntrans,
+                   uint8_t *out) {
+    for (int64_t u = 0; u < nexp; u++)
+        for (int64_t i = off[u]; i < off[u + 1]; i++) {
+            int32_t t = gr_label(labels, lw, i);
+            if (t >= 0 && t < ntrans) out[(int64_t)t * n + u] = 1;
+        }
+}
+
+/* ---------------------------------------------------------------- LTL over a complete graph
+ * The product of the graph with a generalised Büchi automaton (labels and acceptance sets on the edges,
+ * cpn/checks/buchi.py's Automaton) searched for an accepting cycle by Couvreur's SCC-based algorithm,
+ * as cpn/checks/ltl.py does on the fly: a depth-first search keeping a stack of SCC roots with the
+ * acceptance sets met inside each, stopping when one root has met them all. Product state s * nq + q.
+ * The automaton reads the present state's propositions: state s has the proposition mask mask[s],
+ * numbered mtable[mask[s]] among the nm distinct masks, and from automaton state q a state with mask
+ * number k moves along the edges moff[q * nm + k] .. moff[q * nm + k + 1] (to mdst, meeting the sets
+ * macc). A state without arcs (dead) repeats forever (a stutter step to itself), as the contest reads a
+ * deadlock. Returns 1 when there is an accepting cycle, 0 when there is none, -1 without memory, -2 when
+ * the product has 2^31 states or more. */
+
+/* mask[s] = the bits b < nprops with props[b * n + s] set. */
+void gr_masks(int64_t n, int nprops, const uint8_t *props, int32_t *mask) {
+    memset(mask, 0, (size_t)n * 4);
+    for (int b = 0; b < nprops; b++)
+        for (int64_t s = 0; s < n; s++)
+            if (props[(int64_t)b * n + s]) mask[s] |= (int32_t)1 << b;
+}
+
+/* a depth-first frame: the product state, its next system arc and next automaton move (the ranges are
+ * recomputed from v: deep searches keep millions of frames) */
+typedef struct {
+    int64_t v, i;
+    int32_t j;
+} ltl_frame;
+
+#define GROW(ptr, cap, len, type)                                                  \
+    do {                                                                           \
+        if ((len) == (cap)) {                                                      \
+            int64_t ncap_ = (cap) ? 2 * (cap) : 1024;                              \
+            type *np_ = (type *)realloc((ptr), (size_t)ncap_ * sizeof(type));      \
+            if (!np_) goto nomem;                                                  \
+            (ptr) = np_;                                                           \
+            (cap) = ncap_;                                                         \
+        }                                                                          \
+    } while (0)
+
+int gr_ltl(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, const int32_t *mask,
+           const int32_t *mtable, int32_t nm, int32_t nq, const int64_t *moff, const uint32_t *macc,
+           const int32_t *mdst, int32_t q0, uint32_t full, int64_t *product_states) {
+    if (n <= 0 || nq <= 0) return 0;
+    if ((int64_t)n * nq >= ((int64_t)1 << 31) - 2) return -2;
+    int result = -1;
+    int32_t *index = (int32_t *)calloc((size_t)(n * nq), 4); /* 0 unvisited, -1 done, else DFS number */
+    ltl_frame *todo = NULL;
+    int64_t *live = NULL;
+    int32_t *rnum = NULL;
+    uint32_t *rin = NULL, *redge = NULL;
+    int64_t ntodo = 0, ctodo = 0, nlive = 0, clive = 0, nroots = 0, croots = 0, crin = 0, credge = 0;
+    int32_t counter = 0;
+    if (!index) goto nomem;
+
+    int64_t w = q0; /* the initial product state: state 0, the automaton's initial state */
+    uint32_t wacc = 0;
+    for (;;) {
+        /* push w, reached by an edge meeting the sets wacc */
+        index[w] = ++counter;
+        GROW(rnum, croots, nroots, int32_t);
+        GROW(rin, crin, nroots, uint32_t);
+        GROW(redge, credge, nroots, uint32_t);
+        rnum[nroots] = counter;
+        rin[nroots] = 0;
+        redge[nroots] = wacc;
+        nroots++;
+        GROW(live, clive, nlive, int64_t);
+        live[nlive++] = w;
+        GROW(todo, ctodo, ntodo, ltl_frame);
+        {
+            int64_t s = w / nq;
+            ltl_frame *f = &todo[ntodo++];
+            f->v = w;
+            f->i = ARCS_FROM(s);
+            f->j = (int32_t)moff[(w % nq) * nm + mtable[mask[s]]];
+        }
+        /* descend or backtrack until a new product state is found */
+        int found_new = 0;
+        while (ntodo && !found_new) {
+            ltl_frame *f = &todo[ntodo - 1];
+            int64_t s = f->v / nq, row = (f->v % nq) * nm + mtable[mask[s]];
+            int64_t jstart = moff[row], jend = moff[row + 1];
+            int64_t ifrom = ARCS_FROM(s), iend = ARCS_TO(s);
+            int stutter = ifrom == iend;
+            if (stutter) iend = ifrom + 1;
+            if (f->j == jend) {
+                f->i++;
+                f->j = (int32_t)jstart;
+            }
+            if (f->i >= iend || jstart == jend) {
+                /* every successor seen: close the SCC if v is its root */
+                int64_t v = f->v;
+                ntodo--;
+                if (rnum[nroots - 1] == index[v]) {
+                    nroots--;
+                    for (;;) {
+                        int64_t x = live[--nlive];
+                        index[x] = -1;
+                        if (x == v) break;
+                    }
+                }
+                continue;
+            }
+            int64_t t = stutter ? s : dst[f->i];
+            int64_t e = f->j++;
+            w = t * nq + mdst[e];
+            wacc = macc[e];
+            int32_t iw = index[w];
+            if (iw == 0) {
+                found_new = 1;
+                break;
+            }
+            if (iw < 0) continue;
+            uint32_t met = wacc;
+            while (rnum[nroots - 1] > iw) {
+                nroots--;
+                met |= rin[nroots] | redge[nroots];
+            }
+            rin[nroots - 1] |= met;
+            if (rin[nroots - 1] == full) {
+                result = 1;
+                goto out;
+            }
+        }
+        if (!found_new) {
+            result = 0;
+            goto out;
+        }
+    }
+nomem:
+    result = -1;
+out:
+    if (product_states) *product_states = counter;
+    free(index);
+    free(todo);
+    free(live);
+    free(rnum);
+    free(rin);
+    free(redge);
+    return result;
+}

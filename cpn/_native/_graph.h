@@ -26,6 +26,16 @@ int gr_columns(const uint8_t *arena, int64_t n, int size, int nf, const int32_t 
                const int64_t *so, const int64_t *cap, uint8_t *seen);
 int64_t gr_max_sum(const uint8_t *arena, int64_t n, int size, int nf, const int32_t *fo, const int32_t *fw,
                    const int64_t *to, const int64_t *table);
+int gr_eu(int64_t n, const int64_t *poff, const int32_t *pred, const uint8_t *phi, uint8_t *out);
+void gr_ex(int64_t n, const int64_t *poff, const int32_t *pred, const uint8_t *target, uint8_t *out);
+int gr_eg(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, const int64_t *poff,
+          const int32_t *pred, const uint8_t *dead, const uint8_t *phi, uint8_t *out);
+void gr_label_rows(int64_t n, int64_t nexp, const int64_t *off, const void *labels, int lw, int ntrans,
+                   uint8_t *out);
+void gr_masks(int64_t n, int nprops, const uint8_t *props, int32_t *mask);
+int gr_ltl(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, const int32_t *mask,
+           const int32_t *mtable, int32_t nm, int32_t nq, const int64_t *moff, const uint32_t *macc,
+           const int32_t *mdst, int32_t q0, uint32_t full, int64_t *product_states);
 /* cffi: end */
 
 #endif

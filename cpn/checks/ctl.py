@@ -83,6 +83,9 @@ class Kripke:
 
     def ex(self, phi: bytearray) -> bytearray:
         target = _and(phi, self.fair())
+        fast = graphnative.ex(self.n, self.pred_off, self.pred, target)
+        if fast is not None:
+            return fast
         out = bytearray(self.n)
         for v in range(self.n):
             if target[v]:
@@ -103,6 +106,9 @@ class Kripke:
         return out
 
     def eu(self, phi: bytearray, psi: bytearray) -> bytearray:
+        fast = graphnative.eu(self.n, self.pred_off, self.pred, phi, _and(psi, self.fair()))
+        if fast is not None:
+            return fast
         out = _and(psi, self.fair())
         queue = deque(v for v in range(self.n) if out[v])
         while queue:
@@ -151,6 +157,10 @@ class Kripke:
         return seeds, dec
 
     def eg(self, phi: bytearray) -> bytearray:
+        if not self.fairness:
+            fast = graphnative.eg(self.n, self.offsets, self.dst, self.pred_off, self.pred, self.dead, phi)
+            if fast is not None:
+                return fast
         seeds, _ = self.eg_seeds(phi)
         out = bytearray(seeds)
         queue = deque(v for v in range(self.n) if out[v])

@@ -25,6 +25,8 @@ from cpn.properties import contest as c
 
 TECHNIQUES = "TECHNIQUES EXPLICIT SEQUENTIAL_PROCESSING"
 DEFAULT_MAX_STATES = 3_000_000
+#: the markings a reachability search generates on the fly before the whole state space takes over
+FLY_STATES = 25_000
 
 
 EPILOG = """exit statuses:
@@ -55,6 +57,10 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
 # ----------------------------------------------------------------------------- answering
 class CannotCompute(Exception):
     """A limit (states, time) stopped a formula's search."""
+
+
+class _FlyBudget(Exception):
+    """An on-the-fly search passed its budget (`ContestModel.fly_states`): the state space takes over."""
 
 
 @dataclass
@@ -90,6 +96,7 @@ class ContestModel:
         self.max_states = max_states  # the markings one search through `successors` may generate
         # the states of the whole state space built by the explorer (natively, far cheaper per state)
         self.graph_max_states = graph_max_states or max_states
+        self.fly_states = FLY_STATES
         self.deadline = deadline
         self._tnames = {t.name: i for i, t in enumerate(engine.transitions)}
         self._be_transition: dict[int, int] = {}
@@ -209,15 +216,18 @@ class ContestModel:
         if problems:
             raise c.ContestFormatError(problems)
 
-    def _tick(self, n: int) -> None:
-        if n > self.max_states:
+    def _tick(self, n: int, limit: int | None = None) -> None:
+        if n > (self.max_states if limit is None else limit):
+            if limit is not None and limit < self.max_states:
+                raise _FlyBudget
             raise CannotCompute(f"the search passed --max-states {self.max_states:,}")
         if self.deadline is not None and n % 512 == 0 and time.monotonic() > self.deadline:
             raise CannotCompute("the time limit was reached")
 
     # ------------------------------------------------------------------ searches
-    def reach(self, target) -> bool:
-        """Whether some reachable marking satisfies `target`: breadth first, stopping at the first."""
+    def reach(self, target, limit: int | None = None) -> bool:
+        """Whether some reachable marking satisfies `target`: breadth first, stopping at the first. Past
+        `limit` markings (below --max-states) it raises `_FlyBudget`."""
         s0 = self.cache.initial_state()
         seen = {s0}
         queue = deque([s0])
@@ -228,9 +238,31 @@ class ContestModel:
             for _be, t in self.cache.successors(s):
                 if t not in seen:
                     seen.add(t)
-                    self._tick(len(seen))
+                    self._tick(len(seen), limit)
                     queue.append(t)
         return False
+
+    def reachable(self, f: c.Node) -> bool:
+        """Whether some reachable marking satisfies the state formula f: on the fly up to `fly_states`
+        markings (a witness close to the initial marking is found without the whole state space), then,
+        where the state space is to be built anyway, over all of it at once (the explorer generates it
+        natively, far faster per marking than the search through `successors`), else on the fly up to
+        --max-states. Each way is exact: only the time differs."""
+        if self._graph is not None:
+            return any(self.vector(f))
+        p = self.predicate(f)
+        fly = self.fly_states if self.graph_max_states > self.fly_states else None
+        if fly is None or fly >= self.max_states:
+            return self.reach(p)
+        try:
+            return self.reach(p, fly)
+        except _FlyBudget:
+            pass
+        try:
+            self.graph()
+        except CannotCompute:
+            return self.reach(p)  # the whole state space is out of reach: on the fly as far as allowed
+        return any(self.vector(f))
 
     def graph(self):
         """The whole state space as (states, offsets, dst), built once by the explorer (natively where it
@@ -343,8 +375,13 @@ class ContestModel:
     def enabled_rows(self) -> list:
         """Per transition instance, the states (a bytearray) where it has an enabled binding."""
         if self._rows is None:
+            from cpn.statespace import graphnative
+
             states, offsets, _dst = self.graph()
             n = len(states)
+            self._rows = graphnative.label_rows(n, offsets, self._arc_transitions, len(self.engine.transitions))
+            if self._rows is not None:
+                return self._rows
             rows = [bytearray(n) for _ in self.engine.transitions]
             trans = self._arc_transitions
             for u in range(n):
@@ -372,28 +409,59 @@ class ContestModel:
             return max(self.vector(f)), ""
         if isinstance(f, c.Quant) and isinstance(f.arg, c.Temporal) and f.arg.op in ("F", "G") \
                 and c.is_state_formula(f.arg.args[0]):
-            if f.path == "E" and f.arg.op == "F" and self._graph is not None:
-                return any(self.vector(f.arg.args[0])), ""  # the state space is there: one pass over it
-            if f.path == "A" and f.arg.op == "G" and self._graph is not None:
-                return all(self.vector(f.arg.args[0])), ""
-            p = self.predicate(f.arg.args[0])
             if f.path == "E" and f.arg.op == "F":
-                return self.reach(p), "TOPOLOGICAL"
+                return self.reachable(f.arg.args[0]), "TOPOLOGICAL"
             if f.path == "A" and f.arg.op == "G":
-                return not self.reach(lambda s: not p(s)), "TOPOLOGICAL"
+                return not self.reachable(c.Not(f.arg.args[0])), "TOPOLOGICAL"
         if c.is_ltl(f):
             return self._ltl(f.arg), "LTL_NFA"
         return self._ctl(f), ""
 
     def _ltl(self, phi: c.Node) -> bool:
+        """On the fly up to `fly_states` markings (a counterexample close to the initial marking is found
+        without the whole state space), then, where the state space is to be built anyway, the product
+        of all of it with the automaton searched in native code, else on the fly up to --max-states."""
         from cpn.checks.ltl import check_ltl
 
+        if self._graph is not None:
+            got = self._ltl_on_graph(phi)
+            if got is not None:
+                return got
         props: list = []
         formula = _to_ltl(phi, props, self.predicate)
+        fly = self.fly_states if self.graph_max_states > self.fly_states else None
+        if fly is not None and fly < self.max_states and self._graph is None:
+            res = check_ltl(self.cache, formula, props, max_states=fly, deadline=self.deadline)
+            if res.holds is not None:
+                return res.holds
+            if self.deadline is not None and time.monotonic() > self.deadline:
+                raise CannotCompute(res.reason)
+            try:
+                self.graph()
+            except CannotCompute:
+                pass
+            else:
+                got = self._ltl_on_graph(phi)
+                if got is not None:
+                    return got
         res = check_ltl(self.cache, formula, props, max_states=self.max_states, deadline=self.deadline)
         if res.holds is None:
             raise CannotCompute(res.reason)
         return res.holds
+
+    def _ltl_on_graph(self, phi: c.Node) -> bool | None:
+        """Whether every path of the whole state space satisfies phi, by the product in native code; None
+        where that is not available."""
+        from cpn.checks.buchi import translate
+        from cpn.statespace import graphnative
+
+        states, offsets, dst = self.graph()
+        props: list = []
+        formula = _to_ltl(phi, props, self.vector)
+        aut = translate(("not", formula))
+        got = graphnative.ltl_accepting_cycle(len(states), offsets, dst, props, aut.moves, aut.initial, len(aut),
+                                              aut.n_acc)
+        return None if got is None else not got[0]
 
     def _ctl(self, f: c.Node) -> bool:
         from cpn.checks import ctl

@@ -262,3 +262,113 @@ def max_sum(store, fields: list[int], tables: list[list[int]]) -> int | None:
                               ffi.new("int32_t[]", [fo[f] for f in fields] or [0]),
                               ffi.new("int32_t[]", [fw[f] for f in fields] or [0]), _buf(ffi, "int64_t[]", to),
                               _buf(ffi, "int64_t[]", flat))
+
+
+# ----------------------------------------------------------------------------- CTL fixpoints
+def _pred_ok(pred_off, pred) -> bool:
+    return _csr_ok(pred_off, pred)
+
+
+def eu(n: int, pred_off: array, pred: array, phi: bytearray, psi: bytearray) -> bytearray | None:
+    """E[phi U psi] over the predecessors (`reverse`): the psi-states and the phi-states with a path
+    through phi-states to one; None where native code is unavailable."""
+    lib = library(len(pred))
+    if lib is None or not _pred_ok(pred_off, pred) or n == 0 or len(phi) < n or len(psi) < n:
+        return None
+    ffi = lib.ffi
+    out = bytearray(psi)
+    if lib.lib.gr_eu(n, _buf(ffi, "int64_t[]", pred_off), _buf(ffi, "int32_t[]", pred),
+                     ffi.from_buffer("uint8_t[]", phi), ffi.from_buffer("uint8_t[]", out)) != 0:
+        raise MemoryError("no memory for E[phi U psi]")
+    return out
+
+
+def ex(n: int, pred_off: array, pred: array, target: bytearray) -> bytearray | None:
+    """The states with an arc into a target state, or None."""
+    lib = library(len(pred))
+    if lib is None or not _pred_ok(pred_off, pred) or n == 0 or len(target) < n:
+        return None
+    ffi = lib.ffi
+    out = bytearray(n)
+    lib.lib.gr_ex(n, _buf(ffi, "int64_t[]", pred_off), _buf(ffi, "int32_t[]", pred),
+                  ffi.from_buffer("uint8_t[]", target), ffi.from_buffer("uint8_t[]", out))
+    return out
+
+
+def eg(n: int, offsets: array, dst: array, pred_off: array, pred: array, dead: bytearray,
+       phi: bytearray) -> bytearray | None:
+    """EG phi without fairness: the phi-states with a path that stays in phi forever or ends in a dead
+    phi-state; None where native code is unavailable."""
+    lib = library(len(dst))
+    if lib is None or not _csr_ok(offsets, dst) or not _pred_ok(pred_off, pred) or n == 0 \
+            or len(dead) < n or len(phi) < n:
+        return None
+    ffi = lib.ffi
+    out = bytearray(n)
+    if lib.lib.gr_eg(n, len(offsets) - 1, _buf(ffi, "int64_t[]", offsets), _buf(ffi, "int32_t[]", dst),
+                     _buf(ffi, "int64_t[]", pred_off), _buf(ffi, "int32_t[]", pred),
+                     ffi.from_buffer("uint8_t[]", dead), ffi.from_buffer("uint8_t[]", phi),
+                     ffi.from_buffer("uint8_t[]", out)) != 0:
+        raise MemoryError("no memory for EG phi")
+    return out
+
+
+def label_rows(n: int, offsets: array, labels: array, nlabels: int) -> list[bytearray] | None:
+    """Per label t < nlabels, the states (a bytearray of n) with an arc labelled t; None where native
+    code is unavailable."""
+    lib = library(len(labels))
+    if lib is None or not isinstance(offsets, array) or offsets.typecode != "q" or not _ids_ok(labels) \
+            or n == 0 or nlabels == 0:
+        return None
+    ffi = lib.ffi
+    out = bytearray(n * nlabels)
+    lib.lib.gr_label_rows(n, len(offsets) - 1, _buf(ffi, "int64_t[]", offsets), _buf(ffi, "uint8_t[]", labels),
+                          _ID_CODES[labels.typecode], nlabels, ffi.from_buffer("uint8_t[]", out))
+    return [out[t * n:(t + 1) * n] for t in range(nlabels)]
+
+
+# ----------------------------------------------------------------------------- LTL
+def ltl_accepting_cycle(n: int, offsets: array, dst: array, props: list[bytearray], moves,
+                        initial: int, nq: int, n_acc: int) -> tuple[bool, int] | None:
+    """Whether the product of the complete graph (state 0 initial, a state without arcs repeating
+    forever) with a generalised Büchi automaton has an accepting cycle, and the product states the
+    search generated; None where native code is unavailable or the product is too large.
+
+    `props[b]` is proposition b's value in every state; `moves(q, mask)` lists the automaton's moves
+    (acceptance sets, next state) from state q reading a state whose true propositions are `mask`, as
+    `cpn.checks.buchi.Automaton.moves` gives them; it is asked once per automaton state and distinct
+    mask."""
+    lib = library(len(dst))
+    if lib is None or not _csr_ok(offsets, dst) or n == 0 or len(props) > 30 or n_acc > 31 \
+            or any(len(p) < n for p in props):
+        return None
+    ffi = lib.ffi
+    flat = bytearray().join(bytes(p[:n]) for p in props) or bytearray(1)
+    mask = array("i", bytes(4 * n))
+    lib.lib.gr_masks(n, len(props), ffi.from_buffer("uint8_t[]", flat), _buf(ffi, "int32_t[]", mask))
+    distinct = distinct_ids(mask)
+    if distinct is None:
+        distinct = sorted(set(mask))
+    mtable = array("i", bytes(4 * (distinct[-1] + 1)))
+    for k, m in enumerate(distinct):
+        mtable[m] = k
+    moff, macc, mdst = array("q", [0]), array("I"), array("i")
+    for q in range(nq):
+        for m in distinct:
+            merged: dict = {}
+            for acc, r in moves(q, m):
+                merged[r] = merged.get(r, 0) | acc  # one edge per target, with every set some edge to it meets
+            for r, acc in merged.items():
+                mdst.append(r)
+                macc.append(acc)
+            moff.append(len(mdst))
+    count = ffi.new("int64_t *")
+    got = lib.lib.gr_ltl(n, len(offsets) - 1, _buf(ffi, "int64_t[]", offsets), _buf(ffi, "int32_t[]", dst),
+                         _buf(ffi, "int32_t[]", mask), _buf(ffi, "int32_t[]", mtable), len(distinct), nq,
+                         _buf(ffi, "int64_t[]", moff), _buf(ffi, "uint32_t[]", macc), _buf(ffi, "int32_t[]", mdst),
+                         initial, (1 << n_acc) - 1, count)
+    if got == -1:
+        raise MemoryError("no memory for the product with the automaton")
+    if got < 0:
+        return None
+    return bool(got), count[0]
