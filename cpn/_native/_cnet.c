@@ -242,6 +242,10 @@ typedef struct {
     int be_lock, shared;     /* the binding elements and recipes (ND_THREADS) */
     g_kept kept;
     int contexts;            /* the contexts over these tables */
+    /* timed places (the search of timed nets, one thread): per place, its timed colours (colour id,
+     * timestamp), numbered in the order first met; a timed marking's pairs are (timed colour, count) */
+    vmap *tc;                /* per place: (colour id, timestamp low, high) -> timed colour */
+    int32_t **tc_col; int64_t **tc_ts; int64_t *ntc, *tc_cap;
 } gtab;
 
 typedef struct {
@@ -252,6 +256,7 @@ typedef struct {
     int32_t *out; int64_t out_cap;  /* the entries of a result */
     int err;                 /* 1: an evaluation the Python engine must do (or report); 2: no memory */
     int depth;               /* calls of user functions in progress */
+    int32_t **vw; int64_t *vw_cap;  /* per place: the untimed view of a timed marking (g_view) */
 } gctx;
 
 static int g_grow(void **b, int64_t *cap, int64_t need, size_t size) {
@@ -268,6 +273,9 @@ static gctx *g_context(gtab *tb) {
     gctx *c = (gctx *)calloc(1, sizeof(gctx));
     if (!c) return NULL;
     c->tb = tb; c->mk = tb->mk; c->dl = tb->dl;
+    c->vw = (int32_t **)calloc((size_t)tb->P + 1, sizeof(int32_t *));
+    c->vw_cap = (int64_t *)calloc((size_t)tb->P + 1, sizeof(int64_t));
+    if (!c->vw || !c->vw_cap) { free(c->vw); free(c->vw_cap); free(c); return NULL; }
     tb->contexts++;
     return c;
 }
@@ -275,6 +283,10 @@ static gctx *g_context(gtab *tb) {
 static void g_tab_free(gtab *tb) {
     for (int p = 0; p < tb->P; p++) { ms_free(&tb->mk[p]); ms_free(&tb->dl[p]); }
     for (int t = 0; t < tb->T; t++) free(tb->be_of[t]);
+    if (tb->tc) {
+        for (int p = 0; p < tb->P; p++) { if (tb->tc[p].keys) vm_free(&tb->tc[p]); free(tb->tc_col[p]); free(tb->tc_ts[p]); }
+        free(tb->tc); free(tb->tc_col); free(tb->tc_ts); free(tb->ntc); free(tb->tc_cap);
+    }
     free(tb->mk); free(tb->dl); free(tb->be_of); free(tb->be_size); free(tb->be_t); free(tb->be_key);
     free(tb->rcp); free(tb->pool);
     g_keep_free(&tb->kept);
@@ -301,7 +313,9 @@ static gctx *g_new(int P, int T, const int64_t *be_size) {
 void gen_free(void *g) {
     gctx *c = (gctx *)g;
     if (!c) return;
+    for (int p = 0; p < c->tb->P; p++) free(c->vw[p]);
     if (--c->tb->contexts == 0) g_tab_free(c->tb);
+    free(c->vw); free(c->vw_cap);
     free(c->buf); free(c->bind); free(c->out); free(c);
 }
 
@@ -489,6 +503,156 @@ static int64_t g_mod(gctx *c, int64_t a, int64_t b) {
 
 static int64_t g_fail(gctx *c) { c->err = 1; return 0; }
 
+
+/* ---------------------------------------------------------------- timed places (the search of timed nets) */
+/* Set up the timed colours' tables (once): 0, or -1 without memory. */
+static int g_timed_init(gtab *tb) {
+    if (tb->tc) return 0;
+    int P = tb->P;
+    tb->tc = (vmap *)calloc((size_t)P + 1, sizeof(vmap));
+    tb->tc_col = (int32_t **)calloc((size_t)P + 1, sizeof(int32_t *));
+    tb->tc_ts = (int64_t **)calloc((size_t)P + 1, sizeof(int64_t *));
+    tb->ntc = (int64_t *)calloc((size_t)P + 1, sizeof(int64_t));
+    tb->tc_cap = (int64_t *)calloc((size_t)P + 1, sizeof(int64_t));
+    if (!tb->tc || !tb->tc_col || !tb->tc_ts || !tb->ntc || !tb->tc_cap) return -1;
+    for (int p = 0; p < P; p++) if (vm_init(&tb->tc[p], 3) != 0) return -1;
+    return 0;
+}
+
+/* The timed colour (colour id `col`, timestamp ts) of place p (a new one if it is new); -1 if memory runs out. */
+static int64_t g_tid(gctx *c, int p, int64_t col, int64_t ts) {
+    gtab *tb = c->tb;
+    if (!tb->tc && g_timed_init(tb) != 0) { c->err = 2; return -1; }
+    uint32_t k[3] = {(uint32_t)col, (uint32_t)(uint64_t)ts, (uint32_t)((uint64_t)ts >> 32)};
+    int64_t id = vm_get(&tb->tc[p], k);
+    if (id >= 0) return id;
+    id = tb->ntc[p];
+    if (id >= tb->tc_cap[p]) {  /* both arrays grow to the same capacity */
+        int64_t cap = tb->tc_cap[p] ? 2 * tb->tc_cap[p] : 64;
+        int32_t *ca = (int32_t *)realloc(tb->tc_col[p], (size_t)cap * 4);
+        if (!ca) { c->err = 2; return -1; }
+        tb->tc_col[p] = ca;
+        int64_t *ta = (int64_t *)realloc(tb->tc_ts[p], (size_t)cap * 8);
+        if (!ta) { c->err = 2; return -1; }
+        tb->tc_ts[p] = ta;
+        tb->tc_cap[p] = cap;
+    }
+    tb->tc_col[p][id] = (int32_t)col; tb->tc_ts[p][id] = ts;
+    tb->ntc[p] = id + 1;
+    if (vm_put(&tb->tc[p], k, id) != 0) { c->err = 2; return -1; }
+    return id;
+}
+
+static inline int32_t g_tcol(const gctx *c, int p, int64_t tid) { return c->tb->tc_col[p][tid]; }
+static inline int64_t g_tts(const gctx *c, int p, int64_t tid) { return c->tb->tc_ts[p][tid]; }
+
+/* The untimed view of timed marking `id` of place p: its (colour id, count) pairs in the order the colours
+ * first occur (the engine's `_untimed`), in a buffer of the context's own for p; *n their number. */
+static const int32_t *g_view(gctx *c, int p, int64_t id, int32_t *n) {
+    int32_t m = ms_len(&c->mk[p], id);
+    const int32_t *pr = ms_pairs(&c->mk[p], id);
+    *n = 0;
+    if (g_grow((void **)&c->vw[p], &c->vw_cap[p], 2 * (int64_t)m + 2, 4) != 0) { c->err = 2; return c->vw[p]; }
+    int32_t *b = c->vw[p], k = 0;
+    for (int32_t i = 0; i < m; i++) k = g_acc(b, k, g_tcol(c, p, pr[2 * i]), pr[2 * i + 1]);
+    *n = k;
+    return b;
+}
+
+/* The earliest time the tokens `need` ((colour id, count) pairs) are all ready in timed marking `id` of
+ * place p (the engine's `ready_time`): for each colour, the timestamp of its need-th earliest token. */
+static int64_t g_ready(gctx *c, int p, int64_t id, const int32_t *need, int32_t nn) {
+    int32_t m = ms_len(&c->mk[p], id);
+    const int32_t *pr = ms_pairs(&c->mk[p], id);
+    int64_t ready = INT64_MIN;
+    for (int32_t j = 0; j < nn; j++) {
+        int32_t col = need[2 * j];
+        int64_t want = need[2 * j + 1], prev = INT64_MIN;
+        if (want <= 0) continue;
+        for (;;) {  /* the timestamps of the colour in increasing order, with their counts */
+            int64_t best = INT64_MAX, cnt = 0;
+            for (int32_t i = 0; i < m; i++) {
+                if (g_tcol(c, p, pr[2 * i]) != col) continue;
+                int64_t ts = g_tts(c, p, pr[2 * i]);
+                if (ts > prev && ts < best) { best = ts; cnt = pr[2 * i + 1]; }
+            }
+            if (best == INT64_MAX && cnt == 0) { c->err = 1; return 0; }
+            want -= cnt;
+            prev = best;
+            if (want <= 0) break;
+        }
+        if (prev > ready) ready = prev;
+    }
+    return ready;
+}
+
+/* The marking of place p after a binding occurring at time f (the engine's `_writes` for a timed place or
+ * a place a reset arc empties): marking `cur` less the tokens `cons` ((colour id, count) pairs; from a
+ * timed place, for each colour the tokens with the largest timestamps not after f), emptied if `reset`,
+ * plus the tokens `prod` ((colour id, count, timestamp) triples; a timestamp only on a timed place),
+ * interned. */
+static int64_t g_rewrite(gctx *c, int p, int timed, int64_t cur, const int32_t *cons, int32_t nc, int reset,
+                         const int64_t *prod, int32_t np, int64_t f) {
+    mstab *mk = &c->mk[p];
+    int32_t n = ms_len(mk, cur);
+    if (g_grow((void **)&c->buf, &c->buf_cap, 2 * ((int64_t)n + np) + 2, 4)) { c->err = 2; return -1; }
+    int32_t *b = c->buf;
+    memcpy(b, ms_pairs(mk, cur), 8 * (size_t)n);
+    for (int32_t j = 0; j < nc; j++) {
+        int32_t col = cons[2 * j];
+        int64_t want = cons[2 * j + 1];
+        while (want > 0) {
+            int32_t at = -1;
+            if (timed) {
+                int64_t best = INT64_MIN;
+                for (int32_t i = 0; i < n; i++) {
+                    if (g_tcol(c, p, b[2 * i]) != col) continue;
+                    int64_t ts = g_tts(c, p, b[2 * i]);
+                    if (ts <= f && (at < 0 || ts > best)) { best = ts; at = i; }
+                }
+            } else {
+                for (int32_t i = 0; i < n; i++) if (b[2 * i] == col) { at = i; break; }
+            }
+            if (at < 0) { c->err = 1; return -1; }
+            int64_t k = b[2 * at + 1], take = k < want ? k : want;
+            want -= take;
+            if (k == take) { memmove(b + 2 * at, b + 2 * at + 2, 8 * (size_t)(n - at - 1)); n--; }
+            else b[2 * at + 1] = (int32_t)(k - take);
+        }
+    }
+    if (reset) n = 0;
+    for (int32_t j = 0; j < np; j++) {
+        int64_t k = prod[3 * j + 1];
+        if (!k) continue;
+        int64_t col = timed ? g_tid(c, p, prod[3 * j], prod[3 * j + 2]) : prod[3 * j];
+        if (col < 0) return -1;
+        b = c->buf;
+        n = g_acc(b, n, col, k);
+    }
+    int64_t id = ms_intern(mk, c->buf, n);
+    if (id < 0) c->err = 2;
+    return id;
+}
+
+/* Timed marking `id` of place p with every timestamp moved back by f (none below 0), interned (the
+ * engine's `_shift`). */
+static int64_t g_shift(gctx *c, int p, int64_t id, int64_t f) {
+    mstab *mk = &c->mk[p];
+    int32_t n = ms_len(mk, id);
+    if (g_grow((void **)&c->buf, &c->buf_cap, 2 * (int64_t)n + 2, 4)) { c->err = 2; return -1; }
+    int32_t k = 0;
+    for (int32_t i = 0; i < n; i++) {
+        const int32_t *pr = ms_pairs(mk, id);
+        int64_t ts = g_tts(c, p, pr[2 * i]) - f;
+        int64_t t2 = g_tid(c, p, g_tcol(c, p, pr[2 * i]), ts > 0 ? ts : 0);
+        if (t2 < 0) return -1;
+        k = g_acc(c->buf, k, t2, pr[2 * i + 1]);
+    }
+    int64_t r = ms_intern(mk, c->buf, k);
+    if (r < 0) c->err = 2;
+    return r;
+}
+
 /* ---------------------------------------------------------------- exchange with the Python engine */
 int64_t gen_count(void *g, int what, int p) {
     gctx *c = (gctx *)g;
@@ -540,4 +704,21 @@ int64_t gen_be_put(void *g, int t, int64_t key) {
     }
     int64_t be = g_be(c, t, key, &fresh);
     return c->err ? -1 : be;
+}
+
+/* Place p's timed colour (colour id, timestamp), interned; -1 without memory. */
+int64_t gen_tid_put(void *g, int p, int64_t col, int64_t ts) {
+    gctx *c = (gctx *)g;
+    c->err = 0;
+    int64_t id = g_tid(c, p, col, ts);
+    return c->err ? -1 : id;
+}
+
+/* Place p's timed colours: their number, and their colour ids and timestamps in *col and *ts. */
+int64_t gen_tid_table(void *g, int p, int32_t **col, int64_t **ts) {
+    gctx *c = (gctx *)g;
+    gtab *tb = c->tb;
+    if (!tb->tc) { *col = NULL; *ts = NULL; return 0; }
+    *col = tb->tc_col[p]; *ts = tb->tc_ts[p];
+    return tb->ntc[p];
 }

@@ -158,11 +158,121 @@ int nt_put_shifts(nt_search *t, const uint32_t *buf, int64_t n) {
     return 0;
 }
 
+#ifdef ND_GENERATED
+/* compiled after this file (cpn/engine/ccodegen.py, `timed_native_code`): group k's ready list for the
+ * read ids `key`, and its effects at time f in state s (each entry's written places' new ids and shifted
+ * markings made right after it, in the engine's order), put into the caches; 0, -1: left to the caller
+ * (Python), -2: no memory */
+static int gen_ready(void *g, nt_search *t, int k, const uint32_t *key);
+static int gen_effect(void *g, nt_search *t, int k, const uint32_t *key, int64_t f, const uint32_t *s);
+static int64_t gen_shift(void *g, uint32_t p, uint32_t id, uint32_t f);
+#endif
+
+/* Successor u of state s by the entry e of group g occurring at time f: the read places' new ids, the
+ * written places' (d->adds), the markings shifted by f under time condensation (t->shifts); with the
+ * generated C, a value not cached yet is computed and cached. 0, -1: a cache misses a value, -2: no memory. */
+static int nt_succ(nt_search *t, int g, const uint32_t *s, int64_t f, const int32_t *e, uint32_t *u) {
+    nd_search *d = t->d;
+    int K = d->K, nr = d->nread[g], nw = d->nwrite[g];
+    memcpy(u, s, (size_t)K * 4);
+    for (int i = 0; i < nr; i++) u[d->read[g][i]] = (uint32_t)e[1 + i];
+    for (int w = 0; w < nw; w++) {
+        uint32_t delta = (uint32_t)e[1 + nr + w];
+        if (delta == ND_NONE) continue;
+        int p = d->write[g][w];
+        uint32_t k3[3] = {(uint32_t)p, delta, u[p]};
+        int64_t v = vm_get(&d->adds, k3);
+#ifdef ND_GENERATED
+        if (v < 0 && d->gen) {
+            v = gen_add(d->gen, k3[0], k3[1], k3[2]);
+            if (v >= 0 && (v > (int64_t)0xFFFFFFFFu || vm_put(&d->adds, k3, v) != 0)) return -2;
+        }
+#endif
+        if (v < 0) return -1;
+        u[p] = (uint32_t)v;
+    }
+    if (t->condense && f) {
+        for (int i = 0; i < t->ntp; i++) {
+            int p = t->tplaces[i];
+            uint32_t k3[3] = {(uint32_t)p, u[p], (uint32_t)f};
+            int64_t v = vm_get(&t->shifts, k3);
+#ifdef ND_GENERATED
+            if (v < 0 && d->gen) {
+                v = gen_shift(d->gen, k3[0], k3[1], k3[2]);
+                if (v >= 0 && vm_put(&t->shifts, k3, v) != 0) return -2;
+            }
+#endif
+            if (v < 0) return -1;
+            u[p] = (uint32_t)v;
+        }
+    }
+    if (t->clock) u[K - 1] = t->condense ? 0 : (uint32_t)f;
+    return 0;
+}
+
+#ifdef ND_GENERATED
+/* For the generated C: the successor of state s by entry e of group g at time f, its values cached (the
+ * successor itself into the scratch state d->t). */
+static int nt_settle(nt_search *t, int g, const uint32_t *s, int64_t f, const int32_t *e) {
+    return nt_succ(t, g, s, f, e, t->d->t);
+}
+#endif
+
+static int64_t nt_select(nt_search *t, int64_t m);
+
+/* The successors of state s of an untimed net (with priorities) into t->succ, t->sbe and t->sprio, each
+ * group's right after its binding elements, as the engine's order goes (`TimedGroups._untimed`): their
+ * number, -1 if a cache misses a value, -2 if memory runs out. */
+static int64_t nt_expand_untimed(nt_search *t, const uint32_t *s) {
+    nd_search *d = t->d;
+    int K = d->K, G = d->G;
+    int64_t m = 0;
+    int stuck = 0;
+    t->nmiss = 0;
+    for (int g = 0; g < G; g++) {
+        int nr = d->nread[g], nw = d->nwrite[g];
+        for (int i = 0; i < nr; i++) t->ekey[i] = s[d->read[g][i]];
+        int64_t o = vm_get(&t->ready[g], t->ekey);
+#ifdef ND_GENERATED
+        if (o < 0 && d->gen && !t->nmiss && !stuck) {
+            int rc = gen_ready(d->gen, t, g, t->ekey);
+            if (rc == -2) return -2;
+            for (int i = 0; i < nr; i++) t->ekey[i] = s[d->read[g][i]];
+            if (rc == 0) o = vm_get(&t->ready[g], t->ekey);
+        }
+#endif
+        if (o < 0) { t->miss[t->nmiss++] = (uint32_t)g; continue; }
+        if (t->nmiss || stuck) continue;  /* the engine expands the state: the ready lists it misses */
+        int64_t cnt = t->rdy[o];
+        if (!cnt) continue;
+        t->ekey[nr] = 0;
+        int64_t eo = vm_get(&t->eff[g], t->ekey);
+        if (eo < 0) { stuck = 1; continue; }
+        int64_t ec = d->res[eo];
+        for (int64_t k = 0; k < ec && !stuck; k++) {
+            if (grow((void **)&t->succ, &t->succ_cap, (m + 1) * K, 4) != 0
+                || grow((void **)&t->sbe, &t->sbe_cap, m + 1, 4) != 0
+                || grow((void **)&t->sprio, &t->sprio_cap, m + 1, 8) != 0) return -2;
+            const int32_t *e = d->res + eo + 1 + k * (1 + nr + nw);
+            int rc = nt_succ(t, g, s, 0, e, t->succ + m * K);
+            if (rc == -2) return rc;
+            if (rc) { stuck = 1; break; }
+            e = d->res + eo + 1 + k * (1 + nr + nw);
+            t->sbe[m] = e[0];
+            t->sprio[m] = k < cnt ? t->rdy[o + 2 + 2 * k] : 0;
+            m++;
+        }
+    }
+    if (t->nmiss || stuck) return -1;
+    return nt_select(t, m);
+}
+
 /* The successors of state s into t->succ (K fields each), t->sbe and t->sprio: their number, -1 if a
  * cache misses a value, -2 if memory runs out. */
 static int64_t nt_expand(nt_search *t, const uint32_t *s) {
     nd_search *d = t->d;
     int K = d->K, G = d->G;
+    if (!t->clock) return nt_expand_untimed(t, s);
     int64_t clock = t->clock ? (int64_t)s[K - 1] : 0;
     int any = 0, now = 0;
     int64_t minr = INT64_MAX;
@@ -171,6 +281,14 @@ static int64_t nt_expand(nt_search *t, const uint32_t *s) {
         int nr = d->nread[g];
         for (int i = 0; i < nr; i++) t->ekey[i] = s[d->read[g][i]];
         int64_t o = vm_get(&t->ready[g], t->ekey);
+#ifdef ND_GENERATED
+        if (o < 0 && d->gen && !t->nmiss) {  /* in the groups' order, as the engine: none after a miss */
+            int rc = gen_ready(d->gen, t, g, t->ekey);
+            if (rc == -2) return -2;
+            for (int i = 0; i < nr; i++) t->ekey[i] = s[d->read[g][i]];
+            if (rc == 0) o = vm_get(&t->ready[g], t->ekey);
+        }
+#endif
         if (o < 0) { t->miss[t->nmiss++] = (uint32_t)g; continue; }
         if (t->nmiss) continue;
         t->roff[g] = o;
@@ -198,44 +316,41 @@ static int64_t nt_expand(nt_search *t, const uint32_t *s) {
         for (int i = 0; i < nr; i++) t->ekey[i] = s[d->read[g][i]];
         t->ekey[nr] = t->timed_g[g] ? (uint32_t)f : 0;
         int64_t eo = vm_get(&t->eff[g], t->ekey);
+#ifdef ND_GENERATED
+        if (eo < 0 && d->gen) {
+            int rc = gen_effect(d->gen, t, g, t->ekey, f, s);
+            if (rc == -2) return -2;
+            for (int i = 0; i < nr; i++) t->ekey[i] = s[d->read[g][i]];
+            t->ekey[nr] = t->timed_g[g] ? (uint32_t)f : 0;
+            if (rc == 0) eo = vm_get(&t->eff[g], t->ekey);
+        }
+#endif
         if (eo < 0) return -1;
         int64_t ec = d->res[eo];
-        const int32_t *e = d->res + eo + 1;
         int64_t j = 0;
-        for (int64_t k = 0; k < ec; k++, e += 1 + nr + nw) {
+        for (int64_t k = 0; k < ec; k++) {
+            const int32_t *e = d->res + eo + 1 + k * (1 + nr + nw);  /* (d->res may grow on the way) */
             while (j < cnt && rp[2 * j] > f) j++;
             int64_t prio = j < cnt ? rp[2 * j + 1] : 0;
             j++;
             if (grow((void **)&t->succ, &t->succ_cap, (m + 1) * K, 4) != 0
                 || grow((void **)&t->sbe, &t->sbe_cap, m + 1, 4) != 0
                 || grow((void **)&t->sprio, &t->sprio_cap, m + 1, 8) != 0) return -2;
-            uint32_t *u = t->succ + m * K;
-            memcpy(u, s, (size_t)K * 4);
-            for (int i = 0; i < nr; i++) u[d->read[g][i]] = (uint32_t)e[1 + i];
-            for (int w = 0; w < nw; w++) {
-                uint32_t delta = (uint32_t)e[1 + nr + w];
-                if (delta == ND_NONE) continue;
-                int p = d->write[g][w];
-                uint32_t k3[3] = {(uint32_t)p, delta, u[p]};
-                int64_t v = vm_get(&d->adds, k3);
-                if (v < 0) return -1;
-                u[p] = (uint32_t)v;
-            }
-            if (t->condense && f) {
-                for (int i = 0; i < t->ntp; i++) {
-                    int p = t->tplaces[i];
-                    uint32_t k3[3] = {(uint32_t)p, u[p], (uint32_t)f};
-                    int64_t v = vm_get(&t->shifts, k3);
-                    if (v < 0) return -1;
-                    u[p] = (uint32_t)v;
-                }
-            }
-            if (t->clock) u[K - 1] = t->condense ? 0 : (uint32_t)f;
+            int rc = nt_succ(t, g, s, f, e, t->succ + m * K);
+            if (rc) return rc;
+            e = d->res + eo + 1 + k * (1 + nr + nw);
             t->sbe[m] = e[0];
             t->sprio[m] = prio;
             m++;
         }
+        (void)rp;
     }
+    return nt_select(t, m);
+}
+
+/* Keep the successors of the smallest priority (with priorities): their number. */
+static int64_t nt_select(nt_search *t, int64_t m) {
+    int K = t->d->K;
     if (t->prio && m > 1) {
         int64_t best = t->sprio[0];
         for (int64_t i = 1; i < m; i++) if (t->sprio[i] < best) best = t->sprio[i];

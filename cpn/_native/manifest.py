@@ -75,6 +75,8 @@ LIBRARIES: dict[str, Library] = {
     "graph": Library(("_graph",)),                                      # cpn.statespace.graphnative
     "search": Library(("_packed", "_search")),                          # cpn.statespace.native
     "search-timed": Library(("_packed", "_search", "_timed")),          # cpn.statespace.nativetimed
+    "search-timed-net": Library(("_packed", "_search", "_timed", "_cnet"), ("ND_GENERATED",),
+                                generated=True),                        # cpn.statespace.nativetimed
     "search-net-threads": Library(("_packed", "_search", "_threads", "_cnet"), _THREADED, ("-pthread",),
                                   generated=True),                      # cpn.statespace.threads
 }

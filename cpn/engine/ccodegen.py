@@ -386,6 +386,7 @@ class TransitionC:
             self.var_lay.append(lay)
             self.vars[v] = S(f"v{i}") if lay.shape is None else lay.decode(f"v{i}")
         self.ex = ExprC(mod, self.vars, t.params)
+        self.views: set[int] = set()  # timed places read: bound on their untimed views
         self.lines: list[str] = []
         self.depth = 1
         self.size = 1
@@ -442,6 +443,10 @@ class TransitionC:
         return self.pl[self.read[pi]].decode(code)
 
     def generate(self) -> str:
+        return self.bind_source() + "\n" + self.recipe() + "\n" + self.group()
+
+    def bind_source(self) -> str:
+        """`bind<k>(c, key)`: the enabled bindings on the read places' markings `key` into `c->bind`."""
         t = self.t
         self.in_terms = plan.input_terms(t, self.read)
         for it in self.in_terms:
@@ -452,9 +457,15 @@ class TransitionC:
         nv = len(t.variables)
         head = [f"static int bind{self.k}(gctx *c, const uint32_t *key) {{"]
         for i, p in enumerate(self.read):
-            head.append(f"    const int32_t *M{i} = ms_pairs(&c->mk[{p}], key[{i}]);")
-            head.append(f"    const int32_t N{i} = ms_len(&c->mk[{p}], key[{i}]);")
+            if p in self.views:  # a timed place: bound on its untimed view, as the engine binds
+                head.append(f"    int32_t N{i} = 0;")
+                head.append(f"    const int32_t *M{i} = g_view(c, {p}, key[{i}], &N{i});")
+            else:
+                head.append(f"    const int32_t *M{i} = ms_pairs(&c->mk[{p}], key[{i}]);")
+                head.append(f"    const int32_t N{i} = ms_len(&c->mk[{p}], key[{i}]);")
             head.append(f"    (void)M{i}; (void)N{i};")
+        if self.views:
+            head.append("    if (c->err) return -1;")
         for i in range(nv):
             head.append(f"    int64_t v{i} = 0;")
         head.append("    c->nb = 0;")
@@ -500,7 +511,7 @@ class TransitionC:
         self.lines.append("}")
         body = "\n".join(head + self.lines)
         self.lines = []
-        return body + "\n" + self.recipe() + "\n" + self.group()
+        return body
 
     def match_bind(self, e, src, bound: set) -> None:
         """A guard binder `pattern = e`: as `match`, but a value outside a variable's colour set only
@@ -766,3 +777,368 @@ def _size(lays) -> int:
     for lay in lays:
         n *= lay.size
     return n
+
+
+# ---------------------------------------------------------------------------- timed nets
+def timed_out_terms(e, delays: tuple = (), cond=None) -> list[tuple]:
+    """An output inscription's terms with their `@+` delays (outermost first), as `codegen.out_terms`
+    flattens it: (Term, delay expressions)."""
+    cond = cond or []
+    if isinstance(e, A.BinOp) and e.op in ("++", "+++"):
+        return timed_out_terms(e.left, delays, cond) + timed_out_terms(e.right, delays, cond)
+    if isinstance(e, A.BinOp) and e.op == "@+":
+        return timed_out_terms(e.left, (*delays, e.right), cond)
+    if isinstance(e, A.If):
+        return timed_out_terms(e.then, delays, cond + [(e.cond, True)]) \
+            + timed_out_terms(e.else_, delays, cond + [(e.cond, False)])
+    got = plan.terms(e, cond)
+    if any(tm.opaque is not None for tm in got):
+        raise NotNative("an output arc's inscription is a multiset expression")
+    return [(tm, delays) for tm in got]
+
+
+class TimedTransitionC(TransitionC):
+    """The functions of one transition of a timed net (or of a net with priorities) for the native timed
+    search (`_timed.c`), as `CompiledEngine._timed_miss` and `_writes` compute them: `rdy<k>` its binding
+    elements' ready times and priorities for the read ids (interning the binding elements; for a
+    transition that touches no timed place, its effects too), `eff<k>` the effects of those ready at time
+    f, each followed by its successor's written and shifted markings (`nt_settle`)."""
+
+    def __init__(self, mod, t, k, read, writes, place_layouts, timed_places: set, timed: bool, clock: bool):
+        super().__init__(mod, t, k, read, writes, place_layouts)
+        self.timed_places = timed_places
+        self.timed = timed  # its effects depend on the occurrence time
+        self.clock = bool(timed_places) or clock  # the net is timed (else: an untimed net with priorities)
+        self.views = {p for p in read if p in timed_places}
+        self.resets = {a.place for a in t.arcs if a.kind.empties}
+        if any(p in self.resets for p in writes):
+            raise NotNative("a reset arc on a place it does not read")
+
+    def generate(self) -> str:
+        t = self.t
+        for it in plan.input_terms(t, self.read):
+            if it.term.opaque is not None:
+                raise NotNative("an input arc's inscription is a multiset expression")
+        return "\n".join([self.bind_source(), self.one(), self.ready_fn(), self.effect_fn()])
+
+    def one(self) -> str:
+        """`one<k>(c, v, key, mode, f, e, ready, prio)`: one binding's evaluation (mode 0: its values are
+        checked), its ready time and priority (mode 1), and its entry at time f into e (mode 2)."""
+        t = self.t
+        self.depth = 1
+        self.lines = [f"static int one{self.k}(gctx *c, const int64_t *v, const uint32_t *key, int mode, int64_t f, "
+                      "int32_t *e, int64_t *ready, int64_t *prio) {",
+                      "    (void)key; (void)f; (void)e; (void)mode;"]
+        for i in range(len(t.variables)):
+            self.emit(f"const int64_t v{i} = v[{i}]; (void)v{i};")
+        consumed: dict[int, list] = {}
+        for it in plan.input_terms(t, self.read):
+            consumed.setdefault(it.place, []).append(it.term)
+        cons: dict[int, tuple[str, str]] = {}
+        for i, p in enumerate(self.read):
+            terms = consumed.get(i, [])
+            buf, cnt = self.mod.fresh("cb"), self.mod.fresh("cn")
+            self.emit(f"int32_t {buf}[{2 * len(terms) + 2}]; int32_t {cnt} = 0; (void){buf};")
+            for tm in terms:
+                self.accumulate(tm, self.pl[p], buf, cnt, "FAIL")
+            cons[i] = (buf, cnt)
+        out_terms: dict[int, list] = {}
+        for a in t.arcs:
+            if a.kind.produces and a.expr is not None:
+                got = timed_out_terms(a.expr)
+                if got:
+                    out_terms.setdefault(a.place, []).extend(got)
+        prod: dict[int, tuple[str, str]] = {}
+        for p, terms in out_terms.items():
+            buf, cnt = self.mod.fresh("pb"), self.mod.fresh("pn")
+            self.emit(f"int64_t {buf}[{3 * len(terms) + 3}]; int32_t {cnt} = 0; (void){buf};")
+            prod[p] = (buf, cnt)
+            for tm, delays in terms:
+                self.produce(tm, delays, self.pl[p], buf, cnt)
+        td = "0"
+        if t.delay is not None:
+            self.emit(f"const int64_t td = {self.ex.scalar(t.delay)};")
+            td = "td"
+        self.emit(f"*prio = {'1000' if t.priority is None else self.ex.scalar(t.priority)};")
+        self.emit("if (c->err || mode == 0) goto done;")
+        self.emit("int64_t r = INT64_MIN;")
+        for i, p in enumerate(self.read):
+            if p in self.timed_places and consumed.get(i):
+                buf, cnt = cons[i]
+                self.emit(f"if ({cnt}) {{ int64_t q = g_ready(c, {p}, key[{i}], {buf}, {cnt}); if (q > r) r = q; }}")
+        self.emit("*ready = r;")
+        self.emit("if (c->err || mode == 1) goto done;")
+        nr = len(self.read)
+        if not self.clock:
+            self.recipe_writes(cons, prod, out_terms)
+            self.lines.append("done:")
+            self.lines.append("    return c->err ? -1 : 0;")
+            self.lines.append("}")
+            out = "\n".join(self.lines)
+            self.lines = []
+            return out
+        self.emit(f"const int64_t base = g_add(c, f, {td if self.timed else '0'}); (void)base;")
+        for i, p in enumerate(self.read):
+            buf, cnt = cons[i]
+            timed = p in self.timed_places
+            if not timed and p not in self.resets:
+                self.emit(f"{{ int64_t nid = key[{i}];")
+                self.emit(f"  if ({cnt}) {{ int64_t sd = g_delta(c, {p}, {buf}, {cnt}); if (c->err) goto done;")
+                self.emit(f"    nid = g_apply(c, {p}, nid, sd, -1); if (c->err) goto done; }}")
+                if p in prod:
+                    pb, pn = prod[p]
+                    self.emit(f"  {{ int32_t ab[{2 * len(out_terms[p]) + 2}]; int32_t an = 0;")
+                    self.emit(f"    for (int32_t j = 0; j < {pn}; j++) if ({pb}[3 * j + 1]) "
+                              f"an = g_acc(ab, an, {pb}[3 * j], {pb}[3 * j + 1]);")
+                    self.emit(f"    if (an) {{ int64_t ad = g_delta(c, {p}, ab, an); if (c->err) goto done;")
+                    self.emit(f"      nid = g_apply(c, {p}, nid, ad, 1); if (c->err) goto done; }} }}")
+                self.emit(f"  e[{1 + i}] = (int32_t)nid; }}")
+                continue
+            if p not in prod and p not in self.resets:
+                self.emit(f"if (!{cnt}) e[{1 + i}] = (int32_t)key[{i}]; else {{")
+            else:
+                self.emit("{")
+            pb, pn = prod.get(p, ("NULL", "0"))
+            if timed and p in prod:
+                self.emit(f"  for (int32_t j = 0; j < {pn}; j++) {pb}[3 * j + 2] = g_add(c, base, {pb}[3 * j + 2]);")
+            self.emit(f"  int64_t nid = g_rewrite(c, {p}, {1 if timed else 0}, key[{i}], {buf}, {cnt}, "
+                      f"{1 if p in self.resets else 0}, {pb}, {pn}, f);")
+            self.emit(f"  if (c->err) goto done; e[{1 + i}] = (int32_t)nid; }}")
+        for w, p in enumerate(self.writes):
+            if p not in prod:
+                self.emit(f"e[{1 + nr + w}] = -1;")
+                continue
+            pb, pn = prod[p]
+            timed = p in self.timed_places
+            self.emit(f"{{ int32_t ab[{2 * len(out_terms[p]) + 2}]; int32_t an = 0;")
+            self.emit(f"  for (int32_t j = 0; j < {pn}; j++) if ({pb}[3 * j + 1]) {{")
+            if timed:
+                self.emit(f"    int64_t col = g_tid(c, {p}, {pb}[3 * j], g_add(c, base, {pb}[3 * j + 2]));")
+                self.emit("    if (c->err) goto done;")
+            else:
+                self.emit(f"    int64_t col = {pb}[3 * j];")
+            self.emit(f"    an = g_acc(ab, an, col, {pb}[3 * j + 1]); }}")
+            self.emit(f"  e[{1 + nr + w}] = an ? (int32_t)g_delta(c, {p}, ab, an) : -1; if (c->err) goto done; }}")
+        self.lines.append("done:")
+        self.lines.append("    return c->err ? -1 : 0;")
+        self.lines.append("}")
+        out = "\n".join(self.lines)
+        self.lines = []
+        return out
+
+    def recipe_writes(self, cons: dict, prod: dict, out_terms: dict) -> None:
+        """An entry of an untimed net's binding (with priorities), as `CompiledEngine._miss` and `_recipe`
+        make it: every delta first (per read place the consumed then the produced, then the written
+        places'), then the read places' new ids."""
+        nr = len(self.read)
+        agg: dict[int, str] = {}
+        for p, (pb, pn) in prod.items():
+            ab, an = self.mod.fresh("ab"), self.mod.fresh("an")
+            self.emit(f"int32_t {ab}[{2 * len(out_terms[p]) + 2}]; int32_t {an} = 0;")
+            self.emit(f"for (int32_t j = 0; j < {pn}; j++) if ({pb}[3 * j + 1]) "
+                      f"{an} = g_acc({ab}, {an}, {pb}[3 * j], {pb}[3 * j + 1]);")
+            agg[p] = (ab, an)
+        for i, p in enumerate(self.read):
+            buf, cnt = cons[i]
+            self.emit(f"int64_t sd{i} = {cnt} ? g_delta(c, {p}, {buf}, {cnt}) : -1; (void)sd{i};")
+            if p in agg:
+                ab, an = agg[p]
+                self.emit(f"int64_t ad{i} = {an} ? g_delta(c, {p}, {ab}, {an}) : -1; (void)ad{i};")
+            else:
+                self.emit(f"int64_t ad{i} = -1; (void)ad{i};")
+        for w, p in enumerate(self.writes):
+            if p in agg:
+                ab, an = agg[p]
+                self.emit(f"e[{1 + nr + w}] = {an} ? (int32_t)g_delta(c, {p}, {ab}, {an}) : -1;")
+            else:
+                self.emit(f"e[{1 + nr + w}] = -1;")
+        self.emit("if (c->err) goto done;")
+        for i, p in enumerate(self.read):
+            reset = p in self.resets
+            self.emit(f"{{ int64_t nid = {'0' if reset else f'key[{i}]'};")
+            if not reset:
+                self.emit(f"  if (sd{i} >= 0) {{ nid = g_apply(c, {p}, nid, sd{i}, -1); if (c->err) goto done; }}")
+            self.emit(f"  if (ad{i} >= 0) {{ nid = g_apply(c, {p}, nid, ad{i}, 1); if (c->err) goto done; }}")
+            self.emit(f"  e[{1 + i}] = (int32_t)nid; }}")
+
+    def produce(self, term, delays, lay, buf: str, cnt: str) -> None:
+        """One output term's (colour id, count, delay) into buf (every value checked, as `_check_tokens`)."""
+        opened = 0
+        for ce, pol in term.cond:
+            self.open(f"if ({'' if pol else '!'}({self.ex.scalar(ce)})) {{")
+            opened += 1
+        self.emit(f"{{ const int64_t n = {'1' if term.coef is None else self.ex.scalar(term.coef)};")
+        self.emit("  if (n < 0) FAIL;")
+        self.emit(f"  const int64_t col = {self.mod.encode(lay, self.ex.cx(term.value))};")
+        self.emit("  if (col < 0) FAIL;")
+        dl = "0"
+        for d in delays:
+            dl = f"g_add(c, {dl}, {self.ex.scalar(d)})"
+        self.emit(f"  {buf}[3 * {cnt}] = col; {buf}[3 * {cnt} + 1] = n; {buf}[3 * {cnt} + 2] = {dl}; {cnt}++; }}")
+        for _ in range(opened):
+            self.depth -= 1
+            self.emit("}")
+
+    def _key_lines(self, pad: str) -> list[str]:
+        lines = [f"{pad}int64_t bk = 0, x; (void)x;"]
+        for i, lay in enumerate(self.var_lay):
+            lo = lay.leaves[0][0] if lay.shape is None else 0
+            lines.append(f"{pad}x = v[{i}] - {lo}; if (x < 0 || x >= {lay.size}) goto fail;")
+            lines.append(f"{pad}bk = bk * {lay.size} + x;")
+        return lines
+
+    def ready_fn(self) -> str:
+        nv, nr, nw = max(len(self.t.variables), 1), len(self.read), len(self.writes)
+        width = 1 + nr + nw
+        lines = [f"static int rdy{self.k}(gctx *c, nt_search *t, const uint32_t *key) {{",
+                 "    c->err = 0;",
+                 f"    if (bind{self.k}(c, key)) return c->err == 2 ? -2 : -1;",
+                 f"    const int64_t nb = c->nb / {nv};",
+                 "    int64_t rd, pr, be, *pairs = NULL;",
+                 "    int fresh;",
+                 f"    int32_t ent[{width}];",
+                 "    for (int64_t b = 0; b < nb; b++)  /* every binding evaluates before one is numbered */",
+                 f"        if (one{self.k}(c, c->bind + b * {nv}, key, 0, 0, ent, &rd, &pr)) goto fail;",
+                 "    pairs = (int64_t *)malloc((size_t)(2 * nb + 2) * 8);",
+                 "    if (!pairs) return -2;"]
+        if not self.timed:
+            lines.append(f"    if (g_grow((void **)&c->out, &c->out_cap, nb * {width} + 1, 4)) {{ c->err = 2; goto fail; }}")
+        lines += ["    for (int64_t b = 0; b < nb; b++) {",
+                  f"        const int64_t *v = c->bind + b * {nv};",
+                  *self._key_lines("        "),
+                  f"        be = g_be(c, {self.t.index}, bk, &fresh);",
+                  "        if (c->err) goto fail;"]
+        if self.timed:
+            lines.append(f"        if (one{self.k}(c, v, key, 1, 0, ent, &rd, &pr)) goto fail;")
+        else:
+            lines += [f"        int32_t *e = c->out + b * {width};",
+                      f"        if (one{self.k}(c, v, key, 2, 0, e, &rd, &pr)) goto fail;",
+                      "        e[0] = (int32_t)be; rd = INT64_MIN;"]
+        lines += ["        pairs[2 * b] = rd; pairs[2 * b + 1] = pr;",
+                  "    }",
+                  f"    int rc = nt_put_ready(t, {self.k}, key, nb, pairs);",
+                  "    free(pairs); pairs = NULL;",
+                  "    if (rc) return -2;"]
+        if not self.timed:
+            lines += [f"    uint32_t k2[{nr + 1}];",
+                      f"    for (int i = 0; i < {nr}; i++) k2[i] = key[i];",
+                      f"    k2[{nr}] = 0;",
+                      f"    if (nt_put_effect(t, {self.k}, k2, nb, c->out)) return -2;"]
+        lines += ["    return 0;",
+                  "fail:",
+                  "    return c->err == 2 ? -2 : -1;",
+                  "}"]
+        return "\n".join(lines)
+
+    def effect_fn(self) -> str:
+        nv, nr, nw = max(len(self.t.variables), 1), len(self.read), len(self.writes)
+        width = 1 + nr + nw
+        lines = [f"static int eff{self.k}(gctx *c, nt_search *t, const uint32_t *key, int64_t f, const uint32_t *s) {{",
+                 "    c->err = 0;",
+                 f"    uint32_t k2[{nr + 1}];",
+                 f"    for (int i = 0; i < {nr}; i++) k2[i] = key[i];",
+                 f"    k2[{nr}] = {'(uint32_t)f' if self.timed else '0'};",
+                 f"    if (bind{self.k}(c, k2)) return c->err == 2 ? -2 : -1;",
+                 f"    const int64_t nb = c->nb / {nv};",
+                 f"    if (g_grow((void **)&c->out, &c->out_cap, nb * {width} + 1, 4)) return -2;",
+                 "    int64_t rd, pr, m = 0;",
+                 "    int fresh;",
+                 "    for (int64_t b = 0; b < nb; b++) {",
+                 f"        const int64_t *v = c->bind + b * {nv};",
+                 *self._key_lines("        "),
+                 f"        int64_t be = g_be(c, {self.t.index}, bk, &fresh);",
+                 "        if (c->err) goto fail;",
+                 f"        int32_t *e = c->out + m * {width};",
+                 f"        if (one{self.k}(c, v, k2, 1, f, e, &rd, &pr)) goto fail;",
+                 "        if (rd > f) continue;",
+                 f"        if (one{self.k}(c, v, k2, 2, f, e, &rd, &pr)) goto fail;",
+                 "        e[0] = (int32_t)be;",
+                 f"        int rc = nt_settle(t, {self.k}, s, f, e);",
+                 "        if (rc) return rc;",
+                 "        m++;",
+                 "    }",
+                 f"    return nt_put_effect(t, {self.k}, k2, m, c->out) ? -2 : 0;",
+                 "fail:",
+                 "    return c->err == 2 ? -2 : -1;",
+                 "}"]
+        return "\n".join(lines)
+
+
+def timed_native_code(engine) -> NativeCode:
+    """The C of a timed net's (or a net with priorities') transitions for the native timed search
+    (`TimedTransitionC`; NotNative if no place marking can be held in C or a transition reads the clock)."""
+    net = engine.net
+    if getattr(engine, "reads_clock", False):
+        raise NotNative("a transition reads the clock")
+    layouts = []
+    for p in net.places:
+        try:
+            layouts.append(layout(p.colour_set))
+        except NotNative as exc:
+            raise NotNative(f"place '{p.name}': {exc}") from None
+    timed_places = {p for p in range(len(net.places)) if engine.is_timed and engine.store.timed[p]}
+    mod = Module(net, engine.ev)
+    bodies: dict[int, str] = {}
+    left: dict[int, str] = {}
+    var_layouts: dict[int, list[Layout]] = {}
+    for k, info in enumerate(engine._plan):
+        t = info.t
+        saved = (len(mod.parts), len(mod.protos), dict(mod.functions), dict(mod.encoders))
+        try:
+            tc = TimedTransitionC(mod, t, k, list(info.read), list(info.writes), layouts, timed_places,
+                                  bool(engine.is_timed and info.timed), bool(engine.is_timed))
+            bodies[k] = tc.generate()
+            var_layouts[t.index] = tc.var_lay
+        except (NotNative, plan.Unbindable) as exc:
+            left[t.index] = str(exc) or type(exc).__name__
+            del mod.parts[saved[0]:]
+            del mod.protos[saved[1]:]
+            mod.functions, mod.encoders = saved[2], saved[3]
+    sizes = ", ".join(str(1 if k not in bodies else _size(var_layouts[engine._plan[k].t.index]))
+                      for k in range(len(engine._plan)))
+    src = "\n".join([
+        "#define FAIL do { c->err = 1; goto done; } while (0)",
+        "static int64_t g_rng(gctx *c, int64_t x, int64_t lo, int64_t hi) { if (x < lo || x > hi) c->err = 1; return x; }",
+        *mod.protos,
+        *mod.parts,
+        *bodies.values(),
+        "static int gen_ready(void *g, nt_search *t, int k, const uint32_t *key) {",
+        "    gctx *c = (gctx *)g;",
+        "    (void)c; (void)t; (void)key;",
+        "    switch (k) {",
+        *(f"    case {k}: return rdy{k}(c, t, key);" for k in bodies),
+        "    default: return -1;",
+        "    }",
+        "}",
+        "static int gen_effect(void *g, nt_search *t, int k, const uint32_t *key, int64_t f, const uint32_t *s) {",
+        "    gctx *c = (gctx *)g;",
+        "    (void)c; (void)t; (void)key; (void)f; (void)s;",
+        "    switch (k) {",
+        *(f"    case {k}: return eff{k}(c, t, key, f, s);" for k in bodies),
+        "    default: return -1;",
+        "    }",
+        "}",
+        "static int gen_group(void *g, nd_search *d, int k, const uint32_t *key) {",
+        "    (void)g; (void)d; (void)k; (void)key;",
+        "    return -1;",
+        "}",
+        "static int64_t gen_add(void *g, uint32_t p, uint32_t did, uint32_t old) {",
+        "    gctx *c = (gctx *)g;",
+        "    c->err = 0;",
+        "    int64_t r = g_apply(c, (int)p, old, did, 1);",
+        "    return c->err ? -1 : r;",
+        "}",
+        "static int64_t gen_shift(void *g, uint32_t p, uint32_t id, uint32_t f) {",
+        "    gctx *c = (gctx *)g;",
+        "    c->err = 0;",
+        "    int64_t r = g_shift(c, (int)p, id, f);",
+        "    return c->err ? -1 : r;",
+        "}",
+        "void *gen_new(void) {",
+        f"    static const int64_t sizes[] = {{{sizes or '0'}}};",
+        f"    return g_new({len(net.places)}, {len(engine._plan)}, sizes);",
+        "}",
+    ])
+    code = NativeCode(src, sorted(engine._plan[k].t.index for k in bodies), left, layouts, var_layouts)
+    code.timed = [p in timed_places for p in range(len(net.places))]
+    return code

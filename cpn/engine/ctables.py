@@ -156,6 +156,43 @@ class NativeCode:
     left: dict[int, str]  # transitions left to the Python engine: why
     layouts: list[Layout]  # per place
     var_layouts: dict[int, list[Layout]]  # per native transition
+    # per place, whether it is timed (the search of timed nets): its tokens' keys are (value, timestamp),
+    # in C a timed colour id (`gen_tid_put`)
+    timed: list[bool] | None = None
+    _tids: list[dict] | None = None  # per timed place: (value, timestamp) -> its timed colour in C
+
+    def _pairs_to_c(self, lib, ctx, p: int, d: dict) -> list[int]:
+        """A Python multiset of place p as C pairs (colour id or timed colour id, count)."""
+        index = self.layouts[p].index
+        flat: list[int] = []
+        if self.timed is None or not self.timed[p]:
+            for v, n in d.items():
+                flat += (index[v], n)
+            return flat
+        if self._tids is None:
+            self._tids = [{} for _ in self.layouts]
+        tids = self._tids[p]
+        for k, n in d.items():
+            tid = tids.get(k)
+            if tid is None:
+                v, ts = k
+                if not -(1 << 63) <= ts < 1 << 63:
+                    raise OverflowError(f"the timestamp {ts} does not fit 64 bits")
+                tid = lib.gen_tid_put(ctx, p, index[v], ts)
+                if tid < 0:
+                    raise MemoryError("the native tables cannot grow any more")
+                tids[k] = tid
+            flat += (tid, n)
+        return flat
+
+    def _timed_values(self, ffi, lib, ctx, p: int) -> list:
+        """Place p's timed colours in C as (value, timestamp) keys, by timed colour id."""
+        colp, tsp = ffi.new("int32_t **"), ffi.new("int64_t **")
+        n = lib.gen_tid_table(ctx, p, colp, tsp)
+        if not n:
+            return []
+        vals = self.layouts[p].values
+        return list(zip(map(vals.__getitem__, ffi.unpack(colp[0], n)), ffi.unpack(tsp[0], n)))
 
     def to_c(self, engine, lib, ctx) -> None:
         """Copy the engine's markings, deltas and binding elements that the C tables do not have yet."""
@@ -163,13 +200,10 @@ class NativeCode:
         P = len(engine.places)
         for what, tables in ((0, engine.store.dicts), (1, engine._deltas)):
             for p in range(P):
-                index = self.layouts[p].index
                 have = lib.gen_count(ctx, what, p)
                 for i in range(have, len(tables[p])):
                     d = tables[p][i]
-                    flat = []
-                    for v, n in d.items():
-                        flat += (index[v], n)
+                    flat = self._pairs_to_c(lib, ctx, p, d)
                     got = lib.gen_ms_put(ctx, what, p, ffi.new("int32_t[]", flat or [0]), len(d))
                     if got != i:
                         raise RuntimeError(f"native tables out of step with the engine (place {p}, {got} != {i})")
@@ -203,8 +237,10 @@ class NativeCode:
                 vals = self.layouts[p].values
                 have = len(store.dicts[p]) if what == 0 else len(engine._deltas[p])
                 total = lib.gen_ms_table(ctx, what, p, offp, lenp, pairp)
-                if total == have:
+                if total <= have:  # (fewer: the engine went on alone, past a hand-over to Python)
                     continue
+                if self.timed is not None and self.timed[p]:
+                    vals = self._timed_values(ffi, lib, ctx, p)
                 offs = ffi.unpack(offp[0] + have, total - have)
                 lens = ffi.unpack(lenp[0] + have, total - have)
                 start = offs[0]

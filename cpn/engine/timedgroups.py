@@ -60,6 +60,21 @@ class TimedGroups:
         # per group: a written place -> its position among the group's written places
         self._wpos = [{p: i for i, p in enumerate(i.writes)} for i in plan]
 
+    def native_code(self):
+        """(the C of the net's transitions for the native timed search, None), or (None, why) where no place
+        marking can be held in C (`cpn.engine.ccodegen.timed_native_code`); computed once per engine."""
+        e = self._engine
+        got = getattr(e, "_timed_native_code", None)
+        if got is None:
+            from cpn.engine import ccodegen
+
+            try:
+                got = (ccodegen.timed_native_code(e), None)
+            except ccodegen.NotNative as exc:
+                got = (None, str(exc))
+            e._timed_native_code = got
+        return got
+
     def caller_caches(self) -> None:
         """The engine keeps its own memos (a state's expansion reuses them)."""
 

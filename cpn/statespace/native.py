@@ -51,9 +51,7 @@ def library(code=None, timed: bool = False):
     their units are the build manifest's (`cpn._native.manifest`)."""
     if code is None:
         return build("search-timed" if timed else "search")
-    if timed:
-        raise ValueError("the search of timed nets takes no generated C")
-    return build("search-net-threads", code.source)
+    return build("search-timed-net" if timed else "search-net-threads", code.source)
 
 
 def generated(engine, options) -> tuple[object | None, list[str]]:

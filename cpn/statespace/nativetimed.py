@@ -16,8 +16,10 @@ time past 2^32 - 1) hands the search over to Python (`HandOver`) with the states
 
 from __future__ import annotations
 
+import os
 from array import array
 
+from cpn._util.cbuild import switched_off, why_unavailable
 from cpn.engine.compiled import NEG_INF
 from cpn.statespace.native import (
     ND_CHECK,
@@ -28,10 +30,9 @@ from cpn.statespace.native import (
     ND_WIDE_BE,
     HandOver,
     NativeSearch,
-    generated,
     library,
 )
-from cpn.statespace.options import StopReason
+from cpn.statespace.options import Backend, StopReason
 
 ND_LEVEL = 7
 #: the search hands over to the Python search past this many returns to the engine per state (it expands
@@ -60,14 +61,22 @@ class TimedNativeSearch(NativeSearch):
         self.round_trips = 0
         self.code, self.gen = None, None
         self.generate_after = 1 << 62
+        lib = None
         if options is not None:
-            _, code_notes = generated(engine, options)
+            code, code_notes = timed_generated(self.tg, options)
+            if code is not None:
+                lib = library(code, timed=True)
+                if lib is None:
+                    code_notes = [f"the C of the net's transitions could not be built ({why_unavailable()}): "
+                                  "the Python engine computes every transition's bindings"]
+                else:
+                    self.code = code
             self.notes.extend(code_notes)
         self.on_level = on_level
         self._fields = len(s0)
         # what was copied to the C caches: per group the effects' (keys, time); the adds and the shifts
         self._sent = ([set() for _ in self.tg.groups], set(), set())
-        self._attach(library(timed=True), s0)
+        self._attach(lib if lib is not None else library(timed=True), s0)
         tg = self.tg
         ffi, lib = self.ffi, self.lib
         handle = lib.nt_new(self.handle, int(tg.clock), int(tg.condensation), int(tg.priorities),
@@ -95,6 +104,8 @@ class TimedNativeSearch(NativeSearch):
                 self._fill()
             elif status == ND_LEVEL:
                 self.store.sync()  # the watch reads the states: the search may have widened their fields
+                if self.gen is not None:  # and their markings, some of them made in C
+                    self.code.to_python(self.engine, self.native_lib, self.gen)
                 stop = self.on_level(lib.nt_level_start(h), self.level_end)
                 if stop is not None:
                     self.flush()
@@ -124,6 +135,8 @@ class TimedNativeSearch(NativeSearch):
             raise RuntimeError(f"the native search still misses values of state {self.head} once the engine "
                                "expanded it")
         self._last_fill = self.head
+        if self.gen is not None:  # the engine gets the markings and binding elements made in C
+            self.code.to_python(self.engine, self.native_lib, self.gen)
         try:
             x = self.tg.expand(s)
         except BaseException:
@@ -134,6 +147,8 @@ class TimedNativeSearch(NativeSearch):
             raise HandOver(f"the model time {x.time} does not fit the native search's 32 bits")
         try:
             self._send(x, missing)
+            if self.gen is not None:  # and C the engine's
+                self.code.to_c(self.engine, self.native_lib, self.gen)
         except (OverflowError, TypeError) as exc:
             self.flush()
             raise HandOver(f"a value does not fit the native search's 32 bits ({exc})") from None
@@ -182,6 +197,25 @@ class TimedNativeSearch(NativeSearch):
 
     def cache_bytes(self) -> int:
         return self.lib.nd_cache_bytes(self.handle) + self.lib.nt_cache_bytes(self.timed_handle)
+
+
+def timed_generated(tg, options) -> tuple[object | None, list[str]]:
+    """The C of a timed net's transitions (a `NativeCode`, or None) and the notes saying what is left to
+    Python (as `cpn.statespace.native.generated` for untimed nets)."""
+    if options.backend is Backend.PYTHON or os.environ.get("CPN_NO_GENERATED"):
+        return None, []
+    off = switched_off()
+    if off is not None:
+        return None, [off]
+    make = getattr(tg, "native_code", None)
+    if make is None:
+        return None, ["the C back end has no code of this engine's transitions"]
+    code, why = make()
+    if code is None:
+        return None, [f"the Python engine computes every transition's bindings: {why}"]
+    names = tg._engine.transitions
+    return code, [f"the Python engine computes the bindings of transition '{names[t].name}': {reason}"
+                  for t, reason in sorted(code.left.items())]
 
 
 def _check(rc: int) -> None:

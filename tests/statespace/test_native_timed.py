@@ -24,7 +24,7 @@ needs_native = pytest.mark.skipif(NATIVE is not None, reason=f"native code unava
 TIMED_MODELS = [p for p in sorted(glob.glob(os.path.join(ROOT, "models", "**", "*.cpnet"), recursive=True)
                                   + glob.glob(os.path.join(ROOT, "tests", "statespace", "models", "*.cpnet")))
                 if "timed" in open(p).read()]
-TIMED_NOTE = "the Python engine computes every transition's bindings: the net is timed"
+LEFT_NOTE = "the Python engine computes "
 
 
 @pytest.fixture
@@ -54,8 +54,11 @@ def test_the_repository_timed_models_run_in_c(path, condensation, fills):
     model = cpn.load(path)
     assert model.net.is_timed
     c = _both(model, condensation)
-    assert c.notes == [TIMED_NOTE]
-    assert 0 < fills[0] <= c.graph.expanded
+    assert all(n.startswith(LEFT_NOTE) for n in c.notes), c.notes
+    if c.notes:  # some transitions' bindings come from the engine
+        assert 0 < fills[0] <= c.graph.expanded
+    else:  # the net's generated C computes everything: the search never returns to the engine
+        assert fills[0] == 0
 
 
 SAMPLES = ["TimedProtocol.cpn", "TimedResourceAlloc.cpn", "priorities.cpn"]
@@ -179,7 +182,7 @@ def test_priorities_select_in_c(fills):
     model = cpn.loads(PRIORITIES, "priorities.cpnet")
     assert model.engine().successor_groups() is None
     c = _both(model, False)
-    assert c.notes == ["the Python engine computes every transition's bindings: the net has priorities"]
+    assert c.notes == [] and fills[0] == 0  # the net's generated C computes every transition's bindings
     names = {c.engine.format_binding_element(be).split(":")[0] for be in c.graph.bes}
     assert names == {"Top'high 1", "Top'normal 1", "Top'low 1"}
     for i in range(c.graph.expanded):
