@@ -153,9 +153,6 @@ class ExprCompiler:
             return self.ns.ref(self.ev.eval(e, {}), "S")
         raise Unsupported()
 
-    def _c_Select(self, e):
-        return f"(lambda r: r[{e.index}])"
-
     def _c_TupleE(self, e):
         return "(" + "".join(self.expr(x) + ", " for x in e.items) + ")"
 
@@ -176,9 +173,6 @@ class ExprCompiler:
         if isinstance(e.fn, A.Name) and e.fn.ref.kind == "builtin" and e.fn.name == "not":
             return f"(not {self.expr(e.arg)})"
         return f"{self.expr(e.fn)}({self.expr(e.arg)})"
-
-    def _c_Neg(self, e):
-        return f"(-{self.expr(e.operand)})"
 
     def _c_If(self, e):
         return f"({self.expr(e.then)} if {self.expr(e.cond)} else {self.expr(e.else_)})"
@@ -209,15 +203,6 @@ class ExprCompiler:
         raise Unsupported()
 
     def _c_Let(self, e):
-        raise Unsupported()
-
-    def _c_Fn(self, e):
-        raise Unsupported()
-
-    def _c_Seq(self, e):
-        raise Unsupported()
-
-    def _c_OpFun(self, e):
         raise Unsupported()
 
 

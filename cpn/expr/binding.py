@@ -100,7 +100,7 @@ def all_vars(e: N.Expr | None, acc: set[str] | None = None) -> set[str]:
 
 def children(e: N.Expr) -> list[N.Expr]:
     """The subexpressions of e (the bodies of its rules and local declarations included)."""
-    if isinstance(e, (N.TupleE, N.ListE, N.Seq)):
+    if isinstance(e, (N.TupleE, N.ListE)):
         return list(e.items)
     if isinstance(e, N.RecordE):
         return [x for _, x in e.fields]
@@ -108,14 +108,10 @@ def children(e: N.Expr) -> list[N.Expr]:
         return [e.fn, e.arg]
     if isinstance(e, N.BinOp):
         return [e.left, e.right]
-    if isinstance(e, N.Neg):
-        return [e.operand]
     if isinstance(e, N.If):
         return [e.cond, e.then, e.else_]
     if isinstance(e, N.Case):
         return [e.subject] + [b for _, b in e.rules]
-    if isinstance(e, N.Fn):
-        return [b for _, b in e.rules]
     if isinstance(e, N.Let):
         out = []
         for d in e.decls:

@@ -199,10 +199,6 @@ class Evaluator:
             return ran
         raise MLError(f"unknown colour set function {csname}.{op}")
 
-    def _e_Select(self, e, env):
-        idx = e.index
-        return lambda v: v[idx]
-
     def _e_TupleE(self, e, env):
         return tuple([self.eval(x, env) for x in e.items])
 
@@ -220,9 +216,6 @@ class Evaluator:
             return f.call(a)  # a Python call, not through __call__: no C stack per level of recursion
         return f(a)
 
-    def _e_Neg(self, e, env):
-        return -self.eval(e.operand, env)
-
     def _e_If(self, e, env):
         return self.eval(e.then if self.eval(e.cond, env) else e.else_, env)
 
@@ -234,20 +227,11 @@ class Evaluator:
                 return self.eval(body, env2)
         raise MLError("no rule of the case-expression matches (SML exception Match)")
 
-    def _e_Fn(self, e, env):
-        return Closure([([p], b) for p, b in e.rules], env, self, "fn")
-
     def _e_Let(self, e, env):
         env = dict(env)
         for d in e.decls:
             self.declare(d, env)
         return self.eval(e.body, env)
-
-    def _e_Seq(self, e, env):
-        v = None
-        for x in e.items:
-            v = self.eval(x, env)
-        return v
 
     def _e_Annot(self, e, env):
         return self.eval(e.expr, env)
@@ -255,9 +239,6 @@ class Evaluator:
     def _e_ToMs(self, e, env):
         v = self.eval(e.expr, env)
         return v if isinstance(v, (Multiset, TimedMultiset)) else Multiset.of(v)
-
-    def _e_OpFun(self, e, env):
-        return lambda pair: binop(e.op, pair[0], pair[1])
 
     def _e_BinOp(self, e, env):
         if e.left.__class__ is not A.BinOp:  # one operator: as it always was
@@ -291,6 +272,10 @@ class Evaluator:
             env[d.ref.uid] = clo
         else:
             raise MLError("unsupported declaration inside let")
+
+    def closure(self, clauses: list, env: dict, name: str = "fn") -> Closure:
+        """A function value of one argument: `clauses` are (params, body) tried in order (a form's rule)."""
+        return Closure(clauses, env, self, name)
 
     def make_function(self, d: A.FunDecl, env: dict) -> Closure:
         clo = Closure([(c.params, c.body) for c in d.clauses], env, self, d.name, arity=len(d.clauses[0].params))

@@ -45,8 +45,6 @@ def expr(e: N.Expr) -> str:
         return const(e.value, e.kind)
     if isinstance(e, N.Name):
         return e.name
-    if isinstance(e, N.Select):
-        return f"#{e.label}"
     if isinstance(e, N.TupleE):
         return "(" + ", ".join(expr(x) for x in e.items) + ")"
     if isinstance(e, N.RecordE):
@@ -61,26 +59,18 @@ def expr(e: N.Expr) -> str:
         for node in spine:
             text = f"({text} {node.op} {expr(node.right)})"
         return text
-    if isinstance(e, N.Neg):
-        return f"(~ {atom(e.operand)})"
     if isinstance(e, N.If):
         return f"(if {expr(e.cond)} then {expr(e.then)} else {expr(e.else_)})"
     if isinstance(e, N.Case):
         return f"(case {expr(e.subject)} of " + " | ".join(f"{pat(p)} => {expr(b)}" for p, b in e.rules) + ")"
-    if isinstance(e, N.Fn):
-        return "(fn " + " | ".join(f"{pat(p)} => {expr(b)}" for p, b in e.rules) + ")"
     if isinstance(e, N.Let):
         body = expr(e.body.items[0]) + "".join("; " + expr(x) for x in e.body.items[1:]) \
             if isinstance(e.body, N.Seq) else expr(e.body)
         return "let " + " ".join(declaration(d) for d in e.decls) + f" in {body} end"
-    if isinstance(e, N.Seq):
-        return "(" + "; ".join(expr(x) for x in e.items) + ")"
     if isinstance(e, N.Annot):
         return f"({expr(e.expr)} : {ty(e.type_expr)})"
     if isinstance(e, N.ToMs):
         return expr(e.expr)
-    if isinstance(e, N.OpFun):
-        return f"(op {e.op})"
     form = form_of(e)  # a form that declares its own rules (cpn.expr.forms)
     if form is not None:
         return form.show(e, PRINTER)

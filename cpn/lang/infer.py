@@ -278,11 +278,6 @@ class TypeInference(FunctionDraws):
                              "For a state space, write an integer delay with '@+' (e.g. '@+ round(d)' or a "
                              "bounded choice '@+[a,b]'): model time is an integer there.", "@++")
 
-    def _i_Select(self, e, env):
-        a, r = T.TVar(), T.TVar()
-        self.pending.append((e, a, r, "sel"))
-        return T.TFun(a, r)
-
     def _i_TupleE(self, e, env):
         return T.TTuple([self.infer(x, env) for x in e.items])
 
@@ -369,11 +364,6 @@ class TypeInference(FunctionDraws):
     def _fn_name(f):
         return f"'{f.name}'" if isinstance(f, A.Name) else "the function"
 
-    def _i_Neg(self, e, env):
-        t = self.infer(e.operand, env)
-        self.must(t, T.TVar(overload=("int", "real")), e.span, "'~'")
-        return t
-
     def _i_If(self, e, env):
         self.must(self.infer(e.cond, env), T.BOOL, e.cond.span, "the condition of 'if'")
         if self._is_empty_ms(e.then, env) and not self._is_empty_ms(e.else_, env):
@@ -433,18 +423,6 @@ class TypeInference(FunctionDraws):
                 self.must(bt, rt, body.span, "the rules of 'case' (all must have the same type)")
         return rt
 
-    def _i_Fn(self, e, env):
-        at, rt = T.TVar(), T.TVar()
-        sink, self.ran_sink = self.ran_sink, None  # a function may be applied many times: its draws are draws
-        try:
-            for pat, body in e.rules:
-                binds: dict[str, Symbol] = {}
-                self.must(self.infer_pat(pat, binds), at, pat.span, "the argument pattern of 'fn'")
-                self.must(self.infer(body, env.child(binds)), rt, body.span, "the rules of 'fn'")
-        finally:
-            self.ran_sink = sink
-        return T.TFun(at, rt)
-
     def _i_Let(self, e, env):
         inner = env.child()
         for d in e.decls:
@@ -471,12 +449,6 @@ class TypeInference(FunctionDraws):
                 raise Abort()
         return self.infer(e.body, inner)
 
-    def _i_Seq(self, e, env):
-        t = None
-        for x in e.items:
-            t = self.infer(x, env)
-        return t
-
     def _i_Annot(self, e, env):
         t = self.infer(e.expr, env)
         at = self.type_of_annotation(e.type_expr)
@@ -488,11 +460,7 @@ class TypeInference(FunctionDraws):
     def _i_ToMs(self, e, env):
         return T.ms(self.infer(e.expr, env))
 
-    def _i_OpFun(self, e, env):
-        a, b, r = self._op_types(e.op, e)
-        return T.TFun(T.TTuple([a, b]), r)
-
-    def _op_types(self, op, node):
+    def op_types(self, op, node):
         if op in ("+", "-", "*"):
             v = T.TVar(overload=("int", "real"))
             node.op_ty = v
@@ -550,7 +518,7 @@ class TypeInference(FunctionDraws):
         t = self.infer(first, env)
         for node in spine:
             op = node.op
-            a, b, r = self._op_types(op, node)
+            a, b, r = self.op_types(op, node)
             rt = self.infer(node.right, env)
             if op in ("::", "@", "^^"):
                 # a multiset where a list is expected: CPN Tools' multisets are lists (``x :: 1`y``)

@@ -459,10 +459,6 @@ class ToAst(Transformer_NonRecursive):
     def case(self, meta, items):
         return A.Case(self.span(meta), items[0], items[1])
 
-    @v_args(meta=True)
-    def fn(self, meta, items):
-        return A.Fn(self.span(meta), items[0])
-
     def match(self, items):
         return list(items)
 
@@ -481,13 +477,6 @@ class ToAst(Transformer_NonRecursive):
     def binop(self, meta, items):
         left, op, right = items
         return A.BinOp(self.span(meta), str(op), left, right)
-
-    @v_args(meta=True)
-    def neg(self, meta, items):
-        x = items[0]
-        if isinstance(x, A.Const) and x.kind in ("int", "real"):
-            return A.Const(self.span(meta), -x.value, x.kind)
-        return A.Neg(self.span(meta), x)
 
     @v_args(meta=True)
     def app(self, meta, items):
@@ -522,10 +511,6 @@ class ToAst(Transformer_NonRecursive):
         return A.Name(self.span(meta), str(items[0]))
 
     @v_args(meta=True)
-    def select(self, meta, items):
-        return A.Select(self.span(meta), str(items[0]))
-
-    @v_args(meta=True)
     def unit_(self, meta, items):
         return A.Const(self.span(meta), (), "unit")
 
@@ -536,10 +521,6 @@ class ToAst(Transformer_NonRecursive):
     @v_args(meta=True)
     def tuple_(self, meta, items):
         return A.TupleE(self.span(meta), list(items))
-
-    @v_args(meta=True)
-    def seq(self, meta, items):
-        return A.Seq(self.span(meta), list(items))
 
     @v_args(meta=True)
     def list_(self, meta, items):
@@ -565,10 +546,6 @@ class ToAst(Transformer_NonRecursive):
         if not decls:  # `let in e end`, which CPN Tools accepts: e
             return body
         return A.Let(self.span(meta), decls, body)
-
-    @v_args(meta=True)
-    def opfun(self, meta, items):
-        return A.OpFun(self.span(meta), str(items[0]))
 
     @v_args(meta=True)
     def lval(self, meta, items):

@@ -117,3 +117,17 @@ def test_handle_and_raise_round_trip_through_the_printer():
     assert pretty.expr(cpn.lang.parser.parse(f"val it = {text};", "t.cpnet").decls[0].expr) == text
     e = m.engine()
     assert e.format_marking(e.successors(e.initial_state())[0][1], 0) == "1`1"
+
+
+@pytest.mark.parametrize("form", list(forms.FORMS.values()), ids=lambda f: f.node.__name__)
+def test_a_registered_form_has_no_rule_left_in_the_walkers(form):
+    from cpn.lang.typecheck import Checker
+
+    name = form.node.__name__
+    assert not hasattr(Evaluator, f"_e_{name}")
+    assert not hasattr(codegen.ExprCompiler, f"_c_{name}")
+    assert not hasattr(Checker, f"_i_{name}")
+    assert form.rule is None or not hasattr(ToAst, form.rule)
+    for module in ("expr/pretty.py", "expr/binding.py"):
+        # a branch of its own (the printer of `let` still asks whether its body is a sequence)
+        assert not re.search(rf"isinstance\(e, [^)]*\bN\.{name}\b", (CPN / module).read_text()), module

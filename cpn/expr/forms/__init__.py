@@ -5,6 +5,11 @@ A new form is a module here, its line below, and its rule in `cpn/lang/grammar.l
 """
 
 from cpn.expr.form import BY_RULE, FORMS, Form, form_of, register
-from cpn.expr.forms import exceptions  # noqa: F401 - registers raise and handle
+from cpn.expr.forms import (  # noqa: F401 - each registers its forms
+    exceptions,  # raise, handle
+    functions,  # fn, op +, #label
+    negation,  # ~ e
+    sequence,  # (e1; e2)
+)
 
 __all__ = ["BY_RULE", "FORMS", "Form", "form_of", "register"]
