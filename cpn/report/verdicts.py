@@ -9,6 +9,7 @@ condensation, and the reference interpreter's arc evaluation), `cpn.values` and 
 from __future__ import annotations
 
 import os
+from collections import OrderedDict
 
 from cpn.checks.verdict import Evidence
 from cpn.engine.protocol import capability, has
@@ -69,11 +70,33 @@ def end_marking(engine, state, sid: int, reads: tuple = ()) -> dict:
     return doc
 
 
-def _replay_absolute(engine, bes: list[int]):
-    """(uncondensed engine, its states along the trace, binding element texts) or None if it diverges."""
+#: engines built to print traces, per net and kind, reused by every trace of the nets most recently reported on
+#: (a scenario's runs and a check's scenarios share their nets: `cpn.model.caching`): replaying a trace only
+#: reads an engine (what it interns grows, its successor function is the same)
+_PRINTING_ENGINES: OrderedDict = OrderedDict()
+PRINTING_NETS: int = 4
+
+
+def printing_engine(net, time_condensation: bool = False, reference: bool = False):
+    """The engine of `net` of that kind that prints traces, built once while the net is among the last
+    `PRINTING_NETS` reported on."""
     from cpn.engine import compile_net
 
-    plain = compile_net(engine.net, time_condensation=False, reference=bool(capability(engine, "reference", False)))
+    key = (id(net), time_condensation, reference)
+    kept = _PRINTING_ENGINES.get(key)
+    if kept is not None and kept[0] is net:
+        _PRINTING_ENGINES.move_to_end(key)
+        return kept[1]
+    engine = compile_net(net, time_condensation=time_condensation, reference=reference)
+    _PRINTING_ENGINES[key] = (net, engine)  # the net is held, so its id is not reused while kept
+    while len({k[0] for k in _PRINTING_ENGINES}) > PRINTING_NETS:
+        _PRINTING_ENGINES.popitem(last=False)
+    return engine
+
+
+def _replay_absolute(engine, bes: list[int]):
+    """(uncondensed engine, its states along the trace, binding element texts) or None if it diverges."""
+    plain = printing_engine(engine.net, reference=bool(capability(engine, "reference", False)))
     state = plain.initial_state()
     states, texts = [state], []
     for be in bes:
@@ -93,9 +116,7 @@ class _ArcTokens:
     reference interpreter's arc evaluation; None when an inscription cannot be evaluated here."""
 
     def __init__(self, engine):
-        from cpn.engine import compile_net
-
-        self.ref = compile_net(engine.net, reference=True)
+        self.ref = printing_engine(engine.net, reference=True)
 
     def __call__(self, b, clock) -> dict | None:
         ref = self.ref
@@ -105,15 +126,15 @@ class _ArcTokens:
             ref.ev.time = clock
             out: dict[int, tuple[dict, dict]] = {}
             for a in t.arcs:
-                if a.kind not in ("in", "out", "both") or a.expr is None or ref.places[a.place].timed:
+                if not (a.kind.consumes or a.kind.produces) or a.expr is None or ref.places[a.place].timed:
                     continue
                 take, put = out.setdefault(a.place, ({}, {}))
                 for v, n, _ in ref.arc_tokens(a.expr, env, t):
-                    if a.kind in ("in", "both"):
+                    if a.kind.consumes:
                         take[v] = take.get(v, 0) + n
-                    if a.kind in ("out", "both"):
+                    if a.kind.produces:
                         put[v] = put.get(v, 0) + n
-            resets = {a.place for a in t.arcs if a.kind == "reset"}
+            resets = {a.place for a in t.arcs if a.kind.empties}
         except Exception:  # noqa: BLE001 - printing falls back to the change of the marking
             return None
         return {p: d for p, d in out.items() if p not in resets}
