@@ -18,6 +18,14 @@ from cpn.values.builtins import FUNCTIONS as LIBRARY
 from cpn.values.draws import DISTRIBUTIONS
 from cpn.values.effects import SIMULATION_ONLY
 
+_STRING = r'"(?:[^"\\]|\\.)*"'  # an SML string literal
+
+
+def _unescape(text: str) -> str:
+    """The characters of an SML string literal's text (`\\\\` is one backslash, `\\"` a quote)."""
+    return re.sub(r"\\(.)", r"\1", text)
+
+
 _LIBRARY_NAMES = set(LIBRARY) | set(sml_basis.FUNCTIONS) | set(sml_basis.CONSTRUCTORS) | set(DISTRIBUTIONS)
 
 
@@ -530,8 +538,9 @@ class _Declarations:
         gb = self.cpnet.find("globbox")
         for el in self._all_decl_elements(gb) if gb is not None else []:
             if el.tag == "ml":
-                for m in re.finditer(r'\bval\s+([A-Za-z][\w\']*)\s*=\s*((?:"[^"\\]*"|[A-Za-z][\w\']*)'
-                                     r'(?:\s*\^\s*(?:"[^"\\]*"|[A-Za-z][\w\']*))*)\s*;', ml.strip_comments(el.text)):
+                for m in re.finditer(r'\bval\s+([A-Za-z][\w\']*)\s*=\s*((?:' + _STRING + r'|[A-Za-z][\w\']*)'
+                                     r'(?:\s*\^\s*(?:' + _STRING + r'|[A-Za-z][\w\']*))*)\s*;',
+                                     ml.strip_comments(el.text)):
                     value = self._string_expr(m.group(2), found)
                     if value is not None:
                         found[m.group(1)] = value
@@ -543,7 +552,7 @@ class _Declarations:
         out = ""
         for part in re.split(r"\s*\^\s*", text.strip().strip("()").strip()):
             if part.startswith('"') and part.endswith('"') and len(part) >= 2:
-                out += part[1:-1]
+                out += _unescape(part[1:-1])
             elif part in vals:
                 out += vals[part]
             else:
@@ -554,7 +563,7 @@ class _Declarations:
         written, fname, here, candidates, content, full, why = self._use_file(el)
         origin = self._origin(el, None, f"use \"{fname}\"")
         if content is None:
-            base = os.path.basename(fname)
+            base = fname.replace("\\", "/").rsplit("/", 1)[-1]
             tried = "; tried " + ", ".join(f"'{os.path.relpath(c, here)}'" for c in dict.fromkeys(candidates)) \
                 if len(candidates) > 1 else ""
             what = f"'{fname}'" if written.strip('"') == fname else f"'{fname}' ({written})"
@@ -575,19 +584,31 @@ class _Declarations:
         mlel = el.find("ml")
         raw = _clean(mlel.text if mlel is not None else el.text)
         written = raw.strip().strip(";").strip()
-        fname = written.strip('"')
         here = os.path.dirname(os.path.abspath(self.path))
-        candidates = [os.path.join(here, fname)]
-        if not (written.startswith('"') and written.endswith('"')):
+        if re.fullmatch(_STRING, written):
+            fname = literal = _unescape(written[1:-1])
+        else:
             # `use (buildpath^"session/logging.sml")`: the path the constants give (often a folder of the
-            # author's machine), else the literal part, else the file name, beside the model
+            # author's machine), else the literal part
             value = self._string_expr(written, self._string_vals())
-            literal = "".join(re.findall(r'"([^"\\]*)"', written))
+            literal = "".join(_unescape(t[1:-1]) for t in re.findall(_STRING, written))
             fname = value if value is not None else literal or written
-            candidates = [os.path.join(here, fname)] + [os.path.join(here, p) for p in
-                                                        (literal.lstrip("/"), os.path.basename(literal)) if p]
+        # CPN Tools reads the path relative to the model; a path of the author's machine (`C:\\work\\x.sml`,
+        # `c:/work/x.sml`) is tried as it is, then its literal part, then its file name, beside the model
+        slashed = literal.replace("\\", "/")
+        paths = [fname, fname.replace("\\", "/"), slashed.lstrip("/"), slashed.rsplit("/", 1)[-1]]
+        candidates = [os.path.join(here, p) for p in dict.fromkeys(paths) if p]
         content, full, why = None, None, ""
-        for full in dict.fromkeys(candidates):
+        for cand in candidates + [None]:
+            if cand is None:  # the file name in another case (`Logging.SML`), beside the model
+                name = slashed.rsplit("/", 1)[-1].lower()
+                found = sorted(f for f in os.listdir(here) if f.lower() == name) if name and os.path.isdir(here) \
+                    else []
+                if not found:
+                    break
+                cand = os.path.join(here, found[0])
+                candidates.append(cand)
+            full = cand
             try:
                 with open(full, encoding="utf-8", errors="replace") as f:
                     content = f.read()
