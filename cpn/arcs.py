@@ -3,12 +3,18 @@
 The one vocabulary of every layer: the checker gives each arc its kind, the net keeps it, the engines
 consume, produce, test and block by it. A kind is a string enumeration, so ``ArcKind.IN == "in"``.
 
+What a kind does is its effects, declared once in `EFFECTS` (`consumes`, `produces`, `blocks`, `empties`);
+every module asks a kind for an effect (or for `reads` and `takes`, which follow from them), never for its
+name, so a kind that combines existing effects is its member, its line in `EFFECTS` and its syntax.
+
 Examples
 --------
 >>> ArcKind.BOTH.consumes, ArcKind.BOTH.produces, ArcKind.BOTH.syntax
 (True, True, '<->')
 >>> [k.value for k in ArcKind if k.reads]
 ['in', 'both', 'inhibitor', 'reset']
+>>> [k.value for k in ArcKind if k.takes]
+['in', 'both', 'reset']
 """
 
 from __future__ import annotations
@@ -26,27 +32,32 @@ class ArcKind(StrEnum):
     @property
     def consumes(self) -> bool:
         """The transition needs the inscription's tokens on the place and removes them."""
-        return self in (ArcKind.IN, ArcKind.BOTH)
+        return "consumes" in EFFECTS[self]
 
     @property
     def produces(self) -> bool:
         """The transition adds the inscription's tokens to the place."""
-        return self in (ArcKind.OUT, ArcKind.BOTH)
+        return "produces" in EFFECTS[self]
 
     @property
     def blocks(self) -> bool:
         """The place's marking can disable the transition without being changed (an inhibitor arc)."""
-        return self is ArcKind.INHIBITOR
+        return "blocks" in EFFECTS[self]
 
     @property
     def empties(self) -> bool:
         """The transition empties the place (a reset arc)."""
-        return self is ArcKind.RESET
+        return "empties" in EFFECTS[self]
 
     @property
     def reads(self) -> bool:
         """The place's marking is an input of the transition: its enabling or its effect depends on it."""
-        return self is not ArcKind.OUT
+        return bool(EFFECTS[self] & {"consumes", "blocks", "empties"})
+
+    @property
+    def takes(self) -> bool:
+        """The transition's occurrence removes tokens from the place (consumes them, or empties it)."""
+        return bool(EFFECTS[self] & {"consumes", "empties"})
 
     @property
     def syntax(self) -> str:
@@ -66,4 +77,14 @@ class ArcKind(StrEnum):
         return next(k for k in cls if k.syntax == syntax)
 
 
-__all__ = ["ArcKind"]
+#: what each kind of arc does to its place (the properties of `ArcKind` read it)
+EFFECTS: dict[ArcKind, frozenset[str]] = {
+    ArcKind.IN: frozenset({"consumes"}),
+    ArcKind.OUT: frozenset({"produces"}),
+    ArcKind.BOTH: frozenset({"consumes", "produces"}),
+    ArcKind.INHIBITOR: frozenset({"blocks"}),
+    ArcKind.RESET: frozenset({"empties"}),
+}
+
+
+__all__ = ["EFFECTS", "ArcKind"]

@@ -37,7 +37,7 @@ class EngineAPI:
             refuse_condensation(net, self.clock_reads)
         # per transition: the timed places it removes tokens from (their timestamps are the times at
         # which it is examined, besides the state's clock)
-        self.timed_inputs = [sorted({a.place for a in t.arcs if a.kind in ("in", "both") and a.expr is not None
+        self.timed_inputs = [sorted({a.place for a in t.arcs if a.kind.consumes and a.expr is not None
                                      and self.places[a.place].timed}) for t in self.transitions]
         self.ev = Evaluator(net.colsets, net.globals)
         self._be_index: dict = {}

@@ -55,7 +55,6 @@ from __future__ import annotations
 
 from collections.abc import Iterable
 
-from cpn.arcs import ArcKind
 from cpn.expr import nodes as E
 
 
@@ -102,9 +101,9 @@ class StubbornSets:
                         needs[t.index].add(a.place)
                 if a.kind.produces:
                     produce[t.index].add(a.place)
-                if a.kind is ArcKind.INHIBITOR:
+                if a.kind.blocks:
                     inhibit[t.index].add(a.place)
-                if a.kind is ArcKind.RESET:
+                if a.kind.empties:
                     reset[t.index].add(a.place)
         by_place = {}
         for name, sets in (("consume", consume), ("produce", produce), ("inhibit", inhibit), ("reset", reset)):

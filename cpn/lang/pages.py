@@ -288,7 +288,7 @@ class PageChecks:
         """A transition delay applies to the tokens put on timed places. With no timed output place it has
         no effect: CPN Tools accepts it (its check only type-checks the delay), and so do we, with a warning."""
         d = info.decl
-        outputs = [a for a in info.arcs if a.kind in ("out", "both")]
+        outputs = [a for a in info.arcs if a.kind.produces]
         colsets = [self.colsets.get(page.places[a.place].colset) for a in outputs]
         if None in colsets or any(cs.timed for cs in colsets):
             return

@@ -140,7 +140,7 @@ def _pending(producers: dict, engine, last, of: dict, n_steps: int) -> list:
     takers: dict = defaultdict(list)  # place -> lifeline keys of the transitions that take its tokens
     for t in net.transitions:
         for a in t.arcs:
-            if a.kind in ("in", "both", "reset") and of[t.index] not in takers[a.place]:
+            if a.kind.takes and of[t.index] not in takers[a.place]:
                 takers[a.place].append(of[t.index])
     left = [(p, v, src, skey) for (p, v), q in producers.items() for src, skey in q
             if any(key != skey for key in takers[p])]
