@@ -288,6 +288,7 @@ class PropertyLanguage:
         t = ck.infer_top(expr, env) if not ck.diags else None
         if t is not None:
             ck.unify(t, want, expr.span, what)
+        self._unknown_places(ck.diags)
         if not ck.diags:
             self._validate(expr, ck)
         if not ck.diags:
@@ -345,6 +346,22 @@ class PropertyLanguage:
             return node
 
         return fix(expr)
+
+    def _unknown_places(self, diags: list[Diagnostic]) -> None:
+        """An unknown name written as a place (`Page'place`, `Mark.Page'place`) is reported as a place the
+        net does not have, with the nearest place name, instead of as an unknown value."""
+        for k, d in enumerate(diags):
+            name = d.params.get("name") if d.code == "E0201" else None
+            if not isinstance(name, str) or ("'" not in name and not name.startswith("Mark.")):
+                continue
+            prefix = "Mark." if name.startswith("Mark.") else ""
+            base = name[len(prefix):]
+            cand = did_you_mean(base, list(self.accessors))
+            diags[k] = Diagnostic(
+                "E0703", f"no place '{base}' in the net", d.span, notes=d.notes, params=d.params,
+                hint=f"Did you mean the place '{prefix}{cand}'?" if cand else
+                "Name a place as Page'place (every instance) or Page'place n (instance n); the report lists "
+                "the places of the net.")
 
     def _validate(self, expr: A.Expr, ck) -> None:
         for node in walk(expr):

@@ -56,7 +56,7 @@ def test_a_violation_prints_the_shortest_trace_at_the_property_line(tmp_path, ca
 @pytest.mark.parametrize("body, where, code", [
     ("[explore]\nmax_state = 3\n", ":3:1: error[E0702]", "unknown exploration option"),
     ('[[property]]\nkind = "invarant"\n', ":3:8: error[E0702]", "Did you mean 'invariant'"),
-    ('[[property]]\nkind = "invariant"\nexpr = "size (C\'Q 1) = 1"\n', ":4:15: error[E0201]", "unknown name"),
+    ('[[property]]\nkind = "invariant"\nexpr = "size (C\'Q 1) = 1"\n', ":4:15: error[E0703]", "no place 'C'Q' in the net"),
     ('[[property]]\nkind = "invariant"\nexpr = """\nsize (C\'P 1)\n  = true"""\n', ":6:5: error[E0301]",
      "type mismatch"),
     ('[[property]]\nkind = "invariant"\nexpr = "size (C\'P 1) = "\n', ":4:", "error[E0101]"),
