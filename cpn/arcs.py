@@ -22,6 +22,11 @@ from __future__ import annotations
 from enum import StrEnum
 
 
+def _effect(name: str, doc: str) -> property:
+    """The property of a kind telling whether it has the effect `name` (in `EFFECTS`)."""
+    return property(lambda self: name in EFFECTS[self], doc=doc)
+
+
 class ArcKind(StrEnum):
     IN = "in"  # place -> transition: consumes the inscription
     OUT = "out"  # transition -> place: produces the inscription
@@ -29,25 +34,10 @@ class ArcKind(StrEnum):
     INHIBITOR = "inhibitor"  # blocks the transition while the place holds the inscription (or any token)
     RESET = "reset"  # removes every token of the place when the transition occurs
 
-    @property
-    def consumes(self) -> bool:
-        """The transition needs the inscription's tokens on the place and removes them."""
-        return "consumes" in EFFECTS[self]
-
-    @property
-    def produces(self) -> bool:
-        """The transition adds the inscription's tokens to the place."""
-        return "produces" in EFFECTS[self]
-
-    @property
-    def blocks(self) -> bool:
-        """The place's marking can disable the transition without being changed (an inhibitor arc)."""
-        return "blocks" in EFFECTS[self]
-
-    @property
-    def empties(self) -> bool:
-        """The transition empties the place (a reset arc)."""
-        return "empties" in EFFECTS[self]
+    consumes = _effect("consumes", "The transition needs the inscription's tokens on the place and removes them.")
+    produces = _effect("produces", "The transition adds the inscription's tokens to the place.")
+    blocks = _effect("blocks", "The place's marking can disable the transition without being changed (an inhibitor arc).")
+    empties = _effect("empties", "The transition empties the place (a reset arc).")
 
     @property
     def reads(self) -> bool:

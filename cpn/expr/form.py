@@ -36,8 +36,9 @@ class Form:
     rule: str | None = None
 
     def parse(self, span, items: list) -> Expr:
-        """The node of a parse-tree rule: `items` are its children, already transformed."""
-        return self.node(span, *items)
+        """The node of a parse-tree rule: `items` are its children, already transformed (a token, such as
+        the operator of `op +`, as a plain string)."""
+        return self.node(span, *[str(x) if isinstance(x, str) else x for x in items])
 
     def children(self, e) -> list[Expr]:
         """The subexpressions of e, the bodies of its rules included (`cpn.expr.binding.children`)."""

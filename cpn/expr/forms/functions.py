@@ -41,9 +41,6 @@ class OpFunForm(Form):
     node = OpFun
     rule = "opfun"
 
-    def parse(self, span, items):
-        return OpFun(span, str(items[0]))
-
     def infer(self, tc, e, env):
         T = tc.types
         a, b, r = tc.op_types(e.op, e)
@@ -60,9 +57,6 @@ class OpFunForm(Form):
 class SelectForm(Form):
     node = Select
     rule = "select"
-
-    def parse(self, span, items):
-        return Select(span, str(items[0]))
 
     def infer(self, tc, e, env):
         T = tc.types
