@@ -101,8 +101,8 @@ def _add_report_options(p) -> None:
     add_output_option(p, "--dot", "the state space and SCC graph as DOT (small nets)")
     add_output_option(p, "--graphml", "the state space and SCC graph as GraphML (small nets)")
     p.add_argument("--max-export-states", type=int, metavar="N", default=None,
-                   help="draw --dot and --graphml for a state space of up to N states (default: 10,000; "
-                   "0: no limit); above it they are skipped with a warning")
+                   help="draw --dot and --graphml, and put the graph in --json, for a state space of up to N "
+                   "states (default: 10,000; 0: no limit); above it they are skipped with a warning")
     add_output_option(p, "--html", "the report as one self-contained HTML page (the net, the state space, "
                       "a chart of the trace to each dead marking)")
     add_output_option(p, "--msc", "the trace to the first dead marking as a message sequence chart (SVG)")
@@ -222,7 +222,10 @@ def explore_engine(engine, args, sets: dict[str, str] | None = None) -> int:
     if not any(o.to_stdout for o in outputs.values()):
         sys.stdout.write(render_text(report, marking_changes=bool(getattr(args, "trace_to_dead", False)), **caps))
     if "--json" in outputs:
-        write_output(outputs["--json"], json.dumps(to_json(report), indent=2, ensure_ascii=False) + "\n")
+        doc = to_json(report, graph=True, max_export_states=getattr(args, "max_export_states", None))
+        if doc["graph"]["skipped"]:
+            print(f"warning: --json: the graph is left out: {doc['graph']['note']}", file=sys.stderr)
+        write_output(outputs["--json"], json.dumps(doc, indent=2, ensure_ascii=False) + "\n")
     _write_graphs(report, outputs, getattr(args, "max_export_states", None))
     _write_pictures(report, outputs, quiet)
     return _result_status(x, report, printed, bool(getattr(args, "max_memory_is_default", False)))

@@ -1,10 +1,13 @@
 """The JSON result of `explore`: a stable schema (docs/statespace.md); keys are added, never renamed.
 
-Imports `cpn.report.model` and `cpn.values` only.
+Imports `cpn.report.model`, `cpn.report.graphs` (its export limit), `cpn.engine.protocol` and `cpn.values`
+only.
 """
 
 from __future__ import annotations
 
+from cpn.engine.protocol import capability
+from cpn.report.graphs import MAX_EXPORT_STATES
 from cpn.report.model import Report
 from cpn.report.reduction import NOT_PRESERVED, REDUCED_SECTIONS
 from cpn.values import colours as C
@@ -13,8 +16,9 @@ SCHEMA_VERSION: int = 1
 EXAMPLES: int = 10
 
 
-def to_json(r: Report) -> dict:
-    """The report as a JSON-ready dict (the schema of docs/statespace.md).
+def to_json(r: Report, graph: bool = False, max_export_states: int | None = None) -> dict:
+    """The report as a JSON-ready dict (the schema of docs/statespace.md); with `graph`, also the state
+    space itself (`graph_json`) under the key "graph", for up to `max_export_states` states.
 
     >>> import cpn
     >>> from cpn.report import build_report
@@ -62,6 +66,8 @@ def to_json(r: Report) -> dict:
                                               if (x.reduction_stats or {}).get("visible_places") is not None else []),
             "not_preserved": list(REDUCED_SECTIONS), "why": NOT_PRESERVED},
     }
+    if graph:
+        out["graph"] = graph_json(r, max_export_states)
     if r.symmetric:
         _symmetry_quotient(out, r)
     if r.reduced:
@@ -71,6 +77,47 @@ def to_json(r: Report) -> dict:
             out[key] = None
         out["statespace"]["reduced"] = True
     return out
+
+
+def graph_json(r: Report, max_states: int | None = None) -> dict:
+    """The state space as the drawings have it: every state (`node` from 1, its non-empty places as text,
+    its clock on a timed model without time condensation, else null, whether it is dead or expanded, its
+    SCC) and every arc (`from`, `to`, `binding_element`). Above `max_states` states (None: the drawings'
+    limit, MAX_EXPORT_STATES; 0: no limit) the graph is skipped: `skipped` true, the number of states,
+    the limit and a note saying how to raise it.
+
+    >>> import cpn
+    >>> from cpn.report import build_report
+    >>> from cpn.statespace import Explorer
+    >>> m = cpn.loads("colset U = unit; place A : U = 1`(); trans t; arc A -> t;")
+    >>> g = graph_json(build_report(Explorer(m.engine()).run()))
+    >>> [s["marking"] for s in g["states"]], g["arcs"]
+    ([{"Top'A 1": '1`()'}, {}], [{'from': 1, 'to': 2, 'binding_element': "Top't 1: {}"}])
+    """
+    x = r.exploration
+    g = x.graph
+    limit = MAX_EXPORT_STATES if max_states is None else max_states
+    if limit and x.n_states > limit:
+        return {"skipped": True, "states": x.n_states, "limit": limit,
+                "note": f"the state space has {x.n_states:,} states, above the limit of {limit:,} for exports; "
+                        f"raise it with --max-export-states {x.n_states} (0: no limit)"}
+    engine = x.engine
+    timed = bool(getattr(engine, "is_timed", False)) and not capability(engine, "time_condensation", False)
+    dead = set(r.dead.states)
+    dec = getattr(r.scc, "decomposition", None) if r.scc is not None else None
+    states = []
+    for i, s in enumerate(g.states):
+        marking = {}
+        for p, place in enumerate(engine.places):
+            text = engine.format_marking(s, p)
+            if text != "empty":
+                marking[place.name] = text
+        states.append({"node": i + 1, "marking": marking, "time": engine.clock(s) if timed else None,
+                       "dead": i in dead, "expanded": g.is_expanded(i),
+                       "scc": dec.comp[i] + 1 if dec is not None else None})
+    arcs = [{"from": i + 1, "to": j + 1, "binding_element": engine.format_binding_element(be)}
+            for i in range(g.expanded) for be, j in g.out_arcs(i)]
+    return {"skipped": False, "states": states, "arcs": arcs}
 
 
 def _statespace(r: Report) -> dict:
