@@ -144,7 +144,10 @@ def _with_priorities(text: str, seed: int) -> str:
 
 
 @needs_native
-def test_random_nets_with_priorities_run_in_c(fills):
+def test_random_nets_with_priorities_run_in_c(fills, monkeypatch):
+    """The search with its caches filled by the engine (without the nets' C: a compilation each;
+    tests/statespace/test_native_timed_c.py runs their C)."""
+    monkeypatch.setenv("CPN_NO_GENERATED", "1")
     ran = 0
     for seed in range(200):
         text = _with_priorities(random_net(seed), seed)

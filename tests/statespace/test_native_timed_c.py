@@ -1,0 +1,158 @@
+"""The C generated from a timed net's inscriptions, or from those of a net with priorities
+(`cpn.engine.ccodegen.TimedTransitionC`), under the native timed search (`cpn.statespace.nativetimed`):
+the graph must be the Python search's own (the same states under the same ids, arcs in the same order,
+the same binding elements and dead markings), and where every transition is in C the search never
+returns to the engine."""
+
+import os
+import random
+
+import pytest
+
+import cpn
+from cpn.errors import EvaluationError
+from cpn.statespace import ExploreOptions, Explorer, nativetimed
+from cpn.statespace.store import packed_unavailable
+from tests._shared import count_calls
+from tests.engine._explore import same_exploration
+from tests.engine.randomnets import random_net, random_timed_net
+
+ROOT = os.path.dirname(os.path.dirname(os.path.dirname(__file__)))
+NATIVE = packed_unavailable()
+needs_native = pytest.mark.skipif(NATIVE is not None, reason=f"native code unavailable: {NATIVE}")
+
+
+@pytest.fixture
+def fills(monkeypatch):
+    """How many states the engine expanded for the C search; the C search never hands over here."""
+    monkeypatch.setattr(nativetimed, "HAND_OVER_RATE", 1e9)
+    return count_calls(monkeypatch, nativetimed.TimedNativeSearch, "_fill")
+
+
+def _both(model, condensation: bool, limit: int):
+    c = Explorer(model.engine(time_condensation=condensation),
+                 ExploreOptions(backend="c", max_states=limit)).run()
+    py = Explorer(model.engine(time_condensation=condensation),
+                  ExploreOptions(backend="python", max_states=limit, packed_states=False)).run()
+    assert c.backend == "c" and py.backend == "python", c.notes
+    same_exploration(c, py)  # (the same offsets: the same dead markings)
+    # the same ids of the places' markings, each kept with its tokens in the same order
+    assert [tuple(s) for s in c.graph.states] == [tuple(s) for s in py.graph.states]
+    assert [[list(d.items()) for d in c.engine.marking(s)] for s in c.graph.states] == \
+        [[list(d.items()) for d in py.engine.marking(s)] for s in py.graph.states]
+    assert c.untimed_states == py.untimed_states and c.time_growth == py.time_growth
+    return c
+
+
+def _without_clock(text: str) -> str:
+    """A random timed net whose reads of the clock are the constant 0 (the native timed search examines
+    transitions that do not read it)."""
+    return text.replace("intTime()", "0")
+
+
+def _with_priorities(text: str, seed: int) -> str:
+    rng = random.Random(seed)
+    out = []
+    for line in text.splitlines():
+        if line.startswith("trans ") and "priority" not in line and rng.random() < 0.7:
+            line = line.rstrip(";") + f" priority {rng.choice([500, 1000, 2000])};"
+        out.append(line)
+    return "\n".join(out) + "\n"
+
+
+@needs_native
+def test_random_timed_nets_run_wholly_in_generated_c(fills):
+    """Random timed nets (timed int, unit and product colour sets, delays on transitions and output arcs,
+    initial timestamps, inhibitor, reset and double arcs on timed places, priorities), with and without
+    time condensation: each a compilation of its C, so 24 of them."""
+    ran = 0
+    for seed in range(0, 96, 4):
+        text = _without_clock(random_timed_net(seed))
+        if seed % 8 == 4:
+            text = _with_priorities(text, seed)
+        model = cpn.loads(text, f"timed{seed}.cpnet")
+        code, why = model.engine().timed_groups().native_code()
+        assert why is None and code.left == {}, (why, code and code.left)
+        for condensation in (False, True):
+            fills[0] = 0
+            try:
+                c = _both(model, condensation, limit=300)
+            except AssertionError:
+                raise AssertionError(f"C and Python differ on random timed net {seed} (condensation "
+                                     f"{condensation}):\n{text}") from None
+            assert fills[0] == 0 and c.notes == [], (seed, c.notes)
+            ran += 1
+    assert ran == 48
+
+
+@needs_native
+def test_random_nets_with_priorities_run_wholly_in_generated_c(fills):
+    ran = 0
+    for seed in range(1, 200, 13):
+        text = _with_priorities(random_net(seed), seed)
+        model = cpn.loads(text, f"random{seed}.cpnet")
+        if model.net.is_timed or all(t.priority is None for t in model.net.transitions):
+            continue
+        code, why = model.engine().timed_groups().native_code()
+        if why is not None or code.left:
+            continue
+        fills[0] = 0
+        try:
+            c = _both(model, False, limit=300)
+        except AssertionError:
+            raise AssertionError(f"C and Python differ on random net {seed}:\n{text}") from None
+        assert fills[0] == 0 and c.notes == []
+        ran += 1
+    assert ran >= 8
+
+
+MIXED = """
+colset N = int with 0..3 timed;
+colset L = list N;
+var x, y : N;
+place P : N = 1`0 ++ (1`1@+1) ++ (1`2@+3);
+place Q : N;
+place R : N = 1`3;
+trans inc [x < 3] @+ 1 priority 1000;
+arc P -> inc : x;
+arc inc -> P : (x + 1) @+ 2;
+arc inc -> Q : x;
+trans back [length [x, x] = 2];
+arc Q -> back : x;
+arc back -> P : x @+ 1;
+trans swap [x <> y];
+arc R -> swap : y;
+arc P -> swap : x;
+arc swap -> R : x @+ 2;
+arc swap -> P : y;
+"""
+
+
+@needs_native
+@pytest.mark.parametrize("condensation", [False, True], ids=["timed", "condensed"])
+def test_a_transition_left_to_python_beside_transitions_in_c(condensation, fills):
+    """`back` reads a list: the engine computes its bindings (a note says why), the others run in C, and
+    the tables both keep stay in step (the ids agree)."""
+    model = cpn.loads(MIXED, "mixed.cpnet")
+    code, _ = model.engine().timed_groups().native_code()
+    assert sorted(code.left) == [1] and len(code.native) == 2
+    c = _both(model, condensation, limit=3000)
+    [note] = c.notes
+    assert note.startswith("the Python engine computes the bindings of transition 'Top'back 1'")
+    assert 0 < fills[0] < c.graph.expanded
+
+
+@needs_native
+def test_an_error_in_c_is_the_python_engines_report():
+    """A division by zero in a delay computed in C: the engine evaluates it again and reports it, as the
+    Python search does."""
+    text = ("colset N = int with 0..3 timed; var x : N; place P : N = 1`2;"
+            " trans t [x > 0]; arc P -> t : x; arc t -> P : (x - 1) @+ (6 div (x - 1));")
+    model = cpn.loads(text, "div.cpnet")
+    errors = []
+    for backend in ("c", "python"):
+        with pytest.raises(EvaluationError) as got:
+            Explorer(model.engine(), ExploreOptions(backend=backend, max_states=100)).run()
+        errors.append(str(got.value))
+    assert errors[0] == errors[1], errors
+    assert "the inscription of arc" in errors[0] and "x=1" in errors[0], errors[0]
