@@ -153,16 +153,6 @@ class ExprCompiler:
             return self.ns.ref(self.ev.eval(e, {}), "S")
         raise Unsupported()
 
-    def _c_TupleE(self, e):
-        return "(" + "".join(self.expr(x) + ", " for x in e.items) + ")"
-
-    def _c_RecordE(self, e):
-        fields = sorted(e.fields, key=lambda f: f[0])
-        return "(" + "".join(self.expr(x) + ", " for _, x in fields) + ")"
-
-    def _c_ListE(self, e):
-        return "(" + "".join(self.expr(x) + ", " for x in e.items) + ")"
-
     def _c_App(self, e):
         if isinstance(e.fn, A.Select):
             return f"{self.expr(e.arg)}[{e.fn.index}]"
@@ -173,12 +163,6 @@ class ExprCompiler:
         if isinstance(e.fn, A.Name) and e.fn.ref.kind == "builtin" and e.fn.name == "not":
             return f"(not {self.expr(e.arg)})"
         return f"{self.expr(e.fn)}({self.expr(e.arg)})"
-
-    def _c_If(self, e):
-        return f"({self.expr(e.then)} if {self.expr(e.cond)} else {self.expr(e.else_)})"
-
-    def _c_ToMs(self, e):
-        return f"MS1({self.expr(e.expr)})"
 
     def _c_BinOp(self, e):
         # The left spine (`a + b - c ...`, `a andalso b andalso ...`) in a loop. Python's compiler recurses
@@ -198,12 +182,6 @@ class ExprCompiler:
         if not parts:
             return acc
         return "(" + ", ".join(parts) + f", {acc})[-1]"
-
-    def _c_Case(self, e):
-        raise Unsupported()
-
-    def _c_Let(self, e):
-        raise Unsupported()
 
 
 def out_terms(e: A.Expr, ec: ExprCompiler, delay: str = "0") -> list[str]:

@@ -100,28 +100,10 @@ def all_vars(e: N.Expr | None, acc: set[str] | None = None) -> set[str]:
 
 def children(e: N.Expr) -> list[N.Expr]:
     """The subexpressions of e (the bodies of its rules and local declarations included)."""
-    if isinstance(e, (N.TupleE, N.ListE)):
-        return list(e.items)
-    if isinstance(e, N.RecordE):
-        return [x for _, x in e.fields]
     if isinstance(e, N.App):
         return [e.fn, e.arg]
     if isinstance(e, N.BinOp):
         return [e.left, e.right]
-    if isinstance(e, N.If):
-        return [e.cond, e.then, e.else_]
-    if isinstance(e, N.Case):
-        return [e.subject] + [b for _, b in e.rules]
-    if isinstance(e, N.Let):
-        out = []
-        for d in e.decls:
-            if isinstance(d, N.ValDecl):
-                out.append(d.expr)
-            elif isinstance(d, N.FunDecl):
-                out.extend(c.body for c in d.clauses)
-        return out + [e.body]
-    if isinstance(e, (N.Annot, N.ToMs)):
-        return [e.expr]
     form = form_of(e)  # a form that declares its own rules (cpn.expr.forms)
     return [] if form is None else form.children(e)
 

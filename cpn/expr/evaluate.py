@@ -100,10 +100,10 @@ class Evaluator:
 
     # ------------------------------------------------------------------ expressions
     def eval(self, e: A.Expr, env: dict) -> Any:
-        m = getattr(self, "_e_" + type(e).__name__, None)
-        if m is None:  # a form that declares its own rules (cpn.expr.forms)
-            return FORMS[e.__class__].evaluate(self, e, env)
-        return m(e, env)
+        rule = _RULES.get(e.__class__)
+        if rule is None:
+            rule = _rule_of(e.__class__)
+        return rule(self, e, env)
 
     def _e_Const(self, e, env):
         return e.value
@@ -199,46 +199,12 @@ class Evaluator:
             return ran
         raise MLError(f"unknown colour set function {csname}.{op}")
 
-    def _e_TupleE(self, e, env):
-        return tuple([self.eval(x, env) for x in e.items])
-
-    def _e_RecordE(self, e, env):
-        vals = {label: self.eval(x, env) for label, x in e.fields}
-        return tuple(vals[label] for label in sorted(vals))
-
-    def _e_ListE(self, e, env):
-        return tuple([self.eval(x, env) for x in e.items])
-
     def _e_App(self, e, env):
         f = self.eval(e.fn, env)
         a = self.eval(e.arg, env)
         if f.__class__ is Closure:
             return f.call(a)  # a Python call, not through __call__: no C stack per level of recursion
         return f(a)
-
-    def _e_If(self, e, env):
-        return self.eval(e.then if self.eval(e.cond, env) else e.else_, env)
-
-    def _e_Case(self, e, env):
-        v = self.eval(e.subject, env)
-        for pat, body in e.rules:
-            env2 = dict(env)
-            if self.match(pat, v, env2):
-                return self.eval(body, env2)
-        raise MLError("no rule of the case-expression matches (SML exception Match)")
-
-    def _e_Let(self, e, env):
-        env = dict(env)
-        for d in e.decls:
-            self.declare(d, env)
-        return self.eval(e.body, env)
-
-    def _e_Annot(self, e, env):
-        return self.eval(e.expr, env)
-
-    def _e_ToMs(self, e, env):
-        v = self.eval(e.expr, env)
-        return v if isinstance(v, (Multiset, TimedMultiset)) else Multiset.of(v)
 
     def _e_BinOp(self, e, env):
         if e.left.__class__ is not A.BinOp:  # one operator: as it always was
@@ -314,3 +280,15 @@ class Evaluator:
         if isinstance(p, A.PAnnot):
             return self.match(p.pat, v, env)
         raise MLError(f"unsupported pattern {type(p).__name__}")
+
+
+#: node class -> the rule evaluating it: a method `_e_<class>` of the evaluator, or its form's `evaluate`
+_RULES: dict[type, Any] = {}
+
+
+def _rule_of(cls: type):
+    rule = getattr(Evaluator, "_e_" + cls.__name__, None)
+    if rule is None:
+        rule = FORMS[cls].evaluate  # a form that declares its own rules (cpn.expr.forms)
+    _RULES[cls] = rule
+    return rule

@@ -13,9 +13,9 @@ checker, the evaluator, the expression compiler, the printer) and calls back int
 Examples
 --------
 >>> from cpn.expr import forms
->>> handle = forms.BY_RULE["handle"]
->>> handle.node.__name__, forms.form_of(handle.node(None, None, [])) is handle
-('Handle', True)
+>>> form = forms.BY_RULE["handle"]  # `e handle pat => e1`, built from the grammar's rule `handle`
+>>> forms.form_of(form.node(None, None, [])) is form
+True
 """
 
 from __future__ import annotations
@@ -59,7 +59,8 @@ class Form:
         return None
 
     def show(self, e, pp) -> str:
-        """The canonical text of e: `pp` is the printer (`pp.expr`, `pp.atom`, `pp.pat`, `pp.ty`)."""
+        """The canonical text of e: `pp` is the printer (`pp.expr`, `pp.atom`, `pp.pat`, `pp.ty`,
+        `pp.declaration`)."""
         raise NotImplementedError(f"cannot print {type(e).__name__}")
 
 

@@ -45,12 +45,6 @@ def expr(e: N.Expr) -> str:
         return const(e.value, e.kind)
     if isinstance(e, N.Name):
         return e.name
-    if isinstance(e, N.TupleE):
-        return "(" + ", ".join(expr(x) for x in e.items) + ")"
-    if isinstance(e, N.RecordE):
-        return "{" + ", ".join(f"{label} = {expr(x)}" for label, x in e.fields) + "}"
-    if isinstance(e, N.ListE):
-        return "[" + ", ".join(expr(x) for x in e.items) + "]"
     if isinstance(e, N.App):
         return f"({expr(e.fn)} {atom(e.arg)})"
     if isinstance(e, N.BinOp):
@@ -59,18 +53,6 @@ def expr(e: N.Expr) -> str:
         for node in spine:
             text = f"({text} {node.op} {expr(node.right)})"
         return text
-    if isinstance(e, N.If):
-        return f"(if {expr(e.cond)} then {expr(e.then)} else {expr(e.else_)})"
-    if isinstance(e, N.Case):
-        return f"(case {expr(e.subject)} of " + " | ".join(f"{pat(p)} => {expr(b)}" for p, b in e.rules) + ")"
-    if isinstance(e, N.Let):
-        body = expr(e.body.items[0]) + "".join("; " + expr(x) for x in e.body.items[1:]) \
-            if isinstance(e.body, N.Seq) else expr(e.body)
-        return "let " + " ".join(declaration(d) for d in e.decls) + f" in {body} end"
-    if isinstance(e, N.Annot):
-        return f"({expr(e.expr)} : {ty(e.type_expr)})"
-    if isinstance(e, N.ToMs):
-        return expr(e.expr)
     form = form_of(e)  # a form that declares its own rules (cpn.expr.forms)
     if form is not None:
         return form.show(e, PRINTER)
@@ -143,6 +125,6 @@ def declaration(d: N.Decl, sep: str = " | ") -> str:
 
 
 #: what a form's printing rule calls back (`cpn.expr.form.Form.show`)
-PRINTER = SimpleNamespace(expr=expr, atom=atom, pat=pat, ty=ty)
+PRINTER = SimpleNamespace(expr=expr, atom=atom, pat=pat, ty=ty, declaration=declaration)
 
 __all__ = ["atom", "clauses", "const", "declaration", "exception", "expr", "pat", "string", "ty"]

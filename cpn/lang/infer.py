@@ -7,6 +7,8 @@ Imports `cpn.lang.*` and layer 0.
 
 from __future__ import annotations
 
+from typing import NoReturn
+
 from cpn._util import did_you_mean
 from cpn._util.deep import left_spine
 from cpn.diagnostics import Span
@@ -113,6 +115,10 @@ class TypeInference(FunctionDraws):
     def must(self, a, b, span, what):
         if not self.unify(a, b, span, what):
             raise Abort()
+
+    def abort(self) -> NoReturn:
+        """Give up the expression being typed (after its error was reported)."""
+        raise Abort()
 
     def infer_top(self, e: A.Expr, env: Env | None = None) -> T.Type | None:
         try:
@@ -278,22 +284,6 @@ class TypeInference(FunctionDraws):
                              "For a state space, write an integer delay with '@+' (e.g. '@+ round(d)' or a "
                              "bounded choice '@+[a,b]'): model time is an integer there.", "@++")
 
-    def _i_TupleE(self, e, env):
-        return T.TTuple([self.infer(x, env) for x in e.items])
-
-    def _i_RecordE(self, e, env):
-        labels = [label for label, _ in e.fields]
-        if len(set(labels)) != len(labels):
-            self.error("E0301", "a record expression names a field twice", e.span)
-            raise Abort()
-        return T.TRecord([(label, self.infer(x, env)) for label, x in e.fields])
-
-    def _i_ListE(self, e, env):
-        elem = T.TVar()
-        for x in e.items:
-            self.must(self.infer(x, env), elem, x.span, "the elements of a list")
-        return T.lst(elem)
-
     def _i_App(self, e, env):
         if isinstance(e.fn, A.Select):
             at = self.infer(e.arg, env)
@@ -364,32 +354,20 @@ class TypeInference(FunctionDraws):
     def _fn_name(f):
         return f"'{f.name}'" if isinstance(f, A.Name) else "the function"
 
-    def _i_If(self, e, env):
-        self.must(self.infer(e.cond, env), T.BOOL, e.cond.span, "the condition of 'if'")
-        if self._is_empty_ms(e.then, env) and not self._is_empty_ms(e.else_, env):
-            et = self.infer(e.else_, env)
-            e.then = self._empty_as_list(e.then, et)
-            tt = self.infer(e.then, env)
-        else:
-            tt = self.infer(e.then, env)
-            e.else_ = self._empty_as_list(e.else_, tt, env)
-            et = self.infer(e.else_, env)
-        return self._join_branches(e, "then", "else_", tt, et)
-
-    def _is_empty_ms(self, x, env) -> bool:
+    def is_empty_ms(self, x, env) -> bool:
         return isinstance(x, A.Name) and x.name == "empty" and env.lookup("empty") is None
 
-    def _empty_as_list(self, x, other, env=None):
+    def empty_as_list(self, x, other, env=None):
         """`empty` beside a list (the other branch of an `if`, a rule of a `case`) is `[]`: CPN Tools'
         multisets are lists, so `if l = [] then empty else hd l :: f (tl l)` is a list there."""
-        if env is not None and not self._is_empty_ms(x, env):
+        if env is not None and not self.is_empty_ms(x, env):
             return x
         po = T.prune(other)
         if isinstance(po, T.TCon) and po.name == "list":
             return A.ListE(x.span, [])
         return x
 
-    def _join_branches(self, e, a, b, ta, tb):
+    def join_branches(self, e, a, b, ta, tb):
         self.force_ms(ta)
         self.force_ms(tb)
         pa, pb = T.prune(ta), T.prune(tb)
@@ -402,63 +380,6 @@ class TypeInference(FunctionDraws):
             ta = T.ms(ta)
         self.must(tb, ta, getattr(e, b).span, "the branches (both must have the same type)")
         return ta
-
-    def _i_Case(self, e, env):
-        st = self.infer(e.subject, env)
-        rt = None
-        # a rule whose body is `empty` after one that is not: `empty` beside a list is `[]` (_empty_as_list)
-        first = next((i for i, (_p, b) in enumerate(e.rules) if not self._is_empty_ms(b, env)), 0)
-        for _i in [first] + [i for i in range(len(e.rules)) if i != first]:
-            pat, body = e.rules[_i]
-            binds: dict[str, Symbol] = {}
-            self.must(self.infer_pat(pat, binds), st, pat.span, "a case pattern")
-            inner = env.child(binds)
-            if rt is not None:
-                body = self._empty_as_list(body, rt, inner)
-                e.rules[_i] = (pat, body)
-            bt = self.infer(body, inner)
-            if rt is None:
-                rt = bt
-            else:
-                self.must(bt, rt, body.span, "the rules of 'case' (all must have the same type)")
-        return rt
-
-    def _i_Let(self, e, env):
-        inner = env.child()
-        for d in e.decls:
-            if isinstance(d, A.ValDecl):
-                t = self.infer(d.expr, inner)
-                binds: dict[str, Symbol] = {}
-                self.must(self.infer_pat(d.pat, binds), t, d.pat.span, "the pattern of 'val'")
-                inner = inner.child(binds)
-            elif isinstance(d, A.FunDecl):
-                sink, self.ran_sink = self.ran_sink, None  # a local function may be called many times: its
-                outer_appends = self.appends[:]  # draws are draws; the enclosing code's open `l1 ++ l2`
-                self.appends.clear()  # are decided by the enclosing code, not at the end of this function
-                try:
-                    sym = self.fun_decl(d, inner)
-                finally:
-                    self.ran_sink = sink
-                    self.appends[:0] = outer_appends
-                if sym is None:
-                    raise Abort()
-                inner = inner.child({d.name: sym})
-            elif isinstance(d, A.ExceptionDecl):
-                self.error("E0206", "an exception declared inside 'let' is not supported", d.span,
-                           hint="Declare it at the top level, or in the first part of 'local ... in ... end'.")
-                raise Abort()
-        return self.infer(e.body, inner)
-
-    def _i_Annot(self, e, env):
-        t = self.infer(e.expr, env)
-        at = self.type_of_annotation(e.type_expr)
-        if at is None:
-            raise Abort()
-        self.must(t, at, e.span, "a type annotation")
-        return t
-
-    def _i_ToMs(self, e, env):
-        return T.ms(self.infer(e.expr, env))
 
     def op_types(self, op, node):
         if op in ("+", "-", "*"):

@@ -451,14 +451,6 @@ class ToAst(Transformer_NonRecursive):
         return items[0] if len(items) == 1 else A.TTuple(self.span(meta), list(items))
 
     # -- expressions
-    @v_args(meta=True)
-    def if_(self, meta, items):
-        return A.If(self.span(meta), *items)
-
-    @v_args(meta=True)
-    def case(self, meta, items):
-        return A.Case(self.span(meta), items[0], items[1])
-
     def match(self, items):
         return list(items)
 
@@ -514,22 +506,6 @@ class ToAst(Transformer_NonRecursive):
     def unit_(self, meta, items):
         return A.Const(self.span(meta), (), "unit")
 
-    @v_args(meta=True)
-    def annot(self, meta, items):
-        return A.Annot(self.span(meta), items[0], items[1])
-
-    @v_args(meta=True)
-    def tuple_(self, meta, items):
-        return A.TupleE(self.span(meta), list(items))
-
-    @v_args(meta=True)
-    def list_(self, meta, items):
-        return A.ListE(self.span(meta), [i for i in items if i is not None])
-
-    @v_args(meta=True)
-    def record_(self, meta, items):
-        return A.RecordE(self.span(meta), [i for i in items if i is not None])
-
     def efield(self, items):
         return (str(items[0]), items[1])
 
@@ -537,15 +513,6 @@ class ToAst(Transformer_NonRecursive):
     def pfield_annot(self, meta, items):
         tok, ty = items
         return (str(tok), A.PAnnot(self.span(meta), A.PVar(self.tspan(tok), str(tok)), ty))
-
-    @v_args(meta=True)
-    def let_(self, meta, items):
-        decls = [i for i in items if isinstance(i, A.Decl)]
-        exprs = [i for i in items if not isinstance(i, A.Decl)]
-        body = exprs[0] if len(exprs) == 1 else A.Seq(self.span(meta), exprs)
-        if not decls:  # `let in e end`, which CPN Tools accepts: e
-            return body
-        return A.Let(self.span(meta), decls, body)
 
     @v_args(meta=True)
     def lval(self, meta, items):

@@ -6,8 +6,12 @@ A new form is a module here, its line below, and its rule in `cpn/lang/grammar.l
 
 from cpn.expr.form import BY_RULE, FORMS, Form, form_of, register
 from cpn.expr.forms import (  # noqa: F401 - each registers its forms
+    aggregates,  # (a, b), [a, b], {x = a}
+    coercions,  # e : T, and 1`e where a multiset is expected
+    conditionals,  # if, case
     exceptions,  # raise, handle
     functions,  # fn, op +, #label
+    let,  # let ... in ... end
     negation,  # ~ e
     sequence,  # (e1; e2)
 )
