@@ -536,6 +536,15 @@ class _Translator(_Declarations):
         o = Origin(a.line, a.col, aid, page.name, f"arc between '{p.name}' and '{t.name}'")
         if annot:
             annot = self._inscription(annot, ao, what)
+        delay = re.search(r"@\+", re.sub(r'"(?:[^"\\]|\\.)*"', '""', ml.strip_comments(annot)))
+        if delay and orient in ("ptot", "bothdir"):
+            # one error here rather than the front end's, after which the arc's variables would be unbound
+            self.error(Origin(ao.line, ao.col, ao.element, ao.page, ao.what),
+                       f"{what} ('{_short(annot)}') delays the token that the transition consumes: delays on "
+                       "input arcs (CPN Tools' preemption) are not supported",
+                       hint="Remove the delay from the arc that consumes the token, or put it on the arc or the "
+                            "transition that produces the token.")
+            return
         pq, tq = ml.quote(p.name), ml.quote(t.name)
         if (p.name in {x.name for x in page.transs if x.subpage is None}
                 or t.name in {x.name for x in page.places}):
