@@ -64,6 +64,25 @@ class Form:
         raise NotImplementedError(f"cannot print {type(e).__name__}")
 
 
+#: what `match_rules` returns when no rule matches
+NO_MATCH = object()
+
+
+def match_rules(ev, rules: list, v, env: dict):
+    """The value of the body of the first rule `(pat, body)` whose pattern matches v, or NO_MATCH (`case`,
+    `handle`)."""
+    for pat, body in rules:
+        env2 = dict(env)
+        if ev.match(pat, v, env2):
+            return ev.eval(body, env2)
+    return NO_MATCH
+
+
+def show_rules(pp, rules: list) -> str:
+    """`pat => e | pat => e` (`case`, `fn`, `handle`)."""
+    return " | ".join(f"{pp.pat(p)} => {pp.expr(b)}" for p, b in rules)
+
+
 #: node class -> its form
 FORMS: dict[type, Form] = {}
 #: parse-tree rule -> the form built from it

@@ -36,27 +36,20 @@ class TupleForm(Form):
 
 
 @register
-class ListForm(Form):
+class ListForm(TupleForm):
+    """A list's value, subexpressions and code are a tuple's."""
+
     node = ListE
     rule = "list_"
 
     def parse(self, span, items):
         return ListE(span, [i for i in items if i is not None])
 
-    def children(self, e):
-        return list(e.items)
-
     def infer(self, tc, e, env):
         elem = tc.types.TVar()
         for x in e.items:
             tc.must(tc.infer(x, env), elem, x.span, "the elements of a list")
         return tc.types.lst(elem)
-
-    def evaluate(self, ev, e, env):
-        return tuple([ev.eval(x, env) for x in e.items])
-
-    def compile(self, ec, e):
-        return _tuple_code(ec, e.items)
 
     def show(self, e, pp):
         return "[" + ", ".join(pp.expr(x) for x in e.items) + "]"

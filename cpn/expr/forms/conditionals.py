@@ -6,7 +6,7 @@ beside a multiset as ``1`value`` (the type checker's `empty_as_list` and `join_b
 
 from __future__ import annotations
 
-from cpn.expr.form import Form, register
+from cpn.expr.form import NO_MATCH, Form, match_rules, register, show_rules
 from cpn.expr.nodes import Case, If
 from cpn.values.builtins import MLError
 
@@ -70,12 +70,10 @@ class CaseForm(Form):
         return rt
 
     def evaluate(self, ev, e, env):
-        v = ev.eval(e.subject, env)
-        for pat, body in e.rules:
-            env2 = dict(env)
-            if ev.match(pat, v, env2):
-                return ev.eval(body, env2)
-        raise MLError("no rule of the case-expression matches (SML exception Match)")
+        v = match_rules(ev, e.rules, ev.eval(e.subject, env), env)
+        if v is NO_MATCH:
+            raise MLError("no rule of the case-expression matches (SML exception Match)")
+        return v
 
     def show(self, e, pp):
-        return f"(case {pp.expr(e.subject)} of " + " | ".join(f"{pp.pat(p)} => {pp.expr(b)}" for p, b in e.rules) + ")"
+        return f"(case {pp.expr(e.subject)} of {show_rules(pp, e.rules)})"

@@ -10,7 +10,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
-from cpn.expr.form import Form, register
+from cpn.expr.form import NO_MATCH, Form, match_rules, register, show_rules
 from cpn.expr.nodes import Expr, Pat
 from cpn.values.builtins import MLRaise
 
@@ -74,11 +74,10 @@ class HandleForm(Form):
         try:
             return ev.eval(e.expr, env)
         except MLRaise as exc:
-            for pat, body in e.rules:
-                env2 = dict(env)
-                if ev.match(pat, exc.value, env2):
-                    return ev.eval(body, env2)
-            raise
+            v = match_rules(ev, e.rules, exc.value, env)
+            if v is NO_MATCH:
+                raise
+            return v
 
     def show(self, e, pp):
-        return f"({pp.expr(e.expr)} handle " + " | ".join(f"{pp.pat(p)} => {pp.expr(b)}" for p, b in e.rules) + ")"
+        return f"({pp.expr(e.expr)} handle {show_rules(pp, e.rules)})"

@@ -3,7 +3,7 @@
 
 from __future__ import annotations
 
-from cpn.expr.form import Form, register
+from cpn.expr.form import Form, register, show_rules
 from cpn.expr.nodes import Fn, OpFun, Select
 from cpn.values.builtins import binop
 
@@ -33,7 +33,7 @@ class FnForm(Form):
         return ev.closure([([p], b) for p, b in e.rules], env, "fn")
 
     def show(self, e, pp):
-        return "(fn " + " | ".join(f"{pp.pat(p)} => {pp.expr(b)}" for p, b in e.rules) + ")"
+        return f"(fn {show_rules(pp, e.rules)})"
 
 
 @register
