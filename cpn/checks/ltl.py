@@ -363,7 +363,46 @@ class _Search:
             cur = seg[-1][1]
         if cur != start or not cycle:
             cycle.extend(self._path(cur, inside, None, start))
+        prefix, cycle = self._shortest_prefix(prefix, cycle)
         return ([(label, v[0]) for label, v in prefix], [(label, v[0]) for label, v, _acc in cycle])
+
+    def _shortest_prefix(self, prefix: list, cycle: list) -> tuple[list, list]:
+        """The lasso with the shortest prefix to the cycle found: a breadth-first search of the product
+        from its initial state to the nearest product state of the cycle, which is then entered there
+        (rotated to start and end at that state). The cycle itself is the one found (not the shortest
+        accepting cycle); it keeps every arc, so it meets the same acceptance sets and fairness."""
+        states = [prefix[-1][1]] + [w for _label, w, _acc in cycle[:-1]]
+        at = {}
+        for k, v in enumerate(states):
+            at.setdefault(v, k)
+        v0 = prefix[0][1]
+        parent: dict = {v0: None}
+        queue = deque([v0])
+        hit = v0 if v0 in at else None
+        while queue and hit is None:
+            u = queue.popleft()
+            for label, w, _acc in self.successors(u):
+                if w in parent:
+                    continue
+                parent[w] = (u, label)
+                if w in at:
+                    hit = w
+                    break
+                queue.append(w)
+        if hit is None:
+            return prefix, cycle
+        path = []
+        v = hit
+        while parent[v] is not None:
+            u, label = parent[v]
+            path.append((label, v))
+            v = u
+        path.append((None, v0))
+        path.reverse()
+        if len(path) >= len(prefix):
+            return prefix, cycle  # the search's own prefix is already a shortest one
+        k = at[hit]
+        return path, cycle[k:] + cycle[:k]
 
     def _path(self, frm, inside: set, arc_goal, to=None) -> list:
         """The shortest steps (label, product state, sets) from frm inside the SCC, ending with an arc

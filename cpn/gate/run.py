@@ -17,6 +17,7 @@ from cpn.errors import ConfigurationError, ModelError
 from cpn.gate.scenario import Run, Scenario
 from cpn.properties.build import build_checks
 from cpn.properties.kinds import Check, DeadlockFree, GraphView, Reachable
+from cpn.properties.ltl import Ltl
 from cpn.properties.predicates import PredicateError, PropertyLanguage
 from cpn.properties.reduction import stubborn_plan
 from cpn.properties.spec import PropertySpec
@@ -98,8 +99,10 @@ class _DeadlockWatch:
 class _Monitor:
     """The explorer's stop predicate: evaluates the on-the-fly checks on every stored state, in order."""
 
-    def __init__(self, checks: list[Check], watch: _DeadlockWatch | None, stop_at_first: bool, only_witnesses: bool):
+    def __init__(self, checks: list[Check], watch: _DeadlockWatch | None, stop_at_first: bool, only_witnesses: bool,
+                 lasso: set | None = None):
         self.checks = checks
+        self.lasso = lasso  # the markings of an LTL violation found on the fly, not yet stored
         self.watch = watch
         self.stop_at_first = stop_at_first
         self.may_stop = stop_at_first  # else it only observes (the partitioned search calls it afterwards)
@@ -121,6 +124,10 @@ class _Monitor:
                 violated = True
         if self.watch is not None and self.watch.first_dead is not None:
             violated = True
+        if self.lasso is not None:
+            self.lasso.discard(state)
+            if not self.lasso:
+                violated = True  # every marking of the lasso is stored: its trace can be shown
         if not self.stop_at_first:
             return False
         # a violation fails the gate whatever else holds; a witness stops the search only when nothing
@@ -178,7 +185,13 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     watch = _DeadlockWatch(engine) if needs_deadlock else None
     stop_first = bool(opts.get("stop_at_first_violation", False))
     only_witnesses = all(isinstance(c, Reachable) and c.on_the_fly for c in checks)
-    monitor = _Monitor(fly, watch, stop_first, only_witnesses) if (fly or watch is not None) else None
+    lasso = None
+    if opts.get("reduction") is None and opts.get("symmetry") is None:
+        lasso = _ltl_on_the_fly([c for c in checks if isinstance(c, Ltl)], engine, lang, opts)
+    if not stop_first:
+        lasso = None  # the whole state space is explored for the other properties anyway
+    monitor = (_Monitor(fly, watch, stop_first, only_witnesses, lasso)
+               if (fly or watch is not None or lasso is not None) else None)
     reduction = opts.get("reduction")
     visible, refused = stubborn_plan(checks) if reduction == "stubborn" else (None, {})
     scalars = ()
@@ -232,6 +245,30 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
             warnings = []
         results.append(PropertyResult(c.spec, verdict, time.perf_counter() - t, _places_read(c), warnings))
     return RunResult(scenario, run, x, engine, results, explore_seconds, time.perf_counter() - t1, opts)
+
+
+def _ltl_on_the_fly(checks: list[Ltl], engine, lang, opts: dict) -> set | None:
+    """Decide the `ltl` properties on the fly, before the exploration (the markings each search generates
+    kept for the next one), within the run's limits of states and seconds. Returns the markings of the
+    first violation's lasso (None when none is violated)."""
+    from cpn.checks.ltl import Cache
+    from cpn.properties.ltl import lasso_states
+
+    if not checks:
+        return None
+    cache = Cache(engine)
+    seconds = opts.get("max_seconds")
+    deadline = time.monotonic() + seconds if seconds else None
+    first = None
+    for c in checks:
+        try:
+            res = c.search_on_the_fly(cache, lang, opts.get("max_states"), deadline)
+        except PredicateError as exc:
+            c.error = exc  # decided: the formula's text fails in a marking (exit status 65)
+            continue
+        if res.holds is False and first is None:
+            first = lasso_states(res)
+    return first
 
 
 def _places_read(check: Check) -> tuple:

@@ -9,15 +9,21 @@ the step that leaves the position is such an occurrence and ``X p`` holds, or it
 It holds when every infinite path from the initial marking satisfies it; a dead marking repeats forever
 (docs/specs.md). `weak_fairness = ["Page'T", ...]` keeps only the paths on which each listed transition,
 if it is enabled in every marking from some point on, occurs infinitely often; `strong_fairness = [...]`
-the paths on which each, if it is enabled infinitely often, occurs infinitely often. The check runs `cpn.checks.ltl` on the explored graph and gives a violation as a lasso:
-the path to a marking and a cycle back to it (or a path that ends in a dead marking).
+the paths on which each, if it is enabled infinitely often, occurs infinitely often.
+
+The check runs `cpn.checks.ltl` on the fly, before the state space is explored (`search_on_the_fly`,
+called by `cpn.gate.run`): the product of the automaton with the markings generated as the search goes,
+stopping at the first accepting cycle, so a violation is found without the whole state space. A
+violation is a lasso: the shortest path in the product to the cycle found, then that cycle (or a path
+that ends in a dead marking). Under a reduction, or when the search on the fly stopped at a limit, it runs
+on the explored graph instead.
 """
 
 from __future__ import annotations
 
 from cpn._util import did_you_mean
-from cpn.checks.ltl import check_ltl
-from cpn.checks.verdict import Verdict, path_evidence
+from cpn.checks.ltl import LtlResult, check_ltl
+from cpn.checks.verdict import Evidence, Verdict, path_evidence
 from cpn.diagnostics import Diagnostic
 from cpn.errors import ModelError
 from cpn.lang import ast as A
@@ -35,10 +41,34 @@ class Ltl(Check):
         self.steps = steps or []  # binding-element tests of EXB and AXB: atoms len(atoms) + j
         self.weak = weak or []  # per weak fairness entry, its transition instances
         self.strong = strong or []  # the same for strong fairness
+        self.fly: LtlResult | None = None  # the search on the fly, when it ran
+
+    def search_on_the_fly(self, system, lang, max_states: int | None = None,
+                          deadline: float | None = None) -> LtlResult:
+        """Decide the formula on the fly on `system` (the engine, or a `cpn.checks.ltl.Cache` around it
+        shared by several formulas): the markings are generated as the search needs them. The result is
+        kept for `decide`."""
+        ctx = lang.ctx
+        ctx.graph = None  # no graph yet: `enabled` asks the engine
+        transition_of = lang.transition_index
+
+        def pair(ts: set) -> tuple:
+            return (lambda s: any(transition_of(be) in ts for be, _t in system.successors(s)),
+                    lambda be: be is not None and transition_of(be) in ts)
+
+        self.fly = check_ltl(system, self.formula, [lambda s, fn=a.fn: bool(fn(None, s)) for a in self.atoms],
+                             max_states=max_states, deadline=deadline,
+                             weak_fairness=[pair(ts) for ts in self.weak],
+                             strong_fairness=[pair(ts) for ts in self.strong],
+                             step_propositions=list(self.steps))
+        return self.fly
 
     def decide(self, view) -> Verdict:
+        if self.fly is not None and self.fly.holds is not None:
+            return self._decided_on_the_fly(view, self.fly)
         if not view.complete:
-            return Verdict.unknown(view.reason)
+            return Verdict.unknown(view.reason if self.fly is None else
+                                   f"{self.fly.reason} (the search on the fly); {view.reason}")
         truths = [view.truth(a) for a in self.atoms]
         res = check_ltl(_Graph(view.g), self.formula, [t.__getitem__ for t in truths],
                         weak_fairness=[_weak(view, ts) for ts in self.weak],
@@ -59,6 +89,32 @@ class Ltl(Check):
         else:
             msg = f"a path that cycles through {_state_name(view, end)} does not satisfy it"
         return Verdict.violated(msg, ev)
+
+
+    def _decided_on_the_fly(self, view, res: LtlResult) -> Verdict:
+        size = (f"{res.system_states:,} markings generated, {res.product_states:,} states of the product with "
+                f"the {res.automaton_states}-state automaton of its negation")
+        if res.holds:
+            return Verdict.holds(f"every path satisfies it (decided on the fly: {size})")
+        stutter = bool(res.cycle) and res.cycle[0][0] is None
+        ids = [view.g.state_id(s) for _label, s in res.prefix]
+        cids = [] if stutter else [view.g.state_id(s) for _label, s in res.cycle]
+        ev = None
+        if None not in ids and None not in cids:
+            ev = Evidence(tuple(ids), tuple(label for label, _s in res.prefix[1:]), tuple(cids),
+                          tuple(() if stutter else (label for label, _s in res.cycle)))
+        end = ids[-1]
+        where = _state_name(view, end) if end is not None else f"a marking {len(ids) - 1} steps from the initial one"
+        if stutter:
+            msg = f"a path that ends in dead {where} does not satisfy it"
+        else:
+            msg = f"a path that cycles through {where} does not satisfy it"
+        return Verdict.violated(f"{msg} (found on the fly: {size})", ev)
+
+
+def lasso_states(res: LtlResult) -> set:
+    """The markings of a violation's lasso (for an exploration that stops once it has them all)."""
+    return {s for _label, s in res.prefix} | {s for _label, s in res.cycle}
 
 
 def _weak(view, transitions: set) -> tuple:
@@ -168,4 +224,4 @@ def _numbered(f: tuple, n_atoms: int) -> tuple:
     return (f[0], *(_numbered(a, n_atoms) for a in f[1:]))
 
 
-__all__ = ["Ltl", "build_ltl"]
+__all__ = ["Ltl", "build_ltl", "lasso_states"]

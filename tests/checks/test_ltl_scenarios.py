@@ -46,7 +46,9 @@ def test_ltl_agrees_with_ctl_where_they_mean_the_same(tmp_path_factory, seed, k)
         for i, pair in enumerate(PAIRS) for kind, f in zip(("ltl", "ctl"), pair)))
     by = {p.spec.name: p.verdict for p in r.results}
     if not r.exploration.complete:
-        assert all(v.status is Status.UNKNOWN for n, v in by.items() if n.startswith("ltl"))
+        # the search on the fly may decide within the limit what the partial graph cannot
+        assert all(v.status is Status.UNKNOWN or "on the fly" in v.message
+                   for n, v in by.items() if n.startswith("ltl"))
         return
     g = r.exploration.graph
     for i in range(len(PAIRS)):
