@@ -17,6 +17,8 @@ keeps the reason as a note where it chose another search.
 
 from __future__ import annotations
 
+import os
+
 from cpn.engine.protocol import capability, has
 from cpn.statespace import native, parallel, threads
 from cpn.statespace.nativetimed import TimedNativeSearch
@@ -61,14 +63,32 @@ def why_not_native(engine, options: ExploreOptions, s0) -> str | None:
                         "native search examines transitions at the clock and the occurrence time only")
             return "this engine gives no transition groups (the reference interpreter)"
     if timed is not None and options.backend is not Backend.C and not native.TIMED_AUTO:
-        return ("timed nets and nets with priorities are searched natively only with --backend c: their "
-                "transitions have no generated C yet, and that search was measured slower than the Python "
-                "one (docs/performance.md)")
+        why = why_not_timed_auto(timed())
+        if why is not None:
+            return why
     if not _small_ints(s0):
         return "the states are not tuples of small non-negative integers"
     if native.library(timed=timed is not None) is None:
         return f"no native code: {native.why_unavailable()}"
     return None
+
+
+def why_not_timed_auto(tg) -> str | None:
+    """Why `auto` leaves a timed net or a net with priorities (its groups `tg`) to the Python search, or
+    None: it searches it natively where the net's generated C computes every transition (measured faster
+    than the Python search; with transitions whose bindings come from the engine, slower: docs/performance.md)."""
+    if native.switched_off() is not None or os.environ.get("CPN_NO_GENERATED"):
+        why = "the net's C is switched off"
+    else:
+        code, why = tg.native_code()
+        if code is not None and code.left:
+            t, reason = min(code.left.items())
+            why = f"transition '{tg._engine.transitions[t].name}' is left to the Python engine: {reason}"
+        elif code is not None:
+            return None
+    return ("timed nets and nets with priorities are searched natively by `auto` only where the net's "
+            "generated C computes every transition (else the native search is slower than the Python one, "
+            f"docs/performance.md), otherwise with --backend c: {why}")
 
 
 def needs_action(why: str) -> bool:

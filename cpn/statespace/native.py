@@ -78,9 +78,11 @@ def generated(engine, options) -> tuple[object | None, list[str]]:
 HAND_OVER_BY: int = 8192
 HAND_OVER_RATE: float = 1.5
 
-#: whether `auto` searches timed nets and nets with priorities natively (`--backend c` always does): their
-#: bindings still come from the Python engine, and the native search of them measured 1.0 to 1.9 times the
-#: Python search's time (`python bench/modbus.py --native`, docs/performance.md)
+#: whether `auto` searches every timed net and net with priorities natively (`--backend c` always does);
+#: False: only those whose transitions are all in the net's generated C (`chooser.why_not_timed_auto`):
+#: with bindings from the Python engine, the native search of them measured 1.0 to 1.9 times the Python
+#: search's time (`python bench/modbus.py --native`), wholly in C faster (`python bench/timed.py`,
+#: docs/performance.md)
 TIMED_AUTO: bool = False
 
 

@@ -22,6 +22,8 @@ from array import array
 from cpn._util.cbuild import switched_off, why_unavailable
 from cpn.engine.compiled import NEG_INF
 from cpn.statespace.native import (
+    GENERATE_AFTER,
+    GENERATE_PER_LINE,
     ND_CHECK,
     ND_DONE,
     ND_MAX_ARCS,
@@ -30,6 +32,7 @@ from cpn.statespace.native import (
     ND_WIDE_BE,
     HandOver,
     NativeSearch,
+    _Snapshot,
     library,
 )
 from cpn.statespace.options import Backend, StopReason
@@ -65,30 +68,62 @@ class TimedNativeSearch(NativeSearch):
         if options is not None:
             code, code_notes = timed_generated(self.tg, options)
             if code is not None:
-                lib = library(code, timed=True)
-                if lib is None:
-                    code_notes = [f"the C of the net's transitions could not be built ({why_unavailable()}): "
-                                  "the Python engine computes every transition's bindings"]
-                else:
-                    self.code = code
+                self.code = code
+                # `--backend c` builds the net's C at once; `auto` once the search is large enough to repay
+                # it (`native.GENERATE_AFTER`), the states so far expanded with the engine's help
+                self.generate_after = 0 if options.backend is Backend.C else \
+                    max(GENERATE_AFTER, GENERATE_PER_LINE * code.source.count("\n"))
+                if self.generate_after == 0:
+                    lib = self._timed_library()
+                    code_notes = [] if lib is None else code_notes
+                else:  # said once it is built (`_upgrade`)
+                    code_notes = []
             self.notes.extend(code_notes)
         self.on_level = on_level
         self._fields = len(s0)
+        self._attach(lib if lib is not None else library(timed=True), s0)
+
+    def _timed_library(self):
+        """The library with the net's C, or None (then the code is dropped, with a note)."""
+        lib = library(self.code, timed=True)
+        if lib is None:
+            self.notes.append(f"the C of the net's transitions could not be built ({why_unavailable()}): the "
+                              "Python engine computes every transition's bindings")
+            self.code = None
+        return lib
+
+    def _attach(self, lib, s0, old=None) -> None:
+        """As `NativeSearch._attach`, and the timed search over it, its caches empty."""
+        super()._attach(lib, s0, old)
         # what was copied to the C caches: per group the effects' (keys, time); the adds and the shifts
         self._sent = ([set() for _ in self.tg.groups], set(), set())
-        self._attach(lib if lib is not None else library(timed=True), s0)
         tg = self.tg
-        ffi, lib = self.ffi, self.lib
-        handle = lib.nt_new(self.handle, int(tg.clock), int(tg.condensation), int(tg.priorities),
-                            ffi.new("int32_t[]", [int(t) for t in tg.timed] or [0]), len(tg.timed_places),
-                            ffi.new("int32_t[]", tg.timed_places or [0]))
+        ffi, clib = self.ffi, self.lib
+        handle = clib.nt_new(self.handle, int(tg.clock), int(tg.condensation), int(tg.priorities),
+                             ffi.new("int32_t[]", [int(t) for t in tg.timed] or [0]), len(tg.timed_places),
+                             ffi.new("int32_t[]", tg.timed_places or [0]))
         if handle == ffi.NULL:
             raise MemoryError("cannot allocate the native search")
-        self.timed_handle = ffi.gc(handle, lib.nt_free)
-        lib.nt_set_watch(self.timed_handle, 1 if on_level is not None else 0)
+        self.timed_handle = ffi.gc(handle, clib.nt_free)
+        clib.nt_set_watch(self.timed_handle, 1 if self.on_level is not None else 0)
+
+    def _upgrade(self) -> None:
+        """Go on with the net's C compiled in (the states so far copied; the caches are filled anew)."""
+        lib = self._timed_library()
+        if lib is None:
+            return
+        self.notes.extend(f"the Python engine computes the bindings of transition "
+                          f"'{self.engine.transitions[t].name}': {reason}" for t, reason in sorted(self.code.left.items()))
+        old = _Snapshot(self)
+        self._attach(lib, self.graph.states[0], old)
+        self.round_trips = 0
+
+    def _pending(self) -> bool:
+        """Whether the net's C is to be built later in the search (`generate_after`)."""
+        return self.code is not None and self.gen is None
 
     def hand_over_rate(self) -> float:
-        return HAND_OVER_RATE
+        return float("inf") if self._pending() else HAND_OVER_RATE
 
     def _run(self, until: int, max_states: int, max_arcs: int) -> StopReason | None:
         lib, h = self.lib, self.timed_handle
@@ -97,7 +132,8 @@ class TimedNativeSearch(NativeSearch):
             if status == ND_NEED:
                 self.round_trips += 1
                 head = self.head
-                if HAND_OVER_FROM <= head <= HAND_OVER_BY and self.round_trips > HAND_OVER_RATE * head:
+                if HAND_OVER_FROM <= head <= HAND_OVER_BY and self.round_trips > HAND_OVER_RATE * head \
+                        and not self._pending():
                     self.flush()
                     raise HandOver(f"each state needed the engine {self.round_trips / head:.1f} times on average "
                                    "(transitions' results rarely recur)")
@@ -120,6 +156,8 @@ class TimedNativeSearch(NativeSearch):
                 raise MemoryError("the native search cannot grow any more")
             else:
                 self.flush()
+                if status == ND_CHECK and self._pending() and self.head >= self.generate_after:
+                    self._upgrade()
                 return {ND_CHECK: None, ND_DONE: StopReason.COMPLETE, ND_MAX_STATES: StopReason.MAX_STATES,
                         ND_MAX_ARCS: StopReason.MAX_ARCS}[status]
 

@@ -137,7 +137,7 @@ def test_bad_model_65(monkeypatch, tmp_path, capsys):
 def test_notes_on_the_search_of_a_timed_net_are_said_with_verbose_only(capsys):
     """Which search ran, where that asks nothing of the user, is neither on stderr nor in the report
     unless --verbose asks; then once."""
-    path = os.path.join(os.path.dirname(__file__), "..", "..", "models", "examples", "stop_and_wait.cpnet")
+    path = os.path.join(os.path.dirname(__file__), "..", "..", "models", "examples", "timer_cancel.cpnet")
     assert main(["explore", path, "--time-condensation"]) == 0
     out, err = capsys.readouterr()
     assert "Python back end" not in err and "Python back end" not in out
@@ -149,7 +149,7 @@ def test_notes_on_the_search_of_a_timed_net_are_said_with_verbose_only(capsys):
 
 
 def test_the_json_keeps_the_notes_on_the_search_apart(capsys):
-    path = os.path.join(os.path.dirname(__file__), "..", "..", "models", "examples", "stop_and_wait.cpnet")
+    path = os.path.join(os.path.dirname(__file__), "..", "..", "models", "examples", "timer_cancel.cpnet")
     assert main(["explore", path, "--time-condensation", "--json", "-"]) == 0
     doc = json.loads(capsys.readouterr().out)
     assert any("Python back end searched" in n for n in doc["backend_notes"]), doc["backend_notes"]

@@ -298,13 +298,15 @@ def test_modbus_scenario_checks_search_natively_with_the_python_verdicts(name, t
 
 
 def test_auto_leaves_timed_nets_to_the_python_search_with_a_note():
-    """The native search of a timed net is slower than the Python one while its bindings come from the
-    engine: `auto` keeps the Python search and says why; `--backend c` asks for the native one."""
-    model = cpn.load(os.path.join(ROOT, "models", "examples", "stop_and_wait.cpnet"))
+    """The native search of a timed net whose bindings come from the engine is slower than the Python one:
+    `auto` keeps the Python search and says why; `--backend c` asks for the native one. A net wholly in
+    the generated C: `auto` searches it natively (tests/statespace/test_native_timed_c.py)."""
+    model = cpn.load(os.path.join(ROOT, "models", "examples", "timer_cancel.cpnet"))
     auto = Explorer(model.engine(time_condensation=True), ExploreOptions(max_states=200)).run()
     assert auto.backend == "python"
     # a note that asks nothing of the user: with the search's other notes, not in the report's
-    assert any("searched natively only with --backend c" in n for n in auto.backend_notes), auto.backend_notes
+    assert any("searched natively by `auto` only where the net's generated C computes every transition" in n
+               for n in auto.backend_notes), auto.backend_notes
     assert not any("searched natively" in n for n in auto.notes), auto.notes
     c = Explorer(model.engine(time_condensation=True), ExploreOptions(backend="c", max_states=200)).run()
     assert c.backend == "c"

@@ -156,3 +156,17 @@ def test_an_error_in_c_is_the_python_engines_report():
         errors.append(str(got.value))
     assert errors[0] == errors[1], errors
     assert "the inscription of arc" in errors[0] and "x=1" in errors[0], errors[0]
+
+
+@needs_native
+def test_auto_searches_a_net_wholly_in_c_natively_building_its_c_on_the_way(fills, monkeypatch):
+    """`auto` on a timed net whose transitions are all in C: the native timed search, the engine filling
+    its caches up to `GENERATE_AFTER` states, the net's C from there on; the Python search's graph."""
+    monkeypatch.setattr(nativetimed, "GENERATE_AFTER", 200)
+    model = cpn.load(os.path.join(ROOT, "bench", "nets", "ms_timed.cpnet"), set={"N": "4"})
+    auto = Explorer(model.engine(time_condensation=True), ExploreOptions()).run()
+    py = Explorer(model.engine(time_condensation=True), ExploreOptions(backend="python", packed_states=False)).run()
+    assert auto.backend == "c" and auto.backend_notes == [] and auto.notes == []
+    same_exploration(auto, py)
+    assert auto.complete and auto.n_states == 729
+    assert 0 < fills[0] < 400  # the engine expanded states before the C was built, none after
