@@ -304,8 +304,10 @@ def test_discrete_on_an_output_arc_is_a_choice_and_inside_a_function_called_in_a
 
 def test_a_reference_declared_with_val_and_read_by_an_inscription_is_refused_at_the_read():
     decls = DECLS + '<ml id="M2">val delay = ref 0;</ml>'
-    body = (place("P1", "A", "S", "1`0") + trans("T1", "t", code="input (x)\naction\ndelay := x")
-            + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P1", "(!delay)"))
+    # read by the guard: the value the previous occurrence assigned (tests/io/test_cpntools_code_refs.py has
+    # the variable read only by the outputs of the transition that assigns it)
+    body = (place("P1", "A", "S", "1`0") + trans("T1", "t", cond="x = (!delay)", code="input (x)\naction\ndelay := x")
+            + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P1", "x"))
     with pytest.raises(ModelError) as info:
         translate_text(cpn_xml(decls, page("PG1", "Top", body)), "m.cpn")
     [d] = info.value.diagnostics

@@ -400,7 +400,7 @@ class _Translator(_Declarations):
         delay = _clean(t.el.child_text("time"))
         if delay:
             do = _text_origin(t.el.find("time"), t.id, t.page.name, f"time inscription of '{t.name}'", owner=t.el)
-            delay = self._inscription(delay, do, f"the time inscription of {what}")
+            delay = self._inscription(self._code_reads(t, delay), do, f"the time inscription of {what}")
             if not delay.startswith("@+"):
                 self.error(do, f"{what} has the time inscription '{_short(delay)}'; expected '@+ delay'")
             elif t.id in self.code_outputs:
@@ -437,6 +437,25 @@ class _Translator(_Declarations):
         act = code[m.start("act"):].strip()
         if act.endswith(";"):
             act = act[:-1].rstrip()
+        assigns = self.code_assigns.get(t.id) if not outs else None
+        if assigns:
+            # `action x := e` where only this transition's output arcs and delay read `!x`: x is an output
+            names = list(assigns)
+            exprs = [assigns[n][0] for n in names]
+            pat = names[0] if len(names) == 1 else "(" + ", ".join(names) + ")"
+            act = exprs[0] if len(exprs) == 1 else "(" + ", ".join(exprs) + ")"
+            before = code[:assigns[names[0]][1]]
+            if "\n" in before:
+                ao = Origin(origin.line + before.count("\n"), len(before.rsplit("\n", 1)[-1]) + 1, origin.element,
+                            origin.page, origin.what)
+            else:
+                ao = Origin(origin.line, origin.col + len(before), origin.element, origin.page, origin.what)
+            self.code_outputs[t.id] = (names, pat, act, ao)
+            note = (f"the code segment of {what} assigns {', '.join(names)}, which only its output arcs read: "
+                    "its action is evaluated in a 'let' around them")
+            self.notes.append(note)
+            self.out.raw(f"(* note: {note} *)")
+            return
         if not outs:
             note = (f"the code segment of {what} binds no output variable: its action is not "
                     "executed (it cannot change the marking)")
@@ -470,6 +489,13 @@ class _Translator(_Declarations):
                 "around the output inscriptions that use them")
         self.notes.append(note)
         self.out.raw(f"(* note: {note} *)")
+
+    def _code_reads(self, t: _Trans, text: str) -> str:
+        """`!x` written `x` where x is assigned by t's code segment and read only by its outputs (a blank keeps
+        the columns)."""
+        for x in self.code_assigns.get(t.id, {}) if t.id in self.code_outputs else ():
+            text = re.sub(r"!(\s*" + re.escape(x) + r"\b)", r" \1", text)
+        return text
 
     def _with_code(self, t: _Trans, text: str, origin: Origin) -> list[tuple[str, Origin | None]]:
         """Parts of an inscription of `t`, wrapped in the `let` of t's code segment if it uses an output."""
@@ -535,7 +561,7 @@ class _Translator(_Declarations):
         ao = _text_origin(a.find("annot"), aid, page.name, f"arc inscription {p.name}/{t.name}", owner=a)
         o = Origin(a.line, a.col, aid, page.name, f"arc between '{p.name}' and '{t.name}'")
         if annot:
-            annot = self._inscription(annot, ao, what)
+            annot = self._inscription(self._code_reads(t, annot) if orient == "ttop" else annot, ao, what)
         delay = re.search(r"@\+", re.sub(r'"(?:[^"\\]|\\.)*"', '""', ml.strip_comments(annot)))
         if delay and orient in ("ptot", "bothdir"):
             # one error here rather than the front end's, after which the arc's variables would be unbound

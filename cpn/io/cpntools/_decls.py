@@ -19,6 +19,7 @@ from cpn.values.draws import DISTRIBUTIONS
 from cpn.values.effects import SIMULATION_ONLY
 
 _STRING = r'"(?:[^"\\]|\\.)*"'  # an SML string literal
+_LITERAL = r"~?\d+(?:\.\d+)?(?:[eE]~?\d+)?|" + _STRING + r"|true|false|\(\)"  # a constant of a globref
 
 
 def _unescape(text: str) -> str:
@@ -60,11 +61,20 @@ class _Declarations:
                 elif el.tag == "var":
                     user_names |= {c.text.strip() for c in el.findall("id")}
         funs = [f for t in decl_texts for f in ml.declared_functions(t)]
-        # `val x = ref 0;` in a declaration: a reference variable like a globref, set by code segments
+        self.fun_bodies: dict[str, list[str]] = {}
+        for name, body in funs:
+            self.fun_bodies.setdefault(name, []).append(body)
+        # `val x = ref 0;` in a declaration: a reference variable like a globref, set by code segments; never
+        # assigned and holding a literal, it is a constant
         for el in self._all_decl_elements(gb) if gb is not None else []:
             if el.tag == "ml":
-                for m in re.finditer(r"\bval\s+([A-Za-z][\w']*)\s*=\s*ref\b", ml.strip_comments(el.text)):
-                    self.globrefs_refused[m.group(1)] = el
+                for m in re.finditer(r"\bval\s+([A-Za-z][\w']*)\s*=\s*ref\b(?:\s*(" + _LITERAL + r")\s*(?=;|\Z))?",
+                                     ml.strip_comments(el.text)):
+                    if m.group(2) is not None and m.group(1) not in self.assigned:
+                        self.globref_consts[m.group(1)] = m.group(2)
+                    else:
+                        self.globrefs_refused[m.group(1)] = el
+        self._scan_code_refs()
         self._needed_declarations(gb)
         user_names |= {name for name, _ in funs}
         # A user's own 'normal' or 'uniform' (an enumeration constant, say) is not the library function.
@@ -102,6 +112,99 @@ class _Declarations:
                     self.impure_via[name] = sorted(used & library)[0] if used & library else sorted(used & self.impure)[0]
                     self.impure.add(name)
                     changed = True
+
+    def _scan_code_refs(self) -> None:
+        """Reference variables that a code segment assigns and only that transition's output arcs and delay read.
+
+        CPN Tools runs a code segment's action after the input arcs and before the output arcs, so in
+        `action execTime_1 := round (...)` with `c@+(!execTime_1)` on an output arc of the same transition
+        the variable carries no value from one occurrence to the next: it is an output variable of the code
+        segment, bound in a `let` around the inscriptions that read it (the generated process models).
+        """
+        self.code_assigns: dict[str, dict[str, tuple[str, int]]] = {}  # transition id -> ref -> (expr, offset)
+        for tr in self.cpnet.iter("trans"):
+            code = tr.child_text("code")
+            if not code.strip() or "action" not in code:
+                continue
+            clean = ml.strip_comments(code)
+            m = re.match(r"\s*(?:input\s*(?:\([^)]*\)|[A-Za-z][\w']*)\s*;?)?\s*(?:output\s*\(\s*\)\s*;?)?\s*action\b",
+                         clean)
+            if not m:
+                continue
+            body, start = clean[m.end():], m.end()
+            assigns: dict[str, tuple[str, int]] = {}
+            for part in re.finditer(r"[^;]+", body):
+                a = re.fullmatch(r"(\s*)([A-Za-z][\w']*)\s*:=(\s*)(.*?)\s*", part.group(), re.S)
+                if not a or not a.group(4) or ":=" in a.group(4) or a.group(2) in assigns:
+                    assigns = {}
+                    break
+                assigns[a.group(2)] = (code[start + part.start() + a.start(4):start + part.start() + a.end(4)],
+                                       start + part.start() + a.start(4))
+            if assigns and all(self._pure(e) for e, _ in assigns.values()):
+                self.code_assigns[tr.attrs.get("id", "?")] = assigns
+        assigned_by_code = {x for a in self.code_assigns.values() for x in a}
+        if not assigned_by_code:
+            self.code_refs: set[str] = set()
+            return
+        # every read of such a variable must be in an output arc or the delay of a transition that assigns it
+        ok = set(assigned_by_code)
+        allowed: list[str] = []
+        for page in self.cpnet.findall("page"):
+            for tr in page.findall("trans"):
+                assigns = self.code_assigns.get(tr.attrs.get("id", "?"), {})
+                for tag in ("cond", "priority", "code", "time"):
+                    text = tr.child_text(tag)
+                    if tag == "time":
+                        allowed.append(text)
+                        text = re.sub(r"!\s*(" + "|".join(map(re.escape, assigns)) + r")\b", "", text) if assigns \
+                            else text
+                    ok -= {x for x in assigned_by_code if re.search(r"!\s*" + re.escape(x) + r"\b", text)}
+            for a in page.findall("arc"):
+                te = a.find("transend")
+                assigns = self.code_assigns.get(te.attrs.get("idref", "") if te is not None else "", {})
+                text = a.child_text("annot")
+                if a.attrs.get("orientation", "").strip().lower() == "ttop" and assigns:
+                    text = re.sub(r"!\s*(" + "|".join(map(re.escape, assigns)) + r")\b", "", text)
+                ok -= {x for x in assigned_by_code if re.search(r"!\s*" + re.escape(x) + r"\b", text)}
+            for pl in page.findall("place"):
+                ok -= {x for x in assigned_by_code if re.search(r"!\s*" + re.escape(x) + r"\b",
+                                                                pl.child_text("initmark"))}
+        gb = self.cpnet.find("globbox")
+        for el in self._all_decl_elements(gb) if gb is not None else []:
+            if el.tag == "ml":
+                ok -= {x for x in assigned_by_code if re.search(r"!\s*" + re.escape(x) + r"\b", el.text)}
+        # and it is assigned nowhere else (no `x :=` outside those code segments)
+        elsewhere = [t.text for t in self.cpnet.iter("text") if t.text not in
+                     {tr.child_text("code") for tr in self.cpnet.iter("trans")
+                      if tr.attrs.get("id", "?") in self.code_assigns}]
+        elsewhere += [m.text for m in self.cpnet.iter("ml")]
+        for t in elsewhere:
+            ok -= ml.assigned_refs(t)
+        self.code_refs = ok & set(self.globrefs_refused)
+        for tid in list(self.code_assigns):
+            if not set(self.code_assigns[tid]) <= self.code_refs:
+                del self.code_assigns[tid]
+
+    def _pure(self, text: str) -> bool:
+        """True if CPN ML text draws no random value, has no side effect and uses no reference variable, directly
+        or through the declared functions it calls: evaluating it twice gives one value."""
+        seen: set[str] = set()
+        todo = [text]
+        while todo:
+            t = todo.pop()
+            clean = ml.strip_comments(t)
+            if ":=" in clean or re.search(r"!\s*[A-Za-z(]", clean):
+                return False
+            for n, _ in ml.names(t):
+                head = n.split(".")[0]
+                if (n in DISTRIBUTIONS or n in SIMULATION_ONLY or n in ml.RANDOM_FUNCTIONS or n.endswith(".ran")
+                        or head in ml.SIDE_EFFECT_NAMES or head in ml.RANDOM_STRUCTURES or n in ml.SIDE_EFFECT_NAMES
+                        or head == "TextIO"):
+                    return False
+                if n in self.fun_bodies and n not in seen:
+                    seen.add(n)
+                    todo += self.fun_bodies[n]
+        return True
 
     def _needed_declarations(self, gb: Element | None) -> None:
         """Find the ML declarations the net uses, directly or through other declarations.
@@ -488,6 +591,16 @@ class _Declarations:
             self.out.raw(f"(* declaration {el.attrs.get('id', '?')} ({alias.group(1)}() = "
                          f"{self.ran_aliases[alias.group(1)]}) at line {el.line}: written out where it is called *)")
             return
+        refs = re.findall(r"\bval\s+([A-Za-z][\w']*)\s*=\s*ref\b", ml.strip_comments(text))
+        if refs and set(refs) <= getattr(self, "code_refs", set()) and re.fullmatch(
+                r"(?:\s*val\s+[A-Za-z][\w']*\s*=\s*ref\b[^;]*;?)+\s*", ml.strip_comments(text)):
+            self.out.raw(f"(* declaration {el.attrs.get('id', '?')} ({', '.join(refs)}) at line {el.line}: "
+                         "assigned by code segments and read by the output arcs of the same transitions: "
+                         "an output variable of each *)")
+            return
+        if refs and any(r in self.globref_consts for r in refs):  # `val x = ref 0` never assigned: a constant
+            text = re.sub(r"(\bval\s+([A-Za-z][\w']*)\s*=\s*)ref\b",  # blanks keep the columns
+                          lambda m: m.group(1) + "   " if m.group(2) in self.globref_consts else m.group(0), text)
         if pruned:
             heads = [name for name, _ in ml.declared_functions(text)]
             what = ", ".join(heads) if heads else _short(text, 30)
