@@ -796,3 +796,23 @@ out:
     free(redge);
     return result;
 }
+
+/* ---------------------------------------------------------------- integer columns (contest formulas) */
+
+/* acc[i] += a[i] */
+void gr_add_i64(int64_t n, const int64_t *a, int64_t *acc) {
+    for (int64_t i = 0; i < n; i++) acc[i] += a[i];
+}
+
+/* out[i] = a[i] <= b[i] */
+void gr_le_i64(int64_t n, const int64_t *a, const int64_t *b, uint8_t *out) {
+    for (int64_t i = 0; i < n; i++) out[i] = a[i] <= b[i];
+}
+
+/* out[i] = a[i] <= c (const_left 0), or c <= a[i] (const_left 1) */
+void gr_le_const(int64_t n, const int64_t *a, int64_t c, int const_left, uint8_t *out) {
+    if (const_left)
+        for (int64_t i = 0; i < n; i++) out[i] = c <= a[i];
+    else
+        for (int64_t i = 0; i < n; i++) out[i] = a[i] <= c;
+}

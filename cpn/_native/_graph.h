@@ -36,6 +36,9 @@ void gr_masks(int64_t n, int nprops, const uint8_t *props, int32_t *mask);
 int gr_ltl(int64_t n, int64_t nexp, const int64_t *off, const int32_t *dst, const int32_t *mask,
            const int32_t *mtable, int32_t nm, int32_t nq, const int64_t *moff, const uint32_t *macc,
            const int32_t *mdst, int32_t q0, uint32_t full, int64_t *product_states);
+void gr_add_i64(int64_t n, const int64_t *a, int64_t *acc);
+void gr_le_i64(int64_t n, const int64_t *a, const int64_t *b, uint8_t *out);
+void gr_le_const(int64_t n, const int64_t *a, int64_t c, int const_left, uint8_t *out);
 /* cffi: end */
 
 #endif

@@ -111,6 +111,7 @@ class ContestModel:
         self._rows = None
         self.explored = 0  # the states of the whole state space, once it was built
         self._columns = None
+        self._qcols: dict | None = None
         self._arc_transitions = None
         self._file = ""
 
@@ -118,6 +119,7 @@ class ContestModel:
         """Forget the markings generated so far (to time a property file on its own)."""
         self.cache = self._new_cache()
         self._counts, self._fire, self._graph, self._columns, self._kripke = {}, {}, None, None, None
+        self._qcols = None
         self._rows = None
         self.explored = 0
 
@@ -281,8 +283,7 @@ class ContestModel:
             if not x.complete:
                 raise CannotCompute(f"the state space is partial: {x.stop_reason.describe(x.options)}")
             g = x.graph
-            table = {be: self.transition_of(be) for be in set(g.bes)}
-            self._arc_transitions = array("i", map(table.__getitem__, g.bes))
+            self._arc_transitions = _arc_transitions(g.bes, self.transition_of)
             self.explored = x.n_states
             self._graph = (g.states, g.offsets, g.dst)
         return self._graph
@@ -319,6 +320,8 @@ class ContestModel:
     def vector(self, f: c.Node):
         """The value of a state formula (a bytearray) or integer expression (a list) in every state of
         the state space, in `graph()` order, computed a column at a time."""
+        from cpn.statespace import graphnative
+
         states, offsets, _dst = self.graph()
         n = len(states)
         if isinstance(f, c.Bool):
@@ -334,15 +337,17 @@ class ContestModel:
                 acc = acc & x if isinstance(f, c.And) else acc | x
             return bytearray(acc.to_bytes(n, "little"))
         if isinstance(f, c.IntLe):
-            return bytearray(map(operator.le, self.vector(f.left), self.vector(f.right)))
+            left, right = self.ints(f.left), self.ints(f.right)
+            if isinstance(left, int) and isinstance(right, int):
+                return bytearray([left <= right]) * n
+            fast = graphnative.less_equal(left, right)
+            if fast is not None:
+                return fast
+            left = [left] * n if isinstance(left, int) else left
+            right = [right] * n if isinstance(right, int) else right
+            return bytearray(map(operator.le, left, right))
         if isinstance(f, (c.Tokens, c.PlaceBound)):
-            cols = self.columns()
-            idx = [self._index(self.place, p, "place", f) for p in f.places]
-            if not idx:
-                return [0] * n
-            if len(idx) == 1:
-                return list(cols[idx[0]])
-            return list(map(sum, zip(*(cols[i] for i in idx))))
+            return self.ints(f)
         if isinstance(f, c.Fireable):
             rows = self.enabled_rows()
             acc = 0
@@ -350,6 +355,32 @@ class ContestModel:
                 acc |= int.from_bytes(rows[t], "little")
             return bytearray(acc.to_bytes(n, "little"))
         raise CannotCompute(f"not a state formula: {c.show(f)}")
+
+    def ints(self, f: c.Node):
+        """The value of an integer expression: an int when it is a constant, else its value in every state
+        (an array "q", in `graph()` order)."""
+        from cpn.statespace import graphnative
+
+        if isinstance(f, c.IntConst):
+            return f.value
+        if not isinstance(f, (c.Tokens, c.PlaceBound)):
+            raise CannotCompute(f"not an integer expression: {c.show(f)}")
+        n = len(self.graph()[0])
+        idx = [self._index(self.place, p, "place", f) for p in f.places]
+        if not idx:
+            return array("q", bytes(8 * n))
+        if self._qcols is None:
+            self._qcols = {}
+        cols = []
+        for i in idx:
+            col = self._qcols.get(i)
+            if col is None:
+                col = self._qcols[i] = array("q", self.columns()[i])
+            cols.append(col)
+        if len(cols) == 1:
+            return cols[0]
+        fast = graphnative.add_columns(cols)
+        return fast if fast is not None else array("q", map(sum, zip(*cols)))
 
     def columns(self) -> list:
         """Per place, its number of tokens in every state of the state space: with the compiled engine's
@@ -406,7 +437,7 @@ class ContestModel:
 
     def _answer(self, f: c.Node) -> tuple[object, str]:
         if isinstance(f, c.PlaceBound):
-            return max(self.vector(f)), ""
+            return max(self.ints(f)), ""
         if isinstance(f, c.Quant) and isinstance(f.arg, c.Temporal) and f.arg.op in ("F", "G") \
                 and c.is_state_formula(f.arg.args[0]):
             if f.path == "E" and f.arg.op == "F":
@@ -475,6 +506,22 @@ class ContestModel:
 
 
 _NOT = bytes([1, 0] + [0] * 254)
+
+
+def _arc_transitions(bes, transition_of) -> array:
+    """The transition instance of every arc (an array "i") from the arcs' binding elements."""
+    from cpn.statespace import graphnative
+
+    distinct = graphnative.distinct_ids(bes) if isinstance(bes, array) else None
+    if distinct is not None:
+        table = [0] * (distinct[-1] + 1 if distinct else 1)
+        for be in distinct:
+            table[be] = transition_of(be)
+        got = graphnative.map_ids(bes, table, "i")
+        if got is not None:
+            return got
+    table_d = {be: transition_of(be) for be in set(bes)}
+    return array("i", map(table_d.__getitem__, bes))
 
 
 def _body(name: str) -> str:

@@ -372,3 +372,44 @@ def ltl_accepting_cycle(n: int, offsets: array, dst: array, props: list[bytearra
     if got < 0:
         return None
     return bool(got), count[0]
+
+
+# ----------------------------------------------------------------------------- integer columns
+def _i64(a) -> bool:
+    return isinstance(a, array) and a.typecode == "q"
+
+
+def add_columns(columns: list[array]) -> array | None:
+    """The sum of integer columns (arrays "q" of one length), item by item; None where native code is
+    unavailable."""
+    lib = library(len(columns[0]) // CHEAP) if columns else None
+    if lib is None or not all(_i64(c) and len(c) == len(columns[0]) for c in columns):
+        return None
+    ffi = lib.ffi
+    acc = array("q", columns[0])
+    for c in columns[1:]:
+        lib.lib.gr_add_i64(len(acc), _buf(ffi, "int64_t[]", c), _buf(ffi, "int64_t[]", acc))
+    return acc
+
+
+def less_equal(left, right) -> bytearray | None:
+    """Item by item, left <= right (a bytearray of 0/1) for integer columns (arrays "q") or one column and
+    an int; None where native code is unavailable or neither side is a column."""
+    n = len(left) if _i64(left) else len(right) if _i64(right) else 0
+    lib = library(n // CHEAP) if n else None
+    if lib is None:
+        return None
+    ffi = lib.ffi
+    out = bytearray(n)
+    if _i64(left) and _i64(right):
+        if len(right) != n:
+            return None
+        lib.lib.gr_le_i64(n, _buf(ffi, "int64_t[]", left), _buf(ffi, "int64_t[]", right),
+                          ffi.from_buffer("uint8_t[]", out))
+    elif _i64(left) and isinstance(right, int) and -(1 << 63) <= right < (1 << 63):
+        lib.lib.gr_le_const(n, _buf(ffi, "int64_t[]", left), right, 0, ffi.from_buffer("uint8_t[]", out))
+    elif _i64(right) and isinstance(left, int) and -(1 << 63) <= left < (1 << 63):
+        lib.lib.gr_le_const(n, _buf(ffi, "int64_t[]", right), left, 1, ffi.from_buffer("uint8_t[]", out))
+    else:
+        return None
+    return out

@@ -101,3 +101,16 @@ def test_native_label_rows_are_the_arcs_labels(seed, n):
         return
     want = [bytearray(1 if any(lab == t for lab, _v in succ[u]) else 0 for u in range(n)) for t in range(4)]
     assert rows == want
+
+
+@settings(max_examples=100, deadline=None)
+@given(st.lists(st.lists(st.integers(-5, 5), min_size=6, max_size=6), min_size=1, max_size=3),
+       st.integers(-5, 5))
+def test_native_integer_columns(cols, c):
+    cols = [array("q", col) for col in cols]
+    with native_always():
+        total = graphnative.add_columns(cols)
+        assert list(total) == [sum(x) for x in zip(*cols)]
+        assert list(graphnative.less_equal(cols[0], total)) == [a <= b for a, b in zip(cols[0], total)]
+        assert list(graphnative.less_equal(total, c)) == [a <= c for a in total]
+        assert list(graphnative.less_equal(c, total)) == [c <= a for a in total]
