@@ -34,6 +34,18 @@ class Form:
 
     node: type[Expr]
     rule: str | None = None
+    #: the node's fields that hold its subexpressions, in order: an expression, or a list of expressions,
+    #: of (pattern, expression) rules or of (label, expression) fields
+    parts: tuple[str, ...] = ()
+
+    def __init_subclass__(cls, node: type[Expr] | None = None, rule: str | None = None,
+                          parts: tuple[str, ...] | None = None, **kwargs) -> None:
+        """`class IfForm(Form, node=If, rule="if_", parts=("cond", "then", "else_"))`: the three attributes
+        in the class line."""
+        super().__init_subclass__(**kwargs)
+        for name, value in (("node", node), ("rule", rule), ("parts", parts)):
+            if value is not None:
+                setattr(cls, name, value)
 
     def parse(self, span, items: list) -> Expr:
         """The node of a parse-tree rule: `items` are its children, already transformed (a token, such as
@@ -41,8 +53,16 @@ class Form:
         return self.node(span, *[str(x) if isinstance(x, str) else x for x in items])
 
     def children(self, e) -> list[Expr]:
-        """The subexpressions of e, the bodies of its rules included (`cpn.expr.binding.children`)."""
-        return []
+        """The subexpressions of e, the bodies of its rules included (`cpn.expr.binding.children`): those
+        its `parts` hold."""
+        out = []
+        for name in self.parts:
+            v = getattr(e, name)
+            if v.__class__ is list:
+                out.extend(x[1] if x.__class__ is tuple else x for x in v)
+            else:
+                out.append(v)
+        return out
 
     def infer(self, tc, e, env) -> Any:
         """The type of e. `tc` is the language's type checker: `tc.infer(x, env)`, `tc.must(found, expected,

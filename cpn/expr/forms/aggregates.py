@@ -12,15 +12,9 @@ def _tuple_code(ec, items) -> str:
 
 
 @register
-class TupleForm(Form):
-    node = TupleE
-    rule = "tuple_"
-
+class TupleForm(Form, node=TupleE, rule="tuple_", parts=("items",)):
     def parse(self, span, items):
         return TupleE(span, list(items))
-
-    def children(self, e):
-        return list(e.items)
 
     def infer(self, tc, e, env):
         return tc.types.TTuple([tc.infer(x, env) for x in e.items])
@@ -36,11 +30,8 @@ class TupleForm(Form):
 
 
 @register
-class ListForm(TupleForm):
+class ListForm(TupleForm, node=ListE, rule="list_"):
     """A list's value, subexpressions and code are a tuple's."""
-
-    node = ListE
-    rule = "list_"
 
     def parse(self, span, items):
         return ListE(span, [i for i in items if i is not None])
@@ -56,15 +47,9 @@ class ListForm(TupleForm):
 
 
 @register
-class RecordForm(Form):
-    node = RecordE
-    rule = "record_"
-
+class RecordForm(Form, node=RecordE, rule="record_", parts=("fields",)):
     def parse(self, span, items):
         return RecordE(span, [i for i in items if i is not None])
-
-    def children(self, e):
-        return [x for _, x in e.fields]
 
     def infer(self, tc, e, env):
         labels = [label for label, _ in e.fields]

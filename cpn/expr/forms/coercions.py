@@ -9,12 +9,7 @@ from cpn.values.multiset import Multiset, TimedMultiset
 
 
 @register
-class AnnotForm(Form):
-    node = Annot
-    rule = "annot"
-
-    def children(self, e):
-        return [e.expr]
+class AnnotForm(Form, node=Annot, rule="annot", parts=("expr",)):
 
     def infer(self, tc, e, env):
         t = tc.infer(e.expr, env)
@@ -32,11 +27,7 @@ class AnnotForm(Form):
 
 
 @register
-class ToMsForm(Form):
-    node = ToMs
-
-    def children(self, e):
-        return [e.expr]
+class ToMsForm(Form, node=ToMs, parts=("expr",)):
 
     def infer(self, tc, e, env):
         return tc.types.ms(tc.infer(e.expr, env))

@@ -12,12 +12,7 @@ from cpn.values.builtins import MLError
 
 
 @register
-class IfForm(Form):
-    node = If
-    rule = "if_"
-
-    def children(self, e):
-        return [e.cond, e.then, e.else_]
+class IfForm(Form, node=If, rule="if_", parts=("cond", "then", "else_")):
 
     def infer(self, tc, e, env):
         tc.must(tc.infer(e.cond, env), tc.types.BOOL, e.cond.span, "the condition of 'if'")
@@ -42,12 +37,7 @@ class IfForm(Form):
 
 
 @register
-class CaseForm(Form):
-    node = Case
-    rule = "case"
-
-    def children(self, e):
-        return [e.subject] + [b for _, b in e.rules]
+class CaseForm(Form, node=Case, rule="case", parts=("subject", "rules")):
 
     def infer(self, tc, e, env):
         st = tc.infer(e.subject, env)

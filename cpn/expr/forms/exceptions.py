@@ -33,12 +33,7 @@ class Handle(Expr):
 
 
 @register
-class RaiseForm(Form):
-    node = Raise
-    rule = "raise_"
-
-    def children(self, e):
-        return [e.expr]
+class RaiseForm(Form, node=Raise, rule="raise_", parts=("expr",)):
 
     def infer(self, tc, e, env):
         T = tc.types
@@ -53,12 +48,7 @@ class RaiseForm(Form):
 
 
 @register
-class HandleForm(Form):
-    node = Handle
-    rule = "handle"
-
-    def children(self, e):
-        return [e.expr] + [b for _, b in e.rules]
+class HandleForm(Form, node=Handle, rule="handle", parts=("expr", "rules")):
 
     def infer(self, tc, e, env):
         T = tc.types

@@ -9,12 +9,7 @@ from cpn.values.builtins import binop
 
 
 @register
-class FnForm(Form):
-    node = Fn
-    rule = "fn"
-
-    def children(self, e):
-        return [b for _, b in e.rules]
+class FnForm(Form, node=Fn, rule="fn", parts=("rules",)):
 
     def infer(self, tc, e, env):
         T = tc.types
@@ -37,10 +32,7 @@ class FnForm(Form):
 
 
 @register
-class OpFunForm(Form):
-    node = OpFun
-    rule = "opfun"
-
+class OpFunForm(Form, node=OpFun, rule="opfun"):
     def infer(self, tc, e, env):
         T = tc.types
         a, b, r = tc.op_types(e.op, e)
@@ -54,10 +46,7 @@ class OpFunForm(Form):
 
 
 @register
-class SelectForm(Form):
-    node = Select
-    rule = "select"
-
+class SelectForm(Form, node=Select, rule="select"):
     def infer(self, tc, e, env):
         T = tc.types
         a, r = T.TVar(), T.TVar()

@@ -9,10 +9,7 @@ from cpn.expr.nodes import Decl, ExceptionDecl, FunDecl, Let, Seq, ValDecl
 
 
 @register
-class LetForm(Form):
-    node = Let
-    rule = "let_"
-
+class LetForm(Form, node=Let, rule="let_"):
     def parse(self, span, items):
         decls = [i for i in items if isinstance(i, Decl)]
         exprs = [i for i in items if not isinstance(i, Decl)]

@@ -7,18 +7,12 @@ from cpn.expr.nodes import Const, Neg
 
 
 @register
-class NegForm(Form):
-    node = Neg
-    rule = "neg"
-
+class NegForm(Form, node=Neg, rule="neg", parts=("operand",)):
     def parse(self, span, items):
         x = items[0]
         if isinstance(x, Const) and x.kind in ("int", "real"):
             return Const(span, -x.value, x.kind)
         return Neg(span, x)
-
-    def children(self, e):
-        return [e.operand]
 
     def infer(self, tc, e, env):
         t = tc.infer(e.operand, env)

@@ -7,15 +7,9 @@ from cpn.expr.nodes import Seq
 
 
 @register
-class SeqForm(Form):
-    node = Seq
-    rule = "seq"
-
+class SeqForm(Form, node=Seq, rule="seq", parts=("items",)):
     def parse(self, span, items):
         return Seq(span, list(items))
-
-    def children(self, e):
-        return list(e.items)
 
     def infer(self, tc, e, env):
         t = None
