@@ -22,7 +22,7 @@ from cpn.properties.predicates import PredicateError, PropertyLanguage
 from cpn.properties.reduction import stubborn_plan
 from cpn.properties.spec import PropertySpec
 from cpn.properties.structure import structural
-from cpn.properties.symmetry import symmetry_plan
+from cpn.properties.symmetry import decide_over_orbits, symmetry_plan
 from cpn.properties.vacuity import vacuity
 from cpn.statespace import ExploreOptions, Explorer
 
@@ -232,7 +232,8 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
                 raise c.error
             verdict = c.decide(view)
             if x.reduction is not None and c in refused:
-                verdict = Verdict.unknown(refused[c])
+                verdict = decide_over_orbits(c, view) if x.reduction == "symmetry" else None
+                verdict = verdict if verdict is not None else Verdict.unknown(refused[c])
             elif x.reduction is not None and verdict.status is not Status.UNKNOWN:
                 how = "stubborn sets" if x.reduction == "stubborn" else "symmetry, one state per orbit"
                 verdict.message += f" (graph reduced by {how}, {x.n_states:,} states: this property is preserved)"

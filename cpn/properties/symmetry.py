@@ -163,4 +163,57 @@ def _compiled(check) -> list:
     return out
 
 
-__all__ = ["INSTANCE_NOT_PRESERVED", "NOT_PRESERVED", "NOT_PRESERVED_SECTIONS", "PRESERVED", "symmetry_plan"]
+def decide_over_orbits(check, view):
+    """The verdict of an `invariant` or `reachable` property that the quotient cannot decide through its
+    representatives alone (its text names one module instance, or tells the symmetric values apart),
+    decided through every marking of every orbit; None for the other kinds.
+
+    The full graph's reachable markings are exactly the images of the quotient's representatives under
+    the group (an orbit is reachable as a whole), so an invariant holds iff it holds in every image of
+    every representative, and a marking is reachable iff it is an image of one. The images are generated
+    from each representative by the group's generators (`cpn.engine.symmetry.Canonicaliser`), as many as
+    the full graph has markings, and each is tested; no arc of the full graph is built. A violation (or a
+    witness) is reported at its representative, whose trace reaches the orbit: the marking found is an
+    image of the trace's last marking."""
+    from cpn.checks.verdict import Verdict, evidence_to
+    from cpn.properties.kinds import Invariant, Reachable, _state_name
+
+    sym = getattr(view.g, "symmetry", None)
+    if sym is None or not isinstance(check, (Invariant, Reachable)):
+        return None
+    g = view.g
+    canon = sym.canon
+    gens = canon.generators()
+    fn = check.pred.fn
+    view.lang.ctx.graph = None  # an image is no state of the graph: its enabled bindings come from the engine
+    looking_for = isinstance(check, Reachable)  # a marking where the text is true; for an invariant, false
+    images = 0
+    for i, r in enumerate(g.states):
+        if not g.is_expanded(i):
+            continue
+        seen = {r}
+        stack = [r]
+        while stack:
+            s = stack.pop()
+            images += 1
+            if bool(fn(None, s)) == looking_for:
+                where = (f"a marking of the orbit of {_state_name(view, i)} (an image of it under the symmetry: "
+                         "the trace reaches the orbit)")
+                if looking_for:
+                    return Verdict.holds(f"witness: {where}", evidence_to(g, i))
+                return Verdict.violated(f"false in {where}", evidence_to(g, i))
+            for gen in gens:
+                t = canon.apply(s, gen)
+                if t not in seen:
+                    seen.add(t)
+                    stack.append(t)
+    how = f"every image of the {g.n_states:,} representatives of the symmetry quotient, {images:,} markings"
+    if not view.complete:
+        return Verdict.unknown(f"{'not found' if looking_for else 'true'} in {how}; {view.reason}")
+    if looking_for:
+        return Verdict.violated(f"no reachable marking satisfies it ({how})")
+    return Verdict.holds(f"true in {how}")
+
+
+__all__ = ["INSTANCE_NOT_PRESERVED", "NOT_PRESERVED", "NOT_PRESERVED_SECTIONS", "PRESERVED", "decide_over_orbits",
+           "symmetry_plan"]
