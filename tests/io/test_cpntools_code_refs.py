@@ -64,3 +64,9 @@ def test_a_ref_assigned_a_random_value_is_still_refused():
     with pytest.raises(ModelError) as exc:
         translate_text(_net('<ml id="M2">val next = ref 0;</ml>', code=code))
     assert any("reads the reference variable 'next'" in d.message for d in exc.value.diagnostics)
+
+
+def test_a_globref_assigned_by_the_code_segment_and_read_by_its_outputs_is_an_output_variable(tmp_path):
+    xml = _net('<globref id="G1"><id>next</id><ml>0</ml></globref>')
+    assert "let val next = (x + 1) mod 4 in" in translate_text(xml).text
+    assert _states(tmp_path, xml) == 4

@@ -148,14 +148,12 @@ class _Declarations:
             return
         # every read of such a variable must be in an output arc or the delay of a transition that assigns it
         ok = set(assigned_by_code)
-        allowed: list[str] = []
         for page in self.cpnet.findall("page"):
             for tr in page.findall("trans"):
                 assigns = self.code_assigns.get(tr.attrs.get("id", "?"), {})
                 for tag in ("cond", "priority", "code", "time"):
                     text = tr.child_text(tag)
                     if tag == "time":
-                        allowed.append(text)
                         text = re.sub(r"!\s*(" + "|".join(map(re.escape, assigns)) + r")\b", "", text) if assigns \
                             else text
                     ok -= {x for x in assigned_by_code if re.search(r"!\s*" + re.escape(x) + r"\b", text)}
@@ -180,7 +178,9 @@ class _Declarations:
         elsewhere += [m.text for m in self.cpnet.iter("ml")]
         for t in elsewhere:
             ok -= ml.assigned_refs(t)
-        self.code_refs = ok & set(self.globrefs_refused)
+        globrefs = {el.find("id").text.strip() for el in (self._all_decl_elements(gb) if gb is not None else [])
+                    if el.tag == "globref" and el.find("id") is not None}
+        self.code_refs = ok & (set(self.globrefs_refused) | globrefs)
         for tid in list(self.code_assigns):
             if not set(self.code_assigns[tid]) <= self.code_refs:
                 del self.code_assigns[tid]
@@ -633,6 +633,10 @@ class _Declarations:
         mlel = el.find("ml")
         expr = _clean(mlel.text) if mlel is not None else ""
         origin = self._origin(el, None, f"reference variable '{name}'")
+        if name in getattr(self, "code_refs", set()):
+            self.out.raw(f"(* globref {name} ({origin.element}): assigned by code segments and read by the output "
+                         "arcs of the same transitions: an output variable of each *)")
+            return
         literal = re.fullmatch(r"~?\d+(?:\.\d+)?(?:[eE]~?\d+)?|\"[^\"]*\"|true|false|\(\)", expr) is not None
         if literal and name not in self.assigned:
             self.globref_consts[name] = expr
