@@ -26,9 +26,20 @@
 #define ND_LEVEL 7
 #define ND_NONE 0xFFFFFFFFu
 
+/* As grow, from a capacity that may be 0. */
+static int grow0(void **buf, int64_t *cap, int64_t need, size_t size) {
+    if (need <= *cap) return 0;
+    int64_t c = *cap ? *cap : 64;
+    while (c < need) c *= 2;
+    void *b = realloc(*buf, (size_t)c * size);
+    if (!b) return -1;
+    *buf = b; *cap = c;
+    return 0;
+}
+
 struct nt_search {
     nd_search *d;
-    int G;                   /* d's groups (d may be freed first) */
+    int G, K;                /* d's groups and fields (d may be freed first) */
     int clock, condense, prio, watch;
     int *timed_g;
     int ntp;
@@ -43,6 +54,12 @@ struct nt_search {
     uint32_t *ekey;
     uint32_t *miss; int nmiss;   /* the groups whose ready list the state being expanded misses */
     int64_t level_start;
+    /* the time-growth watch's view of a level (nt_level_fresh): per timed place, the id of each marking's
+     * untimed view (given by the engine), and the untimed markings met so far */
+    int32_t **vid; int64_t *nvid, *vid_cap;
+    vmap untimed; int untimed_on;
+    int64_t *fresh; int64_t fresh_cap;
+    uint32_t *ukey;
 };
 
 nt_search *nt_new(nd_search *d, int clock, int condense, int prio, const int32_t *timed_g, int ntp,
@@ -50,7 +67,7 @@ nt_search *nt_new(nd_search *d, int clock, int condense, int prio, const int32_t
     nt_search *t = (nt_search *)calloc(1, sizeof(nt_search));
     if (!t) return NULL;
     int G = d->G;
-    t->d = d; t->G = G; t->clock = clock; t->condense = condense; t->prio = prio;
+    t->d = d; t->G = G; t->K = d->K; t->clock = clock; t->condense = condense; t->prio = prio;
     t->timed_g = (int *)calloc((size_t)G + 1, sizeof(int));
     t->tplaces = (int *)calloc((size_t)ntp + 1, sizeof(int));
     t->ready = (vmap *)calloc((size_t)G + 1, sizeof(vmap));
@@ -71,6 +88,12 @@ nt_search *nt_new(nd_search *d, int clock, int condense, int prio, const int32_t
         if (vm_init(&t->ready[g], d->nread[g]) != 0 || vm_init(&t->eff[g], d->nread[g] + 1) != 0) return NULL;
     }
     if (vm_init(&t->shifts, 3) != 0) return NULL;
+    t->vid = (int32_t **)calloc((size_t)d->K + 1, sizeof(int32_t *));
+    t->nvid = (int64_t *)calloc((size_t)d->K + 1, sizeof(int64_t));
+    t->vid_cap = (int64_t *)calloc((size_t)d->K + 1, sizeof(int64_t));
+    t->ukey = (uint32_t *)calloc((size_t)d->K + 1, 4);
+    t->fresh_cap = 64; t->fresh = (int64_t *)malloc((size_t)t->fresh_cap * 8);
+    if (!t->vid || !t->nvid || !t->vid_cap || !t->ukey || !t->fresh) return NULL;
     return t;
 }
 
@@ -78,6 +101,9 @@ void nt_free(nt_search *t) {
     if (!t) return;
     for (int g = 0; g < t->G; g++) { vm_free(&t->ready[g]); vm_free(&t->eff[g]); }
     vm_free(&t->shifts);
+    if (t->untimed_on) vm_free(&t->untimed);
+    if (t->vid) for (int p = 0; p <= t->K; p++) free(t->vid[p]);
+    free(t->vid); free(t->nvid); free(t->vid_cap); free(t->ukey); free(t->fresh);
     free(t->timed_g); free(t->tplaces); free(t->ready); free(t->eff); free(t->roff); free(t->ekey); free(t->miss);
     free(t->rdy); free(t->succ); free(t->sbe); free(t->sprio); free(t);
 }
@@ -456,6 +482,52 @@ int nt_run(nt_search *t, int64_t until, int64_t max_states, int64_t max_arcs) {
     }
     return status;
 }
+
+/* The ids of the untimed views of timed place p's markings `from` .. from + n - 1 (0, -1: no memory). */
+int nt_put_views(nt_search *t, int p, int64_t from, int64_t n, const int32_t *ids) {
+    if (from != t->nvid[p]) return from < t->nvid[p] ? 0 : -1;
+    if (grow0((void **)&t->vid[p], &t->vid_cap[p], from + n, 4) != 0) return -1;
+    memcpy(t->vid[p] + from, ids, (size_t)n * 4);
+    t->nvid[p] = from + n;
+    return 0;
+}
+
+/* For the time-growth watch, the states start .. end - 1 of a level: the number of them whose untimed
+ * marking (the places' markings, a timed place's as its untimed view) the watch has not met before, their
+ * indices in nt_fresh, and the smallest and largest clock in *lo, *hi; -1 if a view id is missing (the
+ * engine gives it: nt_put_views), -2 without memory. */
+int64_t nt_level_fresh(nt_search *t, int64_t start, int64_t end, int64_t *lo, int64_t *hi) {
+    nd_search *d = t->d;
+    cs_store *st = d->st;
+    int K = d->K, U = t->clock ? K - 1 : K;
+    if (!t->untimed_on) {
+        if (vm_init(&t->untimed, U ? U : 1) != 0) return -2;
+        t->untimed_on = 1;
+    }
+    int64_t m = 0, a = INT64_MAX, b = INT64_MIN;
+    uint32_t *k = t->ukey;
+    k[0] = 0;
+    for (int64_t i = start; i < end; i++) {
+        const uint8_t *r = st->arena + i * st->W;
+        for (int f = 0; f < U; f++) k[f] = (uint32_t)cs_get(r + st->off[f], st->w[f]);
+        for (int j = 0; j < t->ntp; j++) {
+            int p = t->tplaces[j];
+            if ((int64_t)k[p] >= t->nvid[p]) return -1;
+            k[p] = (uint32_t)t->vid[p][k[p]];
+        }
+        int64_t c = t->clock ? (int64_t)cs_get(r + st->off[K - 1], st->w[K - 1]) : 0;
+        if (c < a) a = c;
+        if (c > b) b = c;
+        if (vm_get(&t->untimed, k) >= 0) continue;
+        if (vm_put(&t->untimed, k, m) != 0) return -2;
+        if (grow((void **)&t->fresh, &t->fresh_cap, m + 1, 8) != 0) return -2;
+        t->fresh[m++] = i;
+    }
+    *lo = a; *hi = b;
+    return m;
+}
+
+int64_t *nt_fresh(nt_search *t) { return t->fresh; }
 
 int64_t nt_cache_bytes(nt_search *t) {
     int64_t b = t->rdy_cap * 8 + t->shifts.cap * 20 + (int64_t)(t->shifts.mask + 1) * 4;

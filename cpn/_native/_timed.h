@@ -20,6 +20,9 @@ int nt_put_effects(nt_search *t, const int32_t *buf, int64_t n);
 int nt_put_adds(nt_search *t, const uint32_t *buf, int64_t n);
 int nt_put_shifts(nt_search *t, const uint32_t *buf, int64_t n);
 int nt_run(nt_search *t, int64_t until, int64_t max_states, int64_t max_arcs);
+int nt_put_views(nt_search *t, int p, int64_t from, int64_t n, const int32_t *ids);
+int64_t nt_level_fresh(nt_search *t, int64_t start, int64_t end, int64_t *lo, int64_t *hi);
+int64_t *nt_fresh(nt_search *t);
 int64_t nt_cache_bytes(nt_search *t);
 /* cffi: end */
 

@@ -181,8 +181,8 @@ class Explorer:
             return None
         timed_check = self.options.detect_time_growth and not self._reads_clock
 
-        def on_level(start: int, end: int) -> StopReason | None:
-            watcher.level(g.states, start, end)
+        def on_level(start: int, end: int, fresh=None, clocks=None) -> StopReason | None:
+            watcher.level(g.states, start, end, fresh, clocks)
             if timed_check and watcher.grows_only_by_time():
                 return StopReason.TIME_GROWS
             return None
@@ -411,7 +411,7 @@ class Explorer:
         return Exploration(
             engine=self.engine, graph=g, options=self.options, stop_reason=stop, seconds=seconds,
             peak_memory_mb=peak_rss_mb(), predicate_state=predicate_state,
-            untimed_states=len(watcher.untimed) if watcher is not None else None,
+            untimed_states=watcher.untimed_count() if watcher is not None else None,
             time_growth=watcher.evidence() if stop is StopReason.TIME_GROWS else None,
             # what `--backend c` was refused is a note; what `auto` chose and why, a backend note
             levels=levels, notes=self._notes + (self._backend_notes if asked_c else []) + notes,
@@ -437,36 +437,60 @@ class _TimeGrowthWatcher:
         self.untimed_of = engine.untimed
         self.clock_of = engine.clock
         self.untimed: set = set()
+        # the states whose untimed markings the native timed search met first, not in `untimed` yet
+        self.first: array = array("q")
+        self.states = None
         self.seen_upto = 0
         self.quiet_levels = 0
         self.max_clock = 0
         self.clock_at_saturation = 0
         self.last_min_clock = 0
 
-    def level(self, states, start, end):
+    def level(self, states, start, end, fresh=None, clocks=None):
+        """The states start..end-1 of a new level; where the search gives them (the native timed search),
+        `fresh`: those of them whose untimed markings it met first, and `clocks`: the level's smallest and
+        largest clock."""
         if start >= end:
             return
-        before = len(self.untimed)
+        before = self.untimed_count()
         add = self.untimed.add
         untimed_of, clock_of = self.untimed_of, self.clock_of
-        lo = None
-        hi = self.max_clock
-        for i in range(start, end):
-            s = states[i]
-            add(untimed_of(s))
-            c = clock_of(s)
-            if lo is None or c < lo:
-                lo = c
-            if c > hi:
-                hi = c
+        if fresh is not None:  # their untimed markings computed if the Python search takes over (`untimed_count`)
+            self.first.extend(fresh)
+            self.states = states
+            lo, hi = clocks[0], max(self.max_clock, clocks[1])
+        else:
+            self.materialize()
+            lo = None
+            hi = self.max_clock
+            for i in range(start, end):
+                s = states[i]
+                add(untimed_of(s))
+                c = clock_of(s)
+                if lo is None or c < lo:
+                    lo = c
+                if c > hi:
+                    hi = c
         self.seen_upto = end
         self.max_clock = hi
         self.last_min_clock = lo
-        if len(self.untimed) > before:
+        if self.untimed_count() > before:
             self.quiet_levels = 0
             self.clock_at_saturation = hi
         else:
             self.quiet_levels += 1
+
+    def untimed_count(self) -> int:
+        """The number of distinct untimed markings seen (`first`: each one met first by the native search)."""
+        return len(self.untimed) + len(self.first)
+
+    def materialize(self) -> None:
+        """The untimed markings of the states in `first` into `untimed` (the Python search goes on)."""
+        if self.first:
+            add, untimed_of, states = self.untimed.add, self.untimed_of, self.states
+            for i in self.first:
+                add(untimed_of(states[i]))
+            self.first = array("q")
 
     def grows_only_by_time(self) -> bool:
         return (self.quiet_levels >= TIME_GROWTH_LEVELS
@@ -474,7 +498,7 @@ class _TimeGrowthWatcher:
 
     def evidence(self) -> dict:
         return {
-            "untimed_markings": len(self.untimed),
+            "untimed_markings": self.untimed_count(),
             "levels_without_new_untimed_marking": self.quiet_levels,
             "clock_when_untimed_markings_stopped_growing": self.clock_at_saturation,
             "frontier_min_clock": self.last_min_clock,

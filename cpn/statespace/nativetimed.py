@@ -83,6 +83,34 @@ class TimedNativeSearch(NativeSearch):
         self._fields = len(s0)
         self._attach(lib if lib is not None else library(timed=True), s0)
 
+    def _level_summary(self, start: int, end: int) -> tuple:
+        """For the time-growth watch, computed in C: the states start..end-1 whose untimed markings the C
+        search had not met before, and (the smallest clock, the largest) of them all; (None, None) where
+        it cannot say (the watch then looks at every state)."""
+        lib, ffi, h = self.lib, self.ffi, self.timed_handle
+        if self._watched < 0:
+            return None, None
+        self._watched, watched = -1, self._watched  # (for good if C cannot say: the watch looks itself)
+        store = self.engine.store
+        for p in self.tg.timed_places:
+            have, total = self._views_sent[p], len(store.dicts[p])
+            if have == total:
+                continue
+            index, views = self._view_ids[p], store.views[p]
+            ids = array("i", [index.setdefault(frozenset(views[i].items()), len(index)) for i in range(have, total)])
+            if lib.nt_put_views(h, p, have, total - have, ffi.from_buffer("int32_t[]", ids)) != 0:
+                return None, None
+            self._views_sent[p] = total
+        lo, hi = ffi.new("int64_t *"), ffi.new("int64_t *")
+        if watched < start:  # the states the watch was told of before (the initial state): met
+            if lib.nt_level_fresh(h, watched, start, lo, hi) < 0:
+                return None, None
+        n = lib.nt_level_fresh(h, start, end, lo, hi)
+        if n < 0:
+            return None, None
+        self._watched = end
+        return ffi.unpack(lib.nt_fresh(h), n), (lo[0], hi[0])
+
     def _timed_library(self):
         """The library with the net's C, or None (then the code is dropped, with a note)."""
         lib = library(self.code, timed=True)
@@ -106,6 +134,11 @@ class TimedNativeSearch(NativeSearch):
             raise MemoryError("cannot allocate the native search")
         self.timed_handle = ffi.gc(handle, clib.nt_free)
         clib.nt_set_watch(self.timed_handle, 1 if self.on_level is not None else 0)
+        # the ids of the untimed views of the timed places' markings, and how many of them C has
+        if not hasattr(self, "_view_ids"):
+            self._view_ids = {p: {} for p in tg.timed_places}
+        self._views_sent = {p: 0 for p in tg.timed_places}
+        self._watched = 0  # the states whose untimed markings C has met
 
     def _upgrade(self) -> None:
         """Go on with the net's C compiled in (the states so far copied; the caches are filled anew)."""
@@ -142,7 +175,8 @@ class TimedNativeSearch(NativeSearch):
                 self.store.sync()  # the watch reads the states: the search may have widened their fields
                 if self.gen is not None:  # and their markings, some of them made in C
                     self.code.to_python(self.engine, self.native_lib, self.gen)
-                stop = self.on_level(lib.nt_level_start(h), self.level_end)
+                start, end = lib.nt_level_start(h), self.level_end
+                stop = self.on_level(start, end, *self._level_summary(start, end))
                 if stop is not None:
                     self.flush()
                     return stop

@@ -168,5 +168,6 @@ def test_auto_searches_a_net_wholly_in_c_natively_building_its_c_on_the_way(fill
     py = Explorer(model.engine(time_condensation=True), ExploreOptions(backend="python", packed_states=False)).run()
     assert auto.backend == "c" and auto.backend_notes == [] and auto.notes == []
     same_exploration(auto, py)
+    assert auto.untimed_states == py.untimed_states  # the watch's count across the C being built
     assert auto.complete and auto.n_states == 729
     assert 0 < fills[0] < 400  # the engine expanded states before the C was built, none after
