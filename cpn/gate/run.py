@@ -248,6 +248,11 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     return RunResult(scenario, run, x, engine, results, explore_seconds, time.perf_counter() - t1, opts)
 
 
+#: the markings the LTL searches on the fly may generate (through the engine, in Python); past it the
+#: formula is decided on the explored graph, which the native search builds faster
+LTL_FLY_STATES: int = 200_000
+
+
 def _ltl_on_the_fly(checks: list[Ltl], engine, lang, opts: dict) -> set | None:
     """Decide the `ltl` properties on the fly, before the exploration (the markings each search generates
     kept for the next one), within the run's limits of states and seconds. Returns the markings of the
@@ -260,10 +265,11 @@ def _ltl_on_the_fly(checks: list[Ltl], engine, lang, opts: dict) -> set | None:
     cache = Cache(engine)
     seconds = opts.get("max_seconds")
     deadline = time.monotonic() + seconds if seconds else None
+    limit = min(opts.get("max_states") or LTL_FLY_STATES, LTL_FLY_STATES)
     first = None
     for c in checks:
         try:
-            res = c.search_on_the_fly(cache, lang, opts.get("max_states"), deadline)
+            res = c.search_on_the_fly(cache, lang, limit, deadline)
         except PredicateError as exc:
             c.error = exc  # decided: the formula's text fails in a marking (exit status 65)
             continue
