@@ -88,7 +88,8 @@ def check_ltl(system, formula: tuple, propositions: list[Callable[[Hashable], bo
               max_states: int | None = None, deadline: float | None = None,
               weak_fairness: list[tuple[Callable, Callable]] | None = None,
               strong_fairness: list[tuple[Callable, Callable]] | None = None,
-              step_propositions: list[Callable[[Hashable], bool]] | None = None) -> LtlResult:
+              step_propositions: list[Callable[[Hashable], bool]] | None = None,
+              counterexample: bool = True) -> LtlResult:
     """Whether every infinite path of `system` from its initial state satisfies `formula` (see the module).
 
     `max_states` bounds the system states the search reaches (the product has up to that many times the
@@ -106,12 +107,13 @@ def check_ltl(system, formula: tuple, propositions: list[Callable[[Hashable], bo
     listed transition is enabled in one of its states but occurs on none of its arcs, the states that
     enable it are removed and the SCCs of the rest are searched in turn (the standard refinement for
     Streett conditions); a fair cycle lies in a sub-part where every listed transition that is enabled
-    also occurs.
+    also occurs. With `counterexample` False a violation comes without its lasso (only the verdict).
     """
     aut = translate(("not", formula))
     search = _Search(system, aut, propositions, max_states, deadline, step_propositions or [])
     search.weak = list(weak_fairness or [])
     search.strong = list(strong_fairness or [])
+    search.counterexample = counterexample
     try:
         found = search.run()
     except _Stop as stop:
@@ -151,6 +153,7 @@ class _Search:
         self.index: dict = {}  # product state -> depth-first number, or _DONE
         self.weak: list = []  # (enabled(state), occurs(label)) per transition under weak fairness
         self.strong: list = []  # the same under strong fairness
+        self.counterexample = True  # False: a violation is reported without building its lasso
 
     def mask(self, s) -> int:
         m = self.masks.get(s)
@@ -322,6 +325,11 @@ class _Search:
         return out
 
     def lasso(self, todo: list, root: int, scc: set, inside: set):
+        if not self.counterexample:
+            return [], []
+        return self._lasso(todo, root, scc, inside)
+
+    def _lasso(self, todo: list, root: int, scc: set, inside: set):
         """The counterexample when `inside`, a part of the SCC `scc` of the root with depth-first number
         `root`, has a fair accepting cycle: the depth-first path to the root, a path in the SCC to a state
         of the part, then a cycle in the part through an arc of every acceptance set and fair to every
@@ -367,22 +375,25 @@ class _Search:
         return ([(label, v[0]) for label, v in prefix], [(label, v[0]) for label, v, _acc in cycle])
 
     def _shortest_prefix(self, prefix: list, cycle: list) -> tuple[list, list]:
-        """The lasso with the shortest prefix to the cycle found: a breadth-first search of the product
-        from its initial state to the nearest product state of the cycle, which is then entered there
-        (rotated to start and end at that state). The cycle itself is the one found (not the shortest
-        accepting cycle); it keeps every arc, so it meets the same acceptance sets and fairness."""
+        """The lasso with the shortest prefix to the cycle found through the product states the search
+        generated: a breadth-first search of them from the initial product state to the nearest product
+        state of the cycle, which is then entered there (rotated to start and end at that state). No new
+        state is generated (the search may have left unvisited a shorter way through states it never
+        reached). The cycle itself is the one found (not the shortest accepting cycle); it keeps every arc,
+        so it meets the same acceptance sets and fairness."""
         states = [prefix[-1][1]] + [w for _label, w, _acc in cycle[:-1]]
         at = {}
         for k, v in enumerate(states):
             at.setdefault(v, k)
         v0 = prefix[0][1]
+        generated = self.index
         parent: dict = {v0: None}
         queue = deque([v0])
         hit = v0 if v0 in at else None
         while queue and hit is None:
             u = queue.popleft()
             for label, w, _acc in self.successors(u):
-                if w in parent:
+                if w in parent or w not in generated:
                     continue
                 parent[w] = (u, label)
                 if w in at:

@@ -462,7 +462,7 @@ class ContestModel:
         formula = _to_ltl(phi, props, self.predicate)
         fly = self.fly_states if self.graph_max_states > self.fly_states else None
         if fly is not None and fly < self.max_states and self._graph is None:
-            res = check_ltl(self.cache, formula, props, max_states=fly, deadline=self.deadline)
+            res = check_ltl(self.cache, formula, props, max_states=fly, deadline=self.deadline, counterexample=False)
             if res.holds is not None:
                 return res.holds
             if self.deadline is not None and time.monotonic() > self.deadline:
@@ -475,7 +475,8 @@ class ContestModel:
                 got = self._ltl_on_graph(phi)
                 if got is not None:
                     return got
-        res = check_ltl(self.cache, formula, props, max_states=self.max_states, deadline=self.deadline)
+        res = check_ltl(self.cache, formula, props, max_states=self.max_states, deadline=self.deadline,
+                        counterexample=False)
         if res.holds is None:
             raise CannotCompute(res.reason)
         return res.holds
