@@ -811,6 +811,9 @@ class TimedTransitionC(TransitionC):
         self.clock = bool(timed_places) or clock  # the net is timed (else: an untimed net with priorities)
         self.views = {p for p in read if p in timed_places}
         self.resets = {a.place for a in t.arcs if a.kind.empties}
+        for p in (*read, *writes):
+            if isinstance(place_layouts[p], NotNative):  # a place whose markings C cannot hold
+                raise place_layouts[p]
         if any(p in self.resets for p in writes):
             raise NotNative("a reset arc on a place it does not read")
 
@@ -1070,12 +1073,12 @@ def timed_native_code(engine) -> NativeCode:
     net = engine.net
     if getattr(engine, "reads_clock", False):
         raise NotNative("a transition reads the clock")
-    layouts = []
+    layouts: list = []  # a place's layout, or why it has none: the transitions touching it are the engine's
     for p in net.places:
         try:
             layouts.append(layout(p.colour_set))
         except NotNative as exc:
-            raise NotNative(f"place '{p.name}': {exc}") from None
+            layouts.append(NotNative(f"place '{p.name}': {exc}"))
     timed_places = {p for p in range(len(net.places)) if engine.is_timed and engine.store.timed[p]}
     mod = Module(net, engine.ev)
     bodies: dict[int, str] = {}
@@ -1094,8 +1097,12 @@ def timed_native_code(engine) -> NativeCode:
             del mod.parts[saved[0]:]
             del mod.protos[saved[1]:]
             mod.functions, mod.encoders = saved[2], saved[3]
+    if not bodies:  # one reason for the whole net: a place C cannot hold, else the first transition's
+        raise next((lay for lay in layouts if isinstance(lay, NotNative)), None) \
+            or NotNative(next(iter(left.values()), "the net has no transition"))
     sizes = ", ".join(str(1 if k not in bodies else _size(var_layouts[engine._plan[k].t.index]))
                       for k in range(len(engine._plan)))
+    held = ", ".join("0" if isinstance(lay, NotNative) else "1" for lay in layouts) or "0"
     src = "\n".join([
         "#define FAIL do { c->err = 1; goto done; } while (0)",
         "static int64_t g_rng(gctx *c, int64_t x, int64_t lo, int64_t hi) { if (x < lo || x > hi) c->err = 1; return x; }",
@@ -1122,14 +1129,17 @@ def timed_native_code(engine) -> NativeCode:
         "    (void)g; (void)d; (void)k; (void)key;",
         "    return -1;",
         "}",
+        f"static const uint8_t HELD[] = {{{held}}};  /* the places whose markings C holds */",
         "static int64_t gen_add(void *g, uint32_t p, uint32_t did, uint32_t old) {",
         "    gctx *c = (gctx *)g;",
+        "    if (!HELD[p]) return -1;",
         "    c->err = 0;",
         "    int64_t r = g_apply(c, (int)p, old, did, 1);",
         "    return c->err ? -1 : r;",
         "}",
         "static int64_t gen_shift(void *g, uint32_t p, uint32_t id, uint32_t f) {",
         "    gctx *c = (gctx *)g;",
+        "    if (!HELD[p]) return -1;",
         "    c->err = 0;",
         "    int64_t r = g_shift(c, (int)p, id, f);",
         "    return c->err ? -1 : r;",
@@ -1139,6 +1149,7 @@ def timed_native_code(engine) -> NativeCode:
         f"    return g_new({len(net.places)}, {len(engine._plan)}, sizes);",
         "}",
     ])
-    code = NativeCode(src, sorted(engine._plan[k].t.index for k in bodies), left, layouts, var_layouts)
+    code = NativeCode(src, sorted(engine._plan[k].t.index for k in bodies), left,
+                      [None if isinstance(lay, NotNative) else lay for lay in layouts], var_layouts)
     code.timed = [p in timed_places for p in range(len(net.places))]
     return code

@@ -154,7 +154,7 @@ class NativeCode:
     source: str
     native: list[int]  # transitions compiled to C
     left: dict[int, str]  # transitions left to the Python engine: why
-    layouts: list[Layout]  # per place
+    layouts: list[Layout | None]  # per place (None: a place whose markings C does not hold, timed nets)
     var_layouts: dict[int, list[Layout]]  # per native transition
     # per place, whether it is timed (the search of timed nets): its tokens' keys are (value, timestamp),
     # in C a timed colour id (`gen_tid_put`)
@@ -200,6 +200,8 @@ class NativeCode:
         P = len(engine.places)
         for what, tables in ((0, engine.store.dicts), (1, engine._deltas)):
             for p in range(P):
+                if self.layouts[p] is None:  # a place whose markings C does not hold
+                    continue
                 have = lib.gen_count(ctx, what, p)
                 for i in range(have, len(tables[p])):
                     d = tables[p][i]
@@ -234,6 +236,8 @@ class NativeCode:
         offp, lenp, pairp = ffi.new("int64_t **"), ffi.new("int32_t **"), ffi.new("int32_t **")
         for what in (0, 1):
             for p in range(P):
+                if self.layouts[p] is None:
+                    continue
                 vals = self.layouts[p].values
                 have = len(store.dicts[p]) if what == 0 else len(engine._deltas[p])
                 total = lib.gen_ms_table(ctx, what, p, offp, lenp, pairp)
