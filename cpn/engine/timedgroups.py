@@ -75,6 +75,10 @@ class TimedGroups:
             e._timed_native_code = got
         return got
 
+    def transition_name(self, t: int) -> str:
+        """The name of transition t (for the notes on transitions left to the engine)."""
+        return self._engine.transitions[t].name
+
     def caller_caches(self) -> None:
         """The engine keeps its own memos (a state's expansion reuses them)."""
 

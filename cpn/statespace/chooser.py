@@ -83,7 +83,7 @@ def why_not_timed_auto(tg) -> str | None:
         code, why = tg.native_code()
         if code is not None and code.left:
             t, reason = min(code.left.items())
-            why = f"transition '{tg._engine.transitions[t].name}' is left to the Python engine: {reason}"
+            why = f"transition '{tg.transition_name(t)}' is left to the Python engine: {reason}"
         elif code is not None:
             return None
     return ("timed nets and nets with priorities are searched natively by `auto` only where the net's "

@@ -145,8 +145,8 @@ class TimedNativeSearch(NativeSearch):
         lib = self._timed_library()
         if lib is None:
             return
-        self.notes.extend(f"the Python engine computes the bindings of transition "
-                          f"'{self.engine.transitions[t].name}': {reason}" for t, reason in sorted(self.code.left.items()))
+        self.notes.extend(f"the Python engine computes the bindings of transition '{self.tg.transition_name(t)}': "
+                          f"{reason}" for t, reason in sorted(self.code.left.items()))
         old = _Snapshot(self)
         self._attach(lib, self.graph.states[0], old)
         self.round_trips = 0
@@ -279,14 +279,10 @@ def timed_generated(tg, options) -> tuple[object | None, list[str]]:
     off = switched_off()
     if off is not None:
         return None, [off]
-    make = getattr(tg, "native_code", None)
-    if make is None:
-        return None, ["the C back end has no code of this engine's transitions"]
-    code, why = make()
+    code, why = tg.native_code()
     if code is None:
         return None, [f"the Python engine computes every transition's bindings: {why}"]
-    names = tg._engine.transitions
-    return code, [f"the Python engine computes the bindings of transition '{names[t].name}': {reason}"
+    return code, [f"the Python engine computes the bindings of transition '{tg.transition_name(t)}': {reason}"
                   for t, reason in sorted(code.left.items())]
 
 
