@@ -145,14 +145,18 @@ class ReferenceEngine(EngineAPI):
         conj = B.guard_conjuncts(t.guards)
         for combo in itertools.product(*domains):
             assignment = dict(zip(names, combo))
+            binders: set[int] = set()  # the conjuncts `v = e` that bound v: e is evaluated once (it may draw)
             ok = True
             for v in rest:  # bound by a guard conjunct pattern = expr
                 if v in assignment:
                     continue
-                for c in conj:
+                for i, c in enumerate(conj):
                     gb = B.guard_binder(c, set(assignment))
                     if gb is None or v not in B.pattern_vars(gb[0]):
                         continue
+                    items = gb[0].items if isinstance(gb[0], A.TupleE) else [gb[0]]
+                    if all(B.is_var(x) for x in items) and not B.pattern_vars(gb[0]) & set(assignment):
+                        binders.add(i)  # it holds by construction: not tested again
                     val = self._eval(gb[1], self.binding_env(t, assignment), t, "the guard")
                     found = {}
                     self._collect(gb[0], val, found)
@@ -167,9 +171,9 @@ class ReferenceEngine(EngineAPI):
                     ok = False
                     break
             if ok:
-                yield assignment
+                yield assignment, binders
 
-    def _enabled(self, t, marking, assignment):
+    def _enabled(self, t, marking, assignment, binders=frozenset()):
         """(consumed per place, ready time) if the binding is enabled (ignoring time), else None."""
         env = self.binding_env(t, assignment)
         need: dict[int, dict] = {}
@@ -184,8 +188,8 @@ class ReferenceEngine(EngineAPI):
             view = _view_counts(self.places[p], marking[p])
             if any(view.get(v, 0) < n for v, n in d.items()):
                 return None
-        for g in B.guard_conjuncts(t.guards):
-            if not self._eval(g, env, t, "the guard"):
+        for i, g in enumerate(B.guard_conjuncts(t.guards)):
+            if i not in binders and not self._eval(g, env, t, "the guard"):
                 return None
         for a in t.arcs:
             if a.kind.blocks:
@@ -226,8 +230,8 @@ class ReferenceEngine(EngineAPI):
             for t in self.transitions:
                 if f not in examined[t.index]:
                     continue
-                for assignment in self._bindings(t, marking):
-                    r = self._enabled(t, marking, assignment)
+                for assignment, binders in self._bindings(t, marking):
+                    r = self._enabled(t, marking, assignment, binders)
                     if r is not None and r[1] <= f:
                         now.append((t, assignment, r[0]))
             if now:

@@ -117,6 +117,30 @@ class FunctionDraws:
         cs = self.colsets.get(name.rsplit(".", 1)[0]) if name.endswith(".ran") else None
         return cs is not None and cs.values() is not None
 
+    def take_choices(self, info, sink: list) -> None:
+        """The free variables made for the choices of one inscription (`sink`) become the transition's."""
+        for v, cs, sym in sink:
+            info.ran.append((v, cs))
+            self.variables[v] = sym
+
+    def output_binder(self, g: A.Expr, info) -> bool:
+        """Whether guard `g` is `p = e` with p a variable or a tuple of variables that occur nowhere but in
+        the output arcs and the delay of the transition (a CPN Tools code segment's output variables, bound
+        once per binding element): the draws of e are then choices, as in those inscriptions, and every
+        inscription that reads p reads the same choice (docs/semantics.md, "Bindings")."""
+        if not (isinstance(g, A.BinOp) and g.op == "="):
+            return False
+        items = g.left.items if isinstance(g.left, A.TupleE) else [g.left]
+        if not all(isinstance(x, A.Name) for x in items):
+            return False
+        names = {x.name for x in items}
+        if len(names) != len(items) or any(getattr(self.genv.lookup(n), "kind", None) != "var" for n in names):
+            return False
+        d = info.decl
+        elsewhere = [a.expr for a in info.arcs if not a.kind.produces or a.kind.consumes]
+        elsewhere += [x for x in d.guards if x is not g] + [d.priority]
+        return not any(names & _names(x) for x in elsewhere)
+
     def settle_function_draws(self) -> None:
         """The draws inside top-level functions: those of a function the net uses other than by a call that
         is written out (`drawing_call`): in a guard, an input arc, a `val`, an initial marking, a recursive
@@ -132,3 +156,15 @@ class FunctionDraws:
                 self.random_draw(e)
             for e in self.fun_effects.get(f, ()):
                 self.effect_builtin(e)
+
+
+def _names(e) -> set[str]:
+    """The names an expression (checked or not) mentions."""
+    out, stack = set(), [e]
+    while stack:
+        x = stack.pop()
+        if isinstance(x, A.Name):
+            out.add(x.name)
+        elif x is not None:
+            stack.extend(children(x))
+    return out

@@ -171,10 +171,7 @@ class PageChecks:
             finally:
                 self.ran_sink = None
             expr = _replace_ran(expr)  # CS.ran() and the calls of functions that draw, written out
-            if sink:
-                info.ran.extend((v, cs) for v, cs, _ in sink)
-                for v, _cs, sym in sink:
-                    self.variables[v] = sym
+            self.take_choices(info, sink)
             if ak.reads and _has_delay(expr):
                 self.error("E0206", "delays on input arcs ('preemption') are not supported", expr.span)
                 return
@@ -191,8 +188,15 @@ class PageChecks:
     def transition(self, page: PageInfo, info: TransInfo, env: Env) -> None:
         d = info.decl
         ok = True
-        for _i, g in enumerate(d.guards):
-            t = self.infer_top(g, env)
+        for i, g in enumerate(d.guards):
+            sink: list = []
+            self.ran_sink = sink if self.output_binder(g, info) else None  # `y = discrete (0, 3)`: a choice
+            try:
+                t = self.infer_top(g, env)
+            finally:
+                self.ran_sink = None
+            d.guards[i] = _replace_ran(g)
+            self.take_choices(info, sink)
             if t is None:
                 ok = False
                 continue
@@ -229,9 +233,7 @@ class PageChecks:
                     d.delay = _replace_ran(d.delay)
         finally:
             self.ran_sink = None
-        for v, cs, sym in sink:
-            info.ran.append((v, cs))
-            self.variables[v] = sym
+        self.take_choices(info, sink)
         if d.delay is not None and ok and d.name not in page.incomplete:
             self._check_delay_has_effect(page, info)
         if d.priority is not None:
@@ -250,7 +252,7 @@ class PageChecks:
             all_vars(g, used)
         all_vars(d.delay, used)
         all_vars(d.priority, used)
-        bound: set[str] = set()
+        bound: set[str] = {v for v, _ in info.ran}  # the choices, tried before a guard conjunct that reads them
         for a in info.arcs:
             if a.kind.consumes and a.expr is not None:
                 bound |= pattern_vars(a.expr)

@@ -74,6 +74,34 @@ class _Page:
     arcs: list[Element] = field(default_factory=list)
 
 
+@dataclass
+class _CodeOutputs:
+    """The output variables of a transition's code segment and the action that binds them."""
+
+    names: list[str]
+    action: str
+    origin: Origin  # where the action starts in the .cpn file
+    bound: bool = False  # bound once by a guard conjunct (the action draws and several inscriptions use it)
+
+    @property
+    def pattern(self) -> str:
+        return self.names[0] if len(self.names) == 1 else "(" + ", ".join(self.names) + ")"
+
+
+# input (..); output (..); action e (the ';' after the patterns may be left out, as CPN Tools reads it)
+_CODE_RE = re.compile(r"\s*(?:input\s*(?P<inp>\([^)]*\)|[A-Za-z][\w']*)\s*;?)?\s*"
+                      r"(?:output\s*(?P<out>\([^)]*\)|[A-Za-z][\w']*)\s*;?)?\s*action\b(?P<act>.*)\Z", re.S)
+
+
+def _origin_at(origin: Origin, text: str, offset: int) -> Origin:
+    """The origin of the character at `offset` of `text`, which starts at `origin`."""
+    before = text[:offset]
+    if "\n" in before:
+        return Origin(origin.line + before.count("\n"), len(before.rsplit("\n", 1)[-1]) + 1, origin.element,
+                      origin.page, origin.what)
+    return Origin(origin.line, origin.col + offset, origin.element, origin.page, origin.what)
+
+
 class _Translator(_Declarations):
     def __init__(self, path: str, root: Element, data: bytes = b"") -> None:
         self.path = path
@@ -90,7 +118,7 @@ class _Translator(_Declarations):
         self.timed_colsets: set[str] = set()
         self.declared: set[str] = set()  # names declared by val/fun/colset in the globbox
         self.impure: set[str] = set(ml.RANDOM_FUNCTIONS)  # functions that draw random values
-        self.code_outputs: dict[str, tuple] = {}  # transition id -> (outputs, pattern, action, origin)
+        self.code_outputs: dict[str, _CodeOutputs] = {}  # transition id -> its code segment's outputs
         self.globref_consts: dict[str, str] = {}  # globrefs translated as constants
         self.globrefs_refused: dict[str, Element] = {}
         self.assigned: set[str] = set()
@@ -389,14 +417,7 @@ class _Translator(_Declarations):
         if code:
             co = _text_origin(t.el.find("code"), t.id, t.page.name, f"code segment of '{t.name}'", owner=t.el)
             self._code_segment(t, code, co, what)
-        guard = _clean(t.el.child_text("cond"))
-        if guard:
-            go = _text_origin(t.el.find("cond"), t.id, t.page.name, f"guard of '{t.name}'", owner=t.el)
-            guard = self._inscription(guard, go, f"the guard of {what}")
-            if guard.startswith("[") and guard.endswith("]") and _balanced_outer(guard):
-                parts += [(" ", None), (guard, go)]
-            else:
-                parts += [(" [", None), (guard, go), ("]", None)]
+        parts += self._guard(t, what)
         delay = _clean(t.el.child_text("time"))
         if delay:
             do = _text_origin(t.el.find("time"), t.id, t.page.name, f"time inscription of '{t.name}'", owner=t.el)
@@ -421,14 +442,30 @@ class _Translator(_Declarations):
         parts.append((";", None))
         self.out.stmt(parts, o, ind)
 
+    def _guard(self, t: _Trans, what: str) -> list[tuple[str, Origin | None]]:
+        """The guard of `t`, with the binding of its code segment's outputs where they are bound once."""
+        co = self.code_outputs.get(t.id)
+        binder = [(f"{co.pattern} = (", None), (co.action, co.origin), (")", None)] if co and co.bound else []
+        guard = _clean(t.el.child_text("cond"))
+        if not guard:
+            return [(" [", None)] + binder + [("]", None)] if binder else []
+        go = _text_origin(t.el.find("cond"), t.id, t.page.name, f"guard of '{t.name}'", owner=t.el)
+        guard = self._inscription(guard, go, f"the guard of {what}")
+        bracketed = guard.startswith("[") and guard.endswith("]") and _balanced_outer(guard)
+        if not binder:
+            return [(" ", None), (guard, go)] if bracketed else [(" [", None), (guard, go), ("]", None)]
+        head = [(" ", None), (guard[:-1], go)] if bracketed else [(" [", None), (guard, go)]
+        sep = [] if bracketed and not guard[1:-1].strip() else [(", ", None)]
+        return head + sep + binder + [("]", None)]
+
     def _code_segment(self, t: _Trans, code: str, origin: Origin, what: str) -> None:
         """Translate a code segment: without output variables its action cannot change the marking and is
         dropped (with a note); a pure action that binds output variables becomes a `let` around the output
-        arc inscriptions and the time inscription that use them. Everything else is refused."""
-        clean = ml.strip_comments(code)
+        arc inscriptions and the time inscription that use them, or, if it draws and several of them use
+        it, a guard `outputs = action` (CPN Tools runs the action once per occurrence: one draw, read by
+        every inscription). Everything else is refused."""
         # CPN Tools reads the ';' after the input and output patterns as optional (`input (c)` newline `action`)
-        m = re.match(r"\s*(?:input\s*(?P<inp>\([^)]*\)|[A-Za-z][\w']*)\s*;?)?\s*"
-                     r"(?:output\s*(?P<out>\([^)]*\)|[A-Za-z][\w']*)\s*;?)?\s*action\b(?P<act>.*)\Z", clean, re.S)
+        m = _CODE_RE.match(ml.strip_comments(code))
         if not m:
             self.error(origin, f"{what} has a code segment that is not 'input (..); output (..); action e'",
                        hint="Rewrite the code segment, or move its computation into arc inscriptions.")
@@ -439,33 +476,35 @@ class _Translator(_Declarations):
             act = act[:-1].rstrip()
         assigns = self.code_assigns.get(t.id) if not outs else None
         if assigns:
-            # `action x := e` where only this transition's output arcs and delay read `!x`: x is an output
-            names = list(assigns)
-            exprs = [assigns[n][0] for n in names]
-            pat = names[0] if len(names) == 1 else "(" + ", ".join(names) + ")"
-            act = exprs[0] if len(exprs) == 1 else "(" + ", ".join(exprs) + ")"
-            before = code[:assigns[names[0]][1]]
-            if "\n" in before:
-                ao = Origin(origin.line + before.count("\n"), len(before.rsplit("\n", 1)[-1]) + 1, origin.element,
-                            origin.page, origin.what)
-            else:
-                ao = Origin(origin.line, origin.col + len(before), origin.element, origin.page, origin.what)
-            self.code_outputs[t.id] = (names, pat, act, ao)
-            note = (f"the code segment of {what} assigns {', '.join(names)}, which only its output arcs read: "
-                    "its action is evaluated in a 'let' around them")
-            self.notes.append(note)
-            self.out.raw(f"(* note: {note} *)")
-            return
-        if not outs:
-            note = (f"the code segment of {what} binds no output variable: its action is not "
-                    "executed (it cannot change the marking)")
-            self.notes.append(note)
-            self.out.raw(f"(* note: {note} *)")
-            return
+            self._code_assignments(t, code, assigns, origin, what)
+        elif not outs:
+            self._note(f"the code segment of {what} binds no output variable: its action is not "
+                       "executed (it cannot change the marking)")
+        elif not self._refuse_code_action(act, outs, origin, what):
+            # where the action starts in the .cpn file, for error positions in the generated text
+            ao = _origin_at(origin, code, code.index(act) if act in code else 0)
+            bound = self._draws(act) and self._output_uses(t, outs) > 1
+            self.code_outputs[t.id] = _CodeOutputs(outs, act, ao, bound)
+            self._note(f"the code segment of {what} binds {', '.join(outs)}; " + (
+                "its action draws, and several output inscriptions use them: it is evaluated once, in the "
+                "guard, so that they all read the same values" if bound else
+                "its action is evaluated in a 'let' around the output inscriptions that use them"))
+
+    def _code_assignments(self, t: _Trans, code: str, assigns: dict[str, tuple[str, int]], origin: Origin,
+                          what: str) -> None:
+        """`action x := e` where only this transition's output arcs and delay read `!x`: x is an output."""
+        names = list(assigns)
+        exprs = [assigns[n][0] for n in names]
+        act = exprs[0] if len(exprs) == 1 else "(" + ", ".join(exprs) + ")"
+        self.code_outputs[t.id] = _CodeOutputs(names, act, _origin_at(origin, code, assigns[names[0]][1]))
+        self._note(f"the code segment of {what} assigns {', '.join(names)}, which only its output arcs read: "
+                   "its action is evaluated in a 'let' around them")
+
+    def _refuse_code_action(self, act: str, outs: list[str], origin: Origin, what: str) -> bool:
+        """Refuse an action that binds output variables with side effects (other than text output and the
+        machine's clock, which the front end leaves to simulate); True if refused."""
         if self._refuse_random(act, origin, f"the code segment of {what}", effects=False):
-            return
-        # text output and the machine's clock are left to the front end: simulate runs them (the output
-        # dropped), explore and check refuse them at the call
+            return True
         effects = sorted({n for n, _ in ml.names(act) if n not in SIMULATION_ONLY and (
             n.split(".")[0] in ml.SIDE_EFFECT_NAMES or n in ml.SIDE_EFFECT_NAMES or self._side_effect_via(n))})
         if effects or ":=" in ml.strip_comments(act) or re.search(r"!\s*[A-Za-z(]", ml.strip_comments(act)):
@@ -474,19 +513,20 @@ class _Translator(_Declarations):
                        f"with an action that uses {used}: code with side effects has no place in a state space",
                        hint="Compute the output values with pure CPN ML (no I/O, no references, no MSC), or "
                             "remove the code segment.")
-            return
-        # Where the action starts in the .cpn file, for error positions in the generated `let`.
-        offset = code.index(act) if act in code else 0
-        before = code[:offset]
-        if "\n" in before:
-            ao = Origin(origin.line + before.count("\n"), len(before.rsplit("\n", 1)[-1]) + 1, origin.element,
-                        origin.page, origin.what)
-        else:
-            ao = Origin(origin.line, origin.col + offset, origin.element, origin.page, origin.what)
-        pat = outs[0] if len(outs) == 1 else "(" + ", ".join(outs) + ")"
-        self.code_outputs[t.id] = (outs, pat, act, ao)
-        note = (f"the code segment of {what} binds {', '.join(outs)}; its action is evaluated in a 'let' "
-                "around the output inscriptions that use them")
+            return True
+        return False
+
+    def _output_uses(self, t: _Trans, outs: list[str]) -> int:
+        """How many of t's output arc inscriptions and time inscription name an output variable."""
+        texts = [_clean(t.el.child_text("time"))]
+        for a in t.page.arcs:
+            te = a.find("transend")
+            if (te is not None and te.attrs.get("idref") == t.id
+                    and a.attrs.get("orientation", "").strip().lower() == "ttop"):
+                texts.append(_clean(a.child_text("annot")))
+        return sum(1 for x in texts if set(outs) & {n for n, _ in ml.names(x)})
+
+    def _note(self, note: str) -> None:
         self.notes.append(note)
         self.out.raw(f"(* note: {note} *)")
 
@@ -500,13 +540,10 @@ class _Translator(_Declarations):
     def _with_code(self, t: _Trans, text: str, origin: Origin) -> list[tuple[str, Origin | None]]:
         """Parts of an inscription of `t`, wrapped in the `let` of t's code segment if it uses an output."""
         co = self.code_outputs.get(t.id)
-        if co is None:
+        if co is None or co.bound or not set(co.names) & {n for n, _ in ml.names(text)}:
             return [(text, origin)]
-        outs, pat, act, ao = co
-        used = {n for n, _ in ml.names(text)}
-        if not used & set(outs):
-            return [(text, origin)]
-        return [(f"(let val {pat} = ", None), (act, ao), (" in ", None), (text, origin), (" end)", None)]
+        return [(f"(let val {co.pattern} = ", None), (co.action, co.origin), (" in ", None), (text, origin),
+                (" end)", None)]
 
     def _instance(self, t: _Trans, ind: str) -> None:
         o = Origin(t.el.line, t.el.col, t.id, t.page.name, f"substitution transition '{t.name}'")

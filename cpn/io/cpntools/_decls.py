@@ -269,6 +269,22 @@ class _Declarations:
         """True if declared function `n` has a side effect through the functions it calls."""
         return n in self.impure_via and self._impure_chain(n)[-1].split(".")[0] in ml.SIDE_EFFECT_NAMES
 
+    def _draws(self, text: str) -> bool:
+        """Whether CPN ML text draws a random value (a distribution, `CS.ran()`, SML/NJ's `Random`), directly
+        or through the functions the globbox declares."""
+        seen: set[str] = set()
+        stack = [text]
+        while stack:
+            for n, _ in ml.names(stack.pop()):
+                if n in self.fun_bodies:
+                    if n not in seen:
+                        seen.add(n)
+                        stack.extend(self.fun_bodies[n])
+                elif (n in ml.RANDOM_FUNCTIONS or n in DISTRIBUTIONS or n.endswith(".ran")
+                      or n.split(".")[0] in ml.RANDOM_STRUCTURES):
+                    return True
+        return False
+
     def _refuse_random(self, text: str, origin: Origin, what: str, effects: bool = True,
                        finite: bool = False) -> bool:
         """Refuse text that draws random values from a distribution, or (with `effects`) calls a function with
