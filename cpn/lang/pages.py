@@ -189,14 +189,7 @@ class PageChecks:
         d = info.decl
         ok = True
         for i, g in enumerate(d.guards):
-            sink: list = []
-            self.ran_sink = sink if self.output_binder(g, info) else None  # `y = discrete (0, 3)`: a choice
-            try:
-                t = self.infer_top(g, env)
-            finally:
-                self.ran_sink = None
-            d.guards[i] = _replace_ran(g)
-            self.take_choices(info, sink)
+            t = self._guard(info, i, env)
             if t is None:
                 ok = False
                 continue
@@ -285,6 +278,20 @@ class PageChecks:
                        f"'{sym.data}' is too large to try every value)", span, hint=hint.strip(), name=v)
         info.variables = sorted(used)
         info.free = free
+
+    def _guard(self, info: TransInfo, i: int, env: Env) -> T.Type | None:
+        """The type of guard i of a transition; in a conjunct that binds output variables (`y = discrete (0,
+        3)`, `output_binder`) the draws are choices."""
+        g = info.decl.guards[i]
+        sink: list = []
+        self.ran_sink = sink if self.output_binder(g, info) else None
+        try:
+            t = self.infer_top(g, env)
+        finally:
+            self.ran_sink = None
+        info.decl.guards[i] = _replace_ran(g)
+        self.take_choices(info, sink)
+        return t
 
     def _check_delay_has_effect(self, page: PageInfo, info: TransInfo) -> None:
         """A transition delay applies to the tokens put on timed places. With no timed output place it has
