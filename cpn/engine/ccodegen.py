@@ -2,9 +2,9 @@
 
 The compiled Python engine (`cpn.engine.compiled`, `cpn.engine.codegen`) stays the reference; this module
 generates C that does what it does, step for step, for transitions whose inscriptions map to machine
-values: unit, bool, int ranges, enumerations, index colour sets and products and records of these, as
-64-bit integers (a product as its components); a token is its colour id (its position in `CS.all()`), a
-place marking a list of (colour id, count) pairs in the order its Python dict has them. Guards and arc
+values: unit, bool, int ranges, enumerations (and unions without data), index colour sets and products
+and records of these, as 64-bit integers (a product as its components); a token is its colour id (its
+position in `CS.all()`), a place marking a list of (colour id, count) pairs in the order its Python dict has them. Guards and arc
 inscriptions over these (arithmetic, `div`, `mod`, comparisons, `andalso`, `orelse`, `not`, `if`,
 tuples, `#i`, index constructors, constants) and the model's functions over them (clauses with
 constant, variable, tuple and record patterns, `if`, `case`, `let val`) are compiled; anything else
@@ -201,7 +201,7 @@ class ExprC:
             return py_cv(self.mod.ev.globals[sym.uid])
         if k == "param" and sym.uid in self.params:
             return py_cv(self.params[sym.uid])
-        if k == "con" and sym.data.kind == "enum":
+        if k == "con" and _tag(sym.data) is not None:
             return S(str(sym.data.tag))
         raise NotNative(f"the name {sym.name} ({k})")
 
@@ -264,6 +264,14 @@ class ExprC:
         raise NotNative(f"the operator {op}")
 
 
+def _tag(con):
+    """The value of a constructor that is a value of its own (an enumeration constant, a union constructor
+    without data: its position), or None."""
+    if con.kind == "enum" or (con.kind == "union" and not con.has_arg and isinstance(con.tag, int)):
+        return con.tag
+    return None
+
+
 def equal(a, b) -> str:
     la, lb = leaves(a), leaves(b)
     if shape(a) != shape(b):
@@ -283,7 +291,7 @@ class FunctionC:
             return
         if isinstance(p, A.PVar):
             if p.ref.kind == "con":
-                if p.ref.data.kind != "enum" or not isinstance(cv, S):
+                if _tag(p.ref.data) is None or not isinstance(cv, S):
                     raise NotNative("a constructor pattern")
                 tests.append(f"({cv.code}) == {p.ref.data.tag}")
             else:

@@ -15,7 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from itertools import product as _cartesian
 
-from cpn.values.colours import AliasCS, BoolCS, EnumCS, IndexCS, IntCS, ProductCS, RecordCS, UnitCS
+from cpn.values.colours import AliasCS, BoolCS, EnumCS, IndexCS, IntCS, ProductCS, RecordCS, UnionCS, UnitCS
 
 #: colour sets with more values than this are not laid out as colour ids
 MAX_COLOURS: int = 1 << 20
@@ -97,6 +97,8 @@ def _layout_parts(cs):
         return [(cs.low, cs.high - cs.low + 1)], None
     if isinstance(cs, EnumCS):
         return [(0, len(cs.constants))], None
+    if isinstance(cs, UnionCS) and all(c is None for _, c in cs.constructors):  # an enumeration: its tags
+        return [(0, len(cs.constructors))], None
     if isinstance(cs, IndexCS):
         return [(cs.low, cs.high - cs.low + 1)], None
     if isinstance(cs, (ProductCS, RecordCS)):

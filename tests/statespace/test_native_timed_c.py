@@ -209,3 +209,44 @@ def test_a_net_without_a_transition_in_c_has_one_reason():
     model = cpn.load(os.path.join(ROOT, "models", "modbus", "modbus.cpnet"))
     code, why = model.engine().timed_groups().native_code()
     assert code is None and why == "place 'Modbus'm2b 1': colour set INT is not a finite int range"
+
+
+STATES = """
+colset ST = union Idle + Busy + Done timed;
+colset N = int with 0..2;
+colset SN = product ST * N timed;
+var s : ST;
+var n : N;
+fun next Idle = Busy | next Busy = Done | next Done = Idle;
+place P : SN = 1`(Idle, 0) ++ (1`(Busy, 1)@+1);
+place Q : ST = 1`Done;
+trans go [s <> Done] @+ 1;
+arc P -> go : (s, n);
+arc go -> P : (next s, (n + 1) mod 3);
+trans fin;
+arc P -> fin : (Done, n);
+arc Q -> fin : s;
+arc fin -> P : (if s = Done then Idle else Busy, n) @+ 2;
+arc fin -> Q : Idle;
+trans back [s = Idle];
+arc Q -> back : s;
+arc back -> Q : Done @+ 1;
+"""
+
+
+@needs_native
+@pytest.mark.parametrize("condensation", [False, True], ids=["timed", "condensed"])
+def test_a_union_without_data_is_an_enumeration_in_c(condensation, fills):
+    """A union whose constructors carry no data: its values are their positions in C, in tokens, products,
+    patterns of a function's clauses, guards, conditionals and constants."""
+    model = cpn.loads(STATES, "states.cpnet")
+    code, why = model.engine().timed_groups().native_code()
+    assert why is None and code.left == {}
+    c = _both(model, condensation, limit=500)
+    assert c.notes == [] and fills[0] == 0 and c.n_states > 50
+    untimed = cpn.loads(STATES.replace(" timed;", ";").replace("@+1", "").replace(" @+ 1", "")
+                        .replace(" @+ 2", ""), "states_untimed.cpnet")
+    code, why = untimed.engine().native_code()
+    assert why is None and code.left == {}
+    same_exploration(Explorer(untimed.engine(), ExploreOptions(backend="c")).run(),
+                     Explorer(untimed.engine(), ExploreOptions(backend="python", packed_states=False)).run())
