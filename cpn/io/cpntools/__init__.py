@@ -88,6 +88,10 @@ class _CodeOutputs:
         return self.names[0] if len(self.names) == 1 else "(" + ", ".join(self.names) + ")"
 
 
+# the statement of each arc orientation (reset arcs, which take no inscription, apart)
+_ARC_HEADS = {"ptot": "arc {p} -> {t}", "ttop": "arc {t} -> {p}", "bothdir": "arc {p} <-> {t}",
+              "inhibitor": "inhibitor {p} -> {t}"}
+
 # input (..); output (..); action e (the ';' after the patterns may be left out, as CPN Tools reads it)
 _CODE_RE = re.compile(r"\s*(?:input\s*(?P<inp>\([^)]*\)|[A-Za-z][\w']*)\s*;?)?\s*"
                       r"(?:output\s*(?P<out>\([^)]*\)|[A-Za-z][\w']*)\s*;?)?\s*action\b(?P<act>.*)\Z", re.S)
@@ -573,24 +577,10 @@ class _Translator(_Declarations):
     def _arc(self, a: Element, page: _Page, ind: str) -> None:
         aid = a.attrs.get("id", "?")
         orient = a.attrs.get("orientation", "").strip().lower()
-        te = a.find("transend")
-        pe = a.find("placeend")
-        t = self.transs.get(te.attrs.get("idref", "")) if te is not None else None
-        p = self.places.get(pe.attrs.get("idref", "")) if pe is not None else None
-        if t is None or p is None or t.page is not page or p.page is not page:
-            why = []
-            for end, found, kind in ((te, t, "transition"), (pe, p, "place")):
-                ref = end.attrs.get("idref", "") if end is not None else ""
-                if end is None:
-                    why.append(f"it has no <{kind[:5]}end>")
-                elif found is None:
-                    why.append(f"its {kind} end '{ref}' is no {kind} of the file")
-                elif found.page is not page:
-                    why.append(f"its {kind} '{found.name}' is on page '{found.page.name}'")
-            self.error(a, f"arc {aid} on page '{page.name}' does not connect a place and a transition of the page: "
-                       + "; ".join(why), hint="Delete the arc in CPN Tools, or draw it again between a place and a "
-                                              "transition of the page.")
+        ends = self._arc_ends(a, page)
+        if ends is None:
             return
+        t, p = ends
         if t.subpage is not None:
             return  # a socket arc of a substitution transition: drawn only; portsock carries the meaning
         annot = _clean(a.child_text("annot"))
@@ -599,45 +589,64 @@ class _Translator(_Declarations):
         o = Origin(a.line, a.col, aid, page.name, f"arc between '{p.name}' and '{t.name}'")
         if annot:
             annot = self._inscription(self._code_reads(t, annot) if orient == "ttop" else annot, ao, what)
-        delay = re.search(r"@\+", re.sub(r'"(?:[^"\\]|\\.)*"', '""', ml.strip_comments(annot)))
-        if delay and orient in ("ptot", "bothdir"):
-            # one error here rather than the front end's, after which the arc's variables would be unbound
-            self.error(Origin(ao.line, ao.col, ao.element, ao.page, ao.what),
-                       f"{what} ('{_short(annot)}') delays the token that the transition consumes: delays on "
-                       "input arcs (CPN Tools' preemption) are not supported",
-                       hint="Remove the delay from the arc that consumes the token, or put it on the arc or the "
-                            "transition that produces the token.")
+        if orient in ("ptot", "bothdir") and self._refuse_input_delay(annot, ao, what):
             return
         pq, tq = ml.quote(p.name), ml.quote(t.name)
         if (p.name in {x.name for x in page.transs if x.subpage is None}
                 or t.name in {x.name for x in page.places}):
             # a place and a transition that share a name (CPN Tools allows it): the arc says which end is which
             pq, tq = f"place {pq}", f"trans {tq}"
-        if orient == "ptot":
-            head = f"arc {pq} -> {tq}"
-        elif orient == "ttop":
-            head = f"arc {tq} -> {pq}"
-        elif orient == "bothdir":
-            head = f"arc {pq} <-> {tq}"
-        elif orient == "inhibitor":
-            head = f"inhibitor {pq} -> {tq}"
-        elif orient == "reset":
+        if orient == "reset":
             if annot:
                 self.notes.append(f"the inscription of reset arc {aid} is ignored: a reset arc removes every token")
-            o2 = Origin(a.line, a.col, aid, page.name, o.what)
-            self.out.stmt([(f"reset {pq} -> {tq};", None)], o2, ind)
+            self.out.stmt([(f"reset {pq} -> {tq};", None)], o, ind)
             return
-        else:
+        head = _ARC_HEADS.get(orient)
+        if head is None:
             self.error(a, f"arc {aid} on page '{page.name}' has orientation '{a.attrs.get('orientation')}'; "
                        "expected PtoT, TtoP, BOTHDIR, Inhibitor or Reset")
             return
-        parts: list[tuple[str, Origin | None]] = [(head, None)]
+        parts: list[tuple[str, Origin | None]] = [(head.format(p=pq, t=tq), None)]
         if annot and orient == "ttop":
             parts += [(" : ", None)] + self._with_code(t, annot, ao)
         elif annot:
             parts += [(" : ", None), (annot, ao)]
         parts.append((";", None))
         self.out.stmt(parts, o, ind)
+
+    def _arc_ends(self, a: Element, page: _Page) -> tuple[_Trans, _Place] | None:
+        """The transition and the place an arc joins, or None (with an error) if they are not both on its page."""
+        te = a.find("transend")
+        pe = a.find("placeend")
+        t = self.transs.get(te.attrs.get("idref", "")) if te is not None else None
+        p = self.places.get(pe.attrs.get("idref", "")) if pe is not None else None
+        if t is not None and p is not None and t.page is page and p.page is page:
+            return t, p
+        why = []
+        for end, found, kind in ((te, t, "transition"), (pe, p, "place")):
+            ref = end.attrs.get("idref", "") if end is not None else ""
+            if end is None:
+                why.append(f"it has no <{kind[:5]}end>")
+            elif found is None:
+                why.append(f"its {kind} end '{ref}' is no {kind} of the file")
+            elif found.page is not page:
+                why.append(f"its {kind} '{found.name}' is on page '{found.page.name}'")
+        self.error(a, f"arc {a.attrs.get('id', '?')} on page '{page.name}' does not connect a place and a transition "
+                   "of the page: " + "; ".join(why),
+                   hint="Delete the arc in CPN Tools, or draw it again between a place and a transition of the page.")
+        return None
+
+    def _refuse_input_delay(self, annot: str, ao: Origin, what: str) -> bool:
+        """One error at an input arc's inscription that delays (CPN Tools' preemption), rather than the front
+        end's, after which the arc's variables would be unbound; True if refused."""
+        if not re.search(r"@\+", re.sub(r'"(?:[^"\\]|\\.)*"', '""', ml.strip_comments(annot))):
+            return False
+        self.error(Origin(ao.line, ao.col, ao.element, ao.page, ao.what),
+                   f"{what} ('{_short(annot)}') delays the token that the transition consumes: delays on "
+                   "input arcs (CPN Tools' preemption) are not supported",
+                   hint="Remove the delay from the arc that consumes the token, or put it on the arc or the "
+                        "transition that produces the token.")
+        return True
 
 
 def translate_file(path: str) -> Translation:

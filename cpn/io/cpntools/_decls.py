@@ -41,31 +41,44 @@ class _Declarations:
                 yield c
 
     def _scan_code_text(self) -> None:
+        """A first pass over all ML text: which references are assigned, which declarations the net needs,
+        which functions draw random values or have side effects."""
         texts = [t.text for t in self.cpnet.iter("text")] + [m.text for m in self.cpnet.iter("ml")]
         for t in texts:
             self.assigned |= ml.assigned_refs(t)
         gb = self.cpnet.find("globbox")
-        decl_texts = []
-        user_names: set[str] = set()
-        if gb is not None:
-            for el in self._all_decl_elements(gb):
-                if el.tag == "ml":
-                    decl_texts.append(el.text)
-                elif el.tag == "color":
-                    for k in el.children:  # enumeration constants, index and union constructors
-                        if k.tag in ("enum", "index"):
-                            user_names |= {c.text.strip() for c in k.findall("id")}
-                        elif k.tag == "union":
-                            user_names |= {f.find("id").text.strip() for f in k.findall("unionfield")
-                                           if f.find("id") is not None}
-                elif el.tag == "var":
-                    user_names |= {c.text.strip() for c in el.findall("id")}
+        decl_texts, user_names = self._globbox_names(gb)
         funs = [f for t in decl_texts for f in ml.declared_functions(t)]
         self.fun_bodies: dict[str, list[str]] = {}
         for name, body in funs:
             self.fun_bodies.setdefault(name, []).append(body)
-        # `val x = ref 0;` in a declaration: a reference variable like a globref, set by code segments; never
-        # assigned and holding a literal, it is a constant
+        self._ref_declarations(gb)
+        self._scan_code_refs()
+        self._needed_declarations(gb)
+        self._impure_functions(funs, user_names | {name for name, _ in funs})
+
+    def _globbox_names(self, gb: Element | None) -> tuple[list[str], set[str]]:
+        """The texts of the globbox's ML declarations, and the names its colour sets and variables declare
+        (enumeration constants, index and union constructors, variables)."""
+        decl_texts: list[str] = []
+        user_names: set[str] = set()
+        for el in self._all_decl_elements(gb) if gb is not None else []:
+            if el.tag == "ml":
+                decl_texts.append(el.text)
+            elif el.tag == "color":
+                for k in el.children:
+                    if k.tag in ("enum", "index"):
+                        user_names |= {c.text.strip() for c in k.findall("id")}
+                    elif k.tag == "union":
+                        user_names |= {f.find("id").text.strip() for f in k.findall("unionfield")
+                                       if f.find("id") is not None}
+            elif el.tag == "var":
+                user_names |= {c.text.strip() for c in el.findall("id")}
+        return decl_texts, user_names
+
+    def _ref_declarations(self, gb: Element | None) -> None:
+        """`val x = ref 0;` in a declaration: a reference variable like a globref, set by code segments; never
+        assigned and holding a literal, it is a constant."""
         for el in self._all_decl_elements(gb) if gb is not None else []:
             if el.tag == "ml":
                 for m in re.finditer(r"\bval\s+([A-Za-z][\w']*)\s*=\s*ref\b(?:\s*(" + _LITERAL + r")\s*(?=;|\Z))?",
@@ -74,9 +87,10 @@ class _Declarations:
                         self.globref_consts[m.group(1)] = m.group(2)
                     else:
                         self.globrefs_refused[m.group(1)] = el
-        self._scan_code_refs()
-        self._needed_declarations(gb)
-        user_names |= {name for name, _ in funs}
+
+    def _impure_functions(self, funs: list[tuple[str, str]], user_names: set[str]) -> None:
+        """Which declared functions draw from SML/NJ's generator or talk to other programs, directly or through
+        other functions (`impure`, `impure_via`), and which are `CS.ran()` under another name (`ran_aliases`)."""
         # A user's own 'normal' or 'uniform' (an enumeration constant, say) is not the library function.
         # The distributions of CPN Tools' library that simulate draws are left to the front end, which warns
         # (lint) and refuses them in explore and check, at each call, naming the distribution.
@@ -123,54 +137,15 @@ class _Declarations:
         """
         self.code_assigns: dict[str, dict[str, tuple[str, int]]] = {}  # transition id -> ref -> (expr, offset)
         for tr in self.cpnet.iter("trans"):
-            code = tr.child_text("code")
-            if not code.strip() or "action" not in code:
-                continue
-            clean = ml.strip_comments(code)
-            m = re.match(r"\s*(?:input\s*(?:\([^)]*\)|[A-Za-z][\w']*)\s*;?)?\s*(?:output\s*\(\s*\)\s*;?)?\s*action\b",
-                         clean)
-            if not m:
-                continue
-            body, start = clean[m.end():], m.end()
-            assigns: dict[str, tuple[str, int]] = {}
-            for part in re.finditer(r"[^;]+", body):
-                a = re.fullmatch(r"(\s*)([A-Za-z][\w']*)\s*:=(\s*)(.*?)\s*", part.group(), re.S)
-                if not a or not a.group(4) or ":=" in a.group(4) or a.group(2) in assigns:
-                    assigns = {}
-                    break
-                assigns[a.group(2)] = (code[start + part.start() + a.start(4):start + part.start() + a.end(4)],
-                                       start + part.start() + a.start(4))
+            assigns = _code_assignments(tr.child_text("code"))
             if assigns and all(self._pure(e) for e, _ in assigns.values()):
                 self.code_assigns[tr.attrs.get("id", "?")] = assigns
         assigned_by_code = {x for a in self.code_assigns.values() for x in a}
         if not assigned_by_code:
             self.code_refs: set[str] = set()
             return
-        # every read of such a variable must be in an output arc or the delay of a transition that assigns it
-        ok = set(assigned_by_code)
-        for page in self.cpnet.findall("page"):
-            for tr in page.findall("trans"):
-                assigns = self.code_assigns.get(tr.attrs.get("id", "?"), {})
-                for tag in ("cond", "priority", "code", "time"):
-                    text = tr.child_text(tag)
-                    if tag == "time":
-                        text = re.sub(r"!\s*(" + "|".join(map(re.escape, assigns)) + r")\b", "", text) if assigns \
-                            else text
-                    ok -= {x for x in assigned_by_code if re.search(r"!\s*" + re.escape(x) + r"\b", text)}
-            for a in page.findall("arc"):
-                te = a.find("transend")
-                assigns = self.code_assigns.get(te.attrs.get("idref", "") if te is not None else "", {})
-                text = a.child_text("annot")
-                if a.attrs.get("orientation", "").strip().lower() == "ttop" and assigns:
-                    text = re.sub(r"!\s*(" + "|".join(map(re.escape, assigns)) + r")\b", "", text)
-                ok -= {x for x in assigned_by_code if re.search(r"!\s*" + re.escape(x) + r"\b", text)}
-            for pl in page.findall("place"):
-                ok -= {x for x in assigned_by_code if re.search(r"!\s*" + re.escape(x) + r"\b",
-                                                                pl.child_text("initmark"))}
         gb = self.cpnet.find("globbox")
-        for el in self._all_decl_elements(gb) if gb is not None else []:
-            if el.tag == "ml":
-                ok -= {x for x in assigned_by_code if re.search(r"!\s*" + re.escape(x) + r"\b", el.text)}
+        ok = assigned_by_code - self._read_elsewhere(assigned_by_code, gb)
         # and it is assigned nowhere else (no `x :=` outside those code segments)
         elsewhere = [t.text for t in self.cpnet.iter("text") if t.text not in
                      {tr.child_text("code") for tr in self.cpnet.iter("trans")
@@ -184,6 +159,30 @@ class _Declarations:
         for tid in list(self.code_assigns):
             if not set(self.code_assigns[tid]) <= self.code_refs:
                 del self.code_assigns[tid]
+
+    def _read_elsewhere(self, refs: set[str], gb: Element | None) -> set[str]:
+        """The references of `refs` read (`!x`) other than by an output arc or the delay of a transition whose
+        code segment assigns them: by a guard, a priority, a code segment, an input arc, an initial marking, a
+        declaration, or a transition that does not assign them."""
+        read: set[str] = set()
+        for page in self.cpnet.findall("page"):
+            for tr in page.findall("trans"):
+                assigns = self.code_assigns.get(tr.attrs.get("id", "?"), {})
+                for tag in ("cond", "priority", "code", "time"):
+                    text = tr.child_text(tag)
+                    read |= _reads(refs, _without_reads(assigns, text) if tag == "time" else text)
+            for a in page.findall("arc"):
+                te = a.find("transend")
+                assigns = self.code_assigns.get(te.attrs.get("idref", "") if te is not None else "", {})
+                text = a.child_text("annot")
+                output = a.attrs.get("orientation", "").strip().lower() == "ttop"
+                read |= _reads(refs, _without_reads(assigns, text) if output else text)
+            for pl in page.findall("place"):
+                read |= _reads(refs, pl.child_text("initmark"))
+        for el in self._all_decl_elements(gb) if gb is not None else []:
+            if el.tag == "ml":
+                read |= _reads(refs, el.text)
+        return read
 
     def _pure(self, text: str) -> bool:
         """True if CPN ML text draws no random value, has no side effect and uses no reference variable, directly
@@ -498,78 +497,8 @@ class _Declarations:
         if len(kinds) != 1:
             return None
         k = kinds[0]
-
-        def ids(node: Element) -> list[str]:
-            return [c.text.strip() for c in node.findall("id")]
-
-        def mls(node: Element) -> list[str]:
-            return [_clean(c.text) for c in node.findall("ml")]
-
-        w = k.find("with")
-        if k.tag in ("unit", "bool", "real", "intinf", "time"):
-            if w is not None:
-                return None if k.tag in ("real", "time") else (
-                    # `unit with student`: one colour, named: an enumeration of one constant
-                    f"with {ids(w)[0]}" if k.tag == "unit" and ids(w)
-                    else f"bool with ({', '.join(ids(w))})" if k.tag == "bool" and len(ids(w)) == 2 else None)
-            return k.tag
-        if k.tag in ("int", "string"):
-            if w is None:
-                return k.tag
-            lo_hi = mls(w)
-            if k.tag == "int" and len(lo_hi) == 2:
-                return f"int with {lo_hi[0]}..{lo_hi[1]}"
-            if k.tag == "string" and len(lo_hi) == 2:  # `string with "a".."z" and 3..9`
-                lengths = mls(w.find("and")) if w.find("and") is not None else []
-                return f"string with {lo_hi[0]}..{lo_hi[1]}" + (
-                    f" and {lengths[0]}..{lengths[1]}" if len(lengths) == 2 else "")
-            return None
-        if k.tag == "enum":
-            return "with " + " | ".join(ids(k))
-        if k.tag == "index":
-            b = mls(k)
-            i = ids(k)
-            if len(b) == 2 and len(i) == 1:
-                return f"index {i[0]} with {b[0]}..{b[1]}"
-            return None
-        if k.tag == "product":
-            return "product " + " * ".join(ids(k))
-        if k.tag == "record":
-            fields = []
-            for f in k.findall("recordfield"):
-                fi = ids(f)
-                if len(fi) != 2:
-                    return None
-                fields.append(f"{fi[0]} : {fi[1]}")
-            return "record " + " * ".join(fields)
-        if k.tag == "list":
-            i = ids(k)
-            if len(i) != 1:
-                return None
-            if w is not None:
-                b = mls(w)
-                return f"list {i[0]} with {b[0]}..{b[1]}" if len(b) == 2 else None
-            return f"list {i[0]}"
-        if k.tag == "union":
-            parts = []
-            for f in k.findall("unionfield"):
-                fi = ids(f)
-                t = f.find("type")
-                ti = ids(t) if t is not None else fi[1:]
-                parts.append(f"{fi[0]} : {ti[0]}" if ti else fi[0])
-            return "union " + " + ".join(parts)
-        if k.tag == "alias":
-            i = ids(k)
-            return i[0] if len(i) == 1 else None
-        if k.tag == "subset":
-            i = ids(k)
-            by = k.find("by")
-            if i and by is not None and mls(by):
-                return f"subset {i[0]} by {mls(by)[0]}"
-            if i and w is not None and mls(w):
-                return f"subset {i[0]} with {mls(w)[0]}"
-            return None
-        return None
+        build = _COLOR_KINDS.get(k.tag)
+        return build(k, k.find("with")) if build is not None else None
 
     def _var(self, el: Element) -> None:
         t = el.find("type")
@@ -751,3 +680,125 @@ class _Declarations:
         return written, fname, here, candidates, content, full, why
 
     # -- pages -----------------------------------------------------------------------------------
+
+
+def _code_assignments(code: str) -> dict[str, tuple[str, int]]:
+    """The assignments `x := e; y := f` that are all of a code segment without output variables: reference
+    -> (e as written, its offset in `code`); empty if the action is anything else."""
+    if not code.strip() or "action" not in code:
+        return {}
+    clean = ml.strip_comments(code)
+    m = re.match(r"\s*(?:input\s*(?:\([^)]*\)|[A-Za-z][\w']*)\s*;?)?\s*(?:output\s*\(\s*\)\s*;?)?\s*action\b",
+                 clean)
+    if not m:
+        return {}
+    body, start = clean[m.end():], m.end()
+    assigns: dict[str, tuple[str, int]] = {}
+    for part in re.finditer(r"[^;]+", body):
+        a = re.fullmatch(r"(\s*)([A-Za-z][\w']*)\s*:=(\s*)(.*?)\s*", part.group(), re.S)
+        if not a or not a.group(4) or ":=" in a.group(4) or a.group(2) in assigns:
+            return {}
+        offset = start + part.start() + a.start(4)
+        assigns[a.group(2)] = (code[offset:start + part.start() + a.end(4)], offset)
+    return assigns
+
+
+def _reads(refs: set[str], text: str) -> set[str]:
+    """The references of `refs` that `text` reads (`!x`)."""
+    return {x for x in refs if re.search(r"!\s*" + re.escape(x) + r"\b", text)}
+
+
+def _without_reads(refs, text: str) -> str:
+    """`text` without its reads of `refs` (an output inscription of the transition that assigns them)."""
+    return re.sub(r"!\s*(" + "|".join(map(re.escape, refs)) + r")\b", "", text) if refs else text
+
+
+# -- colour sets: one function per kind of <color> element, (element, its <with> or None) -> CPN ML or None
+
+def _ids(node: Element) -> list[str]:
+    return [c.text.strip() for c in node.findall("id")]
+
+
+def _mls(node: Element) -> list[str]:
+    return [_clean(c.text) for c in node.findall("ml")]
+
+
+def _simple_color(k: Element, w: Element | None) -> str | None:
+    """unit, bool, real, intinf, time; `unit with student` (one colour, named: an enumeration of one
+    constant) and `bool with (no, yes)`."""
+    if w is None:
+        return k.tag
+    if k.tag == "unit" and _ids(w):
+        return f"with {_ids(w)[0]}"
+    if k.tag == "bool" and len(_ids(w)) == 2:
+        return f"bool with ({', '.join(_ids(w))})"
+    return None
+
+
+def _int_or_string_color(k: Element, w: Element | None) -> str | None:
+    if w is None:
+        return k.tag
+    lo_hi = _mls(w)
+    if len(lo_hi) != 2:
+        return None
+    if k.tag == "int":
+        return f"int with {lo_hi[0]}..{lo_hi[1]}"
+    lengths = _mls(w.find("and")) if w.find("and") is not None else []  # `string with "a".."z" and 3..9`
+    return f"string with {lo_hi[0]}..{lo_hi[1]}" + (f" and {lengths[0]}..{lengths[1]}" if len(lengths) == 2 else "")
+
+
+def _index_color(k: Element, w: Element | None) -> str | None:
+    b, i = _mls(k), _ids(k)
+    return f"index {i[0]} with {b[0]}..{b[1]}" if len(b) == 2 and len(i) == 1 else None
+
+
+def _record_color(k: Element, w: Element | None) -> str | None:
+    fields = [_ids(f) for f in k.findall("recordfield")]
+    if any(len(fi) != 2 for fi in fields):
+        return None
+    return "record " + " * ".join(f"{fi[0]} : {fi[1]}" for fi in fields)
+
+
+def _list_color(k: Element, w: Element | None) -> str | None:
+    i = _ids(k)
+    if len(i) != 1:
+        return None
+    if w is None:
+        return f"list {i[0]}"
+    b = _mls(w)
+    return f"list {i[0]} with {b[0]}..{b[1]}" if len(b) == 2 else None
+
+
+def _union_color(k: Element, w: Element | None) -> str | None:
+    parts = []
+    for f in k.findall("unionfield"):
+        fi = _ids(f)
+        t = f.find("type")
+        ti = _ids(t) if t is not None else fi[1:]
+        parts.append(f"{fi[0]} : {ti[0]}" if ti else fi[0])
+    return "union " + " + ".join(parts)
+
+
+def _subset_color(k: Element, w: Element | None) -> str | None:
+    i = _ids(k)
+    by = k.find("by")
+    if i and by is not None and _mls(by):
+        return f"subset {i[0]} by {_mls(by)[0]}"
+    if i and w is not None and _mls(w):
+        return f"subset {i[0]} with {_mls(w)[0]}"
+    return None
+
+
+_COLOR_KINDS = {
+    "unit": _simple_color, "bool": _simple_color, "intinf": _simple_color,
+    "real": lambda k, w: k.tag if w is None else None, "time": lambda k, w: k.tag if w is None else None,
+    "int": _int_or_string_color, "string": _int_or_string_color,
+    "enum": lambda k, w: "with " + " | ".join(_ids(k)),
+    "index": _index_color,
+    "product": lambda k, w: "product " + " * ".join(_ids(k)),
+    "record": _record_color,
+    "list": _list_color,
+    "union": _union_color,
+    "alias": lambda k, w: _ids(k)[0] if len(_ids(k)) == 1 else None,
+    "subset": _subset_color,
+}
