@@ -43,12 +43,19 @@ CODE = "input (x)\noutput (y)\naction\ndiscrete (0, 3)"
 
 
 def test_a_draw_read_by_two_arcs_is_one_choice_in_explore(tmp_path):
-    path, model = _load(tmp_path, _net(CODE))
+    _, model = _load(tmp_path, _net(CODE))
     succ = _successors(model)
     assert len(succ) == 4  # one binding element per value of the one draw (16 when each arc drew its own)
     assert sorted(m for _, m in succ) == [(f"1`{v}", f"1`{v}") for v in range(4)]
     assert succ == _successors(model, reference=True)
-    assert main(["explore", str(path), "--max-states", "100"]) == 0
+
+
+@pytest.mark.parametrize("backend", ["python", "c"])
+def test_both_searches_explore_the_one_choice(tmp_path, backend, capsys):
+    path, _ = _load(tmp_path, _net(CODE))
+    assert main(["explore", str(path), "--backend", backend, "--json", "-"]) == 0
+    space = json.loads(capsys.readouterr().out)["statespace"]
+    assert (space["states"], space["arcs"]) == (5, 4)
 
 
 def test_the_translation_binds_the_outputs_once_in_the_guard():
