@@ -128,3 +128,9 @@ def test_the_time_inscription_is_the_second_reader(tmp_path):
     assert "trans t [y = (discrete (0, 3))] @+ y;" in translate_text(xml).text
     succ = _successors(_load(tmp_path, xml)[1])
     assert sorted(m for _, m in succ) == [(f"1`{v}@{v}",) for v in range(4)]
+
+
+def test_undeclared_output_variables_keep_the_let():
+    # CPN Tools requires output variables to be declared; a file that does not declare them keeps the `let`
+    text = translate_text(_net(CODE.replace("(y)", "(w)"), ("w", "w"))).text
+    assert text.count("(let val w = discrete (0, 3) in w end)") == 2

@@ -121,6 +121,7 @@ class _Translator(_Declarations):
         self.transs: dict[str, _Trans] = {}
         self.timed_colsets: set[str] = set()
         self.declared: set[str] = set()  # names declared by val/fun/colset in the globbox
+        self.var_names: set[str] = set()  # the variables the globbox declares
         self.impure: set[str] = set(ml.RANDOM_FUNCTIONS)  # functions that draw random values
         self.code_outputs: dict[str, _CodeOutputs] = {}  # transition id -> its code segment's outputs
         self.globref_consts: dict[str, str] = {}  # globrefs translated as constants
@@ -487,7 +488,8 @@ class _Translator(_Declarations):
         elif not self._refuse_code_action(act, outs, origin, what):
             # where the action starts in the .cpn file, for error positions in the generated text
             ao = _origin_at(origin, code, code.index(act) if act in code else 0)
-            bound = self._draws(act) and self._output_uses(t, outs) > 1
+            # (a guard binds declared variables only, as CPN Tools requires of output variables)
+            bound = self._draws(act) and self._output_uses(t, outs) > 1 and set(outs) <= self.var_names
             self.code_outputs[t.id] = _CodeOutputs(outs, act, ao, bound)
             self._note(f"the code segment of {what} binds {', '.join(outs)}; " + (
                 "its action draws, and several output inscriptions use them: it is evaluated once, in the "

@@ -509,10 +509,13 @@ class _Declarations:
             layout = el.find("layout")
             if layout is not None and layout.text.strip():
                 text = _clean(layout.text)
+                m = re.match(r"\s*var\s+([^:]*):", text)
+                self.var_names.update(v.strip() for v in (m.group(1).split(",") if m else []))
                 self.out.stmt([(text if text.endswith(";") else text + ";", None)], origin)
                 return
             self.error(el, f"variable declaration {origin.element} has no colour set or no name")
             return
+        self.var_names.update(names)
         self.out.stmt([(f"var {', '.join(names)} : {tname};", None)], origin)
 
     def _ml(self, el: Element, text: str | None = None, at: Origin | None = None) -> None:
