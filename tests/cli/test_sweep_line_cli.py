@@ -64,7 +64,8 @@ def test_explore_sweep_line_refusals(tmp_path, capsys):
     assert "--workers cannot be combined with --sweep-line" in capsys.readouterr().err
     assert main(["explore", TIMER, "--progress", "size (TimerCancel'Sendz 1)"]) == 65
     err = capsys.readouterr().err
-    assert "--progress:1:7: error[E0201]" in err and "^" in err
+    assert "--progress:1:7: error[E0703]: no place 'TimerCancel'Sendz'" in err and "^" in err
+    assert "Did you mean the place 'TimerCancel'Sends'?" in err
 
 
 SCENARIO = """model = "{model}"
