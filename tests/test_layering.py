@@ -97,6 +97,8 @@ def _private_uses(mod: str, own: str, source: str) -> list[str]:
             other = _part(node.module)
             if other is None or other == own:
                 continue
+            if any(_is_private(p) for p in node.module.split(".")[2:]):
+                out.append(f"{mod}:{node.lineno} imports from the private module {node.module}")
             for a in node.names:
                 if _is_private(a.name):
                     out.append(f"{mod}:{node.lineno} imports the private {node.module}.{a.name}")
@@ -105,6 +107,8 @@ def _private_uses(mod: str, own: str, source: str) -> list[str]:
             for a in node.names:
                 other = _part(a.name)
                 if other is not None and other != own:
+                    if any(_is_private(p) for p in a.name.split(".")[2:]):
+                        out.append(f"{mod}:{node.lineno} imports the private module {a.name}")
                     foreign.add(a.asname or a.name.split(".")[0])
     assigns = [n for n in ast.walk(tree) if isinstance(n, ast.Assign)]
     grew = True
@@ -157,12 +161,16 @@ def test_private_member_access_across_packages_fails():
     assert bad("engine._plan.clear()\n")
     assert bad("from cpn.engine import clock\nclock._global_readers([])\n", "checks")
     assert bad("from cpn.model import _normalise_overrides\n", "checks")
+    assert bad("from cpn.io._xml import parse_xml\n", "properties")
+    assert bad("import cpn.io.pnml._terms\n", "properties")
     assert bad("from cpn.engine import compile_net\n"
                "class P:\n    def __init__(self, net):\n        self.ref = compile_net(net, reference=True)\n"
                "    def go(self, t, b):\n        ref = self.ref\n        return ref._env(t, b)\n", "report")
     # the public face, and a package's own private names, are fine
     assert not bad('groups = getattr(engine, "successor_groups", None)\nengine.forget_memo()\n')
     assert not bad("from cpn.statespace.store import _CDEF\nself._memo = {}\n")
+    assert not bad("from cpn.statespace._memory import peak\n")
+    assert not bad("from cpn._native.manifest import SOURCES\n", "engine")
     assert not bad("engine._plan.clear()\n", "engine")
 
 

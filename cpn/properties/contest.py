@@ -16,7 +16,7 @@ tree of the classes below:
   places hold together in a reachable marking.
 
 Places and transitions are named by their PNML id. Every node keeps the line and column of its element.
-An unknown element is a `ContestFormatError` with `file:line:col`. Imports `cpn.io._xml` (the XML tree
+An unknown element is a `ContestFormatError` with `file:line:col`. Imports `cpn.io.xmltree` (the XML tree
 with positions) and the standard library.
 
 Examples
@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import ModelError
-from cpn.io._xml import Element, parse_xml
+from cpn.io.xmltree import Element, parse_xml
 
 EXAMINATIONS: tuple[str, ...] = ("ReachabilityCardinality", "ReachabilityFireability", "CTLCardinality",
                                  "CTLFireability", "LTLCardinality", "LTLFireability", "UpperBounds")

@@ -1,9 +1,9 @@
-"""Reading PNML with positions: the shared tree of `cpn.io._xml`, with this format's messages."""
+"""Reading PNML with positions: the shared tree of `cpn.io.xmltree`, with this format's messages."""
 
 from __future__ import annotations
 
-from cpn.io._xml import Element
-from cpn.io._xml import parse_xml as _parse_xml
+from cpn.io.xmltree import Element
+from cpn.io.xmltree import parse_xml as _parse_xml
 
 __all__ = ["Element", "parse_xml"]
 
