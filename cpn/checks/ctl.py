@@ -12,6 +12,7 @@ Imports `cpn.statespace` and the standard library only.
 from __future__ import annotations
 
 import operator
+import time
 from array import array
 from bisect import bisect_left
 from collections import deque
@@ -52,6 +53,10 @@ class Temporal:
     arcs: object = None
 
 
+class OutOfTime(Exception):
+    """The deadline of a `Kripke` passed before the formula was labelled (the reason)."""
+
+
 class Kripke:
     """The graph the formulas are evaluated on: n states, CSR successors, arc labels, predecessors."""
 
@@ -67,6 +72,9 @@ class Kripke:
         self.full_scc = full_scc
         self.arc_hints: dict = {}  # (u, v) -> arc index, for steps of explanations that need one arc
         self._fair = None
+        #: a `time.monotonic()` value: `label` raises `OutOfTime` when it is passed before a temporal
+        #: operator (each operator is one pass over the graph)
+        self.deadline: float | None = None
 
     def successors(self, u: int):
         return self.dst[self.offsets[u]:self.offsets[u + 1]]
@@ -194,6 +202,8 @@ class Kripke:
         if isinstance(f, Or):
             return _or(self.label(f.left, atoms, memo), self.label(f.right, atoms, memo))
         a = [self.label(x, atoms, memo) for x in f.args]
+        if self.deadline is not None and time.monotonic() > self.deadline:
+            raise OutOfTime(f"the time limit passed while labelling the {n:,} states with {f.op}")
         op = f.op
         if op == "EXB":
             return self.exb(a[0], f.arcs)

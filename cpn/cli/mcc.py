@@ -503,7 +503,11 @@ class ContestModel:
         formula = _to_ctl(f, atoms, self.vector)
         if self._kripke is None:
             self._kripke = ctl.Kripke(len(states), offsets, dst, labels=array("i", bytes(4 * len(dst))))
-        return bool(self._kripke.label(formula, atoms)[0])
+        self._kripke.deadline = self.deadline
+        try:
+            return bool(self._kripke.label(formula, atoms)[0])
+        except ctl.OutOfTime as exc:
+            raise CannotCompute(str(exc)) from None
 
 
 _NOT = bytes([1, 0] + [0] * 254)

@@ -45,3 +45,19 @@ def test_past_the_budget_the_whole_state_space_answers(name, monkeypatch):
     assert not wrong
     assert model._graph is not None  # the state space was built
     assert products and all(p is not None for p in products)  # LTL over it in native code
+
+
+@needs_shared
+def test_ctl_past_the_time_limit_cannot_compute_with_the_reason():
+    import time
+
+    folder = os.path.join(VALIDATION, "Philosophers-PT-000005")
+    if not os.path.isdir(folder):
+        pytest.skip("Philosophers-PT-000005 is not in the validation corpus")
+    model = ContestModel.load(os.path.join(folder, "model.pnml"), max_states=10**6)
+    model.graph()  # the state space is built within the limit
+    model.deadline = time.monotonic() - 1  # then the time is up
+    answers = answer_file(model, os.path.join(folder, "formulas", "CTLCardinality.xml"))
+    labelled = [a for a in answers if a.reason and "labelling" in a.reason]
+    assert labelled and all(a.value is None for a in labelled)
+    assert all(a.value is None for a in answers)

@@ -178,3 +178,22 @@ def test_dead_states_end_maximal_paths():
     assert list(k.label(Temporal("EG", (Atom(0),)), [bytearray([1, 1])])) == [1, 1]
     assert list(k.label(Temporal("AX", (Atom(0),)), [bytearray([0, 0])])) == [0, 1]
     assert list(k.label(Temporal("EX", (Atom(0),)), [bytearray([1, 1])])) == [1, 0]
+
+
+def test_labelling_stops_at_its_deadline_before_a_temporal_operator():
+    import time
+
+    from cpn.checks.ctl import OutOfTime
+
+    k = Kripke(2, array("q", [0, 1, 1]), array("i", [1]), array("i", [0]))
+    atoms = [bytearray([0, 1])]
+    k.deadline = time.monotonic() - 1
+    assert k.label(Not(Atom(0, "p")), atoms) == bytearray([1, 0])  # no operator over the graph: answered
+    try:
+        k.label(Temporal("EF", (Atom(0, "p"),)), atoms)
+    except OutOfTime as exc:
+        assert "EF" in str(exc)
+    else:
+        raise AssertionError("a passed deadline did not stop the labelling")
+    k.deadline = time.monotonic() + 60
+    assert k.label(Temporal("EF", (Atom(0, "p"),)), atoms) == bytearray([1, 1])
