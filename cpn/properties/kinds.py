@@ -119,47 +119,51 @@ def _state_name(view: GraphView, sid: int) -> str:
 
 
 # ----------------------------------------------------------------------------- on the fly
-class Invariant(Check):
+class _MarkingSearch(Check):
+    """Looks for a marking in which the predicate has the value `wanted`: while the graph is generated
+    (`observe`), or over the graph where the predicate reads `enabled` (the successors must be known)."""
+
+    wanted: bool
+
     def __init__(self, spec, pred):
         super().__init__(spec)
         self.pred = pred
         self.on_the_fly = not pred.uses_enabled
 
     def observe(self, sid, state):
-        if self.found is None and not self.pred.fn(sid, state):
+        if self.found is None and bool(self.pred.fn(sid, state)) is self.wanted:
             self.found = sid
             return True
         return False
 
-    def decide(self, view):
+    def search(self, view) -> int | None:
+        """The first marking found (the first expanded one in the graph's order, over the graph)."""
         if not self.on_the_fly:
             t = view.truth(self.pred)
-            self.found = next((i for i in range(view.g.n_states) if not t[i] and view.g.is_expanded(i)), None)
-        if self.found is not None:
-            return Verdict.violated(f"false in {_state_name(view, self.found)}", evidence_to(view.g, self.found))
+            self.found = next((i for i in range(view.g.n_states)
+                               if bool(t[i]) is self.wanted and view.g.is_expanded(i)), None)
+        return self.found
+
+
+class Invariant(_MarkingSearch):
+    wanted = False  # a marking where it is false
+
+    def decide(self, view):
+        found = self.search(view)
+        if found is not None:
+            return Verdict.violated(f"false in {_state_name(view, found)}", evidence_to(view.g, found))
         if view.complete:
             return Verdict.holds(f"true in all {view.g.n_states:,} reachable markings")
         return Verdict.unknown(f"true in the {view.g.n_states:,} markings found; {view.reason}")
 
 
-class Reachable(Check):
-    def __init__(self, spec, pred):
-        super().__init__(spec)
-        self.pred = pred
-        self.on_the_fly = not pred.uses_enabled
-
-    def observe(self, sid, state):
-        if self.found is None and self.pred.fn(sid, state):
-            self.found = sid
-            return True
-        return False
+class Reachable(_MarkingSearch):
+    wanted = True  # a witness
 
     def decide(self, view):
-        if not self.on_the_fly:
-            t = view.truth(self.pred)
-            self.found = next((i for i in range(view.g.n_states) if t[i] and view.g.is_expanded(i)), None)
-        if self.found is not None:
-            return Verdict.holds(f"witness: {_state_name(view, self.found)}", evidence_to(view.g, self.found))
+        found = self.search(view)
+        if found is not None:
+            return Verdict.holds(f"witness: {_state_name(view, found)}", evidence_to(view.g, found))
         if view.complete:
             return Verdict.violated(f"no reachable marking satisfies it ({view.g.n_states:,} markings)")
         return Verdict.unknown(f"not found in the {view.g.n_states:,} markings found; {view.reason}")
