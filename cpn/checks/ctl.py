@@ -117,7 +117,10 @@ class Kripke:
         fast = graphnative.eu(self.n, self.pred_off, self.pred, phi, _and(psi, self.fair()))
         if fast is not None:
             return fast
-        out = _and(psi, self.fair())
+        return self._backward(_and(psi, self.fair()), phi)
+
+    def _backward(self, out: bytearray, phi: bytearray) -> bytearray:
+        """`out` grown by every phi-state from which a path of phi-states reaches it (in place)."""
         queue = deque(v for v in range(self.n) if out[v])
         while queue:
             v = queue.popleft()
@@ -170,15 +173,7 @@ class Kripke:
             if fast is not None:
                 return fast
         seeds, _ = self.eg_seeds(phi)
-        out = bytearray(seeds)
-        queue = deque(v for v in range(self.n) if out[v])
-        while queue:
-            v = queue.popleft()
-            for u in self.predecessors(v):
-                if not out[u] and phi[u]:
-                    out[u] = 1
-                    queue.append(u)
-        return out
+        return self._backward(bytearray(seeds), phi)
 
     # ------------------------------------------------------------------ formulas
     def label(self, f, atoms: list[bytearray], memo: dict | None = None) -> bytearray:
