@@ -12,7 +12,9 @@ from __future__ import annotations
 
 import dataclasses
 import operator
+import pickle
 import re
+from collections import OrderedDict
 from collections.abc import Callable
 
 from cpn._util import did_you_mean
@@ -32,6 +34,27 @@ from cpn.net.translate import Translator
 from cpn.values.multiset import Multiset, MultisetError
 
 PREFIX = "val it = "
+
+#: the parses of property texts, pickled (the type checker annotates the tree it is given, so each use
+#: gets its own copy): a scenario's texts are the same in each of its runs and mutants
+_PARSES: OrderedDict = OrderedDict()
+PARSES_KEPT: int = 4096
+
+
+def _parse_text(text: str, filename: str) -> A.Model:
+    key = (text, filename)
+    kept = _PARSES.get(key)
+    if kept is not None:
+        _PARSES.move_to_end(key)
+        return pickle.loads(kept)
+    m = parse(text, filename)  # a syntax error is raised, not kept
+    try:
+        _PARSES[key] = pickle.dumps(m, pickle.HIGHEST_PROTOCOL)
+    except RecursionError:  # nested too deeply to pickle: parsed again the next time
+        return m
+    if len(_PARSES) > PARSES_KEPT:
+        _PARSES.popitem(last=False)
+    return m
 CTL_UNARY = {"AG": "AG", "AF": "AF", "EF": "EF", "EG": "EG", "AX": "AX", "EX": "EX",
              "INV": "AG", "POS": "EF", "EV": "AF", "ALONG": "EG"}
 CTL_BINARY = {"AU", "EU"}
@@ -274,7 +297,7 @@ class PropertyLanguage:
               ltl: bool = False) -> A.Expr:
         """Parse and type `text`; raise ModelError with spans in the scenario file."""
         try:
-            m = parse(f"{PREFIX}{text};", fallback.file)
+            m = _parse_text(f"{PREFIX}{text};", fallback.file)
         except ModelError as exc:
             raise _remap(exc, text, origin, fallback) from None
         if len(m.decls) != 1 or not isinstance(m.decls[0], A.ValDecl):

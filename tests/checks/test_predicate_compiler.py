@@ -70,3 +70,25 @@ def test_a_function_with_two_wildcards_in_its_tuple_pattern_compiles():
     text = "List.all (fn (_, _, l) => l < 4) (ms_to_list (Top'P 1))"
     got = _values(engine, states, text)
     assert got == [True, False] and got == _values(WithoutCompiler(engine), states, text)
+
+
+def test_a_text_is_parsed_once_and_each_check_types_its_own_copy(monkeypatch):
+    from cpn.properties import predicates
+
+    monkeypatch.setattr(predicates, "_PARSES", type(predicates._PARSES)())
+    parses = []
+    real = predicates.parse
+    monkeypatch.setattr(predicates, "parse", lambda *a, **k: parses.append(a) or real(*a, **k))
+    engine = cpn.load(ROOT / "models/examples/stations.cpnet").engine()
+    states = list(Explorer(engine, ExploreOptions()).run().graph.states)
+    first = _values(engine, states, TEXTS[0])
+    lang = PropertyLanguage(engine.net, engine, TransitionIndex(engine))
+    a = lang.check(TEXTS[0], None, Span("<test>", 1, 1), T.BOOL, "the test's text")
+    b = lang.check(TEXTS[0], None, Span("<test>", 1, 1), T.BOOL, "the test's text")
+    assert a is not b and _values(engine, states, TEXTS[0]) == first
+    assert len(parses) == 1
+    # a text with a syntax error is not kept: each check reports it
+    for _ in range(2):
+        with pytest.raises(cpn.ModelError):
+            lang.check("size (", None, Span("<test>", 1, 1), T.BOOL, "the test's text")
+    assert len(parses) == 3
