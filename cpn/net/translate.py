@@ -16,6 +16,8 @@ from cpn.lang.symbols import ConInfo, Symbol
 
 # what the front end annotated and the net does without
 _LEFT_BEHIND = frozenset({"ty", "op_ty", "ran_var", "type_expr", "result_type"})
+#: per node class, the names of the fields a closed node keeps (`dataclasses.fields` is slow per call)
+_KEPT_FIELDS: dict[type, tuple[str, ...]] = {}
 
 
 class Translator:
@@ -70,13 +72,15 @@ class Translator:
         """The node in closed form: its parts translated, its name resolved to a Ref, what the type checker
         annotated (`ty`, `op_ty`, `ran_var`) and the type annotations left behind. One rule for every
         node, so that a new expression form needs no line here."""
+        cls = type(node)
+        names = _KEPT_FIELDS.get(cls)
+        if names is None:
+            names = _KEPT_FIELDS[cls] = tuple(f.name for f in fields(cls) if f.name not in _LEFT_BEHIND)
         parts = {}
-        for f in fields(node):
-            if f.name in _LEFT_BEHIND:
-                continue
-            v = getattr(node, f.name)
-            parts[f.name] = self.ref(v) if f.name == "ref" else self._part(v)
-        return type(node)(**parts)
+        for name in names:
+            v = getattr(node, name)
+            parts[name] = self.ref(v) if name == "ref" else self._part(v)
+        return cls(**parts)
 
     def _part(self, v):
         if isinstance(v, A.Expr):
