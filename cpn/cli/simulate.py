@@ -55,6 +55,8 @@ def run(args) -> int:
     checked = model.net.checked
     engine = model.engine(simulation=True, reference=bool(getattr(checked, "random_draws", ())
                                                           or getattr(checked, "simulation_only", ())))
+    draw_variables = getattr(checked, "draw_variables", None) or {}
+    draw_outputs = getattr(checked, "draw_outputs", None) or {}
     s = engine.initial_state()
     steps: list[dict] = []
     width = max(len(str(args.steps)), 4)
@@ -67,7 +69,7 @@ def run(args) -> int:
             if not succ:
                 ended = "dead"
                 break
-            be, s = succ[rng.randrange(len(succ))]
+            be, s = _choose(engine, succ, rng, draw_variables, draw_outputs)
             steps.append({"step": len(steps) + 1, "time": engine.clock(s),
                           "binding_element": engine.format_binding_element(be)})
             if text:
@@ -93,6 +95,48 @@ def run(args) -> int:
                   "final_marking": {k: v for k, v in marking.items() if v != "empty"}}
         write_output(outputs["--json"], json.dumps(result, indent=2, ensure_ascii=False) + "\n")
     return ExitStatus.OK
+
+
+def _choose(engine, succ: list, rng: random.Random, draw_variables: dict, draw_outputs: dict):
+    """One of the enabled binding elements `succ` ((binding element, successor) pairs), at random.
+
+    Without draws, every binding element is equally likely. The free variables that explore makes of a draw
+    (`bernoulli(p)`, `discrete(a, b)`, `CS.ran()`, `@+[a,b]`: `draw_variables`, name -> the weight of each
+    value or None for equal weights) are draws here, as in CPN Tools' simulator: a binding element without
+    its draws (transition and the other variables) is chosen first, every one equally likely, then the values
+    of its draws, each with its probability (`bernoulli(0.9)` gives 1 nine times in ten), among those that
+    are enabled. The variables that a guard conjunct binds to draws (`draw_outputs`, by transition) follow
+    their draws.
+    """
+    if not draw_variables:
+        return succ[rng.randrange(len(succ))]
+    groups: dict = {}
+    for item in succ:
+        be = engine.binding_element(item[0])
+        outputs = draw_outputs.get(engine.transitions[be.transition].span, ())
+        weight, rest = 1.0, []
+        for name, value in be.binding.items():
+            if name in outputs:
+                continue
+            if name in draw_variables:
+                weights = draw_variables[name]
+                if weights is not None:
+                    weight *= weights.get(value, 0.0)
+            else:
+                rest.append((name, value))
+        groups.setdefault((be.transition, tuple(rest)), []).append((weight, item))
+    members = list(groups.values())[rng.randrange(len(groups))]
+    if len(members) == 1:
+        return members[0][1]
+    total = sum(w for w, _ in members)
+    if total <= 0.0:  # only values of probability 0 are enabled: none is likelier than another
+        return members[rng.randrange(len(members))][1]
+    x = rng.random() * total
+    for w, item in members:
+        x -= w
+        if x < 0.0:
+            return item
+    return members[-1][1]
 
 
 def _time(t) -> str:

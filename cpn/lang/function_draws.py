@@ -27,6 +27,11 @@ class FunctionDraws:
         self.ran_sink: list | None = None
         self.random_draws: list = []  # (name, span): calls of random distribution functions (simulate only)
         self.choice_draws: list = []  # (call, span): discrete, bernoulli explored as a choice (our extension)
+        # the free variables that stand for a draw (CS.ran(), discrete, bernoulli, @+[a,b]) -> the weight of
+        # each value in simulate (bernoulli: p and 1 - p), or None where every value is equally likely
+        self.draw_variables: dict[str, dict | None] = {}
+        # a transition's span -> the variables that a guard conjunct binds to its draws (`output_binder`)
+        self.draw_outputs: dict = {}
         # real-valued delays, reference variables, side effects: (what, span, hint, name), simulate only
         self.simulation_only_uses: list = []
         self.current_fun: str | None = None  # the top-level function being checked
@@ -39,6 +44,8 @@ class FunctionDraws:
     def record_draws(self, checked) -> None:
         checked.random_draws = list(self.random_draws)
         checked.choice_draws = list(self.choice_draws)
+        checked.draw_variables = dict(self.draw_variables)
+        checked.draw_outputs = {span: frozenset(names) for span, names in self.draw_outputs.items()}
         checked.simulation_only = list(self.simulation_only_uses)
 
     def top_fun_decl(self, d: A.FunDecl):

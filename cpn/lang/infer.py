@@ -311,6 +311,7 @@ class TypeInference(FunctionDraws):
                 vname = f"{cs}.ran#{self.ran_counter}"
                 vsym = Symbol(vname, "var", self.cstypes[cs], e.span, cs)
                 self.ran_sink.append((vname, cs, vsym))
+                self.draw_variables[vname] = None  # simulate: every value of CS equally likely
                 self.infer(e.arg, env)
                 e.fn = A.Name(e.fn.span, "ignore")
                 e.fn.ref = self.builtin_syms["ignore"]

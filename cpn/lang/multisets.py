@@ -185,15 +185,17 @@ class MultisetInference:
         self.choice_variable(node, f"@+[{lo},{hi}]", lo, hi)  # no colour-set name can be written so
         return node
 
-    def choice_variable(self, node: A.App, name: str, lo: int, hi: int) -> None:
+    def choice_variable(self, node: A.App, name: str, lo: int, hi: int, weights: dict | None = None) -> None:
         """Make App `node` stand for a free variable over the integers lo..hi (colour set `name`, made here):
-        every value is one binding element (CS.ran()'s mechanism; `_replace_ran` puts the variable in)."""
+        every value is one binding element (CS.ran()'s mechanism; `_replace_ran` puts the variable in).
+        `weights` gives the probability of each value in simulate (None: all equally likely)."""
         if name not in self.colsets:
             self.colsets[name] = C.IntCS(name, lo, hi)
             self.cstypes[name] = T.INT
         self.ran_counter += 1
         vsym = Symbol(f"{name}#{self.ran_counter}", "var", T.INT, node.span, name)
         self.ran_sink.append((vsym.name, name, vsym))
+        self.draw_variables[vsym.name] = weights
         node.fn = A.Name(node.span, "ignore", ty=T.TFun(T.UNIT, T.UNIT))
         node.fn.ref = self.builtin_syms["ignore"]
         node.arg = A.Const(node.span, (), "unit", ty=T.UNIT)
@@ -239,7 +241,8 @@ class MultisetInference:
                 self.error("E0301", f"bernoulli({p}): p is a probability, from 0.0 to 1.0", e.span)
                 raise Abort()
             lo, hi = (0 if p < 1.0 else 1), (1 if p > 0.0 else 0)  # 1 with probability p, else 0
-        self.choice_variable(e, f"{fname}({lo},{hi})", lo, hi)
+        weights = {0: 1.0 - values[0], 1: values[0]} if fname == "bernoulli" else None
+        self.choice_variable(e, f"{fname}({lo},{hi})", lo, hi, weights)
         if any(d.code == "W0104" and d.span == e.span for d in self.diags):
             return T.INT  # a draw in a function written out at several calls: one warning
         self.choice_draws.append((f"{fname}({', '.join(map(str, values))})", e.span))

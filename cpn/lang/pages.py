@@ -291,6 +291,9 @@ class PageChecks:
             self.ran_sink = None
         info.decl.guards[i] = _replace_ran(g)
         self.take_choices(info, sink)
+        if sink:  # the variables it binds are functions of its draws: simulate draws them with the draws
+            left = g.left.items if isinstance(g.left, A.TupleE) else [g.left]
+            self.draw_outputs.setdefault(info.decl.span, set()).update(x.name for x in left)
         return t
 
     def _check_delay_has_effect(self, page: PageInfo, info: TransInfo) -> None:
