@@ -13,6 +13,12 @@
  * and shifts: (place, id, f) -> the id of the place's marking with every timestamp moved back by f (time
  * condensation). A state of a timed net has the clock as its last field.
  *
+ * With the generated C, a group whose results are rarely reused (more than half of its first
+ * `uncache_after` lookups in a cache missed, as _search.c judges its groups: a transition reading a place
+ * whose marking is new in nearly every state) has them computed anew for each state into scratch
+ * buffers instead of being cached (its ready lists and its effects judged apart); the generated C gives
+ * the same ids for the same values every time.
+ *
  * A state is expanded as the engine's timed successor function does: f is the clock if a binding element
  * is ready then, else the earliest ready time; the binding elements ready at f occur (in group order),
  * written places get add(p, delta, old), the timed places are shifted by f under time condensation, and
@@ -25,6 +31,7 @@
 
 #define ND_LEVEL 7
 #define ND_NONE 0xFFFFFFFFu
+#define NT_AHEAD 16          /* nt_level_fresh: the states hashed, and their slots prefetched, at once */
 
 /* As grow, from a capacity that may be 0. */
 static int grow0(void **buf, int64_t *cap, int64_t need, size_t size) {
@@ -54,12 +61,22 @@ struct nt_search {
     uint32_t *ekey;
     uint32_t *miss; int nmiss;   /* the groups whose ready list the state being expanded misses */
     int64_t level_start;
+    /* results computed anew (see above): per group, whether its ready lists, its effects are; whether this
+     * state's are in the scratch buffers; the judging's counts; the scratch buffers of one state */
+    int scratch;             /* nt_put_ready and nt_put_effect write to the scratch buffers */
+    int64_t last_rdy, last_eff;  /* where they put (or found) the last ready list, effects */
+    uint8_t *r_unc, *e_unc, *r_in_s, *e_in_s;
+    int64_t *r_looks, *r_misses, *e_looks, *e_misses, *eoff;
+    int64_t *srdy; int64_t nsrdy, srdy_cap;
+    int32_t *sres; int64_t nsres, sres_cap;
     /* the time-growth watch's view of a level (nt_level_fresh): per timed place, the id of each marking's
-     * untimed view (given by the engine), and the untimed markings met so far */
+     * untimed view (given by the engine), and the untimed markings met so far (records of U 4-byte fields
+     * in a packed store: one hash and, through its slots' tags, mostly one record compared per look-up) */
     int32_t **vid; int64_t *nvid, *vid_cap;
-    vmap untimed; int untimed_on;
+    cs_store *untimed;
     int64_t *fresh; int64_t fresh_cap;
-    uint32_t *ukey;
+    uint8_t *ukeys;
+    uint64_t *uhash;
 };
 
 nt_search *nt_new(nd_search *d, int clock, int condense, int prio, const int32_t *timed_g, int ntp,
@@ -91,9 +108,19 @@ nt_search *nt_new(nd_search *d, int clock, int condense, int prio, const int32_t
     t->vid = (int32_t **)calloc((size_t)d->K + 1, sizeof(int32_t *));
     t->nvid = (int64_t *)calloc((size_t)d->K + 1, sizeof(int64_t));
     t->vid_cap = (int64_t *)calloc((size_t)d->K + 1, sizeof(int64_t));
-    t->ukey = (uint32_t *)calloc((size_t)d->K + 1, 4);
+    t->ukeys = (uint8_t *)calloc((size_t)NT_AHEAD * ((size_t)d->K + 1), 4);
+    t->uhash = (uint64_t *)calloc(NT_AHEAD, 8);
     t->fresh_cap = 64; t->fresh = (int64_t *)malloc((size_t)t->fresh_cap * 8);
-    if (!t->vid || !t->nvid || !t->vid_cap || !t->ukey || !t->fresh) return NULL;
+    if (!t->vid || !t->nvid || !t->vid_cap || !t->ukeys || !t->uhash || !t->fresh) return NULL;
+    t->r_unc = (uint8_t *)calloc((size_t)G + 1, 1); t->e_unc = (uint8_t *)calloc((size_t)G + 1, 1);
+    t->r_in_s = (uint8_t *)calloc((size_t)G + 1, 1); t->e_in_s = (uint8_t *)calloc((size_t)G + 1, 1);
+    t->r_looks = (int64_t *)calloc((size_t)G + 1, 8); t->r_misses = (int64_t *)calloc((size_t)G + 1, 8);
+    t->e_looks = (int64_t *)calloc((size_t)G + 1, 8); t->e_misses = (int64_t *)calloc((size_t)G + 1, 8);
+    t->eoff = (int64_t *)calloc((size_t)G + 1, 8);
+    t->srdy_cap = 256; t->srdy = (int64_t *)malloc((size_t)t->srdy_cap * 8);
+    t->sres_cap = 256; t->sres = (int32_t *)malloc((size_t)t->sres_cap * 4);
+    if (!t->r_unc || !t->e_unc || !t->r_in_s || !t->e_in_s || !t->r_looks || !t->r_misses || !t->e_looks
+        || !t->e_misses || !t->eoff || !t->srdy || !t->sres) return NULL;
     return t;
 }
 
@@ -101,9 +128,11 @@ void nt_free(nt_search *t) {
     if (!t) return;
     for (int g = 0; g < t->G; g++) { vm_free(&t->ready[g]); vm_free(&t->eff[g]); }
     vm_free(&t->shifts);
-    if (t->untimed_on) vm_free(&t->untimed);
+    cs_free(t->untimed);
     if (t->vid) for (int p = 0; p <= t->K; p++) free(t->vid[p]);
-    free(t->vid); free(t->nvid); free(t->vid_cap); free(t->ukey); free(t->fresh);
+    free(t->vid); free(t->nvid); free(t->vid_cap); free(t->ukeys); free(t->uhash); free(t->fresh);
+    free(t->r_unc); free(t->e_unc); free(t->r_in_s); free(t->e_in_s); free(t->r_looks); free(t->r_misses);
+    free(t->e_looks); free(t->e_misses); free(t->eoff); free(t->srdy); free(t->sres);
     free(t->timed_g); free(t->tplaces); free(t->ready); free(t->eff); free(t->roff); free(t->ekey); free(t->miss);
     free(t->rdy); free(t->succ); free(t->sbe); free(t->sprio); free(t);
 }
@@ -111,28 +140,42 @@ void nt_free(nt_search *t) {
 void nt_set_watch(nt_search *t, int watch) { t->watch = watch; }
 int64_t nt_level_start(nt_search *t) { return t->level_start; }
 
-/* Group g's binding elements for the read values `key`: n pairs (ready time, priority). */
+/* Group g's binding elements for the read values `key`: n pairs (ready time, priority) (with t->scratch,
+ * into the scratch buffer). Where they went: t->last_rdy. */
 int nt_put_ready(nt_search *t, int g, const uint32_t *key, int64_t n, const int64_t *pairs) {
-    if (vm_get(&t->ready[g], key) >= 0) return 0;
-    if (grow((void **)&t->rdy, &t->rdy_cap, t->nrdy + 1 + 2 * n, 8) != 0) return -1;
-    int64_t off = t->nrdy;
-    t->rdy[off] = n;
-    memcpy(t->rdy + off + 1, pairs, (size_t)(2 * n) * 8);
-    t->nrdy += 1 + 2 * n;
-    return vm_put(&t->ready[g], key, off);
+    int64_t **buf = t->scratch ? &t->srdy : &t->rdy;
+    int64_t *len = t->scratch ? &t->nsrdy : &t->nrdy, *cap = t->scratch ? &t->srdy_cap : &t->rdy_cap;
+    if (!t->scratch) {
+        int64_t had = vm_get(&t->ready[g], key);
+        if (had >= 0) { t->last_rdy = had; return 0; }
+    }
+    if (grow((void **)buf, cap, *len + 1 + 2 * n, 8) != 0) return -1;
+    int64_t off = *len;
+    (*buf)[off] = n;
+    memcpy(*buf + off + 1, pairs, (size_t)(2 * n) * 8);
+    *len += 1 + 2 * n;
+    t->last_rdy = off;
+    return t->scratch ? 0 : vm_put(&t->ready[g], key, off);
 }
 
-/* Group g's entries for the read values and occurrence time `key` (nread + 1 values). */
+/* Group g's entries for the read values and occurrence time `key` (nread + 1 values) (with t->scratch,
+ * into the scratch buffer). Where they went: t->last_eff. */
 int nt_put_effect(nt_search *t, int g, const uint32_t *key, int64_t n, const int32_t *entries) {
     nd_search *d = t->d;
-    if (vm_get(&t->eff[g], key) >= 0) return 0;
+    int32_t **buf = t->scratch ? &t->sres : &d->res;
+    int64_t *len = t->scratch ? &t->nsres : &d->nres, *cap = t->scratch ? &t->sres_cap : &d->res_cap;
+    if (!t->scratch) {
+        int64_t had = vm_get(&t->eff[g], key);
+        if (had >= 0) { t->last_eff = had; return 0; }
+    }
     int64_t width = 1 + d->nread[g] + d->nwrite[g];
-    if (grow((void **)&d->res, &d->res_cap, d->nres + 1 + n * width, 4) != 0) return -1;
-    int64_t off = d->nres;
-    d->res[off] = (int32_t)n;
-    memcpy(d->res + off + 1, entries, (size_t)(n * width) * 4);
-    d->nres += 1 + n * width;
-    return vm_put(&t->eff[g], key, off);
+    if (grow((void **)buf, cap, *len + 1 + n * width, 4) != 0) return -1;
+    int64_t off = *len;
+    (*buf)[off] = (int32_t)n;
+    memcpy(*buf + off + 1, entries, (size_t)(n * width) * 4);
+    *len += 1 + n * width;
+    t->last_eff = off;
+    return t->scratch ? 0 : vm_put(&t->eff[g], key, off);
 }
 
 int nt_put_shift(nt_search *t, uint32_t p, uint32_t id, uint32_t f, uint32_t nid) {
@@ -303,24 +346,47 @@ static int64_t nt_expand(nt_search *t, const uint32_t *s) {
     int any = 0, now = 0;
     int64_t minr = INT64_MAX;
     t->nmiss = 0;
+    t->nsrdy = 0; t->nsres = 0;
     for (int g = 0; g < G; g++) {
         int nr = d->nread[g];
         for (int i = 0; i < nr; i++) t->ekey[i] = s[d->read[g][i]];
-        int64_t o = vm_get(&t->ready[g], t->ekey);
+        int64_t o = -1;
+        t->r_in_s[g] = 0; t->e_in_s[g] = 0;
 #ifdef ND_GENERATED
-        if (o < 0 && d->gen && !t->nmiss) {  /* in the groups' order, as the engine: none after a miss */
+        int tried = 0;
+        if (t->r_unc[g] && !t->nmiss) {  /* computed anew (in the groups' order, as the engine: none after a miss) */
+            t->scratch = 1;
             int rc = gen_ready(d->gen, t, g, t->ekey);
+            t->scratch = 0;
+            tried = 1;
             if (rc == -2) return -2;
             for (int i = 0; i < nr; i++) t->ekey[i] = s[d->read[g][i]];
-            if (rc == 0) o = vm_get(&t->ready[g], t->ekey);
+            if (rc == 0) {
+                o = t->last_rdy;
+                t->r_in_s[g] = 1;
+                if (!t->timed_g[g]) { t->eoff[g] = t->last_eff; t->e_in_s[g] = 1; }  /* (put with it) */
+            }
         }
+        if (o < 0) {
+            o = vm_get(&t->ready[g], t->ekey);
+            if (d->gen && !tried) nd_judge(&t->r_looks[g], &t->r_misses[g], &t->r_unc[g], d->uncache_after, o < 0);
+            if (o < 0 && d->gen && !t->nmiss && !tried) {
+                int rc = gen_ready(d->gen, t, g, t->ekey);
+                if (rc == -2) return -2;
+                for (int i = 0; i < nr; i++) t->ekey[i] = s[d->read[g][i]];
+                if (rc == 0) o = t->last_rdy;
+            }
+        }
+#else
+        o = vm_get(&t->ready[g], t->ekey);
 #endif
         if (o < 0) { t->miss[t->nmiss++] = (uint32_t)g; continue; }
         if (t->nmiss) continue;
         t->roff[g] = o;
-        int64_t cnt = t->rdy[o];
+        const int64_t *rb = t->r_in_s[g] ? t->srdy : t->rdy;
+        int64_t cnt = rb[o];
         for (int64_t j = 0; j < cnt; j++) {
-            int64_t r = t->rdy[o + 1 + 2 * j];
+            int64_t r = rb[o + 1 + 2 * j];
             any = 1;
             if (r <= clock) now = 1;
             if (r < minr) minr = r;
@@ -334,42 +400,59 @@ static int64_t nt_expand(nt_search *t, const uint32_t *s) {
     for (int g = 0; g < G; g++) {
         int nr = d->nread[g], nw = d->nwrite[g];
         int64_t o = t->roff[g];
-        int64_t cnt = t->rdy[o];
-        const int64_t *rp = t->rdy + o + 1;
+        const int64_t *rb = t->r_in_s[g] ? t->srdy : t->rdy;
+        int64_t cnt = rb[o];
         int64_t c = 0;
-        for (int64_t j = 0; j < cnt; j++) c += rp[2 * j] <= f;
+        for (int64_t j = 0; j < cnt; j++) c += rb[o + 1 + 2 * j] <= f;
         if (!c) continue;
         for (int i = 0; i < nr; i++) t->ekey[i] = s[d->read[g][i]];
         t->ekey[nr] = t->timed_g[g] ? (uint32_t)f : 0;
-        int64_t eo = vm_get(&t->eff[g], t->ekey);
+        int64_t eo = -1;
+        int in_s = t->e_in_s[g];
+        if (in_s) eo = t->eoff[g];
 #ifdef ND_GENERATED
-        if (eo < 0 && d->gen) {
+        int tried = 0;
+        if (eo < 0 && t->e_unc[g]) {
+            t->scratch = 1;
             int rc = gen_effect(d->gen, t, g, t->ekey, f, s);
+            t->scratch = 0;
+            tried = 1;
             if (rc == -2) return -2;
             for (int i = 0; i < nr; i++) t->ekey[i] = s[d->read[g][i]];
             t->ekey[nr] = t->timed_g[g] ? (uint32_t)f : 0;
-            if (rc == 0) eo = vm_get(&t->eff[g], t->ekey);
+            if (rc == 0) { eo = t->last_eff; in_s = 1; }
         }
+        if (eo < 0) {
+            eo = vm_get(&t->eff[g], t->ekey);
+            if (d->gen && !tried) nd_judge(&t->e_looks[g], &t->e_misses[g], &t->e_unc[g], d->uncache_after, eo < 0);
+            if (eo < 0 && d->gen && !tried) {
+                int rc = gen_effect(d->gen, t, g, t->ekey, f, s);
+                if (rc == -2) return -2;
+                if (rc == 0) eo = t->last_eff;
+            }
+        }
+#else
+        eo = vm_get(&t->eff[g], t->ekey);
 #endif
         if (eo < 0) return -1;
-        int64_t ec = d->res[eo];
+        int64_t ec = (in_s ? t->sres : d->res)[eo];
         int64_t j = 0;
         for (int64_t k = 0; k < ec; k++) {
-            const int32_t *e = d->res + eo + 1 + k * (1 + nr + nw);  /* (d->res may grow on the way) */
-            while (j < cnt && rp[2 * j] > f) j++;
-            int64_t prio = j < cnt ? rp[2 * j + 1] : 0;
+            /* (the buffers may grow on the way: the entry is found anew after nt_succ) */
+            const int32_t *e = (in_s ? t->sres : d->res) + eo + 1 + k * (1 + nr + nw);
+            while (j < cnt && rb[o + 1 + 2 * j] > f) j++;
+            int64_t prio = j < cnt ? rb[o + 2 + 2 * j] : 0;
             j++;
             if (grow((void **)&t->succ, &t->succ_cap, (m + 1) * K, 4) != 0
                 || grow((void **)&t->sbe, &t->sbe_cap, m + 1, 4) != 0
                 || grow((void **)&t->sprio, &t->sprio_cap, m + 1, 8) != 0) return -2;
             int rc = nt_succ(t, g, s, f, e, t->succ + m * K);
             if (rc) return rc;
-            e = d->res + eo + 1 + k * (1 + nr + nw);
+            e = (in_s ? t->sres : d->res) + eo + 1 + k * (1 + nr + nw);
             t->sbe[m] = e[0];
             t->sprio[m] = prio;
             m++;
         }
-        (void)rp;
     }
     return nt_select(t, m);
 }
@@ -495,33 +578,49 @@ int nt_put_views(nt_search *t, int p, int64_t from, int64_t n, const int32_t *id
 /* For the time-growth watch, the states start .. end - 1 of a level: the number of them whose untimed
  * marking (the places' markings, a timed place's as its untimed view) the watch has not met before, their
  * indices in nt_fresh, and the smallest and largest clock in *lo, *hi; -1 if a view id is missing (the
- * engine gives it: nt_put_views), -2 without memory. */
+ * engine gives it: nt_put_views; the markings met so far are kept), -2 without memory. */
 int64_t nt_level_fresh(nt_search *t, int64_t start, int64_t end, int64_t *lo, int64_t *hi) {
     nd_search *d = t->d;
     cs_store *st = d->st;
     int K = d->K, U = t->clock ? K - 1 : K;
-    if (!t->untimed_on) {
-        if (vm_init(&t->untimed, U ? U : 1) != 0) return -2;
-        t->untimed_on = 1;
+    if (!t->untimed) {
+        uint8_t w[U ? U : 1];
+        for (int f = 0; f < U; f++) w[f] = 4;
+        t->untimed = cs_new(U, w);
+        if (!t->untimed) return -2;
     }
+    cs_store *um = t->untimed;
+    int W = um->W;
     int64_t m = 0, a = INT64_MAX, b = INT64_MIN;
-    uint32_t *k = t->ukey;
-    k[0] = 0;
-    for (int64_t i = start; i < end; i++) {
-        const uint8_t *r = st->arena + i * st->W;
-        for (int f = 0; f < U; f++) k[f] = (uint32_t)cs_get(r + st->off[f], st->w[f]);
-        for (int j = 0; j < t->ntp; j++) {
-            int p = t->tplaces[j];
-            if ((int64_t)k[p] >= t->nvid[p]) return -1;
-            k[p] = (uint32_t)t->vid[p][k[p]];
+    /* NT_AHEAD states at a time: their untimed records made and hashed, their slots prefetched, then
+     * looked up in order (a look-up is a likely cache miss) */
+    for (int64_t i0 = start; i0 < end; i0 += NT_AHEAD) {
+        int64_t n = end - i0 < NT_AHEAD ? end - i0 : NT_AHEAD;
+        for (int64_t j = 0; j < n; j++) {
+            const uint8_t *r = st->arena + (i0 + j) * st->W;
+            uint32_t k[U ? U : 1];
+            for (int f = 0; f < U; f++) k[f] = (uint32_t)cs_get(r + st->off[f], st->w[f]);
+            for (int q = 0; q < t->ntp; q++) {
+                int p = t->tplaces[q];
+                if ((int64_t)k[p] >= t->nvid[p]) return -1;
+                k[p] = (uint32_t)t->vid[p][k[p]];
+            }
+            uint8_t *u = t->ukeys + j * W;
+            for (int f = 0; f < U; f++) cs_put(u + 4 * f, 4, k[f]);
+            t->uhash[j] = cs_hash(u, W);
+            __builtin_prefetch(cs_probe_start(um, t->uhash[j]));
+            int64_t c = t->clock ? (int64_t)cs_get(r + st->off[K - 1], st->w[K - 1]) : 0;
+            if (c < a) a = c;
+            if (c > b) b = c;
         }
-        int64_t c = t->clock ? (int64_t)cs_get(r + st->off[K - 1], st->w[K - 1]) : 0;
-        if (c < a) a = c;
-        if (c > b) b = c;
-        if (vm_get(&t->untimed, k) >= 0) continue;
-        if (vm_put(&t->untimed, k, m) != 0) return -2;
-        if (grow((void **)&t->fresh, &t->fresh_cap, m + 1, 8) != 0) return -2;
-        t->fresh[m++] = i;
+        for (int64_t j = 0; j < n; j++) {
+            int32_t id;
+            int rc = cs_add_hashed(um, t->ukeys + j * W, t->uhash[j], &id);
+            if (rc < 0) return -2;
+            if (rc == 0) continue;
+            if (grow((void **)&t->fresh, &t->fresh_cap, m + 1, 8) != 0) return -2;
+            t->fresh[m++] = i0 + j;
+        }
     }
     *lo = a; *hi = b;
     return m;
@@ -529,8 +628,16 @@ int64_t nt_level_fresh(nt_search *t, int64_t start, int64_t end, int64_t *lo, in
 
 int64_t *nt_fresh(nt_search *t) { return t->fresh; }
 
+/* How many caches compute their results anew each time (a group's ready lists, its effects). */
+int nt_uncached(nt_search *t) {
+    int k = 0;
+    for (int g = 0; g < t->G; g++) k += t->r_unc[g] + t->e_unc[g];
+    return k;
+}
+
 int64_t nt_cache_bytes(nt_search *t) {
-    int64_t b = t->rdy_cap * 8 + t->shifts.cap * 20 + (int64_t)(t->shifts.mask + 1) * 4;
+    int64_t b = t->rdy_cap * 8 + t->shifts.cap * 20 + (int64_t)(t->shifts.mask + 1) * 4
+                + t->srdy_cap * 8 + t->sres_cap * 4 + (t->untimed ? cs_nbytes(t->untimed) : 0);
     for (int g = 0; g < t->d->G; g++)
         b += t->ready[g].cap * (t->ready[g].len * 4 + 8) + (int64_t)(t->ready[g].mask + 1) * 4
              + t->eff[g].cap * (t->eff[g].len * 4 + 8) + (int64_t)(t->eff[g].mask + 1) * 4;

@@ -24,6 +24,7 @@ int nt_put_views(nt_search *t, int p, int64_t from, int64_t n, const int32_t *id
 int64_t nt_level_fresh(nt_search *t, int64_t start, int64_t end, int64_t *lo, int64_t *hi);
 int64_t *nt_fresh(nt_search *t);
 int64_t nt_cache_bytes(nt_search *t);
+int nt_uncached(nt_search *t);
 /* cffi: end */
 
 #endif

@@ -270,6 +270,11 @@ class TimedNativeSearch(NativeSearch):
     def cache_bytes(self) -> int:
         return self.lib.nd_cache_bytes(self.handle) + self.lib.nt_cache_bytes(self.timed_handle)
 
+    def uncached(self) -> int:
+        """How many caches compute their results anew each time (`native.UNCACHED_AFTER`): of each group,
+        its ready lists and its effects."""
+        return self.lib.nt_uncached(self.timed_handle)
+
 
 def timed_generated(tg, options) -> tuple[object | None, list[str]]:
     """The C of a timed net's transitions (a `NativeCode`, or None) and the notes saying what is left to
