@@ -33,7 +33,8 @@ class Model:
     net : cpn.net.Net
         The flattened net, the engines' only input.
     warnings : list of Diagnostic
-        What the checker found questionable but not wrong.
+        What the checker found questionable but not wrong (for `.pnml` and `.cpn` files, at their place in
+        that file where the element is known; `text_of` gives the text a warning points into).
 
     Examples
     --------
@@ -49,6 +50,13 @@ class Model:
         self.net = net
         self.warnings = warnings
         self.translation = None  # for .pnml and .cpn files: the translation to .cpnet and its origins
+        self.sources: dict[str, str] = {}  # the texts of the files the warnings point into, beside `source`
+
+    def text_of(self, span) -> str | None:
+        """The text of the file `span` points into: the imported file, a `use`d file, or `source`."""
+        if span is None:
+            return None
+        return self.sources.get(span.file, self.source)
 
     def engine(self, time_condensation: bool = False, reference: bool = False, simulation: bool = False):
         """The net's successor function (`cpn.engine.compile_net`): compiled, or the reference interpreter.
@@ -384,9 +392,12 @@ def load(path: str | os.PathLike, set: dict | None = None) -> Model:  # noqa: A0
                 raise
             # a --set value that does not fit names the constant's declaration in the file the user has
             raise usage_error(problems, lambda span: _original_position(span, translation)) from None
-        # a warning keeps its place in the translated text (model.source) and names the element it comes from
-        model.warnings = importer.remap_error(ModelError(model.warnings), translation, generated,
-                                              keep_generated_span=True).diagnostics
+        # a warning points, as an error does, at its element in the file the user has (with the line of the
+        # translated text in a note); one without a known element keeps its place in the translation
+        remapped = importer.remap_error(ModelError(model.warnings, {generated: translation.text}), translation,
+                                        generated)
+        model.warnings = remapped.diagnostics
+        model.sources = remapped.sources
         model.path = path
         model.translation = translation
         return model

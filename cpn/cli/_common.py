@@ -308,5 +308,5 @@ def load_model(path: str, sets: dict[str, str], *, show_warnings: bool = True, s
     if show_warnings:
         for w in model_warnings(model):
             if not (state_space and w.code in ("W0105", "W0106")):
-                print(render(w, model.source), file=sys.stderr)
+                print(render(w, model.text_of(w.span)), file=sys.stderr)
     return model

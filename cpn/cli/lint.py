@@ -72,7 +72,7 @@ def lint_file(path: str, sets: dict[str, str]) -> tuple[dict, str]:
                  simulation_only=bool(getattr(net.checked, "random_draws", ())
                                       or getattr(net.checked, "simulation_only", ())),
                  diagnostics=[_diagnostic_json(w) for w in warnings])
-    return entry, "\n".join(render(w, model.source) for w in warnings)
+    return entry, "\n".join(render(w, model.text_of(w.span)) for w in warnings)
 
 
 def run(args) -> int:
