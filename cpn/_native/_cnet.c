@@ -242,6 +242,12 @@ typedef struct {
     int be_lock, shared;     /* the binding elements and recipes (ND_THREADS) */
     g_kept kept;
     int contexts;            /* the contexts over these tables */
+    uint8_t *be_open;        /* per transition: its binding keys are interned tuples (be_size grows) */
+    /* interned values (colour sets without a finite layout, and the bindings of the transitions that
+     * bind their values): per domain, a value's int64 leaves, leaf i as the pairs (2i, low 32 bits)
+     * and (2i + 1, high 32 bits) of a multiset table, so that two values are one id iff their leaves
+     * are equal, read and interned as markings are (without a lock where they are there already) */
+    int ND; mstab *nd;
     /* timed places (the search of timed nets, one thread): per place, its timed colours (colour id,
      * timestamp), numbered in the order first met; a timed marking's pairs are (timed colour, count) */
     vmap *tc;                /* per place: (colour id, timestamp low, high) -> timed colour */
@@ -283,6 +289,8 @@ static gctx *g_context(gtab *tb) {
 static void g_tab_free(gtab *tb) {
     for (int p = 0; p < tb->P; p++) { ms_free(&tb->mk[p]); ms_free(&tb->dl[p]); }
     for (int t = 0; t < tb->T; t++) free(tb->be_of[t]);
+    for (int d = 0; d < tb->ND; d++) ms_free(&tb->nd[d]);
+    free(tb->nd); free(tb->be_open);
     if (tb->tc) {
         for (int p = 0; p < tb->P; p++) { if (tb->tc[p].keys) vm_free(&tb->tc[p]); free(tb->tc_col[p]); free(tb->tc_ts[p]); }
         free(tb->tc); free(tb->tc_col); free(tb->tc_ts); free(tb->ntc); free(tb->tc_cap);
@@ -303,10 +311,53 @@ static gctx *g_new(int P, int T, const int64_t *be_size) {
     tb->be_size = (int64_t *)calloc((size_t)T + 1, sizeof(int64_t));
     if (!tb->mk || !tb->dl || !tb->be_of || !tb->be_size) { g_tab_free(tb); return NULL; }
     for (int p = 0; p < P; p++) if (ms_init(&tb->mk[p]) || ms_init(&tb->dl[p])) { g_tab_free(tb); return NULL; }
-    for (int t = 0; t < T; t++) tb->be_size[t] = be_size[t];  /* be_of[t]: allocated when first used */
+    for (int t = 0; t < T; t++) {  /* be_of[t]: allocated when first used */
+        if (be_size[t] >= 0) { tb->be_size[t] = be_size[t]; continue; }
+        if (!tb->be_open && !(tb->be_open = (uint8_t *)calloc((size_t)T + 1, 1))) { g_tab_free(tb); return NULL; }
+        tb->be_open[t] = 1;  /* -1: keys interned, the table grows with them */
+    }
     gctx *c = g_context(tb);
     if (!c) g_tab_free(tb);
     return c;
+}
+
+/* The n tables of interned values of c's tables (once, before any use): 0, or -1 without memory. */
+static int g_nodes(gctx *c, int n) {
+    gtab *tb = c->tb;
+    tb->nd = (mstab *)calloc((size_t)n + 1, sizeof(mstab));
+    if (!tb->nd) return -1;
+    for (int d = 0; d < n; d++) {
+        if (ms_init(&tb->nd[d])) return -1;
+        tb->ND = d + 1;
+    }
+    return 0;
+}
+
+/* g_new with n tables of interned values. */
+static gctx *g_new_interned(int P, int T, const int64_t *be_size, int n) {
+    gctx *c = g_new(P, T, be_size);
+    if (c && g_nodes(c, n)) { gen_free(c); return NULL; }
+    return c;
+}
+
+/* The id of the value of `w` leaves x in domain d (a new id if it is new); -1 (c->err 2) without memory. */
+static int64_t g_node(gctx *c, int d, const int64_t *x, int w) {
+    int32_t pr[4 * w + 4];
+    for (int i = 0; i < w; i++) {
+        pr[4 * i] = 2 * i; pr[4 * i + 1] = (int32_t)(uint32_t)(uint64_t)x[i];
+        pr[4 * i + 2] = 2 * i + 1; pr[4 * i + 3] = (int32_t)(uint32_t)((uint64_t)x[i] >> 32);
+    }
+    int64_t id = ms_intern(&c->tb->nd[d], pr, 2 * w);
+    if (id < 0) c->err = 2;
+    return id;
+}
+
+/* Leaf i of the value `id` of domain d, whose values have w leaves (a value the engine interned that C
+ * cannot hold, an integer beyond 64 bits, has w + 1: c->err, the engine evaluates it). */
+static inline int64_t g_leaf(gctx *c, int d, int w, int64_t id, int i) {
+    if (ms_len(&c->tb->nd[d], id) != 2 * w) { c->err = 1; return 0; }
+    const int32_t *pr = ms_pairs(&c->tb->nd[d], id);
+    return (int64_t)(((uint64_t)(uint32_t)pr[4 * i + 3] << 32) | (uint32_t)pr[4 * i + 1]);
 }
 
 /* Free a context; the tables go with the last one. */
@@ -326,6 +377,7 @@ void *gen_clone(void *g) {
     gtab *tb = ((gctx *)g)->tb;
     tb->shared = 1;
     for (int p = 0; p < tb->P; p++) tb->mk[p].shared = tb->dl[p].shared = 1;
+    for (int d = 0; d < tb->ND; d++) tb->nd[d].shared = 1;
     return g_context(tb);
 }
 
@@ -340,6 +392,10 @@ void gen_unshare(void *g) {
         g_keep_free(&tb->mk[p].kept);
         g_keep_free(&tb->dl[p].kept);
     }
+    for (int d = 0; d < tb->ND; d++) {
+        tb->nd[d].shared = 0;
+        g_keep_free(&tb->nd[d].kept);
+    }
 }
 #endif
 
@@ -348,7 +404,24 @@ void gen_unshare(void *g) {
 static int64_t g_be(gctx *c, int t, int64_t key, int *fresh) {
     gtab *tb = c->tb;
     *fresh = 0;
-    if (key < 0 || key >= tb->be_size[t]) { c->err = 1; return -1; }
+    if (key < 0) { c->err = 1; return -1; }
+    if (key >= tb->be_size[t]) {
+        if (!tb->be_open || !tb->be_open[t]) { c->err = 1; return -1; }
+        /* an interned key past the table: a larger copy, published before its size (g_recipe reads
+         * the size first); the old one kept while readers without the lock may hold it */
+        int64_t cap = tb->be_size[t] ? 2 * tb->be_size[t] : 64;
+        while (cap <= key) cap *= 2;
+        int32_t *of = (int32_t *)malloc(4 * (size_t)cap);
+        if (!of) { c->err = 2; return -1; }
+        memset(of, 0xFF, 4 * (size_t)cap);
+        if (tb->be_size[t]) memcpy(of, tb->be_of[t], 4 * (size_t)tb->be_size[t]);
+        if (tb->be_of[t]) {
+            if (!tb->shared) free(tb->be_of[t]);
+            else if (g_keep(&tb->kept, tb->be_of[t])) { free(of); c->err = 2; return -1; }
+        }
+        __atomic_store_n(&tb->be_of[t], of, __ATOMIC_RELEASE);
+        __atomic_store_n(&tb->be_size[t], cap, __ATOMIC_RELEASE);
+    }
     if (!tb->be_of[t]) {
         int32_t *of = (int32_t *)malloc(4 * (size_t)tb->be_size[t]);
         if (!of) { c->err = 2; return -1; }
@@ -395,9 +468,11 @@ typedef int (*g_rcp_fn)(gctx *c, const int64_t *v, int64_t be);
  * both are there already. */
 static const int32_t *g_recipe(gctx *c, int t, int64_t key, const int64_t *v, g_rcp_fn make, int64_t *be) {
     gtab *tb = c->tb;
-    if (key < 0 || key >= tb->be_size[t]) { c->err = 1; return NULL; }
+    if (key < 0) { c->err = 1; return NULL; }
+    /* (a key past the size: g_be, under the lock, says whether it is one) */
+    const int64_t size = __atomic_load_n(&tb->be_size[t], __ATOMIC_ACQUIRE);
     const int32_t *of = __atomic_load_n(&tb->be_of[t], __ATOMIC_ACQUIRE);
-    if (of) {
+    if (of && key < size) {
         int32_t b = __atomic_load_n(&of[key], __ATOMIC_ACQUIRE);
         if (b >= 0) {
             int64_t r = __atomic_load_n(&__atomic_load_n(&tb->rcp, __ATOMIC_ACQUIRE)[b], __ATOMIC_ACQUIRE);
@@ -704,6 +779,23 @@ int64_t gen_be_put(void *g, int t, int64_t key) {
     }
     int64_t be = g_be(c, t, key, &fresh);
     return c->err ? -1 : be;
+}
+
+/* Domain d's interned values: their number; the id of the value of w leaves x (-1 without memory); the w
+ * leaves of value `id` into x. */
+int64_t gen_node_count(void *g, int d) { return ((gctx *)g)->tb->nd[d].n; }
+
+int64_t gen_node_put(void *g, int d, const int64_t *x, int w) {
+    gctx *c = (gctx *)g;
+    c->err = 0;
+    int64_t id = g_node(c, d, x, w);
+    return c->err ? -1 : id;
+}
+
+void gen_node_get(void *g, int d, int64_t id, int64_t *x, int w) {
+    gctx *c = (gctx *)g;
+    const int32_t *pr = ms_pairs(&c->tb->nd[d], id);
+    for (int i = 0; i < w; i++) x[i] = (int64_t)(((uint64_t)(uint32_t)pr[4 * i + 3] << 32) | (uint32_t)pr[4 * i + 1]);
 }
 
 /* Place p's timed colour (colour id, timestamp), interned; -1 without memory. */

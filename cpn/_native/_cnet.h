@@ -22,6 +22,9 @@ int64_t gen_ms_table(void *g, int what, int p, int64_t **off, int32_t **len, int
 int64_t gen_ms_put(void *g, int what, int p, const int32_t *pr, int32_t n);
 int64_t gen_be_key(void *g, int64_t be, int32_t *t);
 int64_t gen_be_put(void *g, int t, int64_t key);
+int64_t gen_node_count(void *g, int d);
+int64_t gen_node_put(void *g, int d, const int64_t *x, int w);
+void gen_node_get(void *g, int d, int64_t id, int64_t *x, int w);
 int64_t gen_tid_put(void *g, int p, int64_t col, int64_t ts);
 int64_t gen_tid_table(void *g, int p, int32_t **col, int64_t **ts);
 /* cffi: end */

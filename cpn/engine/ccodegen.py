@@ -4,7 +4,8 @@ The compiled Python engine (`cpn.engine.compiled`, `cpn.engine.codegen`) stays t
 generates C that does what it does, step for step, for transitions whose inscriptions map to machine
 values: unit, bool, int ranges, enumerations (and unions without data), index colour sets and products
 and records of these, as 64-bit integers (a product as its components); a token is its colour id (its
-position in `CS.all()`), a place marking a list of (colour id, count) pairs in the order its Python dict has them. Guards and arc
+position in `CS.all()`; for an unbounded int, or a product or record with one, an id interned in the order
+its values are first met, the same on both sides: `ctables.Interned`), a place marking a list of (colour id, count) pairs in the order its Python dict has them. Guards and arc
 inscriptions over these (arithmetic, `div`, `mod`, comparisons, `andalso`, `orelse`, `not`, `if`,
 tuples, `#i`, index constructors, constants) and the model's functions over them (clauses with
 constant, variable, tuple and record patterns, `if`, `case`, `let val`) are compiled; anything else
@@ -33,7 +34,7 @@ Examples
 from __future__ import annotations
 
 from cpn.engine import plan
-from cpn.engine.ctables import Layout, NativeCode, NotNative, S, Tp, layout
+from cpn.engine.ctables import Interned, Layout, NativeCode, NotNative, S, Tp, interned, layout
 from cpn.expr import binding as B
 from cpn.expr import nodes as A
 
@@ -88,6 +89,39 @@ class Module:
         self.parts: list[str] = []  # function definitions, in order
         self.protos: list[str] = []
         self._n = 0
+        self.doms: list[Interned] = []  # the interned colour sets, by domain, then the bindings' domains
+        self.by_colset: dict[str, Interned] = {}
+        self.bind_doms: dict[int, int] = {}  # transition -> the domain of its binding keys
+        self.ndoms = 0
+
+    def layout(self, cs):
+        """The colour ids of colour set cs: its finite layout, or else its values interned (one domain per
+        colour set)."""
+        try:
+            return layout(cs)
+        except NotNative:
+            lay = self.by_colset.get(cs.name)
+            if lay is None:
+                lay = interned(cs, self.ndoms)
+                self.ndoms += 1
+                self.doms.append(lay)
+                self.by_colset[cs.name] = lay
+            return lay
+
+    def bind_dom(self, t: int) -> int:
+        """The domain of transition t's interned binding keys."""
+        d = self.bind_doms.get(t)
+        if d is None:
+            d = self.bind_doms[t] = self.ndoms
+            self.ndoms += 1
+        return d
+
+    def gen_new(self, P: int, T: int, sizes: str) -> list[str]:
+        lines = ["void *gen_new(void) {",
+                 f"    static const int64_t sizes[] = {{{sizes or '0'}}};"]
+        if not self.ndoms:
+            return lines + [f"    return g_new({P}, {T}, sizes);", "}"]
+        return lines + [f"    return g_new_interned({P}, {T}, sizes, {self.ndoms});", "}"]
 
     def fresh(self, hint: str) -> str:
         self._n += 1
@@ -109,10 +143,28 @@ class Module:
             self.parts.append(f"static int64_t {name}({args}) {{\n" + "\n".join(body) + "\n}")
         return name
 
+    def interner(self, lay: Interned) -> str:
+        key = ("interned", lay.dom)
+        name = self.encoders.get(key)
+        if name is None:
+            name = self.encoders[key] = f"inn{lay.dom}"
+            args = "".join(f", int64_t x{i}" for i in range(len(lay.leaves)))
+            body = [f"    if (x{i} < {_c_int(lo)} || x{i} > {_c_int(hi)}) return -1;"
+                    for i, (lo, hi, _kind) in enumerate(lay.leaves) if lo is not None]
+            xs = ", ".join(f"x{i}" for i in range(len(lay.leaves)))
+            body.append("    if (c->err) return -1;  /* a leaf C could not compute: not a value to intern */")
+            body.append(f"    const int64_t x[] = {{{xs}}};")
+            body.append(f"    return g_node(c, {lay.dom}, x, {len(lay.leaves)});")
+            self.protos.append(f"static int64_t {name}(gctx *c{args});")
+            self.parts.append(f"static int64_t {name}(gctx *c{args}) {{\n" + "\n".join(body) + "\n}")
+        return name
+
     def encode(self, lay: Layout, cv) -> str:
         """C code of the colour id of value cv in the layout, or -1 if it is not a value of it."""
         if shape(cv) != lay.shape:
             raise NotNative("a value's shape differs from its colour set's")
+        if lay.interned:
+            return f"{self.interner(lay)}(c, {', '.join(leaves(cv))})"
         return f"{self.encoder(lay)}({', '.join(leaves(cv))})"
 
     # -- user functions, one C function per argument shape
@@ -264,6 +316,10 @@ class ExprC:
         raise NotNative(f"the operator {op}")
 
 
+def _c_int(x: int) -> str:
+    return f"INT64_C({x})" if abs(x) > 1 << 30 else str(x)
+
+
 def _tag(con):
     """The value of a constructor that is a value of its own (an enumeration constant, a union constructor
     without data: its position), or None."""
@@ -390,18 +446,24 @@ class TransitionC:
         self.vars: dict[str, object] = {}
         for i, v in enumerate(t.variables):
             cs = net.colsets[net.variables[v].data]
-            lay = layout(cs)
+            lay = mod.layout(cs)
             self.var_lay.append(lay)
+            # a variable's slot: its colour id, or its value if it is a scalar (`slot`)
             self.vars[v] = S(f"v{i}") if lay.shape is None else lay.decode(f"v{i}")
         self.ex = ExprC(mod, self.vars, t.params)
         self.views: set[int] = set()  # timed places read: bound on their untimed views
         self.lines: list[str] = []
         self.depth = 1
         self.size = 1
+        # a binding's key: its variables' colour ids in mixed radix, or (a variable of an interned colour
+        # set) the interned tuple of their slots
+        self.open_keys = any(lay.interned for lay in self.var_lay)
         for lay in self.var_lay:
-            self.size *= lay.size
-        if self.size > MAX_BINDINGS:
+            if not lay.interned:
+                self.size *= lay.size
+        if self.size > MAX_BINDINGS and not self.open_keys:
             raise NotNative(f"its variables have more than {MAX_BINDINGS:,} bindings")
+        self.bind_dom = mod.bind_dom(t.index) if self.open_keys else None
 
     def emit(self, line: str) -> None:
         self.lines.append("    " * self.depth + line)
@@ -419,6 +481,9 @@ class TransitionC:
             if not isinstance(cv, S):
                 raise NotNative("a tuple bound to a scalar variable")
             self.emit(f"v{i} = {cv.code};")
+            if lay.interned and lay.leaves[0][0] is not None:
+                lo, hi, _kind = lay.leaves[0]
+                self.emit(f"if (v{i} < {_c_int(lo)} || v{i} > {_c_int(hi)}) {'FAIL' if from_token else 'continue'};")
         else:
             self.emit(f"v{i} = {self.mod.encode(lay, cv)};")
             self.emit(f"if (v{i} < 0) {'FAIL' if from_token else 'continue'};")
@@ -490,7 +555,14 @@ class TransitionC:
                 self.open(f"for (int32_t {j} = 0; {j} < N{it.place}; {j}++) {{")
                 self.emit(f"const int64_t {tok} = M{it.place}[2 * {j}];")
                 self.loop_token[step.term] = tok
-                self.match(it.term.value, self.token(it.place, tok), bound)
+                e = it.term.value
+                lay = self.pl[self.read[it.place]]
+                if B.is_var(e) and e.name not in bound and lay.interned and lay.shape is not None \
+                        and self.var_lay[t.variables.index(e.name)] is lay:  # the token's id is the value's
+                    self.emit(f"v{t.variables.index(e.name)} = {tok};")
+                    bound.add(e.name)
+                else:
+                    self.match(e, self.token(it.place, tok), bound)
             elif isinstance(step, plan.Bind):
                 tok = self.ex.cx(step.expr)
                 self.match_bind(step.pattern, tok, bound)
@@ -499,6 +571,8 @@ class TransitionC:
             else:
                 i = t.variables.index(step.var)
                 lay = self.var_lay[i]
+                if lay.interned:
+                    raise NotNative(f"variable {step.var} of a colour set without a finite layout is bound by no arc")
                 j = self.mod.fresh("e")
                 self.open(f"for (int64_t {j} = 0; {j} < {lay.size}; {j}++) {{")
                 self.emit(f"v{i} = {j}{'' if lay.shape is not None or lay.leaves[0][0] == 0 else f' + {lay.leaves[0][0]}'};")
@@ -521,6 +595,20 @@ class TransitionC:
         self.lines = []
         return body
 
+    def key_lines(self, pad: str, fail: str, fail_node: str) -> list[str]:
+        """The binding key `bk` of the variables' slots `v` (`fail` if one is outside its colour set)."""
+        lines = []
+        for i, lay in enumerate(self.var_lay):
+            if lay.interned:
+                continue
+            lo = lay.leaves[0][0] if lay.shape is None else 0
+            lines.append(f"{pad}x = v[{i}] - {lo}; if (x < 0 || x >= {lay.size}) {fail};")
+            if not self.open_keys:
+                lines.append(f"{pad}bk = bk * {lay.size} + x;")
+        if self.open_keys:
+            lines.append(f"{pad}bk = g_node(c, {self.bind_dom}, v, {len(self.var_lay)}); if (bk < 0) {fail_node};")
+        return lines
+
     def match_bind(self, e, src, bound: set) -> None:
         """A guard binder `pattern = e`: as `match`, but a value outside a variable's colour set only
         skips the binding (`check_member`)."""
@@ -540,7 +628,11 @@ class TransitionC:
     def check_member(self, var: str) -> None:
         i = self.t.variables.index(var)
         lay = self.var_lay[i]
-        if lay.shape is None:
+        if lay.interned:
+            if lay.shape is None and lay.leaves[0][0] is not None:
+                lo, hi, _kind = lay.leaves[0]
+                self.emit(f"if (v{i} < {_c_int(lo)} || v{i} > {_c_int(hi)}) continue;")
+        elif lay.shape is None:
             lo, n = lay.leaves[0]
             self.emit(f"if (v{i} < {lo} || v{i} > {lo + n - 1}) continue;")
 
@@ -693,10 +785,7 @@ class TransitionC:
                  f"        const int64_t *v = c->bind + b * {max(nv, 1)};",
                  "        int64_t bk = 0, x;",
                  "        (void)v; (void)x;"]
-        for i, lay in enumerate(self.var_lay):
-            lo = lay.leaves[0][0] if lay.shape is None else 0
-            lines.append(f"        x = v[{i}] - {lo}; if (x < 0 || x >= {lay.size}) return -1;")
-            lines.append(f"        bk = bk * {lay.size} + x;")
+        lines += self.key_lines("        ", "return -1", "return c->err == 2 ? -2 : -1")
         lines += [
             "        int64_t be;",
             f"        const int32_t *R = g_recipe(c, {self.t.index}, bk, v, rcp{self.k}, &be);",
@@ -727,13 +816,13 @@ def native_code(engine) -> NativeCode:
     net = engine.net
     if net.is_timed:
         raise NotNative("the net is timed")
+    mod = Module(net, engine.ev)
     layouts = []
     for p in net.places:
         try:
-            layouts.append(layout(p.colour_set))
+            layouts.append(mod.layout(p.colour_set))
         except NotNative as exc:
             raise NotNative(f"place '{p.name}': {exc}") from None
-    mod = Module(net, engine.ev)
     bodies: dict[int, str] = {}
     left: dict[int, str] = {}
     var_layouts: dict[int, list[Layout]] = {}
@@ -772,17 +861,23 @@ def native_code(engine) -> NativeCode:
         "    int64_t r = g_apply(c, (int)p, old, did, 1);",
         "    return c->err ? -1 : r;",
         "}",
-        "void *gen_new(void) {",
-        f"    static const int64_t sizes[] = {{{sizes or '0'}}};",
-        f"    return g_new({len(net.places)}, {len(engine._plan)}, sizes);",
-        "}",
+        *mod.gen_new(len(net.places), len(engine._plan), sizes),
     ])
-    return NativeCode(src, sorted(engine._plan[k].t.index for k in bodies), left, layouts, var_layouts)
+    return NativeCode(src, sorted(engine._plan[k].t.index for k in bodies), left, layouts, var_layouts,
+                      doms=mod.doms, bind_doms=_bind_doms(mod, var_layouts))
+
+
+def _bind_doms(mod: Module, var_layouts: dict) -> dict[int, int]:
+    """The domains of the native transitions' interned binding keys."""
+    return {t: d for t, d in mod.bind_doms.items() if t in var_layouts}
 
 
 def _size(lays) -> int:
+    """The number of binding keys of a transition whose variables have layouts `lays` (-1: interned)."""
     n = 1
     for lay in lays:
+        if lay.interned:
+            return -1
         n *= lay.size
     return n
 
@@ -991,12 +1086,7 @@ class TimedTransitionC(TransitionC):
             self.emit("}")
 
     def _key_lines(self, pad: str) -> list[str]:
-        lines = [f"{pad}int64_t bk = 0, x; (void)x;"]
-        for i, lay in enumerate(self.var_lay):
-            lo = lay.leaves[0][0] if lay.shape is None else 0
-            lines.append(f"{pad}x = v[{i}] - {lo}; if (x < 0 || x >= {lay.size}) goto fail;")
-            lines.append(f"{pad}bk = bk * {lay.size} + x;")
-        return lines
+        return [f"{pad}int64_t bk = 0, x; (void)x;", *self.key_lines(pad, "goto fail", "goto fail")]
 
     def ready_fn(self) -> str:
         nv, nr, nw = max(len(self.t.variables), 1), len(self.read), len(self.writes)
@@ -1081,14 +1171,14 @@ def timed_native_code(engine) -> NativeCode:
     net = engine.net
     if getattr(engine, "reads_clock", False):
         raise NotNative("a transition reads the clock")
+    mod = Module(net, engine.ev)
     layouts: list = []  # a place's layout, or why it has none: the transitions touching it are the engine's
     for p in net.places:
         try:
-            layouts.append(layout(p.colour_set))
+            layouts.append(mod.layout(p.colour_set))
         except NotNative as exc:
             layouts.append(NotNative(f"place '{p.name}': {exc}"))
     timed_places = {p for p in range(len(net.places)) if engine.is_timed and engine.store.timed[p]}
-    mod = Module(net, engine.ev)
     bodies: dict[int, str] = {}
     left: dict[int, str] = {}
     var_layouts: dict[int, list[Layout]] = {}
@@ -1152,12 +1242,10 @@ def timed_native_code(engine) -> NativeCode:
         "    int64_t r = g_shift(c, (int)p, id, f);",
         "    return c->err ? -1 : r;",
         "}",
-        "void *gen_new(void) {",
-        f"    static const int64_t sizes[] = {{{sizes or '0'}}};",
-        f"    return g_new({len(net.places)}, {len(engine._plan)}, sizes);",
-        "}",
+        *mod.gen_new(len(net.places), len(engine._plan), sizes),
     ])
     code = NativeCode(src, sorted(engine._plan[k].t.index for k in bodies), left,
-                      [None if isinstance(lay, NotNative) else lay for lay in layouts], var_layouts)
+                      [None if isinstance(lay, NotNative) else lay for lay in layouts], var_layouts,
+                      doms=mod.doms, bind_doms=_bind_doms(mod, var_layouts))
     code.timed = [p in timed_places for p in range(len(net.places))]
     return code

@@ -50,6 +50,7 @@ class Layout:
     shape: object
     values: list
     index: dict = field(default_factory=dict)
+    interned = False
 
     @property
     def size(self) -> int:
@@ -77,6 +78,98 @@ class Layout:
                 return S(x if lo == 0 else f"({lo} + {x})")
             return Tp([build(s) for s in sh])
         return build(self.shape)
+
+
+@dataclass
+class Interned:
+    """The colour ids of a colour set without a finite layout (an unbounded int, a product or record with
+    one): ids given in the order the values are first met, in the C table of domain `dom` (`g_node`, a
+    value as its int64 leaves) and in `values`/`index` here, the same on both sides (`NativeCode.to_c`
+    and `to_python` copy what one side interned to the other before the other reads it). `leaves`: per
+    leaf, (low, high) of a finite range or (None, None), and how Python holds it ("int", "bool", "unit")."""
+
+    dom: int
+    leaves: list[tuple]
+    shape: object
+    values: list = field(default_factory=list)
+    index: dict = field(default_factory=dict)
+    interned = True
+    size = None
+
+    def decode(self, code: str):
+        """The value (as a C value) of colour id `code`: its leaves read from the table."""
+        it = iter(range(len(self.leaves)))
+
+        def build(sh):
+            if sh is None:
+                return S(f"g_leaf(c, {self.dom}, {len(self.leaves)}, {code}, {next(it)})")
+            return Tp([build(s) for s in sh])
+        return build(self.shape)
+
+    def flat(self, v) -> list[int]:
+        """The leaves of Python value v (OverflowError if one does not fit 64 bits)."""
+        out = _flatten(v)
+        for x in out:
+            if not -(1 << 63) <= x < 1 << 63:
+                raise OverflowError(f"the integer {x} does not fit 64 bits")
+        return out
+
+    def c_flat(self, v, cid: int) -> list[int]:
+        """The leaves C interns for value v of colour id `cid`: its own, or for a value C cannot hold (an
+        integer beyond 64 bits) one leaf more, naming the id: a value of its own whose leaves C never
+        reads (`g_leaf`: the engine evaluates what reads them)."""
+        try:
+            return self.flat(v)
+        except OverflowError:
+            return [0] * len(self.leaves) + [cid]
+
+    def value(self, flat) -> object:
+        """The Python value of leaves `flat`."""
+        it = iter(zip(flat, self.leaves))
+
+        def build(sh):
+            if sh is None:
+                x, (_lo, _hi, kind) = next(it)
+                return bool(x) if kind == "bool" else () if kind == "unit" else int(x)
+            return tuple(build(s) for s in sh)
+        return build(self.shape)
+
+
+def _interned_parts(cs):
+    """(leaves, shape) of a colour set whose values are scalars or products and records of them."""
+    cs = _base(cs)
+    if isinstance(cs, UnitCS):
+        return [(0, 0, "unit")], None
+    if isinstance(cs, BoolCS):
+        return [(0, 1, "bool")], None
+    if isinstance(cs, IntCS):
+        if cs.low is None:
+            return [(None, None, "int")], None
+        if abs(cs.low) >= _I64 or abs(cs.high) >= _I64:
+            raise NotNative(f"colour set {cs.name} has values too large for C")
+        return [(cs.low, cs.high, "int")], None
+    if isinstance(cs, EnumCS):
+        return [(0, len(cs.constants) - 1, "int")], None
+    if isinstance(cs, UnionCS) and all(c is None for _, c in cs.constructors):
+        return [(0, len(cs.constructors) - 1, "int")], None
+    if isinstance(cs, IndexCS):
+        return [(cs.low, cs.high, "int")], None
+    if isinstance(cs, (ProductCS, RecordCS)):
+        comps = cs.components if isinstance(cs, ProductCS) else [c for _, c in cs.fields]
+        out, shapes = [], []
+        for c in comps:
+            lv, sh = _interned_parts(c)
+            out.extend(lv)
+            shapes.append(sh)
+        return out, tuple(shapes)
+    raise NotNative(f"colour set {cs.name} ({cs.kind}) has no C layout")
+
+
+def interned(cs, dom: int) -> Interned:
+    """The interned colour ids of colour set cs in domain `dom` (NotNative if its values are not scalars,
+    products or records of them)."""
+    lv, sh = _interned_parts(cs)
+    return Interned(dom, lv, sh)
 
 
 def _base(cs):
@@ -162,12 +255,35 @@ class NativeCode:
     # in C a timed colour id (`gen_tid_put`)
     timed: list[bool] | None = None
     _tids: list[dict] | None = None  # per timed place: (value, timestamp) -> its timed colour in C
+    # the interned colour sets, by domain; per transition whose binding keys are interned, its domain
+    doms: list[Interned] = field(default_factory=list)
+    bind_doms: dict[int, int] = field(default_factory=dict)
 
-    def _pairs_to_c(self, lib, ctx, p: int, d: dict) -> list[int]:
+    def _cid(self, ffi, lib, ctx, lay, v) -> int:
+        """The colour id of value v in layout lay (for an interned one, interned on both sides if new)."""
+        cid = lay.index.get(v)
+        if cid is None:
+            if not lay.interned:
+                raise KeyError(v)
+            flat = lay.c_flat(v, len(lay.values))
+            cid = lib.gen_node_put(ctx, lay.dom, ffi.new("int64_t[]", flat), len(flat))
+            if cid != len(lay.values):
+                raise MemoryError("the native tables cannot grow any more") if cid < 0 else \
+                    RuntimeError(f"native values out of step with the engine (domain {lay.dom})")
+            lay.values.append(v)
+            lay.index[v] = cid
+        return cid
+
+    def _pairs_to_c(self, ffi, lib, ctx, p: int, d: dict) -> list[int]:
         """A Python multiset of place p as C pairs (colour id or timed colour id, count)."""
-        index = self.layouts[p].index
+        lay = self.layouts[p]
+        index = lay.index
         flat: list[int] = []
         if self.timed is None or not self.timed[p]:
+            if lay.interned:
+                for v, n in d.items():
+                    flat += (self._cid(ffi, lib, ctx, lay, v), n)
+                return flat
             for v, n in d.items():
                 flat += (index[v], n)
             return flat
@@ -180,7 +296,7 @@ class NativeCode:
                 v, ts = k
                 if not -(1 << 63) <= ts < 1 << 63:
                     raise OverflowError(f"the timestamp {ts} does not fit 64 bits")
-                tid = lib.gen_tid_put(ctx, p, index[v], ts)
+                tid = lib.gen_tid_put(ctx, p, self._cid(ffi, lib, ctx, lay, v), ts)
                 if tid < 0:
                     raise MemoryError("the native tables cannot grow any more")
                 tids[k] = tid
@@ -200,6 +316,11 @@ class NativeCode:
         """Copy the engine's markings, deltas and binding elements that the C tables do not have yet."""
         ffi, lib = lib.ffi, lib.lib
         P = len(engine.places)
+        for lay in self.doms:  # a new context's tables: the values interned so far, in their order
+            for i in range(lib.gen_node_count(ctx, lay.dom), len(lay.values)):
+                flat = lay.c_flat(lay.values[i], i)
+                if lib.gen_node_put(ctx, lay.dom, ffi.new("int64_t[]", flat), len(flat)) != i:
+                    raise RuntimeError(f"native values out of step with the engine (domain {lay.dom})")
         for what, tables in ((0, engine.store.dicts), (1, engine._deltas)):
             for p in range(P):
                 if self.layouts[p] is None:  # a place whose markings C does not hold
@@ -207,21 +328,43 @@ class NativeCode:
                 have = lib.gen_count(ctx, what, p)
                 for i in range(have, len(tables[p])):
                     d = tables[p][i]
-                    flat = self._pairs_to_c(lib, ctx, p, d)
+                    flat = self._pairs_to_c(ffi, lib, ctx, p, d)
                     got = lib.gen_ms_put(ctx, what, p, ffi.new("int32_t[]", flat or [0]), len(d))
                     if got != i:
                         raise RuntimeError(f"native tables out of step with the engine (place {p}, {got} != {i})")
         have = lib.gen_count(ctx, 2, 0)
         for i in range(have, len(engine._be)):
             t, vals = engine._be[i]
-            got = lib.gen_be_put(ctx, t, self._be_key(t, vals))
+            got = lib.gen_be_put(ctx, t, self._be_key(ffi, lib, ctx, t, vals))
             if got != i:
                 raise RuntimeError(f"native binding elements out of step with the engine ({got} != {i})")
 
-    def _be_key(self, t: int, vals: tuple) -> int:
+    def _be_key(self, ffi, lib, ctx, t: int, vals: tuple) -> int:
         lays = self.var_layouts.get(t)
         if lays is None:
             return -1
+        dom = self.bind_doms.get(t)
+        if dom is not None:  # the interned tuple of the variables' slots (`TransitionC.slot`)
+            slots = []
+            for lay, v in zip(lays, vals):
+                if not lay.interned:  # a scalar's slot is its value (its colour id plus its low), else its id
+                    cid = lay.index.get(v)
+                    if cid is None:
+                        return -1
+                    slots.append(cid + lay.leaves[0][0] if lay.shape is None else cid)
+                elif lay.shape is None:
+                    if not lay.leaves[0][2] == "int" or not isinstance(v, int) or not -(1 << 63) <= v < 1 << 63:
+                        return -1
+                    slots.append(v)
+                else:
+                    try:
+                        slots.append(self._cid(ffi, lib, ctx, lay, v))
+                    except OverflowError:
+                        return -1
+            key = lib.gen_node_put(ctx, dom, ffi.new("int64_t[]", slots or [0]), len(slots))
+            if key < 0:
+                raise MemoryError("the native tables cannot grow any more")
+            return key
         key = 0
         for lay, v in zip(lays, vals):
             cid = lay.index.get(v)
@@ -235,6 +378,15 @@ class NativeCode:
         ffi, lib = lib.ffi, lib.lib
         P = len(engine.places)
         store = engine.store
+        for lay in self.doms:  # first the values C interned: the markings' colour ids name them
+            n, w = lib.gen_node_count(ctx, lay.dom), len(lay.leaves)
+            if n > len(lay.values):
+                buf = ffi.new("int64_t[]", w)
+                for i in range(len(lay.values), n):
+                    lib.gen_node_get(ctx, lay.dom, i, buf, w)
+                    v = lay.value(list(buf))
+                    lay.values.append(v)
+                    lay.index[v] = i
         offp, lenp, pairp = ffi.new("int64_t **"), ffi.new("int32_t **"), ffi.new("int32_t **")
         for what in (0, 1):
             for p in range(P):
@@ -267,6 +419,16 @@ class NativeCode:
         for i in range(len(engine._be), total):
             key = lib.gen_be_key(ctx, i, tp)
             t = tp[0]
+            dom = self.bind_doms.get(t)
+            if dom is not None:
+                lays = self.var_layouts[t]
+                buf = ffi.new("int64_t[]", max(len(lays), 1))
+                lib.gen_node_get(ctx, dom, key, buf, len(lays))
+                vals = tuple(lay.values[x - lay.leaves[0][0] if lay.shape is None else x] if not lay.interned
+                             else lay.value([x]) if lay.shape is None else lay.values[x] for lay, x in zip(lays, buf))
+                if engine._intern_be(t, vals) != i:
+                    raise RuntimeError("native binding elements out of step with the engine")
+                continue
             vals = []
             for lay in reversed(self.var_layouts[t]):
                 key, cid = divmod(key, lay.size)

@@ -175,18 +175,18 @@ def test_auto_searches_a_net_wholly_in_c_natively_building_its_c_on_the_way(fill
 
 UNBOUNDED = """
 colset N = int with 0..3 timed;
-colset I = int;
+colset I = list N;
 var x : N;
 var i : I;
 place P : N = 1`0 ++ (1`1@+1);
-place C : I = 1`0;
+place C : I = 1`[];
 trans inc [x < 3] @+ 1;
 arc P -> inc : x;
 arc inc -> P : (x + 1) @+ 1;
-trans count [i < 4];
+trans count [length i < 4];
 arc P -> count : x;
 arc C -> count : i;
-arc count -> C : i + 1;
+arc count -> C : 0 :: i;
 arc count -> P : 0 @+ 2;
 """
 
@@ -194,21 +194,22 @@ arc count -> P : 0 @+ 2;
 @needs_native
 @pytest.mark.parametrize("condensation", [False, True], ids=["timed", "condensed"])
 def test_a_place_c_cannot_hold_leaves_only_its_transitions_to_python(condensation, fills):
-    """Place C's colour set (an int without a range) has no C layout: `count`, which reads it, is the
+    """Place C's colour set (a list) has no C representation: `count`, which reads it, is the
     engine's, `inc` runs in C; the markings of C are the engine's alone."""
     model = cpn.loads(UNBOUNDED, "unbounded.cpnet")
     code, _ = model.engine().timed_groups().native_code()
     assert code.native == [0] and code.layouts[1] is None
     c = _both(model, condensation, limit=3000)
-    assert c.notes == ["the Python engine computes the bindings of transition 'Top'count 1': colour set I is not "
-                       "a finite int range"]
+    assert c.notes == ["the Python engine computes the bindings of transition 'Top'count 1': colour set I (list) "
+                       "has no C layout"]
     assert 0 < fills[0] <= c.graph.expanded  # (count reads P, whose timed marking rarely recurs)
 
 
 def test_a_net_without_a_transition_in_c_has_one_reason():
-    model = cpn.load(os.path.join(ROOT, "models", "modbus", "modbus.cpnet"))
+    model = cpn.loads("colset N = int with 0..3; colset L = list N timed; var l : L; place P : L = 1`[];"
+                      " trans t [length l < 3]; arc P -> t : l; arc t -> P : (0 :: l) @+ 1;", "lists.cpnet")
     code, why = model.engine().timed_groups().native_code()
-    assert code is None and why == "place 'Modbus'm2b 1': colour set INT is not a finite int range"
+    assert code is None and why == "place 'Top'P 1': colour set L (list) has no C layout"
 
 
 STATES = """
