@@ -146,8 +146,40 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
     options, and a value the model refuses stays an error of the command line. `model`, a loaded model,
     replaces the scenario's model file (a mutant of it, cpn.gate.mutation).
     """
-    from cpn.model import load
+    opts = _run_options(scenario, overrides)
+    if model is None:
+        model = _load_model(scenario, run, opts)
+    engine = model.engine(time_condensation=bool(opts.get("time_condensation", False)))
+    index = TransitionIndex(engine)
+    lang = PropertyLanguage(model.net, engine, index)
+    checks = build_checks(scenario.properties, lang, scenario.source)
+    if opts.get("sweep_line"):  # the sweep-line method: no graph, the properties it can decide (docs/specs.md)
+        from cpn.gate.sweep import sweep_run
 
+        x, decided, t_x, t_c = sweep_run(scenario, engine, lang, checks, opts, progress)
+        return RunResult(scenario, run, x, engine, [PropertyResult(c.spec, v, s) for c, v, s in decided], t_x, t_c,
+                         opts)
+    watch = _DeadlockWatch(engine) if any(isinstance(c, DeadlockFree) for c in checks) else None
+    options, refused = _explore_options(scenario, model, engine, lang, checks, opts, watch)
+    t0 = time.perf_counter()
+    x = Explorer(watch if watch is not None else engine, options, progress=progress).run()
+    explore_seconds = time.perf_counter() - t0
+    x.engine = engine
+    if watch is not None and (x.backend != "python" or watch.expanded < x.graph.expanded):
+        # the partitioned search expanded the states in other processes or threads, the native search in C
+        # (all of them, or the first ones before it handed over): the first dead state by number
+        watch.first_dead = next(iter(x.graph.dead_states()), None)
+    note = None
+    if x.stop_reason.value == "predicate":
+        note = "stop_at_first_violation is set and a violation (or witness) was found"
+    view = GraphView(x, engine, lang, note)
+    t1 = time.perf_counter()
+    results = [_decide(c, view, refused, watch) for c in checks]
+    return RunResult(scenario, run, x, engine, results, explore_seconds, time.perf_counter() - t1, opts)
+
+
+def _run_options(scenario: Scenario, overrides: dict | None) -> dict:
+    """The scenario's exploration options with the command line's over them (see `run_scenario`)."""
     overrides = dict(overrides or {})
     default_memory = overrides.pop("default_max_memory_mb", None)
     default_seconds = overrides.pop("default_max_seconds", None)
@@ -160,9 +192,16 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
         opts["max_seconds_is_default"] = True
     if opts.get("max_seconds") == 0:  # `--max-seconds 0`: no time limit, whatever the scenario says
         opts["max_seconds"] = None
+    return opts
+
+
+def _load_model(scenario: Scenario, run: Run, opts: dict):
+    """The scenario's model with the run's values; an error of the model or of the scenario's values is
+    reported at the scenario file."""
+    from cpn.model import load
+
     try:
-        if model is None:
-            model = load(scenario.model, set=run.values)
+        return load(scenario.model, set=run.values)
     except ModelError as exc:
         raise _at_scenario(exc, scenario) from None
     except ConfigurationError as exc:
@@ -170,19 +209,12 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
         if getattr(exc, "code", None) != "E0305" or (named and named <= set(opts.get("set") or {})):
             raise  # no such model file, or a value of the command line's --set: not the scenario's fault
         raise _values_at_scenario(exc, scenario) from None
-    engine = model.engine(time_condensation=bool(opts.get("time_condensation", False)))
-    index = TransitionIndex(engine)
-    lang = PropertyLanguage(model.net, engine, index)
-    checks = build_checks(scenario.properties, lang, scenario.source)
-    if opts.get("sweep_line"):  # the sweep-line method: no graph, the properties it can decide (docs/specs.md)
-        from cpn.gate.sweep import sweep_run
 
-        x, decided, t_x, t_c = sweep_run(scenario, engine, lang, checks, opts, progress)
-        return RunResult(scenario, run, x, engine, [PropertyResult(c.spec, v, s) for c, v, s in decided], t_x, t_c,
-                         opts)
+
+def _explore_options(scenario: Scenario, model, engine, lang, checks: list, opts: dict, watch):
+    """(the search's options, {check: why the reduction cannot decide it}): the monitor of the properties
+    decided on the fly, LTL searched on the fly first, the reduction and its plan."""
     fly = [c for c in checks if c.on_the_fly and not isinstance(c, DeadlockFree)]
-    needs_deadlock = any(isinstance(c, DeadlockFree) for c in checks)
-    watch = _DeadlockWatch(engine) if needs_deadlock else None
     stop_first = bool(opts.get("stop_at_first_violation", False))
     only_witnesses = all(isinstance(c, Reachable) and c.on_the_fly for c in checks)
     lasso = None
@@ -209,43 +241,34 @@ def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, pr
                              until_time=opts.get("until_time"),
                              reduction=reduction, visible_places=visible, symmetry=scalars,
                              workers=opts.get("workers"), ray=opts.get("ray"), backend=opts.get("backend", "auto"))
-    t0 = time.perf_counter()
-    x = Explorer(watch if watch is not None else engine, options, progress=progress).run()
-    explore_seconds = time.perf_counter() - t0
-    x.engine = engine
-    if watch is not None and (x.backend != "python" or watch.expanded < x.graph.expanded):
-        # the partitioned search expanded the states in other processes or threads, the native search in C
-        # (all of them, or the first ones before it handed over): the first dead state by number
-        watch.first_dead = next(iter(x.graph.dead_states()), None)
-    note = None
-    if x.stop_reason.value == "predicate":
-        note = "stop_at_first_violation is set and a violation (or witness) was found"
-    view = GraphView(x, engine, lang, note)
-    results = []
-    t1 = time.perf_counter()
-    for c in checks:
-        if isinstance(c, DeadlockFree) and watch is not None:
-            c.found = watch.first_dead
-        t = time.perf_counter()
-        try:
-            if c.error is not None:
-                raise c.error
-            verdict = c.decide(view)
-            if x.reduction is not None and c in refused:
-                verdict = decide_over_orbits(c, view) if x.reduction == "symmetry" else None
-                verdict = verdict if verdict is not None else Verdict.unknown(refused[c])
-            elif x.reduction is not None and verdict.status is not Status.UNKNOWN:
-                how = "stubborn sets" if x.reduction == "stubborn" else "symmetry, one state per orbit"
-                verdict.message += f" (graph reduced by {how}, {x.n_states:,} states: this property is preserved)"
-        except PredicateError as exc:
-            ev = evidence_to(x.graph, exc.state_id) if exc.state_id is not None else None
-            verdict = Verdict(Status.ERROR, str(exc), ev, at=exc.span)
-        try:
-            warnings = vacuity(c, view, verdict) + structural(c, view, verdict) if x.reduction is None else []
-        except PredicateError:  # a premise alone fails in a marking where the whole text does not
-            warnings = []
-        results.append(PropertyResult(c.spec, verdict, time.perf_counter() - t, _places_read(c), warnings))
-    return RunResult(scenario, run, x, engine, results, explore_seconds, time.perf_counter() - t1, opts)
+    return options, refused
+
+
+def _decide(c: Check, view: GraphView, refused: dict, watch) -> PropertyResult:
+    """The verdict of one property on the explored graph, with the warnings that it holds vacuously or by
+    the net's structure alone."""
+    x = view.x
+    if isinstance(c, DeadlockFree) and watch is not None:
+        c.found = watch.first_dead
+    t = time.perf_counter()
+    try:
+        if c.error is not None:
+            raise c.error
+        verdict = c.decide(view)
+        if x.reduction is not None and c in refused:
+            verdict = decide_over_orbits(c, view) if x.reduction == "symmetry" else None
+            verdict = verdict if verdict is not None else Verdict.unknown(refused[c])
+        elif x.reduction is not None and verdict.status is not Status.UNKNOWN:
+            how = "stubborn sets" if x.reduction == "stubborn" else "symmetry, one state per orbit"
+            verdict.message += f" (graph reduced by {how}, {x.n_states:,} states: this property is preserved)"
+    except PredicateError as exc:
+        ev = evidence_to(x.graph, exc.state_id) if exc.state_id is not None else None
+        verdict = Verdict(Status.ERROR, str(exc), ev, at=exc.span)
+    try:
+        warnings = vacuity(c, view, verdict) + structural(c, view, verdict) if x.reduction is None else []
+    except PredicateError:  # a premise alone fails in a marking where the whole text does not
+        warnings = []
+    return PropertyResult(c.spec, verdict, time.perf_counter() - t, _places_read(c), warnings)
 
 
 #: the markings the LTL searches on the fly may generate (through the engine, in Python); past it the
