@@ -283,6 +283,15 @@ class ExprC:
                 return S(f"{name}(c{''.join(', ' + x for x in leaves(arg))})")
         raise NotNative("an application of something other than a function of the model, not or a constructor")
 
+    def constant(self, e):
+        """(value,) of a string constant or a `val` bound to one, else None."""
+        if isinstance(e, A.Const) and e.kind == "string":
+            return (e.value,)
+        if isinstance(e, A.Name) and e.ref.kind == "val":
+            v = self.mod.ev.globals[e.ref.uid]
+            return (v,) if isinstance(v, str) else None
+        return None
+
     def _c_Neg(self, e):
         return S(f"g_neg(c, {self.scalar(e.operand)})")
 
@@ -301,6 +310,9 @@ class ExprC:
     def _c_BinOp(self, e):
         op = e.op
         if op in ("=", "<>"):
+            consts = self.constant(e.left), self.constant(e.right)
+            if None not in consts:  # two constants the C cannot hold (strings: a model's switches)
+                return S("1" if (consts[0][0] == consts[1][0]) == (op == "=") else "0")
             eq = equal(self.cx(e.left), self.cx(e.right))
             return S(eq if op == "=" else f"(!{eq})")
         if op in ("andalso", "orelse", "+", "-", "*", "<", "<=", ">", ">=", "div", "mod"):

@@ -221,3 +221,47 @@ def test_same_exploration_is_strict():
                            " arc t -> P : x + 1;", "b.cpnet").engine(), ExploreOptions(backend="python")).run()
     with pytest.raises(AssertionError):
         same_exploration(a, b)
+
+
+SWITCH = """
+colset N = int with 0..3;
+colset I = int;
+val MODE = "fast";
+var x : N;
+var i : I;
+place P : N = 1`0;
+place C : I = 1`0;
+trans t [x < 3 andalso MODE = "fast"];
+arc P -> t : x;
+arc t -> P : x + 1;
+trans u [MODE <> "fast" orelse i < 2];
+arc C -> u : i;
+arc u -> C : i + 1;
+"""
+
+
+@needs_native
+@pytest.mark.parametrize("mode, states", [('"fast"', 12), ('"slow"', 100)])  # slow: i grows to the limit
+def test_a_comparison_of_string_constants_is_decided_when_the_c_is_generated(mode, states, monkeypatch):
+    """A model's switches (`val MODE = "fast"`, compared with string constants) are decided when the C is
+    generated: the transitions reading them run in C, and the graph is the Python search's."""
+    returns = count_calls(monkeypatch, native.NativeSearch, "_fill")
+    model = cpn.loads(SWITCH.replace('"fast";', f"{mode};", 1), "switch.cpnet")
+    code, _ = model.engine().native_code()
+    assert code.left == {}
+    c = _both(model, limit=100)
+    assert (c.n_states, returns[0]) == (states, 0)
+
+
+def test_the_modbus_model_has_transitions_in_c():
+    """Scenario A.1's model: its unbounded ints and frames (records of them) and its switches are C's;
+    what touches its lists and unions with data is left to the engine, each transition with its reason
+    (the differential tests of its scenarios: tests/statespace/test_native_timed.py)."""
+    import os
+
+    from tests._shared import ROOT
+
+    sc = cpn.load_scenario(os.path.join(ROOT, "specs", "modbus", "A_1.toml"))
+    model = cpn.load(sc.model, set=sc.runs[0].values)
+    code, why = model.engine(time_condensation=True).timed_groups().native_code()
+    assert why is None and len(code.native) >= 50, len(code.native)
