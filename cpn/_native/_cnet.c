@@ -352,10 +352,10 @@ static int64_t g_node(gctx *c, int d, const int64_t *x, int w) {
     return id;
 }
 
-/* Leaf i of the value `id` of domain d, whose values have w leaves (a value the engine interned that C
- * cannot hold, an integer beyond 64 bits, has w + 1: c->err, the engine evaluates it). */
+/* Leaf i of the value `id` of domain d, whose values have fewer than w leaves (a value the engine
+ * interned that C cannot hold, an integer beyond 64 bits, has w: c->err, the engine evaluates it). */
 static inline int64_t g_leaf(gctx *c, int d, int w, int64_t id, int i) {
-    if (ms_len(&c->tb->nd[d], id) != 2 * w) { c->err = 1; return 0; }
+    if (ms_len(&c->tb->nd[d], id) == 2 * w) { c->err = 1; return 0; }
     const int32_t *pr = ms_pairs(&c->tb->nd[d], id);
     return (int64_t)(((uint64_t)(uint32_t)pr[4 * i + 3] << 32) | (uint32_t)pr[4 * i + 1]);
 }
@@ -781,8 +781,8 @@ int64_t gen_be_put(void *g, int t, int64_t key) {
     return c->err ? -1 : be;
 }
 
-/* Domain d's interned values: their number; the id of the value of w leaves x (-1 without memory); the w
- * leaves of value `id` into x. */
+/* Domain d's interned values: their number; the id of the value of w leaves x (-1 without memory); the
+ * leaves of value `id` into x (at most cap of them), and their number. */
 int64_t gen_node_count(void *g, int d) { return ((gctx *)g)->tb->nd[d].n; }
 
 int64_t gen_node_put(void *g, int d, const int64_t *x, int w) {
@@ -792,10 +792,13 @@ int64_t gen_node_put(void *g, int d, const int64_t *x, int w) {
     return c->err ? -1 : id;
 }
 
-void gen_node_get(void *g, int d, int64_t id, int64_t *x, int w) {
+int gen_node_get(void *g, int d, int64_t id, int64_t *x, int cap) {
     gctx *c = (gctx *)g;
     const int32_t *pr = ms_pairs(&c->tb->nd[d], id);
+    int w = ms_len(&c->tb->nd[d], id) / 2;
+    if (w > cap) w = cap;
     for (int i = 0; i < w; i++) x[i] = (int64_t)(((uint64_t)(uint32_t)pr[4 * i + 3] << 32) | (uint32_t)pr[4 * i + 1]);
+    return w;
 }
 
 /* Place p's timed colour (colour id, timestamp), interned; -1 without memory. */

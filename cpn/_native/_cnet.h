@@ -24,7 +24,7 @@ int64_t gen_be_key(void *g, int64_t be, int32_t *t);
 int64_t gen_be_put(void *g, int t, int64_t key);
 int64_t gen_node_count(void *g, int d);
 int64_t gen_node_put(void *g, int d, const int64_t *x, int w);
-void gen_node_get(void *g, int d, int64_t id, int64_t *x, int w);
+int gen_node_get(void *g, int d, int64_t id, int64_t *x, int cap);
 int64_t gen_tid_put(void *g, int p, int64_t col, int64_t ts);
 int64_t gen_tid_table(void *g, int p, int32_t **col, int64_t **ts);
 /* cffi: end */

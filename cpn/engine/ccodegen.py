@@ -4,8 +4,8 @@ The compiled Python engine (`cpn.engine.compiled`, `cpn.engine.codegen`) stays t
 generates C that does what it does, step for step, for transitions whose inscriptions map to machine
 values: unit, bool, int ranges, enumerations (and unions without data), index colour sets and products
 and records of these, as 64-bit integers (a product as its components); a token is its colour id (its
-position in `CS.all()`; for an unbounded int, or a product or record with one, an id interned in the order
-its values are first met, the same on both sides: `ctables.Interned`), a place marking a list of (colour id, count) pairs in the order its Python dict has them. Guards and arc
+position in `CS.all()`; for an unbounded int, a union with data, or a product or record with one, an id
+interned in the order its values are first met, the same on both sides: `ctables.Interned`), a place marking a list of (colour id, count) pairs in the order its Python dict has them. Guards and arc
 inscriptions over these (arithmetic, `div`, `mod`, comparisons, `andalso`, `orelse`, `not`, `if`,
 tuples, `#i`, index constructors, constants) and the model's functions over them (clauses with
 constant, variable, tuple and record patterns, `if`, `case`, `let val`) are compiled; anything else
@@ -34,7 +34,19 @@ Examples
 from __future__ import annotations
 
 from cpn.engine import plan
-from cpn.engine.ctables import Interned, Layout, NativeCode, NotNative, S, Tp, interned, layout
+from cpn.engine.ctables import (
+    Interned,
+    Layout,
+    NativeCode,
+    NotNative,
+    S,
+    Tp,
+    U,
+    UnionDom,
+    base_colset,
+    interned,
+    layout,
+)
 from cpn.expr import binding as B
 from cpn.expr import nodes as A
 
@@ -58,6 +70,8 @@ def leaves(cv) -> list[str]:
 
 
 def shape(cv):
+    if isinstance(cv, U):
+        return cv.lay.shape
     return None if isinstance(cv, S) else tuple(shape(x) for x in cv.items)
 
 
@@ -85,6 +99,7 @@ class Module:
         self.ev = evaluator
         self.encoders: dict[tuple, str] = {}
         self.functions: dict[tuple, str] = {}  # (uid, argument shape) -> C name
+        self.returns: dict[tuple, object] = {}  # (uid, argument shape) -> the layout of the union values it returns
         self.fun_decls: dict[int, A.FunDecl] = {d.ref.uid: d for d in net.globals.decls if isinstance(d, A.FunDecl)}
         self.parts: list[str] = []  # function definitions, in order
         self.protos: list[str] = []
@@ -100,13 +115,17 @@ class Module:
         try:
             return layout(cs)
         except NotNative:
-            lay = self.by_colset.get(cs.name)
+            name = base_colset(cs).name  # one domain per colour set, whatever its aliases: equal is one id
+            lay = self.by_colset.get(name)
             if lay is None:
-                lay = interned(cs, self.ndoms)
-                self.ndoms += 1
+                lay = interned(cs, self._new_dom, self.layout)  # (its components' domains come first)
                 self.doms.append(lay)
-                self.by_colset[cs.name] = lay
+                self.by_colset[name] = lay
             return lay
+
+    def _new_dom(self) -> int:
+        self.ndoms += 1
+        return self.ndoms - 1
 
     def bind_dom(self, t: int) -> int:
         """The domain of transition t's interned binding keys."""
@@ -122,6 +141,16 @@ class Module:
         if not self.ndoms:
             return lines + [f"    return g_new({P}, {T}, sizes);", "}"]
         return lines + [f"    return g_new_interned({P}, {T}, sizes, {self.ndoms});", "}"]
+
+    def doms_by_id(self) -> dict:
+        return {lay.dom: lay for lay in self.doms}
+
+    def union_of(self, con):
+        """The layout of the union of constructor `con` if its values are interned (it has data), else None."""
+        if con.kind != "union":
+            return None
+        lay = self.layout(self.net.colsets[con.colset])
+        return lay if isinstance(lay, UnionDom) else None
 
     def fresh(self, hint: str) -> str:
         self._n += 1
@@ -159,10 +188,32 @@ class Module:
             self.parts.append(f"static int64_t {name}(gctx *c{args}) {{\n" + "\n".join(body) + "\n}")
         return name
 
+    def constructor(self, lay: UnionDom, tag: int) -> str:
+        """`un<d>_<tag>(c, data's leaves)`: the id of the union value (c->err if the data is outside its
+        colour set: the engine evaluates it)."""
+        key = ("union", lay.dom, tag)
+        name = self.encoders.get(key)
+        if name is None:
+            name = self.encoders[key] = f"un{lay.dom}_{tag}"
+            leaves_ = lay.cons[tag][0] if lay.cons[tag] is not None else []
+            args = "".join(f", int64_t x{i}" for i in range(len(leaves_)))
+            body = ["    if (c->err) return 0;"]
+            body += [f"    if (x{i} < {_c_int(lo)} || x{i} > {_c_int(hi)}) {{ c->err = 1; return 0; }}"
+                     for i, (lo, hi, _kind) in enumerate(leaves_) if lo is not None]
+            xs = ", ".join([str(tag)] + [f"x{i}" for i in range(len(leaves_))])
+            body.append(f"    const int64_t x[] = {{{xs}}};")
+            body.append(f"    const int64_t id = g_node(c, {lay.dom}, x, {len(leaves_) + 1});")
+            body.append("    return id < 0 ? 0 : id;")
+            self.protos.append(f"static int64_t {name}(gctx *c{args});")
+            self.parts.append(f"static int64_t {name}(gctx *c{args}) {{\n" + "\n".join(body) + "\n}")
+        return name
+
     def encode(self, lay: Layout, cv) -> str:
         """C code of the colour id of value cv in the layout, or -1 if it is not a value of it."""
         if shape(cv) != lay.shape:
             raise NotNative("a value's shape differs from its colour set's")
+        if isinstance(lay, UnionDom):
+            return cv.code
         if lay.interned:
             return f"{self.interner(lay)}(c, {', '.join(leaves(cv))})"
         return f"{self.encoder(lay)}({', '.join(leaves(cv))})"
@@ -183,6 +234,8 @@ class Module:
         it = iter(range(nargs))
 
         def build(sh):
+            if sh is not None and sh[0] == "u":
+                return U(f"a{next(it)}", self.doms_by_id()[sh[1]])
             return S(f"a{next(it)}") if sh is None else Tp([build(s) for s in sh])
         argv = build(shape(arg))
         fx = FunctionC(self, fd.name)
@@ -198,6 +251,8 @@ class Module:
         except NotNative:
             del self.functions[key]
             raise
+        if fx.ret is not None:
+            self.returns[key] = fx.ret
         args = "".join(f", a{i}" for i in range(nargs))
         self.parts.append(
             f"static int64_t {name}_body(gctx *c{params}) {{\n" + "\n".join(lines)
@@ -253,6 +308,9 @@ class ExprC:
             return py_cv(self.mod.ev.globals[sym.uid])
         if k == "param" and sym.uid in self.params:
             return py_cv(self.params[sym.uid])
+        if k == "con" and self.mod.union_of(sym.data) is not None and not sym.data.has_arg:
+            lay = self.mod.union_of(sym.data)
+            return U(f"{self.mod.constructor(lay, sym.data.tag)}(c)", lay)
         if k == "con" and _tag(sym.data) is not None:
             return S(str(sym.data.tag))
         raise NotNative(f"the name {sym.name} ({k})")
@@ -272,6 +330,12 @@ class ExprC:
             return v.items[fn.index]
         if isinstance(fn, A.Name):
             sym = fn.ref
+            if sym.kind == "con" and self.mod.union_of(sym.data) is not None and sym.data.has_arg:
+                lay = self.mod.union_of(sym.data)
+                arg = self.cx(e.arg)
+                if shape(arg) != lay.cons[sym.data.tag][1]:
+                    raise NotNative("a constructor's data of another shape")
+                return U(f"{self.mod.constructor(lay, sym.data.tag)}(c{''.join(', ' + x for x in leaves(arg))})", lay)
             if sym.kind == "con" and sym.data.kind == "index":
                 cs = self.mod.net.colsets[sym.data.colset]
                 return S(f"g_rng(c, {self.scalar(e.arg)}, {cs.low}, {cs.high})")
@@ -280,7 +344,9 @@ class ExprC:
             if sym.kind == "fun":
                 arg = self.cx(e.arg)
                 name = self.mod.function(sym.uid, arg)
-                return S(f"{name}(c{''.join(', ' + x for x in leaves(arg))})")
+                call = f"{name}(c{''.join(', ' + x for x in leaves(arg))})"
+                lay = self.mod.returns.get((sym.uid, shape(arg)))
+                return S(call) if lay is None else U(call, lay)
         raise NotNative("an application of something other than a function of the model, not or a constructor")
 
     def constant(self, e):
@@ -302,10 +368,56 @@ class ExprC:
             raise NotNative("if branches of different shapes")
 
         def join(x, y):
+            if isinstance(x, U):
+                return U(f"({cond} ? {x.code} : {y.code})", x.lay)
             if isinstance(x, S):
                 return S(f"({cond} ? {x.code} : {y.code})")
             return Tp([join(p, q) for p, q in zip(x.items, y.items)])
         return join(a, b)
+
+    def _c_Case(self, e):
+        """`case` as a chain of conditionals (each rule's data read only once its tests pass)."""
+        subj = self.cx(e.subject)
+        fx = FunctionC(self.mod, "")
+        arms = []
+        for pat, body in e.rules:
+            tests: list[str] = []
+            binds: dict = {}
+            fx.match(pat, subj, tests, binds)
+            arms.append((" && ".join(tests) or "1", self.with_locals({**self.locals, **binds}).cx(body)))
+        shapes = {repr(shape(v)) for _, v in arms}
+        if len(shapes) != 1:
+            raise NotNative("case rules of different shapes")
+
+        def chain(i, sh_of):
+            if i == len(arms):
+                return None
+            cond, v = arms[i]
+            rest = chain(i + 1, sh_of)
+            return v if rest is None and cond == "1" else (cond, v, rest)
+
+        def build(node, pick):
+            if node is None:
+                return "g_fail(c)"
+            if not isinstance(node, tuple):
+                return pick(node)
+            cond, v, rest = node
+            return f"(({cond}) ? {pick(v)} : {build(rest, pick)})"
+
+        tree = chain(0, None)
+        first = arms[0][1]
+
+        def over(x, path):
+            if isinstance(x, Tp):
+                return Tp([over(y, path + [i]) for i, y in enumerate(x.items)])
+
+            def pick(v):
+                for i in path:
+                    v = v.items[i]
+                return v.code
+            code = build(tree, pick)
+            return U(code, x.lay) if isinstance(x, U) else S(code)
+        return over(first, [])
 
     def _c_BinOp(self, e):
         op = e.op
@@ -340,6 +452,11 @@ def _tag(con):
     return None
 
 
+def union_tag(cv: U) -> str:
+    """C code of the tag of union value cv."""
+    return f"g_leaf(c, {cv.lay.dom}, {cv.lay.width}, {cv.code}, 0)"
+
+
 def equal(a, b) -> str:
     la, lb = leaves(a), leaves(b)
     if shape(a) != shape(b):
@@ -353,11 +470,15 @@ class FunctionC:
     def __init__(self, mod: Module, name: str):
         self.mod = mod
         self.name = name
+        self.ret = None  # the layout of the union values it returns, if it returns some
 
     def match(self, p, cv, tests: list, binds: dict) -> None:
         if isinstance(p, A.PWild):
             return
         if isinstance(p, A.PVar):
+            if p.ref.kind == "con" and isinstance(cv, U):
+                tests.append(f"({union_tag(cv)}) == {p.ref.data.tag}")
+                return
             if p.ref.kind == "con":
                 if _tag(p.ref.data) is None or not isinstance(cv, S):
                     raise NotNative("a constructor pattern")
@@ -382,6 +503,10 @@ class FunctionC:
             for label, q in p.fields:
                 self.match(q, cv.items[p.ty_labels.index(label)], tests, binds)
             return
+        if isinstance(p, A.PCon) and isinstance(cv, U) and p.ref.data.kind == "union":
+            tests.append(f"({union_tag(cv)}) == {p.ref.data.tag}")  # (before the data's leaves are read)
+            self.match(p.arg, cv.lay.payload(cv.code, p.ref.data.tag), tests, binds)
+            return
         if isinstance(p, A.PCon) and p.ref.data.kind == "index":
             self.match(p.arg, cv, tests, binds)
             return
@@ -397,6 +522,10 @@ class FunctionC:
         pad = "    " * depth
         for uid, cv in binds.items():
             def put(x):
+                if isinstance(x, U):
+                    name = self.mod.fresh("l")
+                    out.append(f"{pad}int64_t {name} = {x.code};")
+                    return U(name, x.lay)
                 if isinstance(x, S):
                     name = self.mod.fresh("l")
                     out.append(f"{pad}int64_t {name} = {x.code};")
@@ -442,7 +571,12 @@ class FunctionC:
             self.stmt(e.body, inner, depth + 1, out)
             out.append(f"{pad}}}")
             return
-        out.append(f"{pad}return {ex.scalar(e)};")
+        cv = ex.cx(e)
+        if isinstance(cv, U):  # a union value: the call's value is one too (`Module.returns`)
+            self.ret = cv.lay
+        elif not isinstance(cv, S):
+            raise NotNative("a tuple where a scalar is expected")
+        out.append(f"{pad}return {cv.code};")
 
 
 # ---------------------------------------------------------------------------- transitions
@@ -514,6 +648,12 @@ class TransitionC:
                 raise NotNative("a tuple pattern against a value of another shape")
             for x, s in zip(items, src.items):
                 self.match(x, s, bound)
+            return
+        if isinstance(e, A.App) and B.is_constructor_fn(e.fn) and isinstance(src, U) \
+                and e.fn.ref.data.kind == "union":
+            tag = e.fn.ref.data.tag
+            self.emit(f"if (({union_tag(src)}) != {tag}) continue;")
+            self.match(e.arg, src.lay.payload(src.code, tag), bound)
             return
         if isinstance(e, A.App) and B.is_constructor_fn(e.fn):
             if e.fn.ref.data.kind != "index":

@@ -35,6 +35,13 @@ class S:
 
 
 @dataclass
+class U(S):
+    """A value held in C as its interned id in the domain of `lay` (a union with data)."""
+
+    lay: object = None
+
+
+@dataclass
 class Tp:
     """A product or record: its components (records in the order of their labels)."""
 
@@ -96,48 +103,139 @@ class Interned:
     interned = True
     size = None
 
+    @property
+    def width(self) -> int:
+        """The leaves of a placeholder (`c_flat`): one more than any value's."""
+        return len(self.leaves) + 1
+
     def decode(self, code: str):
         """The value (as a C value) of colour id `code`: its leaves read from the table."""
-        it = iter(range(len(self.leaves)))
+        return _decode(self.leaves, self.shape, self.dom, self.width, code, 0)
 
-        def build(sh):
-            if sh is None:
-                return S(f"g_leaf(c, {self.dom}, {len(self.leaves)}, {code}, {next(it)})")
-            return Tp([build(s) for s in sh])
-        return build(self.shape)
+    def flat(self, v, cid=None) -> list[int]:
+        """The leaves of Python value v (OverflowError if one does not fit 64 bits; `cid(lay, x)`: the id of
+        value x of a component held by reference)."""
+        return _flat(self.leaves, self.shape, v, cid)
 
-    def flat(self, v) -> list[int]:
-        """The leaves of Python value v (OverflowError if one does not fit 64 bits)."""
-        out = _flatten(v)
-        for x in out:
-            if not -(1 << 63) <= x < 1 << 63:
-                raise OverflowError(f"the integer {x} does not fit 64 bits")
-        return out
-
-    def c_flat(self, v, cid: int) -> list[int]:
+    def c_flat(self, v, cid: int, child=None) -> list[int]:
         """The leaves C interns for value v of colour id `cid`: its own, or for a value C cannot hold (an
-        integer beyond 64 bits) one leaf more, naming the id: a value of its own whose leaves C never
-        reads (`g_leaf`: the engine evaluates what reads them)."""
+        integer beyond 64 bits) leaves of the placeholder's width, the last naming the id: a value of its
+        own whose leaves C never reads (`g_leaf`: the engine evaluates what reads them)."""
         try:
-            return self.flat(v)
+            return self.flat(v, child)
         except OverflowError:
-            return [0] * len(self.leaves) + [cid]
+            return [0] * (self.width - 1) + [cid]
 
     def value(self, flat) -> object:
         """The Python value of leaves `flat`."""
-        it = iter(zip(flat, self.leaves))
-
-        def build(sh):
-            if sh is None:
-                x, (_lo, _hi, kind) = next(it)
-                return bool(x) if kind == "bool" else () if kind == "unit" else int(x)
-            return tuple(build(s) for s in sh)
-        return build(self.shape)
+        return _value(self.leaves, self.shape, flat)
 
 
-def _interned_parts(cs):
-    """(leaves, shape) of a colour set whose values are scalars or products and records of them."""
+@dataclass
+class UnionDom:
+    """The interned colour ids of a union with data: a value is the node [tag, its data's leaves] of domain
+    `dom` (a constructor without data: [tag]); `cons` per tag: None, or its data's (leaves, shape)."""
+
+    dom: int
+    cons: list
+    values: list = field(default_factory=list)
+    index: dict = field(default_factory=dict)
+    interned = True
+    size = None
+
+    @property
+    def shape(self):
+        return ("u", self.dom)
+
+    @property
+    def width(self) -> int:
+        return 2 + max((len(c[0]) for c in self.cons if c is not None), default=0)
+
+    def decode(self, code: str):
+        return U(code, self)
+
+    def payload(self, code: str, tag: int):
+        """The data (as a C value) of node `code`, whose tag is `tag`."""
+        leaves, sh = self.cons[tag]
+        return _decode(leaves, sh, self.dom, self.width, code, 1)
+
+    def flat(self, v, cid=None) -> list[int]:
+        if not isinstance(v, tuple):
+            return [v]
+        tag, x = v
+        leaves, sh = self.cons[tag]
+        return [tag, *_flat(leaves, sh, x, cid)]
+
+    def c_flat(self, v, cid: int, child=None) -> list[int]:
+        try:
+            return self.flat(v, child)
+        except OverflowError:
+            return [0] * (self.width - 1) + [cid]
+
+    def value(self, flat) -> object:
+        tag = int(flat[0])
+        if self.cons[tag] is None:
+            return tag
+        leaves, sh = self.cons[tag]
+        return (tag, _value(leaves, sh, flat[1:]))
+
+
+def _decode(leaves, shape, dom: int, width: int, code: str, at: int):
+    it = iter(range(at, at + len(leaves)))
+    kinds = iter(leaves)
+
+    def build(sh):
+        if sh is None or sh[0] == "u":
+            x = f"g_leaf(c, {dom}, {width}, {code}, {next(it)})"
+            kind = next(kinds)[2]
+            return U(x, kind) if sh is not None else S(x)
+        return Tp([build(s) for s in sh])
+    return build(shape)
+
+
+def _flat(leaves, shape, v, cid) -> list[int]:
+    out: list[int] = []
+    kinds = iter(leaves)
+
+    def walk(sh, x):
+        if sh is None or sh[0] == "u":
+            kind = next(kinds)[2]
+            if not isinstance(kind, str):
+                if cid is None:
+                    raise KeyError("a value held by reference")
+                out.append(cid(kind, x))
+                return
+            x = 0 if kind == "unit" else int(x)
+            if not -(1 << 63) <= x < 1 << 63:
+                raise OverflowError(f"the integer {x} does not fit 64 bits")
+            out.append(x)
+            return
+        for s, y in zip(sh, x):
+            walk(s, y)
+    walk(shape, v)
+    return out
+
+
+def _value(leaves, shape, flat):
+    it = iter(zip(flat, leaves))
+
+    def build(sh):
+        if sh is None or sh[0] == "u":
+            x, (_lo, _hi, kind) = next(it)
+            if not isinstance(kind, str):
+                return kind.values[x]
+            return bool(x) if kind == "bool" else () if kind == "unit" else int(x)
+        return tuple(build(s) for s in sh)
+    return build(shape)
+
+
+def _interned_parts(cs, ref=None):
+    """(leaves, shape) of a colour set whose values are scalars, values held by reference (`ref(cs)`: the
+    layout of a union with data) or products and records of them."""
     cs = _base(cs)
+    if ref is not None and isinstance(cs, UnionCS) and any(c is not None for _, c in cs.constructors):
+        lay = ref(cs)
+        return [(None, None, lay)], lay.shape
     if isinstance(cs, UnitCS):
         return [(0, 0, "unit")], None
     if isinstance(cs, BoolCS):
@@ -158,18 +256,28 @@ def _interned_parts(cs):
         comps = cs.components if isinstance(cs, ProductCS) else [c for _, c in cs.fields]
         out, shapes = [], []
         for c in comps:
-            lv, sh = _interned_parts(c)
+            lv, sh = _interned_parts(c, ref)
             out.extend(lv)
             shapes.append(sh)
         return out, tuple(shapes)
     raise NotNative(f"colour set {cs.name} ({cs.kind}) has no C layout")
 
 
-def interned(cs, dom: int) -> Interned:
-    """The interned colour ids of colour set cs in domain `dom` (NotNative if its values are not scalars,
-    products or records of them)."""
-    lv, sh = _interned_parts(cs)
-    return Interned(dom, lv, sh)
+def interned(cs, dom, ref=None):
+    """The interned colour ids of colour set cs (NotNative if its values are not scalars, unions with data
+    (with `ref`), products or records of them); `dom()` numbers its domain once its components have
+    theirs."""
+    base = _base(cs)
+    if ref is not None and isinstance(base, UnionCS):
+        cons = [None if c is None else _interned_parts(c, ref) for _, c in base.constructors]
+        return UnionDom(dom(), cons)
+    lv, sh = _interned_parts(cs, ref)
+    return Interned(dom(), lv, sh)
+
+
+def base_colset(cs):
+    """The colour set an alias names."""
+    return _base(cs)
 
 
 def _base(cs):
@@ -265,7 +373,7 @@ class NativeCode:
         if cid is None:
             if not lay.interned:
                 raise KeyError(v)
-            flat = lay.c_flat(v, len(lay.values))
+            flat = lay.c_flat(v, len(lay.values), lambda child, x: self._cid(ffi, lib, ctx, child, x))
             cid = lib.gen_node_put(ctx, lay.dom, ffi.new("int64_t[]", flat), len(flat))
             if cid != len(lay.values):
                 raise MemoryError("the native tables cannot grow any more") if cid < 0 else \
@@ -318,7 +426,7 @@ class NativeCode:
         P = len(engine.places)
         for lay in self.doms:  # a new context's tables: the values interned so far, in their order
             for i in range(lib.gen_node_count(ctx, lay.dom), len(lay.values)):
-                flat = lay.c_flat(lay.values[i], i)
+                flat = lay.c_flat(lay.values[i], i, lambda child, x: child.index[x])
                 if lib.gen_node_put(ctx, lay.dom, ffi.new("int64_t[]", flat), len(flat)) != i:
                     raise RuntimeError(f"native values out of step with the engine (domain {lay.dom})")
         for what, tables in ((0, engine.store.dicts), (1, engine._deltas)):
@@ -378,13 +486,13 @@ class NativeCode:
         ffi, lib = lib.ffi, lib.lib
         P = len(engine.places)
         store = engine.store
-        for lay in self.doms:  # first the values C interned: the markings' colour ids name them
-            n, w = lib.gen_node_count(ctx, lay.dom), len(lay.leaves)
+        for lay in self.doms:  # first the values C interned (components first): the markings' ids name them
+            n, w = lib.gen_node_count(ctx, lay.dom), lay.width
             if n > len(lay.values):
                 buf = ffi.new("int64_t[]", w)
                 for i in range(len(lay.values), n):
-                    lib.gen_node_get(ctx, lay.dom, i, buf, w)
-                    v = lay.value(list(buf))
+                    k = lib.gen_node_get(ctx, lay.dom, i, buf, w)
+                    v = lay.value(ffi.unpack(buf, k))
                     lay.values.append(v)
                     lay.index[v] = i
         offp, lenp, pairp = ffi.new("int64_t **"), ffi.new("int32_t **"), ffi.new("int32_t **")

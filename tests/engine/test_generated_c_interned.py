@@ -265,3 +265,107 @@ def test_the_modbus_model_has_transitions_in_c():
     model = cpn.load(sc.model, set=sc.runs[0].values)
     code, why = model.engine(time_condensation=True).timed_groups().native_code()
     assert why is None and len(code.native) >= 50, len(code.native)
+
+
+UNION_HEADER = """colset I = int;
+colset B = bool;
+colset N = int with 0..3;
+colset R = record id : I * ok : B;
+colset MSG = union Reset + Config : I + Ack : N + Frame : R;
+colset LM = product N * MSG;
+colset ST = union Idle + Busy : MSG;
+var m : MSG;
+var s : ST;
+var n : N;
+var x : I;
+var r : R;
+fun next (Config k) = if k < 3 then Config (k + 1) else Ack 2
+  | next (Ack a) = Frame {id = a, ok = a > 1}
+  | next (Frame {id = k, ok = b}) = if b then Reset else Ack 0
+  | next Reset = Config 0;
+fun isack (Ack _) = true | isack _ = false;
+"""
+
+U_PATTERNS = {"MSG": [("m", "m"), ("m", "m"), ("Config x", "x"), ("Ack n", "n"), ("Reset", ""),
+                      ("Frame r", "r"), ("Frame {id = x, ok = true}", "x")],
+              "LM": [("(n, m)", "nm"), ("(n, Ack n)", "n"), ("(0, m)", "m")],
+              "ST": [("s", "s"), ("Idle", ""), ("Busy m", "m"), ("Busy (Config x)", "x")]}
+U_VALUES = {"MSG": [("m", "m"), ("next m", "m"), ("Config (x + 1)", "x"), ("Ack n", "n"), ("Reset", ""),
+                    ("Frame {id = x * 2, ok = x > 1}", "x"), ("case m of Ack a => Config a | _ => Reset", "m"),
+                    ("if isack m then next m else Reset", "m"), ("Frame r", "r")],
+            "LM": [("((n + 1) mod 4, next m)", "nm"), ("(n, m)", "nm"), ("(0, Reset)", "")],
+            "ST": [("Idle", ""), ("Busy m", "m"), ("Busy (next m)", "m"), ("s", "s")]}
+U_GUARDS = [("", ""), ("", ""), ("[x < 4]", "x"), ("[m <> Reset]", "m"), ("[isack m orelse n = 0]", "mn"),
+            ("[s = Idle]", "s"), ("[#id r < 5]", "r")]
+
+
+def random_union_net(seed: int) -> str:
+    """A random net over unions with data (a record among their data, a product and a union holding one)."""
+    rng = random.Random(seed)
+    inits = {"MSG": ["1`Reset", "1`(Config 2)", "1`(Ack 1) ++ 1`Reset", "2`(Frame {id = 1, ok = false})"],
+             "LM": ["1`(0, Reset)", "1`(1, Config 0)"], "ST": ["1`Idle", "1`(Busy Reset)"]}
+    places = []
+    lines = [UNION_HEADER]
+    for i in range(rng.randint(2, 4)):
+        k = rng.choice(["MSG", "MSG", "LM", "ST"]) if i else "MSG"
+        places.append((f"p{i}", k))
+        lines.append(f"place p{i} : {k} = {rng.choice(inits[k])};")
+    for t in range(rng.randint(1, 4)):
+        at = len(lines)
+        lines.append("")
+        bound: set[str] = set()
+        for name, k in rng.sample(places, k=rng.randint(1, min(2, len(places)))):
+            pat, binds = rng.choice([p for p in U_PATTERNS[k] if not set(p[1]) & bound])
+            bound |= set(binds)
+            lines.append(f"arc {name} {rng.choice(['->', '->', '<->'])} t{t} : {pat};")
+        for name, k in rng.sample(places, k=rng.randint(1, min(2, len(places)))):
+            v = rng.choice([p for p, vs in U_VALUES[k] if set(vs) <= bound])
+            lines.append(f"arc t{t} -> {name} : {v};")
+        guard = rng.choice([g for g, vs in U_GUARDS if set(vs) <= bound])
+        lines[at] = f"trans t{t} {guard};"
+    return "\n".join(lines) + "\n"
+
+
+@needs_native
+def test_unions_with_data_give_the_python_graph(monkeypatch):
+    returns = count_calls(monkeypatch, native.NativeSearch, "_fill")
+    wholly = tried = 0
+    for seed in range(60):
+        text = random_union_net(seed)
+        model = _model(text, f"union{seed}.cpnet")
+        if model is None:
+            continue
+        tried += 1
+        before = returns[0]
+        try:
+            c = _both(model, limit=400)
+        except AssertionError:
+            raise AssertionError(f"C and Python differ on random net {seed}:\n{text}") from None
+        assert c.backend == "c"
+        code, why = model.engine().native_code()
+        assert why is None, why
+        if not code.left:
+            assert returns[0] == before, f"random net {seed} went back to the Python engine:\n{text}"
+            wholly += 1
+        if tried == 16:
+            break
+    assert tried == 16 and wholly >= 12, (tried, wholly)
+
+
+@needs_native
+@pytest.mark.parametrize("name", ["modbus_a", "tcp"])
+def test_modbus_scenarios_with_unions_give_the_python_graph(name, monkeypatch):
+    """The Modbus-A and Modbus/TCP scenarios' models (unions with data, records and unbounded ints in C),
+    both ways, up to 1,500 states."""
+    import os
+
+    from tests._shared import ROOT
+    from tests.statespace.test_native_timed_c import _both as timed_both
+
+    monkeypatch.setattr(nativetimed, "HAND_OVER_RATE", 1e9)
+    sc = cpn.load_scenario(os.path.join(ROOT, "specs", "modbus", f"{name}.toml"))
+    model = cpn.load(sc.model, set=sc.runs[0].values)
+    code, why = model.engine(time_condensation=True).timed_groups().native_code()
+    assert why is None and len(code.native) >= 8
+    for condensation in (True, False):
+        timed_both(model, condensation, limit=1500)
