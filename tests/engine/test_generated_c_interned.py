@@ -369,3 +369,59 @@ def test_modbus_scenarios_with_unions_give_the_python_graph(name, monkeypatch):
     assert why is None and len(code.native) >= 8
     for condensation in (True, False):
         timed_both(model, condensation, limit=1500)
+
+
+GROWING = """
+colset I = int;
+colset N = int with 0..3;
+colset R = record a : I * n : N;
+colset MSG = union Reset + Config : R;
+var x : I;
+var r : R;
+var n : N;
+place P : I = 1`0;
+place Q : MSG = 1`Reset;
+trans t [x < 3000];
+arc P -> t : x;
+arc t -> P : x + 1;
+trans u;
+arc Q -> u : Config {a = x, n = n};
+arc u -> Q : Config {a = x + 1, n = (n + 1) mod 4};
+arc P <-> u : x;
+trans v;
+arc Q -> v : Reset;
+arc P <-> v : x;
+arc v -> Q : Config {a = x, n = 0};
+"""
+
+
+@needs_native
+def test_auto_builds_the_c_part_way_with_the_values_interned_so_far(monkeypatch):
+    """The C built part-way gets a fresh context: the values the engine interned so far are given to it
+    first, in their order, so that its ids are theirs; the graph is the Python search's."""
+    upgrades = []
+    upgrade = native.NativeSearch._upgrade
+
+    def counted(self):
+        upgrades.append(self.head)
+        return upgrade(self)
+    monkeypatch.setattr(native.NativeSearch, "_upgrade", counted)
+    monkeypatch.setattr(native, "GENERATE_AFTER", 600)
+    monkeypatch.setattr(native, "GENERATE_PER_LINE", 0)
+    model = cpn.loads(GROWING, "growing.cpnet")
+    auto = Explorer(model.engine(), ExploreOptions(backend="auto", max_states=5000)).run()
+    py = Explorer(model.engine(), ExploreOptions(backend="python", packed_states=False, max_states=5000)).run()
+    same_exploration(auto, py)
+    assert auto.backend == "c" and auto.notes == [] and len(upgrades) == 1 and auto.n_states > 600
+
+
+def test_a_finite_colour_set_too_large_for_a_layout_is_interned():
+    model = cpn.loads("colset A = int with 0..2000; colset AA = product A * A; var p : AA;"
+                      " place P : AA = 1`(0, 0); trans t [#1 p < 3]; arc P -> t : p;"
+                      " arc t -> P : (#1 p + 1, 2000);", "big.cpnet")
+    code = ccodegen.native_code(model.engine())
+    assert code.layouts[0].interned and code.left == {}
+    assert code.layouts[0].leaves == [(0, 2000, "int"), (0, 2000, "int")]
+    if NATIVE is None:
+        c = _both(model, limit=100)
+        assert c.n_states == 4
