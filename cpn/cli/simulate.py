@@ -53,8 +53,8 @@ def run(args) -> int:
     # a draw is made anew at each occurrence: the reference interpreter remembers no result of a marking
     # (the compiled engine reuses the effect of a binding element)
     checked = model.net.checked
-    engine = model.engine(simulation=True, reference=bool(getattr(checked, "random_draws", ())
-                                                          or getattr(checked, "simulation_only", ())))
+    lazy = bool(getattr(checked, "random_draws", ()) or getattr(checked, "simulation_only", ()))
+    engine = model.engine(simulation=True, reference=lazy)
     draw_variables = getattr(checked, "draw_variables", None) or {}
     draw_outputs = getattr(checked, "draw_outputs", None) or {}
     s = engine.initial_state()
@@ -65,11 +65,15 @@ def run(args) -> int:
     ended = "steps"
     try:
         while len(steps) < args.steps:
-            succ = engine.successors(s)
+            # the reference interpreter fires only the binding element chosen: a call that simulate cannot
+            # run (a socket, a file) stops the run at the occurrence that makes it
+            succ = engine.successors(s, lazy=True) if lazy else engine.successors(s)
             if not succ:
                 ended = "dead"
                 break
             be, s = _choose(engine, succ, rng, draw_variables, draw_outputs)
+            if lazy:
+                s = s()
             steps.append({"step": len(steps) + 1, "time": engine.clock(s),
                           "binding_element": engine.format_binding_element(be)})
             if text:

@@ -7,6 +7,7 @@ and keeping those that satisfy the definition of enabling; firing evaluates ever
 
 from __future__ import annotations
 
+import functools
 import itertools
 
 from cpn.engine.api import P_NORMAL, EngineAPI
@@ -212,8 +213,10 @@ class ReferenceEngine(EngineAPI):
                     ready = max(ready, stamps[n - 1])
         return need, ready
 
-    def successors(self, s):
-        """The enabled binding elements and their successors (docs/semantics.md, Time).
+    def successors(self, s, lazy: bool = False):
+        """The enabled binding elements and their successors (docs/semantics.md, Time); with `lazy`, each
+        successor is a function that computes it (simulate fires only the binding element it chooses, so
+        that the output arcs of the others are not evaluated).
 
         Each transition is examined at the state's clock and at every later timestamp of a token on the
         places it removes tokens from, in increasing order; at a time t, its enabled bindings are those
@@ -246,8 +249,9 @@ class ReferenceEngine(EngineAPI):
             now = [c for c, p in zip(now, prios) if p == best]
         out = []
         for t, assignment, need in now:
-            out.append((self._intern_be(t.index, tuple(assignment[v] for v in t.variables)),
-                        self._fire(t, marking, assignment, need, f)))
+            be = self._intern_be(t.index, tuple(assignment[v] for v in t.variables))
+            out.append((be, functools.partial(self._fire, t, marking, assignment, need, f) if lazy
+                        else self._fire(t, marking, assignment, need, f)))
         return out
 
     def _examined_at(self, t, marking, clock) -> set:

@@ -17,7 +17,7 @@ from cpn.values.multiset import MultisetError
 def _tokens(text):
     import re
 
-    return re.findall(r"''?[a-z]|->|\*|\(|\)|[A-Za-z][A-Za-z.]*", text)
+    return re.findall(r"''?[a-z]|->|\*|\(|\)|[A-Za-z][A-Za-z0-9.]*", text)
 
 
 def parse_type(text: str | T.Scheme) -> T.Scheme:
@@ -219,6 +219,7 @@ FUNCTIONS.update(draws.FUNCTIONS)
 TYPES.update({name: ty for name, (ty, _) in effects.BUILTINS.items()})
 FUNCTIONS.update(effects.FUNCTIONS)
 SIMULATION_ONLY_BUILTINS: dict[str, tuple[str, str]] = dict(effects.SIMULATION_ONLY)
+STOPS_SIMULATE: frozenset[str] = effects.STOPS_SIMULATE  # simulate stops where they are called
 
 # name -> (type, implementation)
 BUILTINS: dict[str, tuple[str, object]] = {name: (ty, FUNCTIONS[name]) for name, ty in TYPES.items()}
@@ -246,5 +247,5 @@ def record_setter(cs, op: str) -> str | None:
     return None
 
 
-__all__ = ["BUILTINS", "COLSET_OPS", "MLError", "MultisetError", "RANDOM_BUILTINS", "SIMULATION_ONLY_BUILTINS",
+__all__ = ["BUILTINS", "COLSET_OPS", "MLError", "MultisetError", "RANDOM_BUILTINS", "SIMULATION_ONLY_BUILTINS", "STOPS_SIMULATE",
            "parse_type", "record_setter", "TIME_BUILTINS"]

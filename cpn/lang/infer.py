@@ -16,7 +16,7 @@ from cpn.expr.binding import children
 from cpn.expr.forms import FORMS
 from cpn.lang import ast as A
 from cpn.lang import types as T
-from cpn.lang.builtins import FINITE_DRAWS, RANDOM_BUILTINS, SIMULATION_ONLY_BUILTINS
+from cpn.lang.builtins import FINITE_DRAWS, RANDOM_BUILTINS, SIMULATION_ONLY_BUILTINS, STOPS_SIMULATE
 from cpn.lang.checked import Abort, Env
 from cpn.lang.function_draws import FunctionDraws
 from cpn.lang.symbols import Symbol
@@ -257,14 +257,15 @@ class TypeInference(FunctionDraws):
                   "explore and check cannot analyse it", e.span,
                   hint=random_hint(e.name), name=e.name)
 
-    def simulation_only(self, what: str, span: Span, hint: str, name: str) -> None:
+    def simulation_only(self, what: str, span: Span, hint: str, name: str,
+                        runs: str = "simulate runs the model") -> None:
         """A construct that simulate runs and no state space can hold (a real-valued delay, a reference
         variable, a code segment's side effect): lint warns (W0106), explore and check refuse the model with
         one error per construct (`simulation_only`), `what` saying what it is and `hint` what to change."""
         if any(span == s and what == w for w, s, _, _ in self.simulation_only_uses):
             return
         self.simulation_only_uses.append((what, span, hint, name))
-        self.warn("W0106", f"{what}: simulate runs the model, explore and check cannot analyse it", span,
+        self.warn("W0106", f"{what}: {runs}, explore and check cannot analyse it", span,
                   hint=hint, name=name)
 
     def effect_builtin(self, e: A.Name) -> None:
@@ -275,7 +276,9 @@ class TypeInference(FunctionDraws):
             self.fun_effects.setdefault(self.current_fun, []).append(e)
             return
         what, hint = SIMULATION_ONLY_BUILTINS[e.name]
-        self.simulation_only(f"'{e.name}' {what}", e.span, hint, e.name)
+        runs = ("simulate runs the model up to the first occurrence that calls it, and stops there"
+                if e.name in STOPS_SIMULATE else "simulate runs the model")
+        self.simulation_only(f"'{e.name}' {what}", e.span, hint, e.name, runs)
 
     def real_delay(self, e: A.BinOp, env: Env) -> None:
         """The delay of `e @++ d` (CPN Tools' real-valued delay): a real; simulation only."""

@@ -23,6 +23,8 @@ import datetime
 import math
 import time as _time
 
+from cpn.values.builtins import MLError
+
 
 def _from_time(t, tz) -> tuple:
     d = datetime.datetime.fromtimestamp(t, tz) if tz is not None else datetime.datetime.fromtimestamp(t)
@@ -62,12 +64,67 @@ BUILTINS: dict[str, tuple[str, object]] = {
     "TextIO.stdErr": ("TextIO.outstream", "<stdErr>"),
 }
 
+
+
+class OtherProgram(MLError):
+    """A call that needs a program or a file that simulate does not have: a socket to another program (CPN
+    Tools' Comms/CPN library) or a file to read. The evaluator reports it as a run-time error (E0401) at the
+    occurrence that makes the call, naming the function."""
+
+
+def _cannot_run(name: str, what: str):
+    def run(arg):
+        raise OtherProgram(f"'{name}' {what}: simulate cannot run it ({_describe(arg)})")
+    return run
+
+
+def _describe(arg) -> str:
+    first = arg[0] if isinstance(arg, tuple) and arg else arg
+    return f"its argument is {first!r}" if isinstance(first, (str, int)) else "it talks to no other program"
+
+
+# Comms/CPN (CPN Tools' library for talking to other programs over TCP): `ConnManagementLayer` opens, uses
+# and closes named connections; the encode/decode functions turn values into the bytes sent. A model that
+# calls them needs the other program running: simulate stops at the occurrence that calls one.
+_COMMS = "talks to another program over a socket (Comms/CPN)"
+BUILTINS.update({
+    "ConnManagementLayer.openConnection": ("string * string * int -> unit",
+                                           _cannot_run("ConnManagementLayer.openConnection", _COMMS)),
+    "ConnManagementLayer.acceptConnection": ("string * int -> unit",
+                                             _cannot_run("ConnManagementLayer.acceptConnection", _COMMS)),
+    "ConnManagementLayer.closeConnection": ("string -> unit",
+                                            _cannot_run("ConnManagementLayer.closeConnection", _COMMS)),
+    "ConnManagementLayer.send": ("string * 'a * ('a -> Word8Vector.vector) -> unit",
+                                 _cannot_run("ConnManagementLayer.send", _COMMS)),
+    "ConnManagementLayer.receive": ("string * (Word8Vector.vector -> 'a) -> 'a",
+                                    _cannot_run("ConnManagementLayer.receive", _COMMS)),
+    "integerEncode": ("int -> Word8Vector.vector", lambda n: str(n).encode()),
+    "integerDecode": ("Word8Vector.vector -> int", lambda b: int(b.decode())),
+    "stringEncode": ("string -> Word8Vector.vector", lambda x: x.encode()),
+    "stringDecode": ("Word8Vector.vector -> string", lambda b: b.decode()),
+    # file input: the files a model reads are not part of it, so simulate reads none
+    "TextIO.openIn": ("string -> TextIO.instream", _cannot_run("TextIO.openIn", "reads a file")),
+    "TextIO.inputLine": ("TextIO.instream -> string option", _cannot_run("TextIO.inputLine", "reads a file")),
+    "TextIO.inputAll": ("TextIO.instream -> string", _cannot_run("TextIO.inputAll", "reads a file")),
+    "TextIO.endOfStream": ("TextIO.instream -> bool", _cannot_run("TextIO.endOfStream", "reads a file")),
+    "TextIO.closeIn": ("TextIO.instream -> unit", _cannot_run("TextIO.closeIn", "reads a file")),
+})
+
 FUNCTIONS: dict[str, object] = {name: fn for name, (_, fn) in BUILTINS.items()}
+
+# those that simulate cannot run either: it stops at the first occurrence that calls one (OtherProgram)
+STOPS_SIMULATE: frozenset[str] = frozenset(name for name, (ty, _) in BUILTINS.items()
+                                           if name.startswith("ConnManagementLayer.") or "instream" in ty)
 
 _CLOCK_HINT = ("For a state space, use the model time (time()) or a value on a token: the machine's clock and "
                "time zone are no part of a state.")
 _OUTPUT_HINT = ("For a state space, remove the output, or move it into a code segment that binds no output "
                 "variable (it is left out); simulate accepts it and writes nothing.")
+
+_COMMS_HINT = ("The other program is no part of the model: for a state space (and for simulate), replace the "
+               "calls by a place that holds the messages it may send, and a transition per answer.")
+_INPUT_HINT = ("A file is no part of the model: put its values in the model (a 'val' list, or tokens of an "
+               "initial marking).")
 
 # the names with no state-space meaning: name -> (what it is, what to change)
 SIMULATION_ONLY: dict[str, tuple[str, str]] = {
@@ -75,7 +132,10 @@ SIMULATION_ONLY: dict[str, tuple[str, str]] = {
     "Date.fromTimeLocal": ("reads the machine's time zone", "Use Date.fromTimeUniv, which is a function of "
                            "its argument; " + _CLOCK_HINT[0].lower() + _CLOCK_HINT[1:]),
     **{name: ("writes text output (dropped: simulate writes nothing)", _OUTPUT_HINT)
-       for name, (_, fn) in BUILTINS.items() if (name.startswith("TextIO.") or name == "print") and callable(fn)},
+       for name, (ty, fn) in BUILTINS.items()
+       if (name.startswith("TextIO.") or name == "print") and callable(fn) and "instream" not in ty},
+    **{name: (_COMMS, _COMMS_HINT) for name in BUILTINS if name.startswith("ConnManagementLayer.")},
+    **{name: ("reads a file", _INPUT_HINT) for name, (ty, _) in BUILTINS.items() if "instream" in ty},
 }
 
-__all__ = ["BUILTINS", "FUNCTIONS", "SIMULATION_ONLY"]
+__all__ = ["BUILTINS", "FUNCTIONS", "SIMULATION_ONLY", "STOPS_SIMULATE", "OtherProgram"]

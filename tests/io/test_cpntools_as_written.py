@@ -249,7 +249,7 @@ def test_declarations_the_design_cpn_converter_left_unconverted_are_one_clear_er
 
 
 def test_functions_that_talk_to_other_programs_or_use_the_sml_random_generator_are_named(tmp_path):
-    decls = DECLS + ('<ml id="M2">fun conn (c, p) = let in ConnManagementLayer.openConnection (c, "127.0.0.1", p) '
+    decls = DECLS + ('<ml id="M2">fun conn (c, p) = let in MSC.addEvent (c, p) '
                      'end</ml><ml id="M3">fun pick n = Random.randRange (1, n) (Random.rand (1, 2))</ml>')
     body = (place("P1", "A", "S", "1`0") + trans("T1", "t") + arc("A1", "PtoT", "T1", "P1", "x")
             + arc("A2", "TtoP", "T1", "P1", "conn (x, 80)") + trans("T2", "u") + arc("A3", "PtoT", "T2", "P1", "x")
@@ -258,7 +258,15 @@ def test_functions_that_talk_to_other_programs_or_use_the_sml_random_generator_a
         translate_text(cpn_xml(decls, page("PG1", "Top", body)), "m.cpn")
     msgs = [d.message for d in info.value.diagnostics]
     assert len(msgs) == 1 and all(d.code == "E0502" for d in info.value.diagnostics)
-    assert "'conn' calls 'ConnManagementLayer.openConnection', a side effect" in msgs[0]
+    assert "'conn' calls 'MSC.addEvent', a side effect" in msgs[0]
+    # Comms/CPN is kept: simulate stops where it is called, explore refuses each call
+    # (tests/io/test_cpntools_other_programs.py)
+    comms = decls.replace("MSC.addEvent (c, p)", 'ConnManagementLayer.openConnection (c, "127.0.0.1", p)')
+    model = load(tmp_path, cpn_xml(comms, page("PG1", "Top", body.replace("conn (x, 80)", "(conn (\"c\", 80); x)"))))
+    with pytest.raises(ModelError) as info:
+        model.engine()
+    assert sorted(d.params["name"] for d in info.value.diagnostics) == [
+        "ConnManagementLayer.openConnection", "Random.rand", "Random.randRange"]
     # SML/NJ's Random is simulated; explore refuses each call of it, naming it (tests/lang/test_random_distributions.py)
     model = load(tmp_path, cpn_xml(decls, page("PG1", "Top", body.replace("conn (x, 80)", "x"))))
     with pytest.raises(ModelError) as info:

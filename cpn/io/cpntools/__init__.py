@@ -633,9 +633,13 @@ class _Translator(_Declarations):
                 why.append(f"its {kind} end '{ref}' is no {kind} of the file")
             elif found.page is not page:
                 why.append(f"its {kind} '{found.name}' is on page '{found.page.name}'")
+        missing = any(end is not None and found is None for end, found in ((te, t), (pe, p)))
         self.error(a, f"arc {a.attrs.get('id', '?')} on page '{page.name}' does not connect a place and a transition "
                    "of the page: " + "; ".join(why),
-                   hint="Delete the arc in CPN Tools, or draw it again between a place and a transition of the page.")
+                   hint=(f"CPN Tools does not load a file whose arc names a node the file does not hold either: "
+                         f"delete the <arc id=\"{a.attrs.get('id', '?')}\"> element from the file, or add the "
+                         "missing node to the page." if missing else
+                         "Delete the arc in CPN Tools, or draw it again between a place and a transition of the page."))
         return None
 
     def _refuse_input_delay(self, annot: str, ao: Origin, what: str) -> bool:
