@@ -71,8 +71,19 @@ class _Places:
         self.counts: list[list[int]] = [[] for _ in range(n)]
         self.timed = [p.timed for p in places]
         self.pending: dict[int, int] = {}  # place -> its first id not in `index` yet (append_new)
+        # timed places: per marking id, the id of its untimed view (equal views, equal ids), filled as asked
+        self.untimed_ids: list[list[int]] = [[] for _ in range(n)]
+        self._untimed_index: list[dict] = [{} for _ in range(n)]
         for p in range(n):
             self.intern(p, {})
+
+    def untimed_id(self, p: int, i: int) -> int:
+        """The id of the untimed view of marking i of timed place p (the ids of the markings up to i are
+        filled on the way)."""
+        ids, index, views = self.untimed_ids[p], self._untimed_index[p], self.views[p]
+        while len(ids) <= i:
+            ids.append(index.setdefault(frozenset(views[len(ids)].items()), len(index)))
+        return ids[i]
 
     def intern(self, p: int, d: dict) -> int:
         key = canonical_key(d)
@@ -279,11 +290,20 @@ class CompiledEngine(TimedSuccessors, EngineAPI):
         return self.store.views[p][s[p]]
 
     def untimed(self, s: tuple):
+        """The state less its clock, each timed place's marking id replaced by the id of its untimed view."""
         if not self.is_timed:
             return s
-        views = self.store.views
-        return tuple(frozenset(views[p][s[p]].items()) if self.store.timed[p] else s[p]
-                     for p in range(len(self.places)))
+        store = self.store
+        out = list(s[:len(self.places)])
+        for p in self._timed_positions:
+            i = out[p]
+            ids = store.untimed_ids[p]
+            out[p] = ids[i] if i < len(ids) else store.untimed_id(p, i)
+        return tuple(out)
+
+    @functools.cached_property
+    def _timed_positions(self) -> tuple[int, ...]:
+        return tuple(p for p in range(len(self.places)) if self.store.timed[p])
 
     def format_marking(self, s: tuple, p: int) -> str:
         pl = self.places[p]
