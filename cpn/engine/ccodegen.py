@@ -985,8 +985,8 @@ def native_code(engine) -> NativeCode:
             tc = TransitionC(mod, t, k, list(info.read), list(info.writes), layouts)
             bodies[k] = tc.generate()
             var_layouts[t.index] = tc.var_lay
-        except (NotNative, plan.Unbindable) as exc:
-            left[t.index] = str(exc) or type(exc).__name__
+        except (NotNative, plan.Unbindable, RecursionError) as exc:
+            left[t.index] = _why(exc)
             del mod.parts[saved[0]:]
             del mod.protos[saved[1]:]
             mod.functions, mod.encoders = saved[2], saved[3]
@@ -1017,6 +1017,13 @@ def native_code(engine) -> NativeCode:
     ])
     return NativeCode(src, sorted(engine._plan[k].t.index for k in bodies), left, layouts, var_layouts,
                       doms=mod.doms, bind_doms=_bind_doms(mod, var_layouts))
+
+
+def _why(exc: Exception) -> str:
+    """Why a transition is left to the engine."""
+    if isinstance(exc, RecursionError):  # (a chain of thousands of operators: the engine evaluates it flat)
+        return "an inscription nested too deeply for the C generator"
+    return str(exc) or type(exc).__name__
 
 
 def _bind_doms(mod: Module, var_layouts: dict) -> dict[int, int]:
@@ -1342,8 +1349,8 @@ def timed_native_code(engine) -> NativeCode:
                                   bool(engine.is_timed and info.timed), bool(engine.is_timed))
             bodies[k] = tc.generate()
             var_layouts[t.index] = tc.var_lay
-        except (NotNative, plan.Unbindable) as exc:
-            left[t.index] = str(exc) or type(exc).__name__
+        except (NotNative, plan.Unbindable, RecursionError) as exc:
+            left[t.index] = _why(exc)
             del mod.parts[saved[0]:]
             del mod.protos[saved[1]:]
             mod.functions, mod.encoders = saved[2], saved[3]
