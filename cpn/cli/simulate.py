@@ -36,8 +36,6 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
 
 
 def run(args) -> int:
-    from cpn.errors import EvaluationError
-
     if args.steps < 0:
         raise UsageError("--steps must not be negative")
     sets = sets_of(args)
@@ -57,30 +55,7 @@ def run(args) -> int:
     engine = model.engine(simulation=True, reference=lazy)
     draw_variables = getattr(checked, "draw_variables", None) or {}
     draw_outputs = getattr(checked, "draw_outputs", None) or {}
-    s = engine.initial_state()
-    steps: list[dict] = []
-    width = max(len(str(args.steps)), 4)
-    if text:
-        print(f"{'step':>{width}}  {'time':>6}  binding element")
-    ended = "steps"
-    try:
-        while len(steps) < args.steps:
-            # the reference interpreter fires only the binding element chosen: a call that simulate cannot
-            # run (a socket, a file) stops the run at the occurrence that makes it
-            succ = engine.successors(s, lazy=True) if lazy else engine.successors(s)
-            if not succ:
-                ended = "dead"
-                break
-            be, s = _choose(engine, succ, rng, draw_variables, draw_outputs)
-            if lazy:
-                s = s()
-            steps.append({"step": len(steps) + 1, "time": engine.clock(s),
-                          "binding_element": engine.format_binding_element(be)})
-            if text:
-                print(f"{steps[-1]['step']:>{width}}  {_time(steps[-1]['time']):>6}  {steps[-1]['binding_element']}")
-    except EvaluationError as err:
-        err.trace = [st["binding_element"] for st in steps]
-        raise
+    steps, s, ended = _walk(engine, args.steps, rng, lazy, text, (draw_variables, draw_outputs))
     n = len(steps)
     if text:
         if ended == "dead":
@@ -99,6 +74,39 @@ def run(args) -> int:
                   "final_marking": {k: v for k, v in marking.items() if v != "empty"}}
         write_output(outputs["--json"], json.dumps(result, indent=2, ensure_ascii=False) + "\n")
     return ExitStatus.OK
+
+
+def _walk(engine, max_steps: int, rng, lazy: bool, text: bool, draws: tuple) -> tuple[list[dict], object, str]:
+    """(the steps, the last state, why the run ended: "steps" or "dead") of one run from the initial
+    marking, each step printed as it occurs where `text`."""
+    from cpn.errors import EvaluationError
+
+    draw_variables, draw_outputs = draws
+    s = engine.initial_state()
+    steps: list[dict] = []
+    width = max(len(str(max_steps)), 4)
+    if text:
+        print(f"{'step':>{width}}  {'time':>6}  binding element")
+    ended = "steps"
+    try:
+        while len(steps) < max_steps:
+            # the reference interpreter fires only the binding element chosen: a call that simulate cannot
+            # run (a socket, a file) stops the run at the occurrence that makes it
+            succ = engine.successors(s, lazy=True) if lazy else engine.successors(s)
+            if not succ:
+                ended = "dead"
+                break
+            be, s = _choose(engine, succ, rng, draw_variables, draw_outputs)
+            if lazy:
+                s = s()
+            steps.append({"step": len(steps) + 1, "time": engine.clock(s),
+                          "binding_element": engine.format_binding_element(be)})
+            if text:
+                print(f"{steps[-1]['step']:>{width}}  {_time(steps[-1]['time']):>6}  {steps[-1]['binding_element']}")
+    except EvaluationError as err:
+        err.trace = [st["binding_element"] for st in steps]
+        raise
+    return steps, s, ended
 
 
 def _choose(engine, succ: list, rng: random.Random, draw_variables: dict, draw_outputs: dict):
