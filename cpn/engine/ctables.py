@@ -87,8 +87,21 @@ class Layout:
         return build(self.shape)
 
 
+class _Nodes:
+    """What the two kinds of interned colour ids share: the leaves C interns for a value."""
+
+    def c_flat(self, v, cid: int, child=None) -> list[int]:
+        """The leaves C interns for value v of colour id `cid`: its own (`flat`), or for a value C cannot hold
+        (an integer beyond 64 bits) leaves of the placeholder's width, the last naming the id: a value of its
+        own whose leaves C never reads (`g_leaf`: the engine evaluates what reads them)."""
+        try:
+            return self.flat(v, child)
+        except OverflowError:
+            return [0] * (self.width - 1) + [cid]
+
+
 @dataclass
-class Interned:
+class Interned(_Nodes):
     """The colour ids of a colour set without a finite layout (an unbounded int, a product or record with
     one): ids given in the order the values are first met, in the C table of domain `dom` (`g_node`, a
     value as its int64 leaves) and in `values`/`index` here, the same on both sides (`NativeCode.to_c`
@@ -117,22 +130,13 @@ class Interned:
         value x of a component held by reference)."""
         return _flat(self.leaves, self.shape, v, cid)
 
-    def c_flat(self, v, cid: int, child=None) -> list[int]:
-        """The leaves C interns for value v of colour id `cid`: its own, or for a value C cannot hold (an
-        integer beyond 64 bits) leaves of the placeholder's width, the last naming the id: a value of its
-        own whose leaves C never reads (`g_leaf`: the engine evaluates what reads them)."""
-        try:
-            return self.flat(v, child)
-        except OverflowError:
-            return [0] * (self.width - 1) + [cid]
-
     def value(self, flat) -> object:
         """The Python value of leaves `flat`."""
         return _value(self.leaves, self.shape, flat)
 
 
 @dataclass
-class UnionDom:
+class UnionDom(_Nodes):
     """The interned colour ids of a union with data: a value is the node [tag, its data's leaves] of domain
     `dom` (a constructor without data: [tag]); `cons` per tag: None, or its data's (leaves, shape)."""
 
@@ -165,12 +169,6 @@ class UnionDom:
         tag, x = v
         leaves, sh = self.cons[tag]
         return [tag, *_flat(leaves, sh, x, cid)]
-
-    def c_flat(self, v, cid: int, child=None) -> list[int]:
-        try:
-            return self.flat(v, child)
-        except OverflowError:
-            return [0] * (self.width - 1) + [cid]
 
     def value(self, flat) -> object:
         tag = int(flat[0])

@@ -111,13 +111,14 @@ def _model(text: str, name: str):
         return None
 
 
-@needs_native
-def test_unbounded_ints_products_and_records_give_the_python_graph(monkeypatch):
+def _sixteen_random_nets_give_the_python_graph(monkeypatch, generate, prefix: str, seeds: int) -> None:
+    """The first 16 nets of `generate` that load, both ways: the same graph, each in C (12 at least wholly,
+    never going back to the Python engine)."""
     returns = count_calls(monkeypatch, native.NativeSearch, "_fill")
     wholly = tried = 0
-    for seed in range(40):
-        text = random_interned_net(seed)
-        model = _model(text, f"interned{seed}.cpnet")
+    for seed in range(seeds):
+        text = generate(seed)
+        model = _model(text, f"{prefix}{seed}.cpnet")
         if model is None:
             continue
         tried += 1
@@ -135,6 +136,11 @@ def test_unbounded_ints_products_and_records_give_the_python_graph(monkeypatch):
         if tried == 16:
             break
     assert tried == 16 and wholly >= 12, (tried, wholly)
+
+
+@needs_native
+def test_unbounded_ints_products_and_records_give_the_python_graph(monkeypatch):
+    _sixteen_random_nets_give_the_python_graph(monkeypatch, random_interned_net, "interned", 40)
 
 
 @needs_native
@@ -328,28 +334,7 @@ def random_union_net(seed: int) -> str:
 
 @needs_native
 def test_unions_with_data_give_the_python_graph(monkeypatch):
-    returns = count_calls(monkeypatch, native.NativeSearch, "_fill")
-    wholly = tried = 0
-    for seed in range(60):
-        text = random_union_net(seed)
-        model = _model(text, f"union{seed}.cpnet")
-        if model is None:
-            continue
-        tried += 1
-        before = returns[0]
-        try:
-            c = _both(model, limit=400)
-        except AssertionError:
-            raise AssertionError(f"C and Python differ on random net {seed}:\n{text}") from None
-        assert c.backend == "c"
-        code, why = model.engine().native_code()
-        assert why is None, why
-        if not code.left:
-            assert returns[0] == before, f"random net {seed} went back to the Python engine:\n{text}"
-            wholly += 1
-        if tried == 16:
-            break
-    assert tried == 16 and wholly >= 12, (tried, wholly)
+    _sixteen_random_nets_give_the_python_graph(monkeypatch, random_union_net, "union", 60)
 
 
 @needs_native
