@@ -17,6 +17,7 @@ Examples
 
 from __future__ import annotations
 
+import copy
 from typing import Any
 
 from cpn._util.deep import left_spine
@@ -26,6 +27,7 @@ from cpn.expr import nodes as A
 from cpn.expr.forms import FORMS
 from cpn.values import draws
 from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS, MLError, binop
+from cpn.values.effects import Cell
 from cpn.values.multiset import Multiset, TimedMultiset
 
 
@@ -93,7 +95,7 @@ class Evaluator:
         if globals_ is None or isinstance(globals_, dict):
             self.globals: dict[int, Any] = {} if globals_ is None else globals_
             return
-        self.globals = dict(globals_.constants)  # uid -> value of a global constant or function
+        self.globals = _own_cells(globals_.constants)  # uid -> value of a global constant or function
         for d in globals_.decls:
             if not (isinstance(d, A.ValDecl) and d.pat.ref.uid in globals_.constants):
                 self.declare(d, self.globals)
@@ -280,6 +282,27 @@ class Evaluator:
         if isinstance(p, A.PAnnot):
             return self.match(p.pat, v, env)
         raise MLError(f"unsupported pattern {type(p).__name__}")
+
+
+def _own_cells(constants: dict[int, Any]) -> dict[int, Any]:
+    """The net's constants, with copies of the reference cells they hold (`val x = ref 0`): an engine's run
+    starts from the values the declarations gave them, whatever the runs of other engines of the net
+    assigned. One copy per cell, so that two constants naming the same cell still share it."""
+    if not any(_holds_cell(v) for v in constants.values()):
+        return dict(constants)
+    memo: dict = {}
+    return {uid: copy.deepcopy(v, memo) if _holds_cell(v) else v for uid, v in constants.items()}
+
+
+def _holds_cell(v) -> bool:
+    stack = [v]
+    while stack:
+        x = stack.pop()
+        if x.__class__ is Cell:
+            return True
+        if x.__class__ is tuple:
+            stack.extend(x)
+    return False
 
 
 #: node class -> the rule evaluating it: a method `_e_<class>` of the evaluator, or its form's `evaluate`

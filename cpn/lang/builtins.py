@@ -51,7 +51,7 @@ def parse_type(text: str | T.Scheme) -> T.Scheme:
 
     def postfix():
         t = atom()
-        while peek() in ("list", "ms", "option"):
+        while peek() in ("list", "ms", "option", "ref"):
             t = T.TCon(take(), (t,))
         return t
 

@@ -92,7 +92,7 @@ class TypeInference(FunctionDraws):
             inner = self.type_of_annotation(te.arg)
             if inner is None:
                 return None
-            if te.name in ("list", "ms", "option"):
+            if te.name in ("list", "ms", "option", "ref"):
                 return T.TCon(te.name, (inner,))
             self.error("E0201", f"unknown type constructor '{te.name}'", te.span)
             return None

@@ -1,6 +1,6 @@
 """The machine's clock and text output, which CPN Tools models call through SML/NJ's Basis Library: the
 `Time` structure (CPN Tools names it `SMLTime`, its own `Time` being the model time), `Date.fromTimeLocal`
-and `Date.fromTimeUniv`, and `TextIO`'s output streams.
+and `Date.fromTimeUniv`, `TextIO`'s output streams, and SML's references (`ref e`, a `Cell`).
 
 A time (`Time.time`) is a number of seconds since 1970-01-01 00:00 UTC; `Time.fromSeconds`,
 `Time.toSeconds`, `Time.fromReal`, `Time.toReal` and `Date.fromTimeUniv` are functions of their argument.
@@ -8,7 +8,7 @@ The others have no state-space meaning (`SIMULATION_ONLY`): `Time.now` reads the
 `Date.fromTimeLocal` the machine's time zone, so a run that reads them depends on when and where it runs, not
 only on its seed. `TextIO` output is accepted and dropped: `openOut`, `openAppend` create no file, `output`
 and `print` write nothing (a stream is the name of its file). explore and check refuse a net that calls any of
-them where the net uses it (docs/semantics.md).
+them where the net uses it, and so is a reference variable (docs/semantics.md).
 
 >>> d = FUNCTIONS["Date.fromTimeUniv"](FUNCTIONS["SMLTime.fromSeconds"](86400 + 3661))
 >>> d[:6]
@@ -64,6 +64,30 @@ BUILTINS: dict[str, tuple[str, object]] = {
     "TextIO.stdErr": ("TextIO.outstream", "<stdErr>"),
 }
 
+
+
+class Cell:
+    """A reference variable's cell (`ref e`, CPN Tools' `globref`): its value changes in place (`x := e`) and
+    `!x` reads it. Equal only to itself, as SML's `=` on references. A cell made by a global `val` belongs
+    to the net; each engine works on copies of those made once (`cpn.expr.evaluate.Evaluator`), so a run
+    starts from the values the declarations gave them.
+
+    >>> c = FUNCTIONS["ref"](1)
+    >>> c.value = c.value + 1
+    >>> c.value, c == FUNCTIONS["ref"](2)
+    (2, False)
+    """
+
+    __slots__ = ("value",)
+
+    def __init__(self, value):
+        self.value = value
+
+    def __repr__(self) -> str:
+        return f"ref {self.value!r}"
+
+
+BUILTINS["ref"] = ("'a -> 'a ref", Cell)
 
 
 class OtherProgram(MLError):
@@ -126,6 +150,9 @@ _COMMS_HINT = ("The other program is no part of the model: for a state space (an
 _INPUT_HINT = ("A file is no part of the model: put its values in the model (a 'val' list, or tokens of an "
                "initial marking).")
 
+_REF_HINT = ("A reference variable has no state-space meaning: keep the value in a place (a token that the "
+             "transitions which read or assign it take and put back).")
+
 # the names with no state-space meaning: name -> (what it is, what to change)
 SIMULATION_ONLY: dict[str, tuple[str, str]] = {
     **{f"{s}.now": ("reads the machine's clock", _CLOCK_HINT) for s in ("Time", "SMLTime")},
@@ -136,6 +163,7 @@ SIMULATION_ONLY: dict[str, tuple[str, str]] = {
        if (name.startswith("TextIO.") or name == "print") and callable(fn) and "instream" not in ty},
     **{name: (_COMMS, _COMMS_HINT) for name in BUILTINS if name.startswith("ConnManagementLayer.")},
     **{name: ("reads a file", _INPUT_HINT) for name, (ty, _) in BUILTINS.items() if "instream" in ty},
+    "ref": ("makes a reference variable, whose value is not part of the marking", _REF_HINT),
 }
 
-__all__ = ["BUILTINS", "FUNCTIONS", "SIMULATION_ONLY", "STOPS_SIMULATE", "OtherProgram"]
+__all__ = ["BUILTINS", "Cell", "FUNCTIONS", "SIMULATION_ONLY", "STOPS_SIMULATE", "OtherProgram"]

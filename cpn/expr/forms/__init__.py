@@ -13,6 +13,7 @@ from cpn.expr.forms import (  # noqa: F401 - each registers its forms
     functions,  # fn, op +, #label
     let,  # let ... in ... end
     negation,  # ~ e
+    references,  # !e, e1 := e2
     sequence,  # (e1; e2)
 )
 

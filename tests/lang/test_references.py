@@ -1,0 +1,107 @@
+"""Reference variables (`ref e`, `!x`, `x := e`): simulate runs them, each run starting from the values the
+declarations gave them; `lint` warns at each `ref` (W0106), and `explore` and `check` refuse the net with one
+error per `ref` the net uses (E0206), where a function the net never calls is no use."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+import cpn
+from cpn.cli.main import main
+from cpn.errors import ModelError
+
+NET = """colset INT = int;
+var n : INT;
+val counter = ref 0;
+val alias = counter;
+fun next () = (counter := !counter + 1; !alias);
+fun unused () = ref 5;
+place A : INT = 1`0;
+place B : INT;
+trans t;
+arc A -> t : n;
+arc t -> B : next ();
+arc t -> A : n;
+"""
+
+
+def write(tmp_path, text=NET):
+    path = tmp_path / "r.cpnet"
+    path.write_text(text)
+    return str(path)
+
+
+def run(model, steps):
+    engine = model.engine(simulation=True, reference=True)
+    s = engine.initial_state()
+    for _ in range(steps):
+        [(_be, fire)] = engine.successors(s, lazy=True)
+        s = fire()
+    return engine.format_marking(s, 1)
+
+
+def test_assignments_are_seen_by_later_occurrences_and_through_every_name_of_the_cell(tmp_path):
+    model = cpn.load(write(tmp_path))
+    assert run(model, 3) == "1`1++1`2++1`3"
+
+
+def test_each_engine_starts_from_the_values_of_the_declarations(tmp_path):
+    model = cpn.load(write(tmp_path))
+    assert run(model, 2) == "1`1++1`2"
+    assert run(model, 2) == "1`1++1`2"  # not 1`3++1`4: the first run's assignments are its own
+
+
+def test_explore_refuses_each_ref_the_net_uses_at_the_ref(tmp_path):
+    path = write(tmp_path)
+    with pytest.raises(ModelError) as info:
+        cpn.load(path).engine()
+    # one error, at `ref 0` (line 3); `unused`'s ref is never called
+    assert [(d.code, d.params["name"], d.span.line, d.span.col) for d in info.value.diagnostics] == \
+        [("E0206", "ref", 3, 15)]
+    [d] = info.value.diagnostics
+    assert "reference variable" in d.message and "keep the value in a place" in d.hint
+
+
+def test_lint_warns_and_simulate_is_reproducible(tmp_path):
+    path = write(tmp_path)
+    out = tmp_path / "lint.json"
+    assert main(["lint", path, "--json", str(out)]) == 0
+    [entry] = json.loads(out.read_text())["models"]
+    assert entry["simulation_only"] is True
+    assert [(d["code"], d["line"]) for d in entry["diagnostics"]] == [("W0106", 3)]
+    runs = []
+    for k in range(2):
+        dest = tmp_path / f"run{k}.json"
+        assert main(["simulate", path, "--steps", "4", "--seed", "7", "--json", str(dest)]) == 0
+        runs.append(json.loads(dest.read_text()))
+    assert runs[0]["final_marking"] == runs[1]["final_marking"] == {"Top'A 1": "1`0",
+                                                                   "Top'B 1": "1`1++1`2++1`3++1`4"}
+
+
+def test_explore_exits_65_with_the_error_and_no_traceback(tmp_path, capsys):
+    assert main(["explore", write(tmp_path)]) == 65
+    err = capsys.readouterr().err
+    assert "error[E0206]" in err and "Traceback" not in err
+
+
+@pytest.mark.parametrize("text, col", [
+    ("val r = ref 1; val x : string = !r;", 33),  # !r is an int
+    ("val r = ref 1; val u = r := \"a\";", 24),  # an int cell holds no string: at the cell
+    ("val x = 1; val y = !x;", 21),  # x is no reference: at the operand
+    ("val r : int ref = ref true;", 19),
+])
+def test_type_errors_are_positioned(text, col):
+    with pytest.raises(ModelError) as info:
+        cpn.loads(text + " colset U = unit; place A : U; trans t; arc A -> t;", "r.cpnet")
+    assert [(d.code, d.span.line, d.span.col) for d in info.value.diagnostics if d.code.startswith("E")] == \
+        [("E0301", 1, col)]
+
+
+def test_assignment_is_looser_than_every_other_operator_and_bang_binds_an_atom():
+    model = cpn.loads("val r = ref [1]; val u = r := 0 :: !r @ [2]; val v = (r := tl (!r); hd (!r));"
+                      "colset U = unit; place A : U; trans t; arc A -> t;", "r.cpnet")
+    assert model.net.checked is not None
+    with pytest.raises(ModelError):
+        cpn.loads("val r = ref 1; val x = ! ;", "r.cpnet")
