@@ -283,6 +283,13 @@ class ReferenceEngine(EngineAPI):
         for a in t.arcs:
             if a.kind.empties:
                 m[a.place] = {}
+        if t.action is not None:  # a code segment: once per occurrence, before the delay and the output arcs
+            v = self._eval(t.action, env, t, "the action")
+            if len(t.outputs) == 1:
+                env[self.uids[t.outputs[0]]] = v
+            else:
+                for name, x in zip(t.outputs, v if t.outputs else ()):
+                    env[self.uids[name]] = x
         td = self._eval(t.delay, env, t, "the delay") if t.delay is not None else 0
         for a in t.arcs:
             if a.kind.produces and a.expr is not None:

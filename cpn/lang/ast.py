@@ -145,6 +145,10 @@ class TransDecl(Decl):
     guards: list[Expr]
     delay: Expr | None
     priority: Expr | None
+    # `output (x, y) action e`: CPN Tools' code segment, run once per occurrence before the output arcs
+    action: Expr | None = None
+    outputs: list[str] = field(default_factory=list)  # the variables the action's value binds
+    action_span: Span | None = None  # the keyword 'action'
 
 
 @dataclass(slots=True, eq=False)

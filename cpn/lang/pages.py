@@ -235,6 +235,8 @@ class PageChecks:
                 ok = False
             else:
                 self.unify(t, T.INT, d.priority.span, f"the priority of transition '{d.name}' (an integer)")
+        if d.action is not None:
+            ok = self._action(info, env) and ok
         if not ok:
             return
         # which variables are bound, and how
@@ -245,7 +247,8 @@ class PageChecks:
             all_vars(g, used)
         all_vars(d.delay, used)
         all_vars(d.priority, used)
-        bound: set[str] = {v for v, _ in info.ran}  # the choices, tried before a guard conjunct that reads them
+        all_vars(d.action, used)
+        bound: set[str] = {v for v, _ in info.ran} | set(d.outputs)  # the choices, tried before a guard conjunct that reads them
         for a in info.arcs:
             if a.kind.consumes and a.expr is not None:
                 bound |= pattern_vars(a.expr)
@@ -276,8 +279,51 @@ class PageChecks:
                              f"{self._where(binder.decl.span)}.")
             self.error("E0302", f"variable '{v}' of transition '{d.name}' is not bound (colour set "
                        f"'{sym.data}' is too large to try every value)", span, hint=hint.strip(), name=v)
-        info.variables = sorted(used)
+        # the action's outputs are bound when the binding element occurs: no part of the binding
+        info.variables = sorted(used - set(d.outputs))
         info.free = free
+
+    def _action(self, info: TransInfo, env: Env) -> bool:
+        """Type the action of a transition (`output (x, y) action e`): e's value is the output variables',
+        which must be declared variables that no input arc or guard binds. simulate runs it once per
+        occurrence; no state space can hold its effects (W0106, E0206 in explore and check)."""
+        d = info.decl
+        t = self.infer_top(d.action, env)
+        if t is None:
+            return False
+        types = []
+        for name in d.outputs:
+            sym = self.variables.get(name)
+            if sym is None:
+                self.error("E0201", f"the output variable '{name}' of transition '{d.name}' is not declared",
+                           d.action_span, hint=f"Declare it ('var {name} : COLSET;'), as CPN Tools requires of "
+                           "the output variables of a code segment.", name=name)
+                return False
+            types.append(sym.type)
+        bound_before = set()
+        for a in info.arcs:
+            if a.kind.consumes and a.expr is not None:
+                bound_before |= pattern_vars(a.expr)
+        for g in d.guards:
+            all_vars(g, bound_before)
+        clash = sorted(bound_before & set(d.outputs))
+        if clash:
+            self.error("E0206", f"the output variable '{clash[0]}' of transition '{d.name}' also occurs on an "
+                       "input arc or in the guard", d.action_span,
+                       hint="An output variable gets its value from the action when the transition occurs: "
+                            "use another variable on the input arcs and in the guard.", name=clash[0])
+            return False
+        if types:
+            want = types[0] if len(types) == 1 else T.TTuple(types)
+            names = ", ".join(d.outputs)
+            if not self.unify(t, want, d.action.span, f"the action of transition '{d.name}' (the value of "
+                              f"its output variable{'s' if len(types) > 1 else ''} {names})"):
+                return False
+        self.simulation_only(f"transition '{d.name}' has an action (a code segment that runs at each "
+                             "occurrence)", d.action_span,
+                             "For a state space, compute the values with pure CPN ML in the output arc "
+                             "inscriptions ('let val x = e in ... end') and drop the action.", "action")
+        return True
 
     def _guard(self, info: TransInfo, i: int, env: Env) -> T.Type | None:
         """The type of guard i of a transition; in a conjunct that binds output variables (`y = discrete (0,

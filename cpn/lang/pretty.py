@@ -85,7 +85,11 @@ def decl(d: A.Decl, indent: str = "") -> str:
         if isinstance(d.delay, A.BinOp) and d.delay.op == "@++":  # a real-valued delay (transform.delay)
             delay = f" @++ {atom(d.delay.right)}"
         prio = f" priority {atom(d.priority)}" if d.priority is not None else ""
-        return f"{indent}trans {name(d.name)}{guard}{delay}{prio};"
+        action = ""
+        if d.action is not None:
+            outputs = f" output ({', '.join(d.outputs)})" if d.outputs else ""
+            action = f"{outputs} action {expr(d.action)}"
+        return f"{indent}trans {name(d.name)}{guard}{delay}{prio}{action};"
     if isinstance(d, A.ArcDecl):
         ins = f" : {expr(d.expr)}" if d.expr is not None else ""
         src = (f"{d.src_kind} " if d.src_kind else "") + name(d.src)

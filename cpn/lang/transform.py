@@ -347,8 +347,19 @@ class ToAst(Transformer_NonRecursive):
 
     @v_args(meta=True)
     def trans_decl(self, meta, items):
-        (name, nspan), guard, delay, prio = items
-        return A.TransDecl(self.span(meta), name, nspan, guard or [], delay, prio)
+        (name, nspan), guard, delay, prio, action = items
+        d = A.TransDecl(self.span(meta), name, nspan, guard or [], delay, prio)
+        if action is not None:
+            d.outputs, d.action_span, d.action = action
+        return d
+
+    def action(self, items):
+        """(output variable names, span of the keyword 'action', the action)."""
+        names, keyword, expr = items
+        return names or [], self.tspan(keyword), expr
+
+    def outputs(self, items):
+        return [str(n) for n in items]
 
     def guard(self, items):
         return [g for g in items if g is not None]

@@ -118,7 +118,8 @@ class _Lowerer:
             me.transitions[tname] = len(self.transitions)
             self.transitions.append(TransitionInstance(
                 len(self.transitions), f"{page.name}'{tname} {k}", page.name, tname, k, tr.exprs(d.guards),
-                tr.expr(d.delay), tr.expr(d.priority), arcs, variables, free, dict(params), d.span))
+                tr.expr(d.delay), tr.expr(d.priority), arcs, variables, free, dict(params), d.span,
+                tr.expr(d.action), tuple(d.outputs)))
         for inst in page.instances:
             child = self.cm.modules[inst.module]
             if len(path) >= MAX_INSTANCE_DEPTH or inst.module in path:

@@ -71,6 +71,10 @@ class TransitionInstance:
     free: list[str]  # variables bound by trying every value of their colour set
     params: dict[int, Any]  # module parameter symbol uid -> value
     span: Span | None = None
+    # `output (x, y) action e`: run once per occurrence, before the delay and the output arcs, its value
+    # binding `outputs` (no part of the binding); simulation only, so only the reference interpreter runs it
+    action: E.Expr | None = None
+    outputs: tuple[str, ...] = ()
 
 
 @dataclass(eq=False)

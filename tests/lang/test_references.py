@@ -105,3 +105,63 @@ def test_assignment_is_looser_than_every_other_operator_and_bang_binds_an_atom()
     assert model.net.checked is not None
     with pytest.raises(ModelError):
         cpn.loads("val r = ref 1; val x = ! ;", "r.cpnet")
+
+
+ACTION = """colset INT = int;
+colset P = product INT * INT;
+var n, m, k : INT;
+val counter = ref 10;
+place A : INT = 1`0;
+place B : P;
+place C : INT;
+trans t output (m, k) action (counter := !counter + 1; (!counter, 2 * !counter));
+trans u action (counter := 0);
+arc A -> t : n;
+arc t -> B : (m, k);
+arc t -> A : n;
+arc C -> u : n;
+"""
+
+
+def test_an_action_runs_once_per_occurrence_before_the_output_arcs_and_binds_its_outputs(tmp_path):
+    model = cpn.load(write(tmp_path, ACTION))
+    engine = model.engine(simulation=True, reference=True)
+    s = engine.initial_state()
+    for _ in range(2):
+        [(be, fire)] = engine.successors(s, lazy=True)  # u has no token: only t, never fired twice a step
+        s = fire()
+    assert engine.format_marking(s, 1) == "1`(11,22)++1`(12,24)"
+    assert engine.format_binding_element(be) == "Top't 1: {n=0}"  # the outputs are no part of the binding
+
+
+def test_an_action_is_simulation_only_with_one_error_at_its_keyword(tmp_path):
+    path = write(tmp_path, ACTION)
+    with pytest.raises(ModelError) as info:
+        cpn.load(path).engine()
+    lines = ACTION.splitlines()
+    assert [(d.code, d.params["name"], d.span.line, d.span.col) for d in info.value.diagnostics] == [
+        ("E0206", "ref", 4, 15),
+        ("E0206", "action", 8, lines[7].index("action") + 1),
+        ("E0206", "action", 9, lines[8].index("action") + 1)]
+
+
+@pytest.mark.parametrize("trans, code, col", [
+    ("trans t output (z) action 1;", "E0201", 20),  # z is not declared
+    ("trans t output (n) action 1;", "E0206", 20),  # n is bound by the input arc
+    ('trans t output (m) action "x";', "E0301", 27),  # m is an INT
+])
+def test_output_variables_are_declared_unbound_variables_of_the_action_s_type(tmp_path, trans, code, col):
+    text = "colset INT = int; var n, m : INT; place A : INT = 1`0; place B : INT;\n" \
+           f"{trans}\narc A -> t : n; arc t -> B : m;\n"
+    with pytest.raises(ModelError) as info:
+        cpn.load(write(tmp_path, text))
+    assert [(d.code, d.span.line, d.span.col) for d in info.value.diagnostics if d.code.startswith("E")] == \
+        [(code, 2, col)]
+
+
+def test_an_action_prints_as_it_reads():
+    from cpn.lang.parser import parse
+    from cpn.lang.pretty import decl
+
+    [d] = [x for x in parse("trans t output (m, k) action (1, 2);", "a.cpnet").decls]
+    assert decl(d) == "trans t output (m, k) action (1, 2);"
