@@ -29,11 +29,12 @@ def left_spine(e: Any, cls: type, stop: Callable[[Any], bool] | None = None) -> 
 
 
 #: the stack of the thread that runs a deep evaluation (virtual memory: only the pages touched are used)
-DEEP_STACK_BYTES: int = 512 * 1024 * 1024
+DEEP_STACK_BYTES: int = 1024 * 1024 * 1024
 #: Python frames allowed there: 10,000 levels of a model's recursive function take 40,000 to 80,000 frames
-#: in the tree-walking evaluator; the stack holds this many frames of the deepest kind measured (about 2 KiB
-#: of C stack each for a call through a Python object's __call__) with room to spare
-DEEP_RECURSION_LIMIT: int = 200_000
+#: in the tree-walking evaluator, and a CPN Tools model that walks a year hour by hour (22,000 levels and
+#: more) needed between 200,000 and 300,000; the stack holds this many frames of the deepest kind measured
+#: (about 2 KiB of C stack each for a call through a Python object's __call__) with room to spare
+DEEP_RECURSION_LIMIT: int = 400_000
 
 _deep_lock = threading.Lock()
 

@@ -27,7 +27,7 @@ from cpn.expr import nodes as A
 from cpn.expr.forms import FORMS
 from cpn.values import draws
 from cpn.values.builtins import FUNCTIONS, TIME_BUILTINS, MLError, binop
-from cpn.values.effects import Cell
+from cpn.values.effects import Cell, cannot_run
 from cpn.values.multiset import Multiset, TimedMultiset
 
 
@@ -192,6 +192,10 @@ class Evaluator:
                     items = [(acc + (v,), n * k) for acc, n in items for v, k in m.items()]
                 return Multiset({v: n for v, n in items})
             return mult
+        if op == "input_ms":  # its stream comes from TextIO.openIn, which stops simulate first
+            return cannot_run(f"{csname}.input_ms", "reads a file")
+        if op in ("output", "output_col", "output_ms"):  # to a stream of TextIO.openOut: dropped, as its text
+            return lambda _stream_and_value: ()
         if op == "ran":
             def ran(_u):  # a draw where it is no choice (inside a function): simulation only
                 vals = cs.values()

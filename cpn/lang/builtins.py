@@ -157,6 +157,14 @@ TYPES: dict[str, str] = {
     "time": "unit -> int",
     # CPN Tools' ModelTime: the model time, an integer here (a real where '@++' makes it one in simulate)
     "ModelTime.fromInt": "int -> int",
+    **{f"Math.{f}": "real -> real" for f in ("sqrt", "sin", "cos", "tan", "atan", "exp", "ln", "log10")},
+    "Math.pi": "real",
+    "Math.e": "real",
+    "Math.atan2": "real * real -> real",
+    "Math.pow": "real * real -> real",
+    "ModelTime.time": "unit -> int",
+    "fromInt": "int -> int",
+    "toReal": "int -> real",
 }
 # ModelTime.toString of an integer model time, or of a real one (CPN Tools' option realtimestamp, '@++')
 _MT = T.TVar(overload=("int", "real"))
@@ -181,12 +189,17 @@ TYPES.update({
         ("offset", T.TCon("option", (T.TCon("Time.time"),))), ("second", T.INT), ("year", T.INT)]), _DATE)),
     **{f"Date.{f}": "Date.date -> int" for f in ("year", "day", "hour", "minute", "second")},
     "Date.month": "Date.date -> Date.month",
+    "Date.weekDay": "Date.date -> Date.weekday",
     "Date.offset": "Date.date -> Time.time option",
     "Date.compare": "Date.date * Date.date -> order",
     "Date.fmt": "string -> Date.date -> string",
     "Date.toString": "Date.date -> string",
+    "OS.Path.concat": "string * string -> string",
 })
 FUNCTIONS.update(sml_basis.FUNCTIONS)
+# the library's own types, which an annotation may name (`: Date.month`)
+LIBRARY_TYPES: frozenset[str] = frozenset({"Date.date", "Date.month", "Date.weekday", "Time.time",
+                                           "TextIO.instream", "TextIO.outstream"})
 # the types whose constructors the library declares; a model may declare constructors of the same names
 LIBRARY_CONSTRUCTOR_TYPES: frozenset[str] = frozenset({"exn"} | {t for t, _, _ in sml_basis.CONSTRUCTORS.values()})
 
@@ -201,7 +214,7 @@ def library_constructors() -> list[Symbol]:
         else:
             ty = T.TCon(tname)
         sym = Symbol(name, "con", ty, Span("<standard declarations>", 0, 0))
-        sym.data = ConInfo(tname, tag, "enum" if tname == "Date.month" else "union", has_arg)
+        sym.data = ConInfo(tname, tag, "enum" if tname in ("Date.month", "Date.weekday") else "union", has_arg)
         out.append(sym)
     return out
 
@@ -235,6 +248,12 @@ COLSET_OPS: dict[str, str] = {
     "mkstr": "cs -> string",
     "mult": "cs1 ms * cs2 ms -> cs ms",
     "lt": "cs * cs -> bool",
+    # `declare input_ms, output, ...`: a value or a multiset read from or written to a file, as CPN Tools
+    # writes them; simulate reads no file (it stops there) and writes nothing
+    "input_ms": "TextIO.instream -> cs ms",
+    "output": "TextIO.outstream * cs -> unit",
+    "output_col": "TextIO.outstream * cs -> unit",
+    "output_ms": "TextIO.outstream * cs ms -> unit",
 }
 
 

@@ -16,7 +16,7 @@ from cpn.expr.binding import children
 from cpn.expr.forms import FORMS
 from cpn.lang import ast as A
 from cpn.lang import types as T
-from cpn.lang.builtins import FINITE_DRAWS, RANDOM_BUILTINS, SIMULATION_ONLY_BUILTINS, STOPS_SIMULATE
+from cpn.lang.builtins import FINITE_DRAWS, LIBRARY_TYPES, RANDOM_BUILTINS, SIMULATION_ONLY_BUILTINS, STOPS_SIMULATE
 from cpn.lang.checked import Abort, Env
 from cpn.lang.function_draws import FunctionDraws
 from cpn.lang.symbols import Symbol
@@ -83,9 +83,12 @@ class TypeInference(FunctionDraws):
             if te.name in self.cstypes:
                 return self.cstypes[te.name]
             simple = {"int": T.INT, "bool": T.BOOL, "string": T.STRING, "unit": T.UNIT, "real": T.REAL,
-                      "INT": T.INT, "BOOL": T.BOOL, "STRING": T.STRING, "UNIT": T.UNIT, "order": T.TCon("order")}
+                      "INT": T.INT, "BOOL": T.BOOL, "STRING": T.STRING, "UNIT": T.UNIT, "order": T.TCon("order"),
+                      "time": T.INT}  # the model time, an integer (CPN Tools' `time`)
             if te.name in simple:
                 return simple[te.name]
+            if te.name in LIBRARY_TYPES:  # `: Date.month`, `NONE : TextIO.outstream option`
+                return T.TCon(te.name)
             self.lookup_colset(te.name, te.span)
             return None
         if isinstance(te, A.TPost):
@@ -223,7 +226,11 @@ class TypeInference(FunctionDraws):
                 return T.TFun(T.TTuple([T.ms(c) for c in comps.items]), T.ms(cst))
             return {"all": T.TFun(T.UNIT, T.ms(cst)), "size": T.TFun(T.UNIT, T.INT), "ran": T.TFun(T.UNIT, cst),
                     "ord": T.TFun(cst, T.INT), "col": T.TFun(T.INT, cst), "legal": T.TFun(cst, T.BOOL),
-                    "mkstr": T.TFun(cst, T.STRING), "lt": T.TFun(T.TTuple([cst, cst]), T.BOOL)}[op]
+                    "mkstr": T.TFun(cst, T.STRING), "lt": T.TFun(T.TTuple([cst, cst]), T.BOOL),
+                    "input_ms": T.TFun(T.TCon("TextIO.instream"), T.ms(cst)),
+                    "output": T.TFun(T.TTuple([T.TCon("TextIO.outstream"), cst]), T.UNIT),
+                    "output_col": T.TFun(T.TTuple([T.TCon("TextIO.outstream"), cst]), T.UNIT),
+                    "output_ms": T.TFun(T.TTuple([T.TCon("TextIO.outstream"), T.ms(cst)]), T.UNIT)}[op]
         if sym.kind == "builtin" and sym.name in RANDOM_BUILTINS:
             self.random_draw(e)
         if sym.kind == "builtin" and sym.name in SIMULATION_ONLY_BUILTINS:

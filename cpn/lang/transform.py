@@ -487,7 +487,7 @@ class ToAst(Transformer_NonRecursive):
 
     @v_args(meta=True)
     def int_(self, meta, items):
-        return A.Const(self.span(meta), int(items[0]), "int")
+        return A.Const(self.span(meta), int(str(items[0]).replace("~", "-")), "int")
 
     @v_args(meta=True)
     def real_(self, meta, items):

@@ -12,6 +12,7 @@ argument (SML): tuples for several arguments, curried otherwise.
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from cpn.values.multiset import Multiset, MultisetError, TimedMultiset
@@ -356,10 +357,34 @@ FUNCTIONS: dict[str, Any] = {
     "intTime": None,
     "time": None,
     "ModelTime.fromInt": lambda x: x,
+    # SML's Math (reals): where SML/NJ gives NaN or an infinity (Math.sqrt ~1.0, Math.ln 0.0), so do these
+    "Math.pi": math.pi,
+    "Math.e": math.e,
+    "Math.sqrt": lambda x: math.sqrt(x) if x >= 0 else math.nan,
+    "Math.sin": math.sin,
+    "Math.cos": math.cos,
+    "Math.tan": math.tan,
+    "Math.atan": math.atan,
+    "Math.atan2": lambda yx: math.atan2(*yx),
+    "Math.exp": lambda x: math.exp(x) if x < 709.0 else math.inf,
+    "Math.ln": lambda x: math.log(x) if x > 0 else (-math.inf if x == 0 else math.nan),
+    "Math.log10": lambda x: math.log10(x) if x > 0 else (-math.inf if x == 0 else math.nan),
+    "Math.pow": lambda xy: _pow(*xy),
+    "ModelTime.time": None,
+    # CPN Tools' model-time conversions at the top level (`toReal (fromInt n)`): the model time is an integer
+    "fromInt": lambda x: x,
+    "toReal": float,
     "ModelTime.toString": lambda t: _int_to_string(t) if isinstance(t, int) else f"{t:g}".replace("-", "~"),
 }
 
-TIME_BUILTINS = frozenset({"intTime", "time"})
+def _pow(x: float, y: float) -> float:
+    try:
+        return math.pow(x, y)
+    except (OverflowError, ValueError):
+        return math.inf if x > 0 or float(y).is_integer() else math.nan
+
+
+TIME_BUILTINS = frozenset({"intTime", "time", "ModelTime.time"})
 
 
 def binop(op: str, a: Any, b: Any) -> Any:

@@ -60,6 +60,9 @@ BUILTINS: dict[str, tuple[str, object]] = {
     "TextIO.closeOut": ("TextIO.outstream -> unit", _dropped),
     "TextIO.print": ("string -> unit", _dropped),
     "print": ("string -> unit", _dropped),
+    # CPN Tools' simulator names a folder for a run's output and creates it: simulate creates nothing
+    "Output.getSimOutputDir": ("unit -> string", lambda _u: "output/"),
+    "Output.initSimOutputDir": ("unit -> unit", _dropped),
     "TextIO.stdOut": ("TextIO.outstream", "<stdOut>"),
     "TextIO.stdErr": ("TextIO.outstream", "<stdErr>"),
 }
@@ -87,7 +90,16 @@ class Cell:
         return f"ref {self.value!r}"
 
 
+def _add(n: int):
+    def add(cell: Cell):
+        cell.value += n
+        return ()
+    return add
+
+
 BUILTINS["ref"] = ("'a -> 'a ref", Cell)
+BUILTINS["inc"] = ("int ref -> unit", _add(1))  # SML/NJ's inc and dec
+BUILTINS["dec"] = ("int ref -> unit", _add(-1))
 
 
 class OtherProgram(MLError):
@@ -96,7 +108,8 @@ class OtherProgram(MLError):
     occurrence that makes the call, naming the function."""
 
 
-def _cannot_run(name: str, what: str):
+def cannot_run(name: str, what: str):
+    """A library function that simulate cannot run: calling it raises OtherProgram naming `name`."""
     def run(arg):
         raise OtherProgram(f"'{name}' {what}: simulate cannot run it ({_describe(arg)})")
     return run
@@ -113,25 +126,25 @@ def _describe(arg) -> str:
 _COMMS = "talks to another program over a socket (Comms/CPN)"
 BUILTINS.update({
     "ConnManagementLayer.openConnection": ("string * string * int -> unit",
-                                           _cannot_run("ConnManagementLayer.openConnection", _COMMS)),
+                                           cannot_run("ConnManagementLayer.openConnection", _COMMS)),
     "ConnManagementLayer.acceptConnection": ("string * int -> unit",
-                                             _cannot_run("ConnManagementLayer.acceptConnection", _COMMS)),
+                                             cannot_run("ConnManagementLayer.acceptConnection", _COMMS)),
     "ConnManagementLayer.closeConnection": ("string -> unit",
-                                            _cannot_run("ConnManagementLayer.closeConnection", _COMMS)),
+                                            cannot_run("ConnManagementLayer.closeConnection", _COMMS)),
     "ConnManagementLayer.send": ("string * 'a * ('a -> Word8Vector.vector) -> unit",
-                                 _cannot_run("ConnManagementLayer.send", _COMMS)),
+                                 cannot_run("ConnManagementLayer.send", _COMMS)),
     "ConnManagementLayer.receive": ("string * (Word8Vector.vector -> 'a) -> 'a",
-                                    _cannot_run("ConnManagementLayer.receive", _COMMS)),
+                                    cannot_run("ConnManagementLayer.receive", _COMMS)),
     "integerEncode": ("int -> Word8Vector.vector", lambda n: str(n).encode()),
     "integerDecode": ("Word8Vector.vector -> int", lambda b: int(b.decode())),
     "stringEncode": ("string -> Word8Vector.vector", lambda x: x.encode()),
     "stringDecode": ("Word8Vector.vector -> string", lambda b: b.decode()),
     # file input: the files a model reads are not part of it, so simulate reads none
-    "TextIO.openIn": ("string -> TextIO.instream", _cannot_run("TextIO.openIn", "reads a file")),
-    "TextIO.inputLine": ("TextIO.instream -> string option", _cannot_run("TextIO.inputLine", "reads a file")),
-    "TextIO.inputAll": ("TextIO.instream -> string", _cannot_run("TextIO.inputAll", "reads a file")),
-    "TextIO.endOfStream": ("TextIO.instream -> bool", _cannot_run("TextIO.endOfStream", "reads a file")),
-    "TextIO.closeIn": ("TextIO.instream -> unit", _cannot_run("TextIO.closeIn", "reads a file")),
+    "TextIO.openIn": ("string -> TextIO.instream", cannot_run("TextIO.openIn", "reads a file")),
+    "TextIO.inputLine": ("TextIO.instream -> string option", cannot_run("TextIO.inputLine", "reads a file")),
+    "TextIO.inputAll": ("TextIO.instream -> string", cannot_run("TextIO.inputAll", "reads a file")),
+    "TextIO.endOfStream": ("TextIO.instream -> bool", cannot_run("TextIO.endOfStream", "reads a file")),
+    "TextIO.closeIn": ("TextIO.instream -> unit", cannot_run("TextIO.closeIn", "reads a file")),
 })
 
 FUNCTIONS: dict[str, object] = {name: fn for name, (_, fn) in BUILTINS.items()}
@@ -164,6 +177,8 @@ SIMULATION_ONLY: dict[str, tuple[str, str]] = {
     **{name: (_COMMS, _COMMS_HINT) for name in BUILTINS if name.startswith("ConnManagementLayer.")},
     **{name: ("reads a file", _INPUT_HINT) for name, (ty, _) in BUILTINS.items() if "instream" in ty},
     "ref": ("makes a reference variable, whose value is not part of the marking", _REF_HINT),
+    "Output.getSimOutputDir": ("names the simulator's output folder", _OUTPUT_HINT),
+    "Output.initSimOutputDir": ("creates the simulator's output folder (simulate creates nothing)", _OUTPUT_HINT),
 }
 
-__all__ = ["BUILTINS", "Cell", "FUNCTIONS", "SIMULATION_ONLY", "STOPS_SIMULATE", "OtherProgram"]
+__all__ = ["BUILTINS", "Cell", "FUNCTIONS", "cannot_run", "SIMULATION_ONLY", "STOPS_SIMULATE", "OtherProgram"]

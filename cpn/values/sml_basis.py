@@ -33,6 +33,7 @@ CONSTRUCTORS: dict[str, tuple[str, Any, bool]] = {
     "EQUAL": ("order", "EQUAL", False),
     "GREATER": ("order", "GREATER", False),
     **{f"Date.{m}": ("Date.month", i, False) for i, m in enumerate(MONTHS)},
+    **{f"Date.{d}": ("Date.weekday", i, False) for i, d in enumerate(WEEKDAYS)},
 }
 
 
@@ -106,6 +107,7 @@ FUNCTIONS: dict[str, Any] = {
     "Date.date": _date,
     "Date.year": _field(0),
     "Date.month": _field(1),
+    "Date.weekDay": lambda d: _py(d).weekday(),  # Date.Mon is 0, as the constructors are numbered
     "Date.day": _field(2),
     "Date.hour": _field(3),
     "Date.minute": _field(4),
@@ -114,4 +116,6 @@ FUNCTIONS: dict[str, Any] = {
     "Date.compare": lambda ab: _order(ab[0][:6], ab[1][:6]),
     "Date.fmt": _fmt,
     "Date.toString": _fmt("%a %b %d %H:%M:%S %Y"),
+    # OS.Path joins names as text (no file is touched); the rest of OS talks to the machine
+    "OS.Path.concat": lambda ab: ab[0] + ab[1] if not ab[0] or ab[0].endswith("/") else ab[0] + "/" + ab[1],
 }
