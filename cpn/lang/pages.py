@@ -296,7 +296,7 @@ class PageChecks:
             sym = self.variables.get(name)
             if sym is None:
                 self.error("E0201", f"the output variable '{name}' of transition '{d.name}' is not declared",
-                           d.action_span, hint=f"Declare it ('var {name} : COLSET;'), as CPN Tools requires of "
+                           d.action.span, hint=f"Declare it ('var {name} : COLSET;'), as CPN Tools requires of "
                            "the output variables of a code segment.", name=name)
                 return False
             types.append(sym.type)
@@ -309,7 +309,7 @@ class PageChecks:
         clash = sorted(bound_before & set(d.outputs))
         if clash:
             self.error("E0206", f"the output variable '{clash[0]}' of transition '{d.name}' also occurs on an "
-                       "input arc or in the guard", d.action_span,
+                       "input arc or in the guard", d.action.span,
                        hint="An output variable gets its value from the action when the transition occurs: "
                             "use another variable on the input arcs and in the guard.", name=clash[0])
             return False
@@ -320,7 +320,7 @@ class PageChecks:
                               f"its output variable{'s' if len(types) > 1 else ''} {names})"):
                 return False
         self.simulation_only(f"transition '{d.name}' has an action (a code segment that runs at each "
-                             "occurrence)", d.action_span,
+                             "occurrence)", d.action.span,
                              "For a state space, compute the values with pure CPN ML in the output arc "
                              "inscriptions ('let val x = e in ... end') and drop the action.", "action")
         return True

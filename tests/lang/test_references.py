@@ -134,20 +134,20 @@ def test_an_action_runs_once_per_occurrence_before_the_output_arcs_and_binds_its
     assert engine.format_binding_element(be) == "Top't 1: {n=0}"  # the outputs are no part of the binding
 
 
-def test_an_action_is_simulation_only_with_one_error_at_its_keyword(tmp_path):
+def test_an_action_is_simulation_only_with_one_error_at_it(tmp_path):
     path = write(tmp_path, ACTION)
     with pytest.raises(ModelError) as info:
         cpn.load(path).engine()
     lines = ACTION.splitlines()
     assert [(d.code, d.params["name"], d.span.line, d.span.col) for d in info.value.diagnostics] == [
         ("E0206", "ref", 4, 15),
-        ("E0206", "action", 8, lines[7].index("action") + 1),
-        ("E0206", "action", 9, lines[8].index("action") + 1)]
+        ("E0206", "action", 8, lines[7].index("action (") + 8),
+        ("E0206", "action", 9, lines[8].index("counter :=") + 1)]  # at the action (its parentheses are no node)
 
 
 @pytest.mark.parametrize("trans, code, col", [
-    ("trans t output (z) action 1;", "E0201", 20),  # z is not declared
-    ("trans t output (n) action 1;", "E0206", 20),  # n is bound by the input arc
+    ("trans t output (z) action 1;", "E0201", 27),  # z is not declared
+    ("trans t output (n) action 1;", "E0206", 27),  # n is bound by the input arc
     ('trans t output (m) action "x";', "E0301", 27),  # m is an INT
 ])
 def test_output_variables_are_declared_unbound_variables_of_the_action_s_type(tmp_path, trans, code, col):
