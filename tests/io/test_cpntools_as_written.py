@@ -310,13 +310,17 @@ def test_discrete_on_an_output_arc_is_a_choice_and_inside_a_function_called_in_a
     assert d.code == "E0206" and d.message.startswith("'discrete' draws a random value") and "roll" not in d.message
 
 
-def test_a_reference_declared_with_val_and_read_by_an_inscription_is_refused_at_the_read():
+def test_a_reference_declared_with_val_and_read_by_an_inscription_is_simulated_and_refused_at_the_ref(tmp_path):
     decls = DECLS + '<ml id="M2">val delay = ref 0;</ml>'
     # read by the guard: the value the previous occurrence assigned (tests/io/test_cpntools_code_refs.py has
-    # the variable read only by the outputs of the transition that assigns it)
+    # the variable read only by the outputs of the transition that assigns it, which is explored)
     body = (place("P1", "A", "S", "1`0") + trans("T1", "t", cond="x = (!delay)", code="input (x)\naction\ndelay := x")
             + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P1", "x"))
+    xml = cpn_xml(decls, page("PG1", "Top", body))
+    model = load(tmp_path, xml)
+    assert sorted(w.code for w in model.warnings) == ["W0106", "W0106"]  # the ref and the action
     with pytest.raises(ModelError) as info:
-        translate_text(cpn_xml(decls, page("PG1", "Top", body)), "m.cpn")
-    [d] = info.value.diagnostics
-    assert d.code == "E0502" and "reads the reference variable 'delay' ('val delay = ref ...'" in d.message
+        model.engine()
+    line = next(i + 1 for i, x in enumerate(xml.splitlines()) if "val delay = ref 0" in x)
+    ref = [d for d in info.value.diagnostics if d.params["name"] == "ref"]
+    assert [(d.code, d.span.line) for d in ref] == [("E0206", line)]

@@ -4,8 +4,9 @@ CPN Tools' declarations and inscriptions are CPN ML already, so the translation 
 globbox declarations (blocks flattened), pages to modules, the root page to the top level, substitution
 transitions to `instance` statements, fusion sets, ports, arcs of every orientation. Whatever cannot
 have a deterministic state space is left to the front end where `simulate` can run it (random
-distributions, `@++` real delays: lint warns, explore refuses each) and refused with a positioned E0502
-otherwise (code segments with side effects, synchronous channels, assigned reference variables).
+distributions, `@++` real delays, reference variables and the code segments that use them, which become
+transition actions: lint warns, explore refuses each) and refused with a positioned E0502 otherwise (code
+segments with other side effects, synchronous channels).
 Every generated statement carries a comment with its origin, and `Translation.locate` maps a position
 of the generated text back to the XML. Imports `cpn.diagnostics`, `cpn.errors` and the standard library.
 """
@@ -19,7 +20,7 @@ from dataclasses import dataclass, field
 from cpn.diagnostics import Diagnostic, Span
 from cpn.errors import ModelError
 from cpn.io.cpntools import _ml as ml
-from cpn.io.cpntools._decls import _Declarations
+from cpn.io.cpntools._decls import CODE_RE, _Declarations
 from cpn.io.cpntools._text import (
     Origin,
     Translation,
@@ -31,6 +32,7 @@ from cpn.io.cpntools._text import (
     _timed_literals,
 )
 from cpn.io.cpntools._xml import Element, parse_xml
+from cpn.values import sml_basis
 from cpn.values.effects import SIMULATION_ONLY
 
 __all__ = ["Origin", "Translation", "translate", "translate_file", "translate_text", "remap_error"]
@@ -92,9 +94,6 @@ class _CodeOutputs:
 _ARC_HEADS = {"ptot": "arc {p} -> {t}", "ttop": "arc {t} -> {p}", "bothdir": "arc {p} <-> {t}",
               "inhibitor": "inhibitor {p} -> {t}"}
 
-# input (..); output (..); action e (the ';' after the patterns may be left out, as CPN Tools reads it)
-_CODE_RE = re.compile(r"\s*(?:input\s*(?P<inp>\([^)]*\)|[A-Za-z][\w']*)\s*;?)?\s*"
-                      r"(?:output\s*(?P<out>\([^)]*\)|[A-Za-z][\w']*)\s*;?)?\s*action\b(?P<act>.*)\Z", re.S)
 
 
 def _origin_at(origin: Origin, text: str, offset: int) -> Origin:
@@ -124,6 +123,8 @@ class _Translator(_Declarations):
         self.var_names: set[str] = set()  # the variables the globbox declares
         self.impure: set[str] = set(ml.RANDOM_FUNCTIONS)  # functions that draw random values
         self.code_outputs: dict[str, _CodeOutputs] = {}  # transition id -> its code segment's outputs
+        # transition id -> (outputs, action, origin) of a code segment that uses references: kept as an action
+        self.code_actions: dict[str, tuple[list[str], str, Origin]] = {}
         self.globref_consts: dict[str, str] = {}  # globrefs translated as constants
         self.globrefs_refused: dict[str, Element] = {}
         self.assigned: set[str] = set()
@@ -444,6 +445,11 @@ class _Translator(_Declarations):
                 parts += [(f" priority {STANDARD_PRIORITIES[prio]}", None)]
             else:
                 parts += [(" priority ", None), (prio, po)]
+        if t.id in self.code_actions:
+            outs, act, ao = self.code_actions[t.id]
+            head = f" output ({', '.join(outs)})" if outs else ""
+            parts += [(f"{head} action (", None), (self._inscription(act, ao, f"the code segment of {what}"), ao),
+                      (")", None)]
         parts.append((";", None))
         self.out.stmt(parts, o, ind)
 
@@ -470,7 +476,7 @@ class _Translator(_Declarations):
         it, a guard `outputs = action` (CPN Tools runs the action once per occurrence: one draw, read by
         every inscription). Everything else is refused."""
         # CPN Tools reads the ';' after the input and output patterns as optional (`input (c)` newline `action`)
-        m = _CODE_RE.match(ml.strip_comments(code))
+        m = CODE_RE.match(ml.strip_comments(code))
         if not m:
             self.error(origin, f"{what} has a code segment that is not 'input (..); output (..); action e'",
                        hint="Rewrite the code segment, or move its computation into arc inscriptions.")
@@ -482,6 +488,14 @@ class _Translator(_Declarations):
         assigns = self.code_assigns.get(t.id) if not outs else None
         if assigns:
             self._code_assignments(t, code, assigns, origin, what)
+        elif (t.id in self.kept_actions) if not outs else self._uses_refs(act):
+            # it assigns reference variables (or, binding outputs, reads them): CPN Tools runs it once per
+            # occurrence, before the output arcs; so does simulate, and explore and check refuse it
+            if not self._refuse_code_action(act, outs, origin, what, references=True):
+                ao = _origin_at(origin, code, code.index(act) if act in code else 0)
+                self.code_actions[t.id] = (outs, act, ao)
+                self._note(f"the code segment of {what} uses reference variables: it is the transition's "
+                           "action, which simulate runs once per occurrence (explore and check refuse it)")
         elif not outs:
             self._note(f"the code segment of {what} binds no output variable: its action is not "
                        "executed (it cannot change the marking)")
@@ -506,19 +520,23 @@ class _Translator(_Declarations):
         self._note(f"the code segment of {what} assigns {', '.join(names)}, which only its output arcs read: "
                    "its action is evaluated in a 'let' around them")
 
-    def _refuse_code_action(self, act: str, outs: list[str], origin: Origin, what: str) -> bool:
+    def _refuse_code_action(self, act: str, outs: list[str], origin: Origin, what: str,
+                            references: bool = False) -> bool:
         """Refuse an action that binds output variables with side effects (other than text output and the
-        machine's clock, which the front end leaves to simulate); True if refused."""
+        machine's clock, which the front end leaves to simulate, and with `references` reference variables,
+        which make it the transition's action); True if refused."""
         if self._refuse_random(act, origin, f"the code segment of {what}", effects=False):
             return True
-        effects = sorted({n for n, _ in ml.names(act) if n not in SIMULATION_ONLY and (
+        effects = sorted({n for n, _ in ml.names(act) if n not in SIMULATION_ONLY and n not in sml_basis.FUNCTIONS and (
             n.split(".")[0] in ml.SIDE_EFFECT_NAMES or n in ml.SIDE_EFFECT_NAMES or self._side_effect_via(n))})
-        if effects or ":=" in ml.strip_comments(act) or re.search(r"!\s*[A-Za-z(]", ml.strip_comments(act)):
+        if effects or (not references and self._uses_refs(act)):
             used = ", ".join(effects) if effects else "a reference variable"
-            self.error(origin, f"{what} has a code segment that binds the output variable(s) {', '.join(outs)} "
-                       f"with an action that uses {used}: code with side effects has no place in a state space",
-                       hint="Compute the output values with pure CPN ML (no I/O, no references, no MSC), or "
-                            "remove the code segment.")
+            binds = (f"binds the output variable(s) {', '.join(outs)} with an action that uses" if outs
+                     else "has an action that uses")
+            self.error(origin, f"{what} has a code segment that {binds} {used}: code with side effects has no "
+                       "place in a state space",
+                       hint="Compute the output values with pure CPN ML (no I/O, no MSC), or remove the code "
+                            "segment.")
             return True
         return False
 

@@ -18,6 +18,10 @@ from cpn.values.builtins import FUNCTIONS as LIBRARY
 from cpn.values.draws import DISTRIBUTIONS
 from cpn.values.effects import SIMULATION_ONLY
 
+# a code segment: input (..); output (..); action e (the ';' after the patterns may be left out, as CPN Tools
+# reads it)
+CODE_RE = re.compile(r"\s*(?:input\s*(?P<inp>\([^)]*\)|[A-Za-z][\w']*)\s*;?)?\s*"
+                     r"(?:output\s*(?P<out>\([^)]*\)|[A-Za-z][\w']*)\s*;?)?\s*action\b(?P<act>.*)\Z", re.S)
 _STRING = r'"(?:[^"\\]|\\.)*"'  # an SML string literal
 _LITERAL = r"~?\d+(?:\.\d+)?(?:[eE]~?\d+)?|" + _STRING + r"|true|false|\(\)"  # a constant of a globref
 
@@ -54,6 +58,7 @@ class _Declarations:
             self.fun_bodies.setdefault(name, []).append(body)
         self._ref_declarations(gb)
         self._scan_code_refs()
+        self._kept_actions()
         self._needed_declarations(gb)
         self._impure_functions(funs, user_names | {name for name, _ in funs})
 
@@ -112,6 +117,8 @@ class _Declarations:
                 if n in DISTRIBUTIONS:  # SML/NJ's Random.rand, Random.randRange, ...: as the distributions
                     continue
                 if n in SIMULATION_ONLY:  # text output, the machine's clock: simulated, refused by explore
+                    continue
+                if n in sml_basis.FUNCTIONS:  # OS.Path.concat: a function of its arguments
                     continue
                 if n.split(".")[0] in ml.RANDOM_STRUCTURES or n.split(".")[0] in ml.SIDE_EFFECT_NAMES:
                     library.add(n)
@@ -196,6 +203,8 @@ class _Declarations:
                 return False
             for n, _ in ml.names(t):
                 head = n.split(".")[0]
+                if n in sml_basis.FUNCTIONS:
+                    continue
                 if (n in DISTRIBUTIONS or n in SIMULATION_ONLY or n in ml.RANDOM_FUNCTIONS or n.endswith(".ran")
                         or head in ml.SIDE_EFFECT_NAMES or head in ml.RANDOM_STRUCTURES or n in ml.SIDE_EFFECT_NAMES
                         or head == "TextIO"):
@@ -231,7 +240,10 @@ class _Declarations:
                 for tag in ("cond", "time", "priority"):
                     needed |= words(tr.child_text(tag))
                 code = tr.child_text("code")
-                if re.search(r"\boutput\b", ml.strip_comments(code)):
+                m = CODE_RE.match(ml.strip_comments(code)) if code else None
+                # bound to outputs (not `CS.output (...)` in an action), or kept as an action that assigns
+                # references
+                if (m is not None and m.group("out")) or tr.attrs.get("id", "?") in self.kept_actions:
                     needed |= words(code)
             for a in page.findall("arc"):
                 needed |= words(a.child_text("annot"))
@@ -256,7 +268,7 @@ class _Declarations:
                     self.needed_ml.add(id(el))
                     needed |= used
                     changed = True
-
+        self.needed_names = needed  # a globref the net never names is left out
     def _impure_chain(self, n: str) -> list[str]:
         """`n`, the function it calls that makes it impure, and so on to the library function."""
         chain = [n]
@@ -267,6 +279,72 @@ class _Declarations:
     def _side_effect_via(self, n: str) -> bool:
         """True if declared function `n` has a side effect through the functions it calls."""
         return n in self.impure_via and self._impure_chain(n)[-1].split(".")[0] in ml.SIDE_EFFECT_NAMES
+
+    def _refs_of(self, text: str) -> tuple[set[str], set[str]]:
+        """The names CPN ML text reads with `!` and assigns with `:=`, directly or through the functions the
+        globbox declares."""
+        read: set[str] = set()
+        assigned: set[str] = set()
+        seen: set[str] = set()
+        stack = [text]
+        while stack:
+            t = stack.pop()
+            clean = ml.strip_comments(t)
+            read |= set(re.findall(r"!\s*\(?\s*([A-Za-z][\w']*)", clean))
+            assigned |= ml.assigned_refs(t)
+            for n, _ in ml.names(t):
+                if n in self.fun_bodies and n not in seen:
+                    seen.add(n)
+                    stack.extend(self.fun_bodies[n])
+        return read, assigned
+
+    def _kept_actions(self) -> None:
+        """The transitions whose code segment binds no output variable but must run all the same
+        (`kept_actions`): it assigns a reference variable that the marking can depend on, that is one read by
+        an inscription, by a code segment that binds output variables, or by another such action. A code
+        segment that only logs (its references read by itself and other logging code) is still left out."""
+        matter: set[str] = set()
+        actions: dict[str, tuple[set[str], set[str]]] = {}
+        for page in self.cpnet.findall("page"):
+            texts = [pl.child_text("initmark") for pl in page.findall("place")]
+            texts += [a.child_text("annot") for a in page.findall("arc")]
+            for tr in page.findall("trans"):
+                texts += [tr.child_text(tag) for tag in ("cond", "time", "priority")]
+                code = tr.child_text("code")
+                m = CODE_RE.match(ml.strip_comments(code)) if code else None
+                if m is None:
+                    continue
+                if m.group("out"):
+                    texts.append(code)
+                elif tr.attrs.get("id", "?") not in self.code_assigns:
+                    actions[tr.attrs.get("id", "?")] = self._refs_of(m.group("act"))
+        for t in texts:
+            matter |= self._refs_of(t)[0]
+        self.kept_actions: set[str] = set()
+        changed = True
+        while changed:
+            changed = False
+            for tid, (read, assigned) in actions.items():
+                if tid not in self.kept_actions and assigned & matter:
+                    self.kept_actions.add(tid)
+                    matter |= read
+                    changed = True
+
+    def _uses_refs(self, text: str, assigns: bool = False) -> bool:
+        """Whether CPN ML text assigns a reference variable (`x := e`), or with `assigns` False also reads one
+        (`!x`), directly or through the functions the globbox declares."""
+        seen: set[str] = set()
+        stack = [text]
+        while stack:
+            t = stack.pop()
+            clean = ml.strip_comments(t)
+            if ":=" in clean or (not assigns and re.search(r"!\s*[A-Za-z(]", clean)):
+                return True
+            for n, _ in ml.names(t):
+                if n in self.fun_bodies and n not in seen:
+                    seen.add(n)
+                    stack.extend(self.fun_bodies[n])
+        return False
 
     def _draws(self, text: str) -> bool:
         """Whether CPN ML text draws a random value (a distribution, `CS.ran()`, SML/NJ's `Random`), directly
@@ -318,14 +396,6 @@ class _Declarations:
             text = re.sub(r"!\s*" + re.escape(name) + r"\b", name, text)
         return text
 
-    def _check_globref_use(self, text: str, origin: Origin, what: str) -> None:
-        for name, el in self.globrefs_refused.items():
-            if re.search(r"!\s*" + re.escape(name) + r"\b", ml.strip_comments(text)):
-                kind = "globref" if el.tag == "globref" else f"'val {name} = ref ...' at line {el.line}"
-                self.error(origin, f"{what} reads the reference variable '{name}' ({kind}), whose value "
-                           "is not part of the marking",
-                           hint="Make it a constant ('val') or a token on a place.")
-
     def _unclosed(self, text: str, origin: Origin) -> bool:
         """E0102 where a comment or a string of the CPN ML text at `origin` is never closed."""
         found = ml.unclosed(text)
@@ -361,7 +431,6 @@ class _Declarations:
             return text
         self._refuse_random(text, origin, what, finite=True)
         # '@++' (a real-valued delay) is left to the front end: simulate runs it, explore and check refuse it
-        self._check_globref_use(text, origin, what)
         for name, ran in self.ran_aliases.items():
             text = re.sub(r"\b" + re.escape(name) + r"\s*\(\s*\)", ran, text)
         return self._rewrite_globrefs(text)
@@ -567,7 +636,6 @@ class _Declarations:
 
         for name, _ in ml.declared_functions(text):
             self.declared.add(name)
-        self._check_globref_use(text, origin, f"the declaration {origin.element}")
         for name, ran in self.ran_aliases.items():
             text = re.sub(r"(?<![\w'.])" + re.escape(name) + r"\s*\(\s*\)", ran, text)
         text = ml.separate_declarations(self._rewrite_globrefs(ml.single_semicolons(text)))
@@ -593,9 +661,16 @@ class _Declarations:
             self.declared.add(name)
             return
         self.globrefs_refused[name] = el
-        why = "it is assigned with ':='" if name in self.assigned else "its initial value is not a literal"
-        self.out.raw(f"(* globref {name} = {_short(expr)} ({origin.element}): a reference variable, not translated "
-                     f"because {why}; any inscription that reads it is refused *)")
+        if name not in getattr(self, "needed_names", set()):
+            self.out.raw(f"(* globref {name} ({origin.element}) at line {el.line}: not used by the net, left out *)")
+            return
+        # a reference variable: simulate runs the net, explore and check refuse it (docs/semantics.md)
+        self.declared.add(name)
+        at = Origin(mlel.text_line, mlel.text_col, origin.element, None, origin.what) if mlel is not None else None
+        raw = (mlel.text or "").replace("\r\n", "\n") if mlel is not None else ""
+        if at is not None and raw[: len(raw) - len(raw.lstrip())]:
+            at = _text_origin_from(mlel.text_line, mlel.text_col, raw[: len(raw) - len(raw.lstrip())], at)
+        self.out.stmt([(f"val {name} = ref (", None), (expr, at), (");", None)], origin)
 
     def _string_vals(self) -> dict[str, str]:
         """The string constants of the globbox (`val buildpath = "c:/work/";`), for `use (buildpath^"x.sml")`."""
