@@ -14,7 +14,7 @@ from cpn.engine.api import P_NORMAL, EngineAPI
 from cpn.errors import EvaluationError
 from cpn.expr import binding as B
 from cpn.expr import nodes as A
-from cpn.expr.evaluate import run_deep_again
+from cpn.expr.evaluate import global_cells, run_deep_again
 from cpn.values.builtins import MLError
 from cpn.values.colours import format_multiset
 from cpn.values.multiset import Multiset, MultisetError, TimedMultiset
@@ -30,6 +30,8 @@ class ReferenceEngine(EngineAPI):
     def __init__(self, net, time_condensation: bool = False):
         self._setup(net, time_condensation)
         self.uids = {name: sym.uid for name, sym in net.variables.items()}
+        # the net's reference cells: an evaluation run again on a deep stack starts from their values
+        self._cells = global_cells(self.ev.globals)
 
     # -- states are tuples of frozensets of (key, count), plus the clock for timed nets
     def initial_state(self):
@@ -61,10 +63,13 @@ class ReferenceEngine(EngineAPI):
     # -- evaluation helpers
     def _eval(self, e, env, t, what):
         try:
+            saved = [c.value for c in self._cells]
             try:
                 return self.ev.eval(e, env)
             except RecursionError:
                 pass  # a function of the model recursing deeply: again on a deep stack, outside this handler
+            for c, v in zip(self._cells, saved):  # so that the assignments of the first attempt count once
+                c.value = v
             return run_deep_again(self.ev.eval, e, env)
         except (MLError, MultisetError, ArithmeticError, IndexError, TypeError, RecursionError) as exc:
             binding = {}

@@ -298,6 +298,19 @@ def _own_cells(constants: dict[int, Any]) -> dict[int, Any]:
     return {uid: copy.deepcopy(v, memo) if _holds_cell(v) else v for uid, v in constants.items()}
 
 
+def global_cells(values: dict[int, Any]) -> list[Cell]:
+    """The reference cells that global values hold (inside tuples too), each once."""
+    out: dict[int, Cell] = {}
+    stack = list(values.values())
+    while stack:
+        x = stack.pop()
+        if x.__class__ is Cell:
+            out.setdefault(id(x), x)
+        elif x.__class__ is tuple:
+            stack.extend(x)
+    return list(out.values())
+
+
 def _holds_cell(v) -> bool:
     stack = [v]
     while stack:

@@ -165,3 +165,14 @@ def test_an_action_prints_as_it_reads():
 
     [d] = [x for x in parse("trans t output (m, k) action (1, 2);", "a.cpnet").decls]
     assert decl(d) == "trans t output (m, k) action (1, 2);"
+
+
+def test_an_evaluation_run_again_on_a_deep_stack_assigns_once(tmp_path):
+    # f counts its calls in a cell and recurses beyond Python's ordinary stack: the first attempt's
+    # assignments are undone before the evaluation is run again
+    text = NET.replace("fun unused () = ref 5;",
+                       "fun f (k : int) = (counter := !counter + 1; if k = 0 then 0 else f (k - 1));") \
+              .replace("arc t -> B : next ();", "arc t -> B : f 5000 + !counter;")
+    engine = cpn.load(write(tmp_path, text)).engine(simulation=True, reference=True)
+    [(_be, fire)] = engine.successors(engine.initial_state(), lazy=True)
+    assert engine.format_marking(fire(), 1) == "1`5001"
