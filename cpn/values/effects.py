@@ -145,6 +145,10 @@ BUILTINS.update({
     "TextIO.inputAll": ("TextIO.instream -> string", cannot_run("TextIO.inputAll", "reads a file")),
     "TextIO.endOfStream": ("TextIO.instream -> bool", cannot_run("TextIO.endOfStream", "reads a file")),
     "TextIO.closeIn": ("TextIO.instream -> unit", cannot_run("TextIO.closeIn", "reads a file")),
+    # `TextIO.scanStream Real.scan ins`: the next real of a file (the scanners are values of their own type)
+    "TextIO.scanStream": ("Real.scanner -> TextIO.instream -> real option",
+                          cannot_run("TextIO.scanStream", "reads a file")),
+    "Real.scan": ("Real.scanner", "<Real.scan>"),
 })
 
 FUNCTIONS: dict[str, object] = {name: fn for name, (_, fn) in BUILTINS.items()}

@@ -65,6 +65,19 @@ def _int_from_string(s: str):
     return ("SOME", -n if m.group(1) in ("~", "-") else n)
 
 
+_REAL_PREFIX = re.compile(r"\s*([~+-]?)(\d+(?:\.\d+)?|\.\d+)(?:[eE]([~+-]?\d+))?")
+
+
+def _real_from_string(s: str):
+    """SML's Real.fromString: leading white space, an optional sign (~, - or +), digits with an optional
+    fraction and exponent; what follows is ignored; NONE where no number comes."""
+    m = _REAL_PREFIX.match(s)
+    if m is None:
+        return "NONE"
+    x = float(m.group(2) + ("e" + m.group(3).replace("~", "-") if m.group(3) else ""))
+    return ("SOME", -x if m.group(1) in ("~", "-") else x)
+
+
 def _date(fields):
     """Date.date {day, hour, minute, month, offset, second, year} (the record's fields in label order)."""
     day, hour, minute, month, offset, second, year = fields
@@ -100,6 +113,7 @@ FUNCTIONS: dict[str, Any] = {
     "Option.isSome": lambda opt: isinstance(opt, tuple),
     "isSome": lambda opt: isinstance(opt, tuple),
     "Int.fromString": _int_from_string,
+    "Real.fromString": _real_from_string,
     "Int.compare": lambda ab: _order(*ab),
     "IntInf.toLarge": lambda n: n,  # int and IntInf.int are one type of unbounded integers here
     "IntInf.fromLarge": lambda n: n,

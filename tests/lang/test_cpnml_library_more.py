@@ -1,5 +1,5 @@
 """Library functions and syntax of SML/NJ and CPN Tools that the corpus's models with reference variables
-need: SML's Math, negative literals as arguments (`ins l ~1`), qualified type names in annotations, `inc`,
+and its FFT model need: SML's Math, ListPair, `before`, `Real.trunc` and `Real.fromString`, negative literals as arguments (`ins l ~1`), qualified type names in annotations, `inc`,
 `Date.weekDay`, `OS.Path.concat`, CPN Tools' model-time conversions and simulator output folder, colour-set
 file input and output (`declare input_ms, output`), and recursion some ten thousand levels deeper."""
 
@@ -37,6 +37,12 @@ def value(expr: str, decls: str = ""):
     ("isSome (NONE : TextIO.outstream option)", False),
     ("toReal (fromInt 3)", 3.0),
     ("let val r = ref 1 in (inc r; inc r; dec r; !r) end", 2),
+    ("let val r = ref 0 in (!r before r := 5) + !r end", 5),  # the value of the first, then the second
+    ("ListPair.map (fn (a, b) => a + b) ([1, 2, 3], [10, 20])", (11, 22)),
+    ("ListPair.zip ([1, 2], [\"a\", \"b\"])", ((1, "a"), (2, "b"))),
+    ("(Real.trunc ~2.7, Real.floor ~2.5, Real.ceil 2.1, Real.round 2.5)", (-2, -3, 3, 2)),
+    ("Real.fromString \" ~1.5e2x\"", ("SOME", -150.0)),
+    ("Real.fromString \"x\"", "NONE"),
 ])
 def test_values(expr, expected):
     assert value(expr) == expected
@@ -91,3 +97,19 @@ def test_recursion_of_forty_thousand_levels_is_evaluated():
     # 200,000 Python frames held 28,571 levels of this function: a model that walks a year hour by hour
     # needs more
     assert value("f 40000", "fun f (n : int) = if n = 0 then 0.0 else 1.0 + f (n - 1);") == 40000.0
+
+
+def test_reading_reals_from_a_file_is_simulation_only_and_stops_simulate():
+    text = ("colset R = real; var x : R;\n"
+            "fun first (f : string) = let val ins = TextIO.openIn f in\n"
+            "  TextIO.scanStream Real.scan ins before TextIO.closeIn ins end;\n"
+            "place A : R = 1`0.0; place B : R;\n"
+            "trans t; arc A -> t : x; arc t -> B : getOpt (first \"s.txt\", x);\n")
+    model = cpn.loads(text, "m.cpnet")
+    assert sorted(w.params["name"] for w in model.warnings) == ["TextIO.closeIn", "TextIO.openIn",
+                                                                 "TextIO.scanStream"]
+    engine = model.engine(simulation=True, reference=True)
+    [(_be, fire)] = engine.successors(engine.initial_state(), lazy=True)
+    with pytest.raises(EvaluationError) as info:
+        fire()
+    assert "TextIO.openIn" in str(info.value) and "s.txt" in str(info.value)

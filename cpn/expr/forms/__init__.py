@@ -14,7 +14,7 @@ from cpn.expr.forms import (  # noqa: F401 - each registers its forms
     let,  # let ... in ... end
     negation,  # ~ e
     references,  # !e, e1 := e2
-    sequence,  # (e1; e2)
+    sequence,  # (e1; e2), e1 before e2
 )
 
 __all__ = ["BY_RULE", "FORMS", "Form", "form_of", "register"]
