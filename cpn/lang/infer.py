@@ -16,7 +16,13 @@ from cpn.expr.binding import children
 from cpn.expr.forms import FORMS
 from cpn.lang import ast as A
 from cpn.lang import types as T
-from cpn.lang.builtins import FINITE_DRAWS, LIBRARY_TYPES, RANDOM_BUILTINS, SIMULATION_ONLY_BUILTINS, STOPS_SIMULATE
+from cpn.lang.builtins import (
+    FINITE_DRAWS,
+    LIBRARY_TYPES,
+    RANDOM_BUILTINS,
+    SIMULATION_ONLY_BUILTINS,
+    STOPS_SIMULATE,
+)
 from cpn.lang.checked import Abort, Env
 from cpn.lang.function_draws import FunctionDraws
 from cpn.lang.symbols import Symbol

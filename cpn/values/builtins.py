@@ -354,7 +354,7 @@ FUNCTIONS: dict[str, Any] = {
     # SML's ListPair: the pairs of two lists, as far as the shorter goes
     "ListPair.map": lambda f: lambda ab: tuple(f((x, y)) for x, y in zip(*ab)),
     "ListPair.zip": lambda ab: tuple(zip(*ab)),
-    "ListPair.unzip": lambda l: (tuple(x for x, _ in l), tuple(y for _, y in l)),
+    "ListPair.unzip": lambda pairs: (tuple(x for x, _ in pairs), tuple(y for _, y in pairs)),
     "size": _size,
     "empty": Multiset(),
     "ms_to_col": _ms_to_col,

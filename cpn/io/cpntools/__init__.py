@@ -491,7 +491,7 @@ class _Translator(_Declarations):
         elif (t.id in self.kept_actions) if not outs else self._uses_refs(act):
             # it assigns reference variables (or, binding outputs, reads them): CPN Tools runs it once per
             # occurrence, before the output arcs; so does simulate, and explore and check refuse it
-            if not self._refuse_code_action(act, outs, origin, what, references=True):
+            if not self._refuse_code_action(act, outs, origin, what):
                 ao = _origin_at(origin, code, code.index(act) if act in code else 0)
                 self.code_actions[t.id] = (outs, act, ao)
                 self._note(f"the code segment of {what} uses reference variables: it is the transition's "
@@ -520,23 +520,23 @@ class _Translator(_Declarations):
         self._note(f"the code segment of {what} assigns {', '.join(names)}, which only its output arcs read: "
                    "its action is evaluated in a 'let' around them")
 
-    def _refuse_code_action(self, act: str, outs: list[str], origin: Origin, what: str,
-                            references: bool = False) -> bool:
-        """Refuse an action that binds output variables with side effects (other than text output and the
-        machine's clock, which the front end leaves to simulate, and with `references` reference variables,
-        which make it the transition's action); True if refused."""
+    def _refuse_code_action(self, act: str, outs: list[str], origin: Origin, what: str) -> bool:
+        """Refuse an action with side effects other than text output, the machine's clock, other programs,
+        files and reference variables, which the front end leaves to simulate (the last make the code segment
+        the transition's action); True if refused."""
         if self._refuse_random(act, origin, f"the code segment of {what}", effects=False):
             return True
-        effects = sorted({n for n, _ in ml.names(act) if n not in SIMULATION_ONLY and n not in sml_basis.FUNCTIONS and (
-            n.split(".")[0] in ml.SIDE_EFFECT_NAMES or n in ml.SIDE_EFFECT_NAMES or self._side_effect_via(n))})
-        if effects or (not references and self._uses_refs(act)):
-            used = ", ".join(effects) if effects else "a reference variable"
-            binds = (f"binds the output variable(s) {', '.join(outs)} with an action that uses" if outs
-                     else "has an action that uses")
-            self.error(origin, f"{what} has a code segment that {binds} {used}: code with side effects has no "
-                       "place in a state space",
-                       hint="Compute the output values with pure CPN ML (no I/O, no MSC), or remove the code "
-                            "segment.")
+        effects = sorted({n for n, _ in ml.names(act)
+                          if n not in SIMULATION_ONLY and n not in sml_basis.FUNCTIONS
+                          and (n.split(".")[0] in ml.SIDE_EFFECT_NAMES or n in ml.SIDE_EFFECT_NAMES
+                               or self._side_effect_via(n))})
+        if effects:
+            binds = (f"that binds the output variable(s) {', '.join(outs)} with an action that uses" if outs
+                     else "whose action uses")
+            self.error(origin, f"{what} has a code segment {binds} {', '.join(effects)}: code with side "
+                       "effects has no place in a state space, and simulate cannot run it",
+                       hint="Compute the values with pure CPN ML (no MSC, no calls of other programs), or "
+                            "remove the code segment.")
             return True
         return False
 
