@@ -347,9 +347,29 @@ def _line_col(text: str, pos: int) -> tuple[int, int]:
     return text.count("\n", 0, pos) + 1, pos - (text.rfind("\n", 0, pos) + 1) + 1
 
 
+def _statement_starts(text: str) -> list[int]:
+    """Where the statements of `text` start: a line that begins with a statement keyword, but for `val` and
+    `fun` inside open brackets, which declare inside a `let` (a CPN Tools action `(let val f = .. in .. end)`
+    spans lines that begin with `val`)."""
+    starts: list[int] = []
+    depth, last = 0, 0
+    for m in _STMT_START.finditer(text):
+        if not m.group(1):
+            continue
+        for t in _TOKENS.finditer(text, last, m.start()):
+            tok = t.group()
+            depth += 1 if tok in _OPEN else -1 if tok in (")", "]", "}") else 0
+        last = m.start()
+        if m.group(1) in ("val", "fun") and depth > 0:
+            continue
+        starts.append(m.start())
+        depth = 0  # a statement starts afresh: an error before it is its own
+    return starts
+
+
 def _unbalanced(text: str, filename: str) -> list[tuple[Diagnostic, int, int]]:
     """Statements whose brackets do not balance: (diagnostic, start, end) of each such statement."""
-    starts = [m.start() for m in _STMT_START.finditer(text) if m.group(1)] + [len(text)]
+    starts = _statement_starts(text) + [len(text)]
     out = []
     for a, b in zip(starts, starts[1:]):
         seg = text[a:b]

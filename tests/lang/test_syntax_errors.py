@@ -90,6 +90,20 @@ def test_an_unclosed_bracket_is_reported_where_it_opens(src, line, col, opener):
     assert "closes nothing" not in d.message
 
 
+def test_a_let_inside_brackets_over_lines_that_begin_with_val_is_one_statement():
+    # the syntax error on line 1 is the only one: the action's `val` lines are inside its parentheses
+    src = ("val x = if true then 1 @+ 1 else 2;\ncolset U = unit; place P : U;\n"
+           "trans T action (let\n  val a = 1;\n  val b = 2\nin\n  a + b\nend);\narc P -> T;\n")
+    with pytest.raises(ModelError) as info:
+        parse(src, "m.cpnet")
+    assert [(d.code, d.span.line) for d in info.value.diagnostics] == [("E0101", 1)]
+    # an unclosed bracket before a line that begins with `val` is still found where it opens
+    with pytest.raises(ModelError) as info:
+        parse("val z = (1, 2;\nval y = 3;\n", "m.cpnet")
+    [d] = info.value.diagnostics
+    assert (d.span.line, d.span.col) == (1, 9) and "'(' is never closed" in d.message
+
+
 def test_a_closing_bracket_without_partner_still_closes_nothing():
     with pytest.raises(ModelError) as info:
         parse("val y = (1]);\n", "m.cpnet")
