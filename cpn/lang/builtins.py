@@ -219,7 +219,8 @@ def library_constructors() -> list[Symbol]:
         else:
             ty = T.TCon(tname)
         sym = Symbol(name, "con", ty, Span("<standard declarations>", 0, 0))
-        sym.data = ConInfo(tname, tag, "enum" if tname in ("Date.month", "Date.weekday") else "union", has_arg)
+        kind = "enum" if tname in ("Date.month", "Date.weekday") else "union"
+        sym.data = ConInfo(tname, tag, kind, has_arg)
         out.append(sym)
     return out
 

@@ -89,8 +89,8 @@ class TypeInference(FunctionDraws):
             if te.name in self.cstypes:
                 return self.cstypes[te.name]
             simple = {"int": T.INT, "bool": T.BOOL, "string": T.STRING, "unit": T.UNIT, "real": T.REAL,
-                      "INT": T.INT, "BOOL": T.BOOL, "STRING": T.STRING, "UNIT": T.UNIT, "order": T.TCon("order"),
-                      "time": T.INT}  # the model time, an integer (CPN Tools' `time`)
+                      "INT": T.INT, "BOOL": T.BOOL, "STRING": T.STRING, "UNIT": T.UNIT,
+                      "order": T.TCon("order"), "time": T.INT}  # time: the model time, an integer
             if te.name in simple:
                 return simple[te.name]
             if te.name in LIBRARY_TYPES:  # `: Date.month`, `NONE : TextIO.outstream option`

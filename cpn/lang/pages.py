@@ -248,7 +248,8 @@ class PageChecks:
         all_vars(d.delay, used)
         all_vars(d.priority, used)
         all_vars(d.action, used)
-        bound: set[str] = {v for v, _ in info.ran} | set(d.outputs)  # the choices, tried before a guard conjunct that reads them
+        # the choices, tried before a guard conjunct that reads them, and the action's outputs
+        bound: set[str] = {v for v, _ in info.ran} | set(d.outputs)
         for a in info.arcs:
             if a.kind.consumes and a.expr is not None:
                 bound |= pattern_vars(a.expr)
@@ -296,8 +297,8 @@ class PageChecks:
             sym = self.variables.get(name)
             if sym is None:
                 self.error("E0201", f"the output variable '{name}' of transition '{d.name}' is not declared",
-                           d.action.span, hint=f"Declare it ('var {name} : COLSET;'), as CPN Tools requires of "
-                           "the output variables of a code segment.", name=name)
+                           d.action.span, name=name, hint=f"Declare it ('var {name} : COLSET;'), as CPN Tools "
+                           "requires of the output variables of a code segment.")
                 return False
             types.append(sym.type)
         bound_before = set()
@@ -308,8 +309,8 @@ class PageChecks:
             all_vars(g, bound_before)
         clash = sorted(bound_before & set(d.outputs))
         if clash:
-            self.error("E0206", f"the output variable '{clash[0]}' of transition '{d.name}' also occurs on an "
-                       "input arc or in the guard", d.action.span,
+            self.error("E0206", f"the output variable '{clash[0]}' of transition '{d.name}' also occurs on "
+                       "an input arc or in the guard", d.action.span,
                        hint="An output variable gets its value from the action when the transition occurs: "
                             "use another variable on the input arcs and in the guard.", name=clash[0])
             return False

@@ -182,7 +182,8 @@ SIMULATION_ONLY: dict[str, tuple[str, str]] = {
     **{name: ("reads a file", _INPUT_HINT) for name, (ty, _) in BUILTINS.items() if "instream" in ty},
     "ref": ("makes a reference variable, whose value is not part of the marking", _REF_HINT),
     "Output.getSimOutputDir": ("names the simulator's output folder", _OUTPUT_HINT),
-    "Output.initSimOutputDir": ("creates the simulator's output folder (simulate creates nothing)", _OUTPUT_HINT),
+    "Output.initSimOutputDir": ("creates the simulator's output folder (simulate creates nothing)",
+                                _OUTPUT_HINT),
 }
 
 __all__ = ["BUILTINS", "Cell", "FUNCTIONS", "cannot_run", "SIMULATION_ONLY", "STOPS_SIMULATE", "OtherProgram"]

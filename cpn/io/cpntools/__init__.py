@@ -448,8 +448,8 @@ class _Translator(_Declarations):
         if t.id in self.code_actions:
             outs, act, ao = self.code_actions[t.id]
             head = f" output ({', '.join(outs)})" if outs else ""
-            parts += [(f"{head} action (", None), (self._inscription(act, ao, f"the code segment of {what}"), ao),
-                      (")", None)]
+            act = self._inscription(act, ao, f"the code segment of {what}")
+            parts += [(f"{head} action (", None), (act, ao), (")", None)]
         parts.append((";", None))
         self.out.stmt(parts, o, ind)
 

@@ -470,7 +470,8 @@ class _Declarations:
         # (`lint` of the corpus's LEACH-HOP model, 71 ML declarations: 18.7 s reading them for each pair,
         # 2.7 s so, measured side by side)
         top = {id(el): self._top_names(el) for kind, el in order if kind == "decl"}
-        texts = {id(el): ml.strip_comments(el.text) for kind, el in order if kind == "decl" and el.tag == "ml"}
+        texts = {id(el): ml.strip_comments(el.text)
+                 for kind, el in order if kind == "decl" and el.tag == "ml"}
         for _ in range(len(order)):
             moved = False
             declared: set[str] = set()
@@ -667,11 +668,13 @@ class _Declarations:
             return
         self.globrefs_refused[name] = el
         if name not in getattr(self, "needed_names", set()):
-            self.out.raw(f"(* globref {name} ({origin.element}) at line {el.line}: not used by the net, left out *)")
+            self.out.raw(f"(* globref {name} ({origin.element}) at line {el.line}: not used by the net, "
+                         "left out *)")
             return
         # a reference variable: simulate runs the net, explore and check refuse it (docs/semantics.md)
         self.declared.add(name)
-        at = Origin(mlel.text_line, mlel.text_col, origin.element, None, origin.what) if mlel is not None else None
+        at = (Origin(mlel.text_line, mlel.text_col, origin.element, None, origin.what) if mlel is not None
+              else None)
         raw = (mlel.text or "").replace("\r\n", "\n") if mlel is not None else ""
         if at is not None and raw[: len(raw) - len(raw.lstrip())]:
             at = _text_origin_from(mlel.text_line, mlel.text_col, raw[: len(raw) - len(raw.lstrip())], at)
