@@ -313,6 +313,8 @@ def _integer_bounds(result) -> dict:
     if not states:
         return out
     columns = has(engine, "place_view")
+    if columns:
+        states = list(states)  # (a store decodes a state each time it is read: once, not once per place)
     for p, place in enumerate(engine.places):
         if columns:
             ids = {s[p]: s for s in states}
