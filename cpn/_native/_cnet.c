@@ -360,6 +360,122 @@ static inline int64_t g_leaf(gctx *c, int d, int w, int64_t id, int i) {
     return (int64_t)(((uint64_t)(uint32_t)pr[4 * i + 3] << 32) | (uint32_t)pr[4 * i + 1]);
 }
 
+/* Lists (ctables.ListDom): a list of domain d is the node [n, its n elements' leaves, ew each]; [-1, id]
+ * is a list the engine made that C cannot hold (c->err: the engine evaluates what reads it). Every
+ * function returns 0 at once after an error (its list argument may then be no id at all); one that finds
+ * no value (hd of [], an index outside the list) sets c->err 1, so that the engine raises its exception. */
+static inline int64_t g_lraw(gctx *c, int d, int64_t id, int64_t i) {
+    const int32_t *pr = ms_pairs(&c->tb->nd[d], id);
+    return (int64_t)(((uint64_t)(uint32_t)pr[4 * i + 3] << 32) | (uint32_t)pr[4 * i + 1]);
+}
+
+static inline int64_t g_llen(gctx *c, int d, int64_t id) {
+    if (c->err) return 0;
+    int64_t n = g_lraw(c, d, id, 0);
+    if (n < 0) { c->err = 1; return 0; }
+    return n;
+}
+
+static inline int64_t g_lelem(gctx *c, int d, int ew, int64_t id, int64_t i, int j) {
+    int64_t n = g_llen(c, d, id);
+    if (c->err) return 0;
+    if (i < 0 || i >= n) { c->err = 1; return 0; }
+    return g_lraw(c, d, id, 1 + i * ew + j);
+}
+
+/* The list of the n elements x (ew leaves each). */
+static int64_t g_lmake(gctx *c, int d, int64_t n, int ew, const int64_t *x) {
+    if (c->err) return 0;
+    int64_t w = 1 + n * ew;
+    if (w > (1 << 14)) { c->err = 1; return 0; }  /* (g_node keeps 4 w + 4 ints on the stack) */
+    int64_t *b = (int64_t *)malloc((size_t)w * sizeof(int64_t));
+    if (!b) { c->err = 2; return 0; }
+    b[0] = n;
+    for (int64_t i = 0; i < n * ew; i++) b[1 + i] = x[i];
+    int64_t id = g_node(c, d, b, (int)w);
+    free(b);
+    return id < 0 ? 0 : id;
+}
+
+/* Elements [from, to) of list a, then elements [from2, to2) of list b (b < 0: none), in that order, or
+ * the reverse of a's range (rev): the list they make. */
+static int64_t g_lslice(gctx *c, int d, int ew, int64_t a, int64_t from, int64_t to, int64_t b, int64_t from2,
+                        int64_t to2, int rev) {
+    if (c->err) return 0;
+    int64_t n = (to - from) + (b >= 0 ? to2 - from2 : 0);
+    int64_t *x = (int64_t *)malloc((size_t)(n * ew + 1) * sizeof(int64_t));
+    if (!x) { c->err = 2; return 0; }
+    int64_t k = 0;
+    for (int64_t i = 0; i < to - from; i++) {
+        int64_t e = rev ? to - 1 - i : from + i;
+        for (int j = 0; j < ew; j++) x[k++] = g_lraw(c, d, a, 1 + e * ew + j);
+    }
+    if (b >= 0)
+        for (int64_t e = from2; e < to2; e++)
+            for (int j = 0; j < ew; j++) x[k++] = g_lraw(c, d, b, 1 + e * ew + j);
+    int64_t id = g_lmake(c, d, n, ew, x);
+    free(x);
+    return id;
+}
+
+/* h :: a (h: the element's ew leaves). */
+static int64_t g_lcons(gctx *c, int d, int ew, const int64_t *h, int64_t a) {
+    int64_t n = g_llen(c, d, a);
+    if (c->err) return 0;
+    int64_t *x = (int64_t *)malloc((size_t)((n + 1) * ew + 1) * sizeof(int64_t));
+    if (!x) { c->err = 2; return 0; }
+    for (int j = 0; j < ew; j++) x[j] = h[j];
+    for (int64_t i = 0; i < n * ew; i++) x[ew + i] = g_lraw(c, d, a, 1 + i);
+    int64_t id = g_lmake(c, d, n + 1, ew, x);
+    free(x);
+    return id;
+}
+
+/* a @ b */
+static int64_t g_lapp(gctx *c, int d, int ew, int64_t a, int64_t b) {
+    int64_t n = g_llen(c, d, a), m = g_llen(c, d, b);
+    return c->err ? 0 : g_lslice(c, d, ew, a, 0, n, b, 0, m, 0);
+}
+
+/* tl a, rev a, List.take (a, k), List.drop (a, k) */
+static int64_t g_ltl(gctx *c, int d, int ew, int64_t a) {
+    int64_t n = g_llen(c, d, a);
+    if (c->err) return 0;
+    if (n == 0) { c->err = 1; return 0; }
+    return g_lslice(c, d, ew, a, 1, n, -1, 0, 0, 0);
+}
+
+static int64_t g_lrev(gctx *c, int d, int ew, int64_t a) {
+    int64_t n = g_llen(c, d, a);
+    return c->err ? 0 : g_lslice(c, d, ew, a, 0, n, -1, 0, 0, 1);
+}
+
+static int64_t g_ltake(gctx *c, int d, int ew, int64_t a, int64_t k) {
+    int64_t n = g_llen(c, d, a);
+    if (c->err) return 0;
+    if (k < 0 || k > n) { c->err = 1; return 0; }
+    return g_lslice(c, d, ew, a, 0, k, -1, 0, 0, 0);
+}
+
+static int64_t g_ldrop(gctx *c, int d, int ew, int64_t a, int64_t k) {
+    int64_t n = g_llen(c, d, a);
+    if (c->err) return 0;
+    if (k < 0 || k > n) { c->err = 1; return 0; }
+    return g_lslice(c, d, ew, a, k, n, -1, 0, 0, 0);
+}
+
+/* mem a x (x: the element's ew leaves) */
+static int64_t g_lmem(gctx *c, int d, int ew, int64_t a, const int64_t *x) {
+    int64_t n = g_llen(c, d, a);
+    if (c->err) return 0;
+    for (int64_t i = 0; i < n; i++) {
+        int j = 0;
+        while (j < ew && g_lraw(c, d, a, 1 + i * ew + j) == x[j]) j++;
+        if (j == ew) return 1;
+    }
+    return 0;
+}
+
 /* Free a context; the tables go with the last one. */
 void gen_free(void *g) {
     gctx *c = (gctx *)g;
@@ -791,6 +907,8 @@ int64_t gen_node_put(void *g, int d, const int64_t *x, int w) {
     int64_t id = g_node(c, d, x, w);
     return c->err ? -1 : id;
 }
+
+int gen_node_len(void *g, int d, int64_t id) { return ms_len(&((gctx *)g)->tb->nd[d], id) / 2; }
 
 int gen_node_get(void *g, int d, int64_t id, int64_t *x, int cap) {
     gctx *c = (gctx *)g;

@@ -25,6 +25,7 @@ int64_t gen_be_put(void *g, int t, int64_t key);
 int64_t gen_node_count(void *g, int d);
 int64_t gen_node_put(void *g, int d, const int64_t *x, int w);
 int gen_node_get(void *g, int d, int64_t id, int64_t *x, int cap);
+int gen_node_len(void *g, int d, int64_t id);
 int64_t gen_tid_put(void *g, int p, int64_t col, int64_t ts);
 int64_t gen_tid_table(void *g, int p, int32_t **col, int64_t **ts);
 /* cffi: end */

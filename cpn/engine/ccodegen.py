@@ -7,9 +7,11 @@ and records of these, as 64-bit integers (a product as its components); a token 
 position in `CS.all()`; for an unbounded int, a union with data, or a product or record with one, an id
 interned in the order its values are first met, the same on both sides: `ctables.Interned`), a place marking a list of (colour id, count) pairs in the order its Python dict has them. Guards and arc
 inscriptions over these (arithmetic, `div`, `mod`, comparisons, `andalso`, `orelse`, `not`, `if`,
-tuples, `#i`, index constructors, constants) and the model's functions over them (clauses with
-constant, variable, tuple and record patterns, `if`, `case`, `let val`) are compiled; anything else
-leaves its transition to the Python engine, with the reason.
+tuples, `#i`, index constructors, constants), lists (held by reference, `ctables.ListDom`: literals,
+`::`, `@`, list patterns and the library's list functions, docs/internals.md) and the model's functions
+over them (clauses with constant, variable, tuple, record and list patterns, `if`, `case`, `let val`;
+one returning a product or record expanded in place) are compiled; anything else leaves its transition
+to the Python engine, with the reason.
 
 The generated group function of transition t (`grp_t`) follows the binding plan of `cpn.engine.plan`
 exactly as `TransitionCodegen` does: the same loops over the same tokens in the same order, the same
@@ -33,10 +35,13 @@ Examples
 
 from __future__ import annotations
 
+from dataclasses import fields, is_dataclass, replace
+
 from cpn.engine import plan
 from cpn.engine.ctables import (
     Interned,
     Layout,
+    ListDom,
     NativeCode,
     NotNative,
     S,
@@ -46,15 +51,21 @@ from cpn.engine.ctables import (
     base_colset,
     interned,
     layout,
+    RangedList,
+    list_key,
+    value_parts,
 )
 from cpn.expr import binding as B
 from cpn.expr import nodes as A
+from cpn.values.colours import ListCS
 
 #: a transition whose variables have more bindings than this is left to Python (one slot each)
 MAX_BINDINGS: int = 1 << 22
 #: calls of model functions nested deeper than this are left to the Python engine (which computes them or
 #: reports its own recursion limit, reached at 120 to 150 levels of a simple recursion)
 MAX_DEPTH: int = 64
+#: model functions returning products or records are expanded in place, nested at most this deep
+MAX_INLINE: int = 6
 _I64 = 1 << 62
 _CHECKED = {"+": "g_add", "-": "g_sub", "*": "g_mul"}
 
@@ -108,10 +119,25 @@ class Module:
         self.by_colset: dict[str, Interned] = {}
         self.bind_doms: dict[int, int] = {}  # transition -> the domain of its binding keys
         self.ndoms = 0
+        self.list_doms: dict[tuple, ListDom] = {}  # the lists' domains, by the structure of their elements
+        self._globals: dict[tuple, object] = {}  # (uid, type, items) -> the C value of a global constant
 
     def layout(self, cs):
         """The colour ids of colour set cs: its finite layout, or else its values interned (one domain per
-        colour set)."""
+        colour set; for a list colour set, one per structure of its elements)."""
+        base = base_colset(cs)
+        if isinstance(base, ListCS):
+            lv, sh = value_parts(base.elem, self.layout)
+            lay = self.list_dom(lv, sh)
+            checks = [(j, lo, hi) for j, (lo, hi, k) in enumerate(lv) if lo is not None and k == "int"]
+            nested = [(j, k) for j, (_lo, _hi, k) in enumerate(lv) if isinstance(k, RangedList)]
+            if base.low is None and not checks and not nested:
+                return lay
+            got = self.by_colset.get(base.name)
+            if got is None:
+                got = self.by_colset[base.name] = RangedList(
+                    lay, base.name, checks, nested, None if base.low is None else (base.low, base.high))
+            return got
         try:
             return layout(cs)
         except NotNative:
@@ -122,6 +148,100 @@ class Module:
                 self.doms.append(lay)
                 self.by_colset[name] = lay
             return lay
+
+    def list_dom(self, leaves, sh) -> ListDom:
+        """The domain of the lists whose elements have leaves `leaves` and shape `sh` (ranges dropped)."""
+        key = list_key(leaves, sh)
+        lay = self.list_doms.get(key)
+        if lay is None:
+            lay = self.list_doms[key] = ListDom(self._new_dom(), [(None, None, k) for _lo, _hi, k in leaves], sh)
+            self.doms.append(lay)
+        return lay
+
+    def parts_of_type(self, ty) -> tuple[list, object]:
+        """(leaves, shape) of the values of type `ty` (`cpn.net.translate.closed_type`) held as a product is."""
+        k = ty[0]
+        if k in ("int", "bool", "unit"):
+            return [({"int": None, "bool": 0, "unit": 0}[k], {"int": None, "bool": 1, "unit": 0}[k], k)], None
+        if k == "list":
+            lay = self.list_of_type(ty)
+            return [(None, None, lay)], lay.shape
+        if k in ("*", "{}"):
+            out, shapes = [], []
+            for t in ty[1]:
+                lv, sh = self.parts_of_type(t if k == "*" else t[1])
+                out.extend(lv)
+                shapes.append(sh)
+            return out, tuple(shapes)
+        cs = self.net.colsets.get(k)
+        if cs is None or len(ty) > 1:
+            raise NotNative(f"a value of type {k}")
+        return value_parts(cs, self.layout)
+
+    def list_of_type(self, ty) -> ListDom:
+        """The domain of the lists of type `ty` (a list type)."""
+        if ty is None or ty[0] != "list":
+            raise NotNative("a list whose type is not known")
+        return self.list_dom(*self.parts_of_type(ty[1]))
+
+    def make_list(self, lay: ListDom, items: list) -> U:
+        """The list of the C values `items`, interned."""
+        for x in items:
+            if shape(x) != lay.elem_shape:
+                raise NotNative("a list element of another shape")
+        flat = [y for x in items for y in leaves(x)]
+        buf = f"(const int64_t[]){{{', '.join(flat)}}}" if flat else "NULL"
+        return U(f"g_lmake(c, {lay.dom}, {len(items)}, {lay.ew}, {buf})", lay)
+
+    def global_cv(self, uid: int, ty, items: bool = False):
+        """The C value of global constant `uid` of type `ty` (with `items`, its elements'), made once."""
+        key = (uid, ty, items)
+        got = self._globals.get(key)
+        if got is None:
+            v = self.ev.globals[uid]
+            got = self._globals[key] = [self.const(x, ty[1]) for x in v] if items else self.const(v, ty)
+        return got
+
+    def const(self, v, ty):
+        """The C value of constant v of type `ty` (None: a scalar or a product of scalars)."""
+        if ty is None:
+            return py_cv(v)
+        k = ty[0]
+        if k == "list":
+            return self.make_list(self.list_of_type(ty), [self.const(x, ty[1]) for x in v])
+        if k in ("*", "{}"):
+            return Tp([self.const(x, t if k == "*" else t[1]) for x, t in zip(v, ty[1])])
+        if k in ("int", "bool", "unit"):
+            return py_cv(v)
+        cs = self.net.colsets.get(k)
+        if cs is None or isinstance(v, tuple):
+            raise NotNative(f"a constant of type {k}")
+        return py_cv(v)  # an enumeration constant, an index or a union's constructor without data: its position
+
+    def inline_ms(self, e, depth: int = 0):
+        """Output inscription e with each call of a model function in the place of a multiset (`after (ks,
+        f)` with `fun after (rest, f) = if rest = [] then empty else 1`(rest, f)`) replaced by the function's
+        body over the arguments, where the function has one clause binding variables: its terms are then
+        the inscription's, as the engine's multiset of the call is made of them."""
+        if depth > 8:
+            return e
+        if isinstance(e, A.BinOp) and e.op in ("++", "+++", "@+"):
+            left = self.inline_ms(e.left, depth)
+            right = self.inline_ms(e.right, depth) if e.op != "@+" else e.right
+            return e if left is e.left and right is e.right else replace(e, left=left, right=right)
+        if isinstance(e, A.If):
+            a, b = self.inline_ms(e.then, depth), self.inline_ms(e.else_, depth)
+            return e if a is e.then and b is e.else_ else replace(e, then=a, else_=b)
+        if isinstance(e, A.Case):
+            got = _case_as_if(e)
+            return e if got is None else self.inline_ms(got, depth)
+        if isinstance(e, A.App) and isinstance(e.fn, A.Name) and e.fn.ref.kind == "fun":
+            fd = self.fun_decls.get(e.fn.ref.uid)
+            if fd is not None and len(fd.clauses) == 1 and len(fd.clauses[0].params) == 1:
+                names = _param_names(fd.clauses[0].params[0], e.arg)
+                if names is not None:
+                    return self.inline_ms(_substitute(fd.clauses[0].body, names), depth + 1)
+        return e
 
     def _new_dom(self) -> int:
         self.ndoms += 1
@@ -172,6 +292,34 @@ class Module:
             self.parts.append(f"static int64_t {name}({args}) {{\n" + "\n".join(body) + "\n}")
         return name
 
+    def list_check(self, lay: RangedList) -> str:
+        """`lck<d>_<k>(c, id)`: list `id` if it is a value of ranged list colour set `lay`, else -1."""
+        key = ("ranged", lay.name)
+        name = self.encoders.get(key)
+        if name is None:
+            name = self.encoders[key] = f"lck{lay.dom}_{len(self.encoders)}"
+            d, w = lay.dom, lay.ew
+            body = ["    if (c->err) return -1;", f"    const int64_t n = g_llen(c, {d}, id);",
+                    "    if (c->err) return -1;"]
+            if lay.length is not None:
+                body.append(f"    if (n < {lay.length[0]} || n > {lay.length[1]}) return -1;")
+            body.append("    for (int64_t i = 0; i < n; i++) {")
+            for j, lo, hi in lay.checks:
+                body.append(f"        {{ const int64_t x = g_lraw(c, {d}, id, 1 + i * {w} + {j});"
+                            f" if (x < {_c_int(lo)} || x > {_c_int(hi)}) return -1; }}")
+            for j, inner in lay.nested:
+                body.append(f"        if ({self.list_check(inner)}(c, g_lraw(c, {d}, id, 1 + i * {w} + {j})) < 0)"
+                            " return -1;")
+            body += ["    }", "    return id;"]
+            self.protos.append(f"static int64_t {name}(gctx *c, int64_t id);")
+            self.parts.append(f"static int64_t {name}(gctx *c, int64_t id) {{\n" + "\n".join(body) + "\n}")
+        return name
+
+    def ranged_refs(self, leaves_: list, fail: str) -> list[str]:
+        """Lines checking the leaves `x<i>` that are ranged lists (`fail` where one is not a value)."""
+        return [f"    if ({self.list_check(k)}(c, x{i}) < 0) {fail}"
+                for i, (_lo, _hi, k) in enumerate(leaves_) if isinstance(k, RangedList)]
+
     def interner(self, lay: Interned) -> str:
         key = ("interned", lay.dom)
         name = self.encoders.get(key)
@@ -180,6 +328,7 @@ class Module:
             args = "".join(f", int64_t x{i}" for i in range(len(lay.leaves)))
             body = [f"    if (x{i} < {_c_int(lo)} || x{i} > {_c_int(hi)}) return -1;"
                     for i, (lo, hi, _kind) in enumerate(lay.leaves) if lo is not None]
+            body += self.ranged_refs(lay.leaves, "return -1;")
             xs = ", ".join(f"x{i}" for i in range(len(lay.leaves)))
             body.append("    if (c->err) return -1;  /* a leaf C could not compute: not a value to intern */")
             body.append(f"    const int64_t x[] = {{{xs}}};")
@@ -200,6 +349,7 @@ class Module:
             body = ["    if (c->err) return 0;"]
             body += [f"    if (x{i} < {_c_int(lo)} || x{i} > {_c_int(hi)}) {{ c->err = 1; return 0; }}"
                      for i, (lo, hi, _kind) in enumerate(leaves_) if lo is not None]
+            body += self.ranged_refs(leaves_, "{ c->err = 1; return 0; }")
             xs = ", ".join([str(tag)] + [f"x{i}" for i in range(len(leaves_))])
             body.append(f"    const int64_t x[] = {{{xs}}};")
             body.append(f"    const int64_t id = g_node(c, {lay.dom}, x, {len(leaves_) + 1});")
@@ -212,8 +362,10 @@ class Module:
         """C code of the colour id of value cv in the layout, or -1 if it is not a value of it."""
         if shape(cv) != lay.shape:
             raise NotNative("a value's shape differs from its colour set's")
-        if isinstance(lay, UnionDom):
+        if isinstance(lay, (UnionDom, ListDom)):
             return cv.code
+        if isinstance(lay, RangedList):
+            return f"{self.list_check(lay)}(c, {cv.code})"
         if lay.interned:
             return f"{self.interner(lay)}(c, {', '.join(leaves(cv))})"
         return f"{self.encoder(lay)}({', '.join(leaves(cv))})"
@@ -272,10 +424,12 @@ class ExprC:
         self.vars = vars_
         self.params = params
         self.locals: dict[int, object] = {}
+        self.inlined = 0  # model functions inlined around this expression (`inline`)
 
     def with_locals(self, locals_: dict) -> ExprC:
         e = ExprC(self.mod, self.vars, self.params)
         e.locals = locals_
+        e.inlined = self.inlined
         return e
 
     def scalar(self, e) -> str:
@@ -305,9 +459,9 @@ class ExprC:
                 raise NotNative("a local that is not a value")
             return self.locals[sym.uid]
         if k == "val":
-            return py_cv(self.mod.ev.globals[sym.uid])
+            return self.mod.global_cv(sym.uid, e.ty)
         if k == "param" and sym.uid in self.params:
-            return py_cv(self.params[sym.uid])
+            return self.mod.const(self.params[sym.uid], e.ty)
         if k == "con" and self.mod.union_of(sym.data) is not None and not sym.data.has_arg:
             lay = self.mod.union_of(sym.data)
             return U(f"{self.mod.constructor(lay, sym.data.tag)}(c)", lay)
@@ -317,6 +471,120 @@ class ExprC:
 
     def _c_TupleE(self, e):
         return Tp([self.cx(x) for x in e.items])
+
+    def _c_ListE(self, e):
+        return self.mod.make_list(self.mod.list_of_type(e.ty), [self.cx(x) for x in e.items])
+
+    def pair(self, a, b) -> tuple:
+        """The C values of a and b, where one may be `[]` of a type the checker left open (in a polymorphic
+        function): the empty list of the other's domain."""
+        if _open_nil(a) and not _open_nil(b):
+            y = self.cx(b)
+            return self.mod.make_list(self.as_list(y).lay, []), y
+        if _open_nil(b) and not _open_nil(a):
+            x = self.cx(a)
+            return x, self.mod.make_list(self.as_list(x).lay, [])
+        return self.cx(a), self.cx(b)
+
+    def lst(self, e) -> U:
+        """The C value of list expression e."""
+        return self.as_list(self.cx(e))
+
+    @staticmethod
+    def as_list(cv) -> U:
+        if not isinstance(cv, U) or not isinstance(cv.lay, ListDom):
+            raise NotNative("a list operation on a value that is not a list")
+        return cv
+
+    def items_of(self, e) -> list | None:
+        """The elements of list expression e as C values where they are known when the C is generated (a
+        list literal, a constant), else None: a function of them then needs no list built."""
+        if isinstance(e, A.ListE):
+            return [self.cx(x) for x in e.items]
+        if isinstance(e, A.Name) and e.ref.kind == "val" and e.ty is not None and e.ty[0] == "list":
+            return self.mod.global_cv(e.ref.uid, e.ty, items=True)
+        return None
+
+    def list_builtin(self, name: str, arg):
+        """A library function over lists applied to `arg`, or None if it is not one C knows."""
+        if name in ("hd", "List.hd", "List.last"):
+            items = self.items_of(arg)
+            if items:
+                return items[0 if name != "List.last" else -1]
+            lst = self.lst(arg)
+            at = "0" if name != "List.last" else f"g_llen(c, {lst.lay.dom}, {lst.code}) - 1"
+            return lst.lay.element(lst.code, at)
+        if name in ("length", "List.length", "null", "List.null"):
+            items = self.items_of(arg)
+            n = str(len(items)) if items is not None else None
+            if n is None:
+                lst = self.lst(arg)
+                n = f"g_llen(c, {lst.lay.dom}, {lst.code})"
+            return S(n if "null" not in name else f"({n} == 0)")
+        if name in ("tl", "List.tl", "rev", "List.rev"):
+            lst = self.lst(arg)
+            fn = "g_ltl" if "tl" in name else "g_lrev"
+            return U(f"{fn}(c, {lst.lay.dom}, {lst.lay.ew}, {lst.code})", lst.lay)
+        if name in ("List.nth", "List.take", "List.drop") and isinstance(arg, A.TupleE) and len(arg.items) == 2:
+            items = self.items_of(arg.items[0]) if name == "List.nth" else None
+            i = self.scalar(arg.items[1])
+            if items is not None:  # a chain of conditionals over the known elements
+                return _select(items, i)
+            lst = self.lst(arg.items[0])
+            if name == "List.nth":
+                return lst.lay.element(lst.code, i)
+            fn = "g_ltake" if name == "List.take" else "g_ldrop"
+            return U(f"{fn}(c, {lst.lay.dom}, {lst.lay.ew}, {lst.code}, {i})", lst.lay)
+        return None
+
+    def higher(self, kind: str, f, over, ty):
+        """`List.filter f l`, `List.map f l`, `List.exists f l`, `List.all f l` (over: l's C value) and
+        `List.tabulate (n, f)` (over: n) with f a `fn`: a loop in a GNU statement expression, f's body
+        evaluated in place for each element (c->err ends it: the engine evaluates the whole)."""
+        L, I, N, B, K, R = (self.mod.fresh(h) for h in ("hl", "hi", "hn", "hb", "hk", "hr"))
+        if kind == "tabulate":
+            x = S(I)
+            head = f"int64_t {N} = {over}; if ({N} < 0) c->err = 1;"
+        else:
+            x = over.lay.element(L, I)
+            head = f"const int64_t {L} = {over.code}; int64_t {N} = g_llen(c, {over.lay.dom}, {L});"
+        v = self.case_of(x, f.rules)
+        if kind in ("exists", "all"):
+            test = self.scalar_of(v)
+            stop = f"if ({'' if kind == 'exists' else '!'}({test})) {{ {R} = {int(kind == 'exists')}; break; }}"
+            return S(f"__extension__ ({{ {head} int64_t {R} = {int(kind == 'all')}; "
+                     f"for (int64_t {I} = 0; !c->err && {I} < {N}; {I}++) {{ {stop} }} c->err ? 0 : {R}; }})")
+        if kind == "filter":
+            out, put, cond = over.lay, leaves(x), self.scalar_of(v)
+        else:
+            out = self.mod.list_of_type(ty)
+            if shape(v) != out.elem_shape:
+                raise NotNative("a list element of another shape")
+            put, cond = leaves(v), "1"
+        w = out.ew
+        fill = " ".join(f"{B}[{K} * {w} + {j}] = {code};" for j, code in enumerate(put))
+        return U(f"__extension__ ({{ {head} int64_t {K} = 0; "
+                 f"int64_t *{B} = (int64_t *)malloc(((size_t)({N} > 0 ? {N} : 0) * {w} + 1) * sizeof(int64_t)); "
+                 f"if (!{B}) c->err = 2; "
+                 f"for (int64_t {I} = 0; !c->err && {I} < {N}; {I}++) {{ if ({cond}) {{ {fill} {K}++; }} }} "
+                 f"int64_t {R} = g_lmake(c, {out.dom}, {K}, {w}, {B}); free({B}); {R}; }})", out)
+
+    @staticmethod
+    def scalar_of(cv) -> str:
+        if not isinstance(cv, S) or isinstance(cv, U):
+            raise NotNative("a tuple where a scalar is expected")
+        return cv.code
+
+    def mem(self, lst_e, x_e) -> S:
+        """`mem lst x`."""
+        x = self.cx(x_e)
+        items = self.items_of(lst_e)
+        if items is not None:
+            return S("(" + " || ".join(equal(x, y) for y in items) + ")" if items else "0")
+        lst = self.lst(lst_e)
+        if shape(x) != lst.lay.elem_shape:
+            raise NotNative("mem of a value of another shape than the list's elements")
+        return S(f"g_lmem(c, {lst.lay.dom}, {lst.lay.ew}, {lst.code}, (const int64_t[]){{{', '.join(leaves(x))}}})")
 
     def _c_RecordE(self, e):
         return Tp([self.cx(x) for _, x in sorted(e.fields, key=lambda f: f[0])])
@@ -341,13 +609,35 @@ class ExprC:
                 return S(f"g_rng(c, {self.scalar(e.arg)}, {cs.low}, {cs.high})")
             if sym.kind == "builtin" and sym.name == "not":
                 return S(f"(!{self.scalar(e.arg)})")
+            if sym.kind == "builtin":
+                got = self.list_builtin(sym.name, e.arg)
+                if got is not None:
+                    return got
             if sym.kind == "fun":
                 arg = self.cx(e.arg)
-                name = self.mod.function(sym.uid, arg)
+                try:
+                    name = self.mod.function(sym.uid, arg)
+                except NotNative:
+                    got = self.inline(sym.uid, arg)
+                    if got is None:
+                        raise
+                    return got
                 call = f"{name}(c{''.join(', ' + x for x in leaves(arg))})"
                 lay = self.mod.returns.get((sym.uid, shape(arg)))
                 return S(call) if lay is None else U(call, lay)
-        raise NotNative("an application of something other than a function of the model, not or a constructor")
+        if isinstance(fn, A.App) and isinstance(fn.fn, A.Name) and fn.fn.ref.kind == "builtin" \
+                and fn.fn.ref.name in ("mem", "List.mem"):
+            return self.mem(fn.arg, e.arg)
+        if isinstance(fn, A.App) and isinstance(fn.fn, A.Name) and fn.fn.ref.kind == "builtin" \
+                and fn.fn.ref.name in _HIGHER and isinstance(fn.arg, A.Fn):
+            return self.higher(_HIGHER[fn.fn.ref.name], fn.arg, self.lst(e.arg), e.ty)
+        if isinstance(fn, A.Name) and fn.ref.kind == "builtin" and fn.ref.name == "List.tabulate" \
+                and isinstance(e.arg, A.TupleE) and len(e.arg.items) == 2 and isinstance(e.arg.items[1], A.Fn):
+            return self.higher("tabulate", e.arg.items[1], self.scalar(e.arg.items[0]), e.ty)
+        name = fn.ref.name if isinstance(fn, A.Name) else fn.fn.ref.name if isinstance(fn, A.App) \
+            and isinstance(fn.fn, A.Name) else None
+        raise NotNative(f"the library function {name}" if name else
+                        "an application of something other than a function of the model or the library")
 
     def constant(self, e):
         """(value,) of a string constant or a `val` bound to one, else None."""
@@ -363,7 +653,7 @@ class ExprC:
 
     def _c_If(self, e):
         cond = self.scalar(e.cond)
-        a, b = self.cx(e.then), self.cx(e.else_)
+        a, b = self.pair(e.then, e.else_)
         if shape(a) != shape(b):
             raise NotNative("if branches of different shapes")
 
@@ -375,12 +665,25 @@ class ExprC:
             return Tp([join(p, q) for p, q in zip(x.items, y.items)])
         return join(a, b)
 
+    def inline(self, uid: int, arg):
+        """A model function's value on C value `arg` as an expression of its clauses (a `case` over the
+        argument), where it has no C function of its own (it returns a product or record): None for a
+        function of several curried arguments, or nested deeper than `MAX_INLINE`."""
+        fd = self.mod.fun_decls.get(uid)
+        if fd is None or len(fd.clauses[0].params) != 1 or self.inlined >= MAX_INLINE:
+            return None
+        ex = self.with_locals(self.locals)
+        ex.inlined = self.inlined + 1
+        return ex.case_of(arg, [(cl.params[0], cl.body) for cl in fd.clauses])
+
     def _c_Case(self, e):
         """`case` as a chain of conditionals (each rule's data read only once its tests pass)."""
-        subj = self.cx(e.subject)
+        return self.case_of(self.cx(e.subject), e.rules)
+
+    def case_of(self, subj, rules):
         fx = FunctionC(self.mod, "")
         arms = []
-        for pat, body in e.rules:
+        for pat, body in rules:
             tests: list[str] = []
             binds: dict = {}
             fx.match(pat, subj, tests, binds)
@@ -421,11 +724,22 @@ class ExprC:
 
     def _c_BinOp(self, e):
         op = e.op
+        if op == "::":
+            h, t = self.cx(e.left), self.lst(e.right)
+            if shape(h) != t.lay.elem_shape:
+                raise NotNative("a list element of another shape")
+            return U(f"g_lcons(c, {t.lay.dom}, {t.lay.ew}, (const int64_t[]){{{', '.join(leaves(h))}}}, {t.code})",
+                     t.lay)
+        if op in ("@", "^^"):
+            a, b = self.lst(e.left), self.lst(e.right)
+            if a.lay is not b.lay:
+                raise NotNative("an append of lists of different shapes")
+            return U(f"g_lapp(c, {a.lay.dom}, {a.lay.ew}, {a.code}, {b.code})", a.lay)
         if op in ("=", "<>"):
             consts = self.constant(e.left), self.constant(e.right)
             if None not in consts:  # two constants the C cannot hold (strings: a model's switches)
                 return S("1" if (consts[0][0] == consts[1][0]) == (op == "=") else "0")
-            eq = equal(self.cx(e.left), self.cx(e.right))
+            eq = equal(*self.pair(e.left, e.right))
             return S(eq if op == "=" else f"(!{eq})")
         if op in ("andalso", "orelse", "+", "-", "*", "<", "<=", ">", ">=", "div", "mod"):
             a, b = self.scalar(e.left), self.scalar(e.right)
@@ -438,6 +752,99 @@ class ExprC:
             cop = {"andalso": "&&", "orelse": "||"}.get(op, op)
             return S(f"({a} {cop} {b})")
         raise NotNative(f"the operator {op}")
+
+
+#: the library's functions over lists that C runs as loops (`ExprC.higher`)
+_HIGHER = {"List.filter": "filter", "filter": "filter", "List.map": "map", "map": "map", "List.exists": "exists",
+           "List.all": "all"}
+
+
+def _param_names(p, arg) -> dict | None:
+    """{uid of a parameter: its argument} where pattern p binds variables only and `arg` has its shape."""
+    if isinstance(p, A.PVar) and p.ref.kind != "con":
+        return {p.ref.uid: arg}
+    if isinstance(p, A.PWild):
+        return {}
+    if isinstance(p, A.PTuple) and isinstance(arg, A.TupleE) and len(p.items) == len(arg.items):
+        out: dict = {}
+        for q, x in zip(p.items, arg.items):
+            got = _param_names(q, x)
+            if got is None:
+                return None
+            out.update(got)
+        return out
+    return None
+
+
+def _case_as_if(e):
+    """`case` e as `if`s where each rule but a last catch-all tests a constant or `[]` (its subject is then
+    evaluated once per test), else None."""
+    rest = None
+    for pat, body in reversed(e.rules):
+        if isinstance(pat, A.PWild):
+            rest = body
+            continue
+        if isinstance(pat, A.PVar) and pat.ref.kind != "con":
+            rest = _substitute(body, {pat.ref.uid: e.subject})
+            continue
+        if rest is None:  # no rule matches every value
+            return None
+        if isinstance(pat, A.PList) and not pat.items:
+            other = A.ListE(pat.span, [], None)
+        elif isinstance(pat, A.PConst) and pat.kind in ("int", "bool", "unit"):
+            other = A.Const(pat.span, pat.value, pat.kind)
+        else:
+            return None
+        rest = A.If(e.span, A.BinOp(pat.span, "=", e.subject, other), body, rest)
+    return rest
+
+
+def _substitute(x, names: dict):
+    """Expression x with each local name of `names` replaced by its expression (names are unique per binder,
+    so nothing is captured)."""
+    if isinstance(x, A.Name):
+        return names.get(x.ref.uid, x) if x.ref is not None and x.ref.kind == "local" else x
+    if isinstance(x, (list, tuple)):
+        got = [_substitute(y, names) for y in x]
+        return x if all(a is b for a, b in zip(got, x)) else type(x)(got)
+    if not is_dataclass(x) or isinstance(x, (A.Ref, A.Constructor)) or isinstance(x, type):
+        return x
+    changes = {}
+    for f in fields(x):
+        v = getattr(x, f.name)
+        nv = _substitute(v, names)
+        if nv is not v:
+            changes[f.name] = nv
+    return replace(x, **changes) if changes else x
+
+
+def _open_nil(e) -> bool:
+    """Whether e is `[]` of a type not fixed."""
+    return isinstance(e, A.ListE) and not e.items and not _fixed(e.ty)
+
+
+def _fixed(ty) -> bool:
+    """Whether type `ty` (`closed_type`) has no part left open."""
+    if ty is None or ty[0] == "'":
+        return False
+    if ty[0] == "*":
+        return all(_fixed(x) for x in ty[1])
+    if ty[0] == "{}":
+        return all(_fixed(x) for _label, x in ty[1])
+    return all(_fixed(x) for x in ty[1:])
+
+
+def _select(items: list, i: str):
+    """Element i (C code) of the C values `items`: a chain of conditionals (g_fail past the last)."""
+    if not items:
+        return S("g_fail(c)")
+    first = items[0]
+    if isinstance(first, Tp):
+        return Tp([_select([x.items[j] for x in items], i) for j in range(len(first.items))])
+    code = "g_fail(c)"
+    for k in range(len(items) - 1, -1, -1):
+        code = f"(({i}) == {k} ? {items[k].code} : {code})"
+    return U(code, first.lay) if isinstance(first, U) else S(code)
 
 
 def _c_int(x: int) -> str:
@@ -513,6 +920,18 @@ class FunctionC:
         if isinstance(p, A.PAs):
             binds[p.ref.uid] = cv
             self.match(p.pat, cv, tests, binds)
+            return
+        if isinstance(p, (A.PList, A.PCons)):
+            lst = ExprC.as_list(cv)
+            n = f"g_llen(c, {lst.lay.dom}, {lst.code})"
+            if isinstance(p, A.PList):  # (the length first: the elements are read only where they are)
+                tests.append(f"{n} == {len(p.items)}")
+                for i, q in enumerate(p.items):
+                    self.match(q, lst.lay.element(lst.code, str(i)), tests, binds)
+                return
+            tests.append(f"{n} >= 1")
+            self.match(p.head, lst.lay.element(lst.code, "0"), tests, binds)
+            self.match(p.tail, U(f"g_ltl(c, {lst.lay.dom}, {lst.lay.ew}, {lst.code})", lst.lay), tests, binds)
             return
         raise NotNative(f"a {type(p).__name__} pattern")
 
@@ -660,8 +1079,18 @@ class TransitionC:
                 raise NotNative("a union constructor pattern")
             self.match(e.arg, src, bound)
             return
-        if isinstance(e, (A.ListE,)) or (isinstance(e, A.BinOp) and e.op == "::"):
-            raise NotNative("a list pattern")
+        if isinstance(e, A.ListE) or (isinstance(e, A.BinOp) and e.op == "::"):
+            lst = ExprC.as_list(src)  # as the engine matches a list: its length, then its elements
+            n = f"g_llen(c, {lst.lay.dom}, {lst.code})"
+            if isinstance(e, A.ListE):
+                self.emit(f"if ({n} != {len(e.items)}) continue;")
+                for i, x in enumerate(e.items):
+                    self.match(x, lst.lay.element(lst.code, str(i)), bound)
+                return
+            self.emit(f"if ({n} < 1) continue;")
+            self.match(e.left, lst.lay.element(lst.code, "0"), bound)
+            self.match(e.right, U(f"g_ltl(c, {lst.lay.dom}, {lst.lay.ew}, {lst.code})", lst.lay), bound)
+            return
         self.emit(f"if (!{equal(src, self.ex.cx(e))}) continue;")
 
     def token(self, pi: int, code: str):
@@ -880,7 +1309,7 @@ class TransitionC:
         out_terms: dict[int, list] = {}
         for a in t.arcs:
             if a.kind.produces and a.expr is not None:
-                out_terms.setdefault(a.place, []).extend(plan.terms(a.expr))
+                out_terms.setdefault(a.place, []).extend(plan.terms(self.mod.inline_ms(a.expr)))
         for p, terms in out_terms.items():
             if any(tm.opaque is not None for tm in terms):
                 raise NotNative("an output arc's inscription is a multiset expression")
@@ -1110,7 +1539,7 @@ class TimedTransitionC(TransitionC):
         out_terms: dict[int, list] = {}
         for a in t.arcs:
             if a.kind.produces and a.expr is not None:
-                got = timed_out_terms(a.expr)
+                got = timed_out_terms(self.mod.inline_ms(a.expr))
                 if got:
                     out_terms.setdefault(a.place, []).extend(got)
         prod: dict[int, tuple[str, str]] = {}

@@ -15,7 +15,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from itertools import product as _cartesian
 
-from cpn.values.colours import AliasCS, BoolCS, EnumCS, IndexCS, IntCS, ProductCS, RecordCS, UnionCS, UnitCS
+from cpn.values.colours import AliasCS, BoolCS, EnumCS, IndexCS, IntCS, ListCS, ProductCS, RecordCS, UnionCS, UnitCS
 
 #: colour sets with more values than this are not laid out as colour ids
 MAX_COLOURS: int = 1 << 20
@@ -178,6 +178,87 @@ class UnionDom(_Nodes):
         return (tag, _value(leaves, sh, flat[1:]))
 
 
+@dataclass
+class ListDom(_Nodes):
+    """The interned ids of the lists whose elements have leaves `leaves` and shape `shape` (their ranges
+    dropped: one domain per element structure, so that `[]` of one type is one id): a list is the node
+    [n, its n elements' leaves] of domain `dom`, an element being held as a product is (its scalars, and
+    the ids of the unions and lists in it); a list the engine made that C cannot hold (an integer beyond 64
+    bits) is [-1, its id]. Held in C by reference, as a union with data is (`U`)."""
+
+    dom: int
+    leaves: list[tuple]
+    elem_shape: object
+    values: list = field(default_factory=list)
+    index: dict = field(default_factory=dict)
+    interned = True
+    size = None
+
+    @property
+    def shape(self):
+        return ("u", self.dom)
+
+    @property
+    def ew(self) -> int:
+        """The leaves of one element."""
+        return len(self.leaves)
+
+    def decode(self, code: str):
+        return U(code, self)
+
+    def element(self, code: str, i: str):
+        """Element i (C code, from 0) of list `code`, as a C value (c->err if there is none)."""
+        j = iter(range(self.ew))
+        kinds = iter(self.leaves)
+
+        def build(sh):
+            if sh is None or sh[0] == "u":
+                x = f"g_lelem(c, {self.dom}, {self.ew}, {code}, {i}, {next(j)})"
+                kind = next(kinds)[2]
+                return kind.decode(x) if sh is not None else S(x)
+            return Tp([build(s) for s in sh])
+        return build(self.elem_shape)
+
+    def flat(self, v, cid=None) -> list[int]:
+        out = [len(v)]
+        for x in v:
+            out += _flat(self.leaves, self.elem_shape, x, cid)
+        return out
+
+    def c_flat(self, v, cid: int, child=None) -> list[int]:
+        try:
+            return self.flat(v, child)
+        except OverflowError:
+            return [-1, cid]
+
+    def value(self, flat) -> object:
+        n, w = int(flat[0]), self.ew
+        return tuple(_value(self.leaves, self.elem_shape, flat[1 + k * w:1 + (k + 1) * w]) for k in range(n))
+
+
+class RangedList:
+    """A list colour set with a length range or ranges in its elements (`list INT with 0..3`, `list N` for
+    `N = int with 0..3`): its values are those of the lists' domain `base` (one id for one list, whatever
+    colour set holds it), and a value becomes one of its tokens only once `checks` pass: per element, the
+    leaves (index, low, high) in range, and the ranged lists in it (index, their RangedList); `length`,
+    (low, high) or None."""
+
+    def __init__(self, base: ListDom, name: str, checks: list, nested: list, length):
+        self.base, self.name, self.checks, self.nested, self.length = base, name, checks, nested, length
+
+    def __getattr__(self, attr):
+        return getattr(self.base, attr)
+
+    def decode(self, code: str):
+        return U(code, self.base)
+
+
+def list_key(leaves, shape) -> tuple:
+    """The domain of lists with elements of leaves `leaves` and shape `shape`: their structure, ranges
+    dropped."""
+    return tuple(k if isinstance(k, str) else ("d", k.dom) for _lo, _hi, k in leaves), shape
+
+
 def _decode(leaves, shape, dom: int, width: int, code: str, at: int):
     it = iter(range(at, at + len(leaves)))
     kinds = iter(leaves)
@@ -186,7 +267,7 @@ def _decode(leaves, shape, dom: int, width: int, code: str, at: int):
         if sh is None or sh[0] == "u":
             x = f"g_leaf(c, {dom}, {width}, {code}, {next(it)})"
             kind = next(kinds)[2]
-            return U(x, kind) if sh is not None else S(x)
+            return kind.decode(x) if sh is not None else S(x)
         return Tp([build(s) for s in sh])
     return build(shape)
 
@@ -227,11 +308,17 @@ def _value(leaves, shape, flat):
     return build(shape)
 
 
+def value_parts(cs, ref=None):
+    """(leaves, shape) of the values of colour set cs held as a product is in C (`_interned_parts`)."""
+    return _interned_parts(cs, ref)
+
+
 def _interned_parts(cs, ref=None):
     """(leaves, shape) of a colour set whose values are scalars, values held by reference (`ref(cs)`: the
     layout of a union with data) or products and records of them."""
     cs = _base(cs)
-    if ref is not None and isinstance(cs, UnionCS) and any(c is not None for _, c in cs.constructors):
+    if ref is not None and (isinstance(cs, ListCS) or (isinstance(cs, UnionCS)
+                                                        and any(c is not None for _, c in cs.constructors))):
         lay = ref(cs)
         return [(None, None, lay)], lay.shape
     if isinstance(cs, UnitCS):
@@ -361,6 +448,7 @@ class NativeCode:
     # in C a timed colour id (`gen_tid_put`)
     timed: list[bool] | None = None
     _tids: list[dict] | None = None  # per timed place: (value, timestamp) -> its timed colour in C
+    _tid_keys: tuple | None = None  # (the context, per timed place its timed colours' keys read from C)
     # the interned colour sets, by domain; per transition whose binding keys are interned, its domain
     doms: list[Interned] = field(default_factory=list)
     bind_doms: dict[int, int] = field(default_factory=dict)
@@ -410,13 +498,22 @@ class NativeCode:
         return flat
 
     def _timed_values(self, ffi, lib, ctx, p: int) -> list:
-        """Place p's timed colours in C as (value, timestamp) keys, by timed colour id."""
+        """Place p's timed colours in C as (value, timestamp) keys, by timed colour id: those read before
+        (per context: C only appends to the table) and the new ones, so that a search returning to Python
+        at each level does not read the whole table each time."""
         colp, tsp = ffi.new("int32_t **"), ffi.new("int64_t **")
         n = lib.gen_tid_table(ctx, p, colp, tsp)
-        if not n:
-            return []
-        vals = self.layouts[p].values
-        return list(zip(map(vals.__getitem__, ffi.unpack(colp[0], n)), ffi.unpack(tsp[0], n)))
+        key = int(ffi.cast("uintptr_t", ctx))
+        if self._tid_keys is None or self._tid_keys[0] != key:
+            self._tid_keys = (key, [[] for _ in self.layouts])
+        got = self._tid_keys[1][p]
+        if n < len(got):  # (another table: read it anew)
+            got = self._tid_keys[1][p] = []
+        if n > len(got):
+            vals = self.layouts[p].values
+            h = len(got)
+            got += zip(map(vals.__getitem__, ffi.unpack(colp[0] + h, n - h)), ffi.unpack(tsp[0] + h, n - h))
+        return got
 
     def to_c(self, engine, lib, ctx) -> None:
         """Copy the engine's markings, deltas and binding elements that the C tables do not have yet."""
@@ -485,10 +582,15 @@ class NativeCode:
         P = len(engine.places)
         store = engine.store
         for lay in self.doms:  # first the values C interned (components first): the markings' ids name them
-            n, w = lib.gen_node_count(ctx, lay.dom), lay.width
+            n = lib.gen_node_count(ctx, lay.dom)
             if n > len(lay.values):
+                lists = isinstance(lay, ListDom)  # (a list's leaves are as many as its elements make)
+                w = 1 if lists else lay.width
                 buf = ffi.new("int64_t[]", w)
                 for i in range(len(lay.values), n):
+                    if lists and lib.gen_node_len(ctx, lay.dom, i) > w:
+                        w = lib.gen_node_len(ctx, lay.dom, i)
+                        buf = ffi.new("int64_t[]", w)
                     k = lib.gen_node_get(ctx, lay.dom, i, buf, w)
                     v = lay.value(ffi.unpack(buf, k))
                     lay.values.append(v)

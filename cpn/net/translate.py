@@ -1,7 +1,8 @@
 """The typed syntax tree of `cpn.lang` to the closed form a net holds (`cpn.expr.nodes`).
 
 With `cpn.net.lower`, the only place where `cpn.net` reads `cpn.lang`: every name becomes a `Ref` (shared
-per declared symbol), type annotations are dropped, record patterns keep the labels of their colour set.
+per declared symbol), type annotations are dropped, record patterns keep the labels of their colour set, and
+the inferred types are dropped but those of list literals and of constants' names (`closed_type`).
 """
 
 from __future__ import annotations
@@ -12,12 +13,42 @@ from typing import Any
 from cpn._util.deep import left_spine
 from cpn.expr import nodes as E
 from cpn.lang import ast as A
+from cpn.lang import types as T
 from cpn.lang.symbols import ConInfo, Symbol
 
 # what the front end annotated and the net does without
 _LEFT_BEHIND = frozenset({"ty", "op_ty", "ran_var", "type_expr", "result_type"})
 #: per node class, the names of the fields a closed node keeps (`dataclasses.fields` is slow per call)
 _KEPT_FIELDS: dict[type, tuple[str, ...]] = {}
+#: the names whose type a closed node keeps, as `closed_type` gives it (besides list literals and calls of the
+#: library): a constant's value alone does not say whether a tuple is a product or a list, nor `[]` of what
+_TYPED_NAMES = frozenset({"val", "param"})
+
+
+def _library_call(e) -> bool:
+    """Whether application e calls a library function (`List.map f`, `List.map f l`): its type says what
+    list it makes."""
+    while isinstance(e, A.App):
+        e = e.fn
+    return isinstance(e, A.Name) and getattr(e.ref, "kind", None) == "builtin"
+
+
+def closed_type(t) -> tuple:
+    """The front end's type `t` as plain tuples, for the engines (`cpn.expr.nodes`, `ty` of a list literal and
+    of a constant's name): `("int",)`, `("bool",)`, `("unit",)`, `("string",)`, `("real",)`, `(colour set,)`
+    for an enumeration, index or union, `("list", t)`, `("ms", t)`, `("*", (t, ...))` for a product,
+    `("{}", ((label, t), ...))` for a record (labels in order), `("->",)` for a function, `("'",)` for a
+    type not fixed (a polymorphic function's)."""
+    t = T.prune(t)
+    if isinstance(t, T.TCon):
+        return (t.name, *(closed_type(a) for a in t.args))
+    if isinstance(t, T.TTuple):
+        return ("*", tuple(closed_type(x) for x in t.items))
+    if isinstance(t, T.TRecord):
+        return ("{}", tuple((label, closed_type(x)) for label, x in t.fields))
+    if isinstance(t, T.TFun):
+        return ("->",)
+    return ("'",)
 
 
 class Translator:
@@ -80,6 +111,9 @@ class Translator:
         for name in names:
             v = getattr(node, name)
             parts[name] = self.ref(v) if name == "ref" else self._part(v)
+        if (cls is A.ListE or (cls is A.Name and getattr(node.ref, "kind", None) in _TYPED_NAMES)
+                or (cls is A.App and _library_call(node))) and node.ty is not None:
+            parts["ty"] = closed_type(node.ty)
         return cls(**parts)
 
     def _part(self, v):

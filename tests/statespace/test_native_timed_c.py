@@ -117,7 +117,7 @@ trans inc [x < 3] @+ 1 priority 1000;
 arc P -> inc : x;
 arc inc -> P : (x + 1) @+ 2;
 arc inc -> Q : x;
-trans back [length [x, x] = 2];
+trans back [Int.toString x <> "9"];
 arc Q -> back : x;
 arc back -> P : x @+ 1;
 trans swap [x <> y];
@@ -131,7 +131,7 @@ arc swap -> P : y;
 @needs_native
 @pytest.mark.parametrize("condensation", [False, True], ids=["timed", "condensed"])
 def test_a_transition_left_to_python_beside_transitions_in_c(condensation, fills):
-    """`back` reads a list: the engine computes its bindings (a note says why), the others run in C, and
+    """`back` makes a string: the engine computes its bindings (a note says why), the others run in C, and
     the tables both keep stay in step (the ids agree)."""
     model = cpn.loads(MIXED, "mixed.cpnet")
     code, _ = model.engine().timed_groups().native_code()
@@ -175,18 +175,18 @@ def test_auto_searches_a_net_wholly_in_c_natively_building_its_c_on_the_way(fill
 
 UNBOUNDED = """
 colset N = int with 0..3 timed;
-colset I = list N;
+colset I = string;
 var x : N;
 var i : I;
 place P : N = 1`0 ++ (1`1@+1);
-place C : I = 1`[];
+place C : I = 1`"";
 trans inc [x < 3] @+ 1;
 arc P -> inc : x;
 arc inc -> P : (x + 1) @+ 1;
-trans count [length i < 4];
+trans count [String.size i < 4];
 arc P -> count : x;
 arc C -> count : i;
-arc count -> C : 0 :: i;
+arc count -> C : i ^ "a";
 arc count -> P : 0 @+ 2;
 """
 
@@ -194,22 +194,22 @@ arc count -> P : 0 @+ 2;
 @needs_native
 @pytest.mark.parametrize("condensation", [False, True], ids=["timed", "condensed"])
 def test_a_place_c_cannot_hold_leaves_only_its_transitions_to_python(condensation, fills):
-    """Place C's colour set (a list) has no C representation: `count`, which reads it, is the
+    """Place C's colour set (strings) has no C representation: `count`, which reads it, is the
     engine's, `inc` runs in C; the markings of C are the engine's alone."""
     model = cpn.loads(UNBOUNDED, "unbounded.cpnet")
     code, _ = model.engine().timed_groups().native_code()
     assert code.native == [0] and code.layouts[1] is None
     c = _both(model, condensation, limit=3000)
-    assert c.notes == ["the Python engine computes the bindings of transition 'Top'count 1': colour set I (list) "
+    assert c.notes == ["the Python engine computes the bindings of transition 'Top'count 1': colour set I (string) "
                        "has no C layout"]
     assert 0 < fills[0] <= c.graph.expanded  # (count reads P, whose timed marking rarely recurs)
 
 
 def test_a_net_without_a_transition_in_c_has_one_reason():
-    model = cpn.loads("colset N = int with 0..3; colset L = list N timed; var l : L; place P : L = 1`[];"
-                      " trans t [length l < 3]; arc P -> t : l; arc t -> P : (0 :: l) @+ 1;", "lists.cpnet")
+    model = cpn.loads("colset L = string timed; var l : L; place P : L = 1`\"\";"
+                      " trans t [String.size l < 3]; arc P -> t : l; arc t -> P : (l ^ \"a\") @+ 1;", "strings.cpnet")
     code, why = model.engine().timed_groups().native_code()
-    assert code is None and why == "place 'Top'P 1': colour set L (list) has no C layout"
+    assert code is None and why == "place 'Top'P 1': colour set L (string) has no C layout"
 
 
 STATES = """

@@ -95,7 +95,7 @@ trans inc [x < 3] @+ 1;
 arc P -> inc : x;
 arc inc -> P : (x + 1) @+ 2;
 arc inc -> Q : x;
-trans back [length [x, x] = 2];
+trans back [Int.toString x <> "9"];
 arc Q -> back : x;
 arc back -> P : x @+ 1;
 trans swap [x <> y];
@@ -109,7 +109,7 @@ arc swap -> P : y;
 @needs_native
 @pytest.mark.parametrize("condensation", [False, True], ids=["timed", "condensed"])
 def test_results_computed_anew_beside_a_transition_left_to_python(condensation, uncached):
-    """`back` reads a list: the engine computes its bindings, the others' results are computed anew in C
+    """`back` makes a string: the engine computes its bindings, the others' results are computed anew in C
     once judged, and the tables both keep stay in step."""
     model = cpn.loads(MIXED, "mixed.cpnet")
     code, _ = model.engine().timed_groups().native_code()
