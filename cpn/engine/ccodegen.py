@@ -44,6 +44,7 @@ from cpn.engine.ctables import (
     ListDom,
     NativeCode,
     NotNative,
+    RangedList,
     S,
     Tp,
     U,
@@ -51,7 +52,6 @@ from cpn.engine.ctables import (
     base_colset,
     interned,
     layout,
-    RangedList,
     list_key,
     value_parts,
 )
@@ -541,19 +541,19 @@ class ExprC:
         """`List.filter f l`, `List.map f l`, `List.exists f l`, `List.all f l` (over: l's C value) and
         `List.tabulate (n, f)` (over: n) with f a `fn`: a loop in a GNU statement expression, f's body
         evaluated in place for each element (c->err ends it: the engine evaluates the whole)."""
-        L, I, N, B, K, R = (self.mod.fresh(h) for h in ("hl", "hi", "hn", "hb", "hk", "hr"))
+        lv, iv, nv, bv, kv, rv = (self.mod.fresh(h) for h in ("hl", "hi", "hn", "hb", "hk", "hr"))
         if kind == "tabulate":
-            x = S(I)
-            head = f"int64_t {N} = {over}; if ({N} < 0) c->err = 1;"
+            x = S(iv)
+            head = f"int64_t {nv} = {over}; if ({nv} < 0) c->err = 1;"
         else:
-            x = over.lay.element(L, I)
-            head = f"const int64_t {L} = {over.code}; int64_t {N} = g_llen(c, {over.lay.dom}, {L});"
+            x = over.lay.element(lv, iv)
+            head = f"const int64_t {lv} = {over.code}; int64_t {nv} = g_llen(c, {over.lay.dom}, {lv});"
         v = self.case_of(x, f.rules)
         if kind in ("exists", "all"):
             test = self.scalar_of(v)
-            stop = f"if ({'' if kind == 'exists' else '!'}({test})) {{ {R} = {int(kind == 'exists')}; break; }}"
-            return S(f"__extension__ ({{ {head} int64_t {R} = {int(kind == 'all')}; "
-                     f"for (int64_t {I} = 0; !c->err && {I} < {N}; {I}++) {{ {stop} }} c->err ? 0 : {R}; }})")
+            stop = f"if ({'' if kind == 'exists' else '!'}({test})) {{ {rv} = {int(kind == 'exists')}; break; }}"
+            return S(f"__extension__ ({{ {head} int64_t {rv} = {int(kind == 'all')}; "
+                     f"for (int64_t {iv} = 0; !c->err && {iv} < {nv}; {iv}++) {{ {stop} }} c->err ? 0 : {rv}; }})")
         if kind == "filter":
             out, put, cond = over.lay, leaves(x), self.scalar_of(v)
         else:
@@ -562,12 +562,12 @@ class ExprC:
                 raise NotNative("a list element of another shape")
             put, cond = leaves(v), "1"
         w = out.ew
-        fill = " ".join(f"{B}[{K} * {w} + {j}] = {code};" for j, code in enumerate(put))
-        return U(f"__extension__ ({{ {head} int64_t {K} = 0; "
-                 f"int64_t *{B} = (int64_t *)malloc(((size_t)({N} > 0 ? {N} : 0) * {w} + 1) * sizeof(int64_t)); "
-                 f"if (!{B}) c->err = 2; "
-                 f"for (int64_t {I} = 0; !c->err && {I} < {N}; {I}++) {{ if ({cond}) {{ {fill} {K}++; }} }} "
-                 f"int64_t {R} = g_lmake(c, {out.dom}, {K}, {w}, {B}); free({B}); {R}; }})", out)
+        fill = " ".join(f"{bv}[{kv} * {w} + {j}] = {code};" for j, code in enumerate(put))
+        return U(f"__extension__ ({{ {head} int64_t {kv} = 0; "
+                 f"int64_t *{bv} = (int64_t *)malloc(((size_t)({nv} > 0 ? {nv} : 0) * {w} + 1) * sizeof(int64_t)); "
+                 f"if (!{bv}) c->err = 2; "
+                 f"for (int64_t {iv} = 0; !c->err && {iv} < {nv}; {iv}++) {{ if ({cond}) {{ {fill} {kv}++; }} }} "
+                 f"int64_t {rv} = g_lmake(c, {out.dom}, {kv}, {w}, {bv}); free({bv}); {rv}; }})", out)
 
     @staticmethod
     def scalar_of(cv) -> str:

@@ -15,7 +15,18 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from itertools import product as _cartesian
 
-from cpn.values.colours import AliasCS, BoolCS, EnumCS, IndexCS, IntCS, ListCS, ProductCS, RecordCS, UnionCS, UnitCS
+from cpn.values.colours import (
+    AliasCS,
+    BoolCS,
+    EnumCS,
+    IndexCS,
+    IntCS,
+    ListCS,
+    ProductCS,
+    RecordCS,
+    UnionCS,
+    UnitCS,
+)
 
 #: colour sets with more values than this are not laid out as colour ids
 MAX_COLOURS: int = 1 << 20
