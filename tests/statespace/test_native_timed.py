@@ -6,7 +6,6 @@ time-growth evidence), with and without time condensation; each test asserts tha
 import glob
 import os
 import random
-import tomllib
 
 import pytest
 
@@ -76,45 +75,6 @@ def test_cpn_tools_timed_samples_run_in_c(name, fills):
     for condensation in (False, True):
         c = _both(model, condensation)
         assert c.n_states >= 50 and (fills[0] > 0 or not c.notes)  # (wholly in C: never the engine)
-
-
-ALL_SCENARIOS = sorted(os.path.basename(p)[:-5] for p in glob.glob(os.path.join(ROOT, "specs", "modbus", "*.toml")))
-#: the suite runs these (one per family; each compiles its own C); `CPN_ALL_SCENARIOS=1` runs every scenario
-#: file of the gate
-SCENARIOS = ALL_SCENARIOS if os.environ.get("CPN_ALL_SCENARIOS") else \
-    ["A_2_faults", "B_5", "C_1", "D_4_faults", "modbus_a", "tcp_mixed"]
-
-
-@needs_native
-@pytest.mark.parametrize("name", SCENARIOS)
-def test_the_modbus_scenarios_run_in_c(name, fills):
-    """Scenario files of the MODBUS gate (their model's constants fixed), both ways, with and without time
-    condensation. The serial-line and Modbus-A models are wholly in the generated C, so the engine expands
-    no state; in Modbus/TCP the client's Close (`list_to_ms` of a list) is the engine's."""
-    path = os.path.join(ROOT, "specs", "modbus", f"{name}.toml")
-    with open(path, "rb") as f:
-        spec = tomllib.load(f)
-    model = cpn.load(os.path.join(os.path.dirname(path), spec["model"]), set=spec.get("set"))
-    code, _ = model.engine().timed_groups().native_code()
-    tcp = name.startswith("tcp")
-    left = sorted({model.engine().transitions[t].name.split("'")[1].split(" ")[0] for t in code.left})
-    assert left == (["Close"] if tcp else []), left
-    for condensation in (True, False):
-        c = _both(model, condensation, limit=2000)
-        assert c.n_states > 50, c.n_states
-        if not tcp:
-            assert fills[0] == 0 and not c.notes, (fills, c.notes)
-        else:
-            assert fills[0] > 0 and all("Close" in n for n in c.notes), c.notes
-
-
-@needs_native
-def test_modbus_scenario_b_with_a_broadcast_in_c(fills):
-    """Scenario B with 8 slaves and a broadcast: every frame reaches the 8 slaves, one reception round each."""
-    values = {"CONFIG": '"B"', "NS": "8", "ADRS": "[0,1,2,3,4,5,6,7,8]", "FCS": "[1]", "PO": "1"}
-    model = cpn.load(os.path.join(ROOT, "models", "modbus", "modbus.cpnet"), set=values)
-    c = _both(model, True)
-    assert (c.n_states, c.n_arcs, c.complete) == (883, 1042, True)
 
 
 @needs_native

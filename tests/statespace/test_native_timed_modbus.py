@@ -1,0 +1,60 @@
+"""The native timed search on the MODBUS models (`models/modbus/`) with the constants of the gate's scenario
+files: the graph must be the Python search's own (tests/statespace/test_native_timed.py says what is
+compared), and where every transition is in the net's generated C the engine expands no state. In a file
+of its own so that the suite's workers share the compilations (each scenario's C is built anew)."""
+
+import glob
+import os
+import tomllib
+
+import pytest
+
+import cpn
+from cpn.statespace import nativetimed
+from tests._shared import count_calls
+from tests.statespace.test_native_timed import ROOT, _both, needs_native
+
+
+@pytest.fixture
+def fills(monkeypatch):
+    """How many states the engine expanded for the C search; the C search never hands over here."""
+    monkeypatch.setattr(nativetimed, "HAND_OVER_RATE", 1e9)
+    return count_calls(monkeypatch, nativetimed.TimedNativeSearch, "_fill")
+
+ALL_SCENARIOS = sorted(os.path.basename(p)[:-5] for p in glob.glob(os.path.join(ROOT, "specs", "modbus", "*.toml")))
+#: the suite runs these (each compiles its own C: one serial-line scenario, Modbus-A, Modbus/TCP); `CPN_ALL_SCENARIOS=1` runs every scenario
+#: file of the gate
+SCENARIOS = ALL_SCENARIOS if os.environ.get("CPN_ALL_SCENARIOS") else \
+    ["B_5", "modbus_a", "tcp_mixed"]
+
+
+@needs_native
+@pytest.mark.parametrize("name", SCENARIOS)
+def test_the_modbus_scenarios_run_in_c(name, fills):
+    """Scenario files of the MODBUS gate (their model's constants fixed), both ways, with and without time
+    condensation. The serial-line and Modbus-A models are wholly in the generated C, so the engine expands
+    no state; in Modbus/TCP the client's Close (`list_to_ms` of a list) is the engine's."""
+    path = os.path.join(ROOT, "specs", "modbus", f"{name}.toml")
+    with open(path, "rb") as f:
+        spec = tomllib.load(f)
+    model = cpn.load(os.path.join(os.path.dirname(path), spec["model"]), set=spec.get("set"))
+    code, _ = model.engine().timed_groups().native_code()
+    tcp = name.startswith("tcp")
+    left = sorted({model.engine().transitions[t].name.split("'")[1].split(" ")[0] for t in code.left})
+    assert left == (["Close"] if tcp else []), left
+    for condensation in (True, False):
+        c = _both(model, condensation, limit=2000)
+        assert c.n_states > 50, c.n_states
+        if not tcp:
+            assert fills[0] == 0 and not c.notes, (fills, c.notes)
+        else:
+            assert fills[0] > 0 and all("Close" in n for n in c.notes), c.notes
+
+
+@needs_native
+def test_modbus_scenario_b_with_a_broadcast_in_c(fills):
+    """Scenario B with 8 slaves and a broadcast: every frame reaches the 8 slaves, one reception round each."""
+    values = {"CONFIG": '"B"', "NS": "8", "ADRS": "[0,1,2,3,4,5,6,7,8]", "FCS": "[1]", "PO": "1"}
+    model = cpn.load(os.path.join(ROOT, "models", "modbus", "modbus.cpnet"), set=values)
+    c = _both(model, True)
+    assert (c.n_states, c.n_arcs, c.complete) == (883, 1042, True)
