@@ -1753,9 +1753,14 @@ class TimedTransitionC(TransitionC):
         return "\n".join(lines)
 
 
-def timed_native_code(engine) -> NativeCode:
+def timed_native_code(engine, probe: bool = False) -> NativeCode:
     """The C of a timed net's (or a net with priorities') transitions for the native timed search
-    (`TimedTransitionC`; NotNative if no place marking can be held in C or a transition reads the clock)."""
+    (`TimedTransitionC`; NotNative if no place marking can be held in C or a transition reads the clock).
+
+    With `probe`, only the first instance of each transition of a module (the same page, parameters of the
+    same kinds, places of the same colour sets) is generated: its `left` says, in a fraction of the time,
+    which transitions the whole net's C would leave to the engine (`auto`'s choice; an instance that
+    differs after all is left to the engine when the whole is generated, with its note). Not for a search."""
     net = engine.net
     if getattr(engine, "reads_clock", False):
         raise NotNative("a transition reads the clock")
@@ -1770,8 +1775,15 @@ def timed_native_code(engine) -> NativeCode:
     bodies: dict[int, str] = {}
     left: dict[int, str] = {}
     var_layouts: dict[int, list[Layout]] = {}
+    seen: set = set()
     for k, info in enumerate(engine._plan):
         t = info.t
+        if probe:
+            kind = (t.page, t.transition, tuple((u, type(v).__name__) for u, v in sorted(t.params.items())),
+                    tuple(net.places[a.place].colour_set.name for a in t.arcs))
+            if kind in seen:
+                continue
+            seen.add(kind)
         saved = (len(mod.parts), len(mod.protos), dict(mod.functions), dict(mod.encoders))
         try:
             tc = TimedTransitionC(mod, t, k, list(info.read), list(info.writes), layouts, timed_places,

@@ -80,11 +80,19 @@ def why_not_timed_auto(tg) -> str | None:
     if native.switched_off() is not None or os.environ.get("CPN_NO_GENERATED"):
         why = "the net's C is switched off"
     else:
-        code, why = tg.native_code()
-        if code is not None and code.left:
-            t, reason = min(code.left.items())
+        left, why = tg.native_left()  # (one instance of each module's transition: the whole C comes later)
+        lines = tg.native_lines() if left == {} else 0
+        if left:
+            t, reason = min(left.items())
             why = f"transition '{tg.transition_name(t)}' is left to the Python engine: {reason}"
-        elif code is not None:
+        elif left is not None and native.GENERATE_PER_LINE * lines > native.GENERATE_AFTER:
+            # its C would be built only after more states than GENERATE_AFTER, and until then the engine
+            # computes the bindings, slower than the Python search (docs/performance.md)
+            return ("timed nets and nets with priorities are searched natively by `auto` only where the net's "
+                    f"generated C computes every transition and is small enough to build early: this net's is "
+                    f"about {lines:,} lines, built only past {native.GENERATE_PER_LINE * lines:,} states; "
+                    "--backend c builds it at once")
+        elif left is not None:
             return None
     return ("timed nets and nets with priorities are searched natively by `auto` only where the net's "
             "generated C computes every transition (else the native search is slower than the Python one, "

@@ -64,8 +64,13 @@ class TimedNativeSearch(NativeSearch):
         self.round_trips = 0
         self.code, self.gen = None, None
         self.generate_after = 1 << 62
+        self._later = False  # `auto`: the net's C is made once the search is large enough (`_upgrade`)
+        self.options = options
         lib = None
-        if options is not None:
+        if options is not None and options.backend is not Backend.C and options.backend is not Backend.PYTHON \
+                and not os.environ.get("CPN_NO_GENERATED") and switched_off() is None:
+            self._later, self.generate_after = True, GENERATE_AFTER  # (a small search never makes it)
+        elif options is not None:
             code, code_notes = timed_generated(self.tg, options)
             if code is not None:
                 self.code = code
@@ -141,7 +146,17 @@ class TimedNativeSearch(NativeSearch):
         self._watched = 0  # the states whose untimed markings C has met
 
     def _upgrade(self) -> None:
-        """Go on with the net's C compiled in (the states so far copied; the caches are filled anew)."""
+        """Go on with the net's C compiled in (the states so far copied; the caches are filled anew); under
+        `auto`, the C is made first, and built once the search has more states than it has lines."""
+        if self._later:
+            self._later = False
+            self.code, code_notes = timed_generated(self.tg, self.options)
+            if self.code is None:
+                self.notes.extend(code_notes)
+                return
+            self.generate_after = max(GENERATE_AFTER, GENERATE_PER_LINE * self.code.source.count("\n"))
+            if self.head < self.generate_after:
+                return
         lib = self._timed_library()
         if lib is None:
             return
@@ -153,7 +168,7 @@ class TimedNativeSearch(NativeSearch):
 
     def _pending(self) -> bool:
         """Whether the net's C is to be built later in the search (`generate_after`)."""
-        return self.code is not None and self.gen is None
+        return self._later or (self.code is not None and self.gen is None)
 
     def hand_over_rate(self) -> float:
         return float("inf") if self._pending() else HAND_OVER_RATE

@@ -10,7 +10,8 @@ import tomllib
 import pytest
 
 import cpn
-from cpn.statespace import nativetimed
+from cpn.engine import ccodegen
+from cpn.statespace import ExploreOptions, Explorer, nativetimed
 from tests._shared import count_calls
 from tests.statespace.test_native_timed import ROOT, _both, needs_native
 
@@ -58,3 +59,33 @@ def test_modbus_scenario_b_with_a_broadcast_in_c(fills):
     model = cpn.load(os.path.join(ROOT, "models", "modbus", "modbus.cpnet"), set=values)
     c = _both(model, True)
     assert (c.n_states, c.n_arcs, c.complete) == (883, 1042, True)
+
+
+def test_auto_keeps_a_net_whose_c_is_large_on_the_python_search():
+    """MODBUS is wholly in C, but its C (about 170 lines per transition) would be built only after some
+    200,000 states, the engine computing the bindings until then, slower than the Python search: `auto`
+    keeps the Python search and says why; `--backend c` builds the C at once."""
+    spec = tomllib.load(open(os.path.join(ROOT, "specs", "modbus", "B_5.toml"), "rb"))
+    model = cpn.load(os.path.join(ROOT, "specs", "modbus", spec["model"]), set=spec.get("set"))
+    auto = Explorer(model.engine(time_condensation=True), ExploreOptions(max_states=300)).run()
+    assert auto.backend == "python"
+    [note] = [n for n in auto.backend_notes if "small enough to build early" in n]
+    assert "built only past" in note and "--backend c builds it at once" in note
+    assert getattr(auto.engine, "_timed_native_code", None) is None  # (decided without the whole net's C)
+
+
+@pytest.mark.parametrize("name", ["B_5", "tcp_mixed", "modbus_a"])
+def test_one_instance_of_each_transition_says_what_the_whole_c_leaves(name):
+    """`auto` decides on the C of one instance of each transition of a module (`probe`): it leaves to the
+    engine the transitions the whole net's C leaves (by their module transition)."""
+    spec = tomllib.load(open(os.path.join(ROOT, "specs", "modbus", f"{name}.toml"), "rb"))
+    model = cpn.load(os.path.join(ROOT, "specs", "modbus", spec["model"]), set=spec.get("set"))
+    engine = model.engine(time_condensation=True)
+    probe = ccodegen.timed_native_code(engine, probe=True)
+    whole = ccodegen.timed_native_code(engine)
+    assert len(probe.native) + len(probe.left) < len(engine.transitions) or name == "modbus_a"
+
+    def kinds(left):
+        return {(engine.transitions[t].page, engine.transitions[t].transition) for t in left}
+    assert kinds(probe.left) == kinds(whole.left)
+    assert set(probe.left.values()) == set(whole.left.values())
