@@ -6,7 +6,7 @@ Usage:
 The net: models/modbus/modbus.cpnet, scenario B (three slaves, addresses [3,5,6], codes [1,7,20], five
 retries, every slave possibly late) with K corrupted frames and K lost frames allowed (`CRC` = `LOSS` =
 K), explored with time condensation: the faults multiply the interleavings (K = 6: 177,177 states,
-K = 12: 810,097). For each K, in this process, a fresh engine per search: `--backend c` (the net's C built
+K = 12: 810,097, K = 14: 1,001,635). For each K, in this process, a fresh engine per search: `--backend c` (the net's C built
 first by a short search and timed apart: its compilation, about 51,000 lines at -O2, is done once per
 constant set and cached) and `--backend python` (only at --python-faults); wall and CPU seconds, states,
 arcs, and whether both searches found the same numbers of states and arcs.
