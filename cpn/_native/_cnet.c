@@ -383,18 +383,38 @@ static inline int64_t g_lelem(gctx *c, int d, int ew, int64_t id, int64_t i, int
     return g_lraw(c, d, id, 1 + i * ew + j);
 }
 
+/* The list whose node is b: b[0] its n elements, then their leaves (ew each); b is the caller's. */
+static int64_t g_lnode(gctx *c, int d, int64_t *b, int64_t n, int ew) {
+    int64_t w = 1 + n * ew;
+    if (w > (1 << 14)) { c->err = 1; return 0; }  /* (g_node keeps 4 w + 4 ints on the stack) */
+    b[0] = n;
+    int64_t id = g_node(c, d, b, (int)w);
+    return id < 0 ? 0 : id;
+}
+
+/* A node of n elements (ew leaves each) to fill from b[1] on, or NULL (c->err 2) without memory. */
+static int64_t *g_lbuf(gctx *c, int64_t n, int ew) {
+    int64_t *b = (int64_t *)malloc((size_t)(n * ew + 1) * sizeof(int64_t));
+    if (!b) c->err = 2;
+    return b;
+}
+
+/* Leaves [from, to) of list `id` into x (read from its pairs, as g_lraw does). */
+static void g_lcopy(gctx *c, int d, int64_t id, int64_t from, int64_t to, int64_t *x) {
+    const int32_t *pr = ms_pairs(&c->tb->nd[d], id);
+    for (int64_t i = from; i < to; i++)
+        *x++ = (int64_t)(((uint64_t)(uint32_t)pr[4 * i + 3] << 32) | (uint32_t)pr[4 * i + 1]);
+}
+
 /* The list of the n elements x (ew leaves each). */
 static int64_t g_lmake(gctx *c, int d, int64_t n, int ew, const int64_t *x) {
     if (c->err) return 0;
-    int64_t w = 1 + n * ew;
-    if (w > (1 << 14)) { c->err = 1; return 0; }  /* (g_node keeps 4 w + 4 ints on the stack) */
-    int64_t *b = (int64_t *)malloc((size_t)w * sizeof(int64_t));
-    if (!b) { c->err = 2; return 0; }
-    b[0] = n;
+    int64_t *b = g_lbuf(c, n, ew);
+    if (!b) return 0;
     for (int64_t i = 0; i < n * ew; i++) b[1 + i] = x[i];
-    int64_t id = g_node(c, d, b, (int)w);
+    int64_t id = g_lnode(c, d, b, n, ew);
     free(b);
-    return id < 0 ? 0 : id;
+    return id;
 }
 
 /* Elements [from, to) of list a, then elements [from2, to2) of list b (b < 0: none), in that order, or
@@ -403,17 +423,16 @@ static int64_t g_lslice(gctx *c, int d, int ew, int64_t a, int64_t from, int64_t
                         int64_t to2, int rev) {
     if (c->err) return 0;
     int64_t n = (to - from) + (b >= 0 ? to2 - from2 : 0);
-    int64_t *x = (int64_t *)malloc((size_t)(n * ew + 1) * sizeof(int64_t));
-    if (!x) { c->err = 2; return 0; }
-    int64_t k = 0;
-    for (int64_t i = 0; i < to - from; i++) {
-        int64_t e = rev ? to - 1 - i : from + i;
-        for (int j = 0; j < ew; j++) x[k++] = g_lraw(c, d, a, 1 + e * ew + j);
+    int64_t *x = g_lbuf(c, n, ew);
+    if (!x) return 0;
+    if (!rev) {
+        g_lcopy(c, d, a, 1 + from * ew, 1 + to * ew, x + 1);
+    } else {
+        for (int64_t i = 0; i < to - from; i++)
+            g_lcopy(c, d, a, 1 + (to - 1 - i) * ew, 1 + (to - i) * ew, x + 1 + i * ew);
     }
-    if (b >= 0)
-        for (int64_t e = from2; e < to2; e++)
-            for (int j = 0; j < ew; j++) x[k++] = g_lraw(c, d, b, 1 + e * ew + j);
-    int64_t id = g_lmake(c, d, n, ew, x);
+    if (b >= 0) g_lcopy(c, d, b, 1 + from2 * ew, 1 + to2 * ew, x + 1 + (to - from) * ew);
+    int64_t id = g_lnode(c, d, x, n, ew);
     free(x);
     return id;
 }
@@ -422,11 +441,11 @@ static int64_t g_lslice(gctx *c, int d, int ew, int64_t a, int64_t from, int64_t
 static int64_t g_lcons(gctx *c, int d, int ew, const int64_t *h, int64_t a) {
     int64_t n = g_llen(c, d, a);
     if (c->err) return 0;
-    int64_t *x = (int64_t *)malloc((size_t)((n + 1) * ew + 1) * sizeof(int64_t));
-    if (!x) { c->err = 2; return 0; }
-    for (int j = 0; j < ew; j++) x[j] = h[j];
-    for (int64_t i = 0; i < n * ew; i++) x[ew + i] = g_lraw(c, d, a, 1 + i);
-    int64_t id = g_lmake(c, d, n + 1, ew, x);
+    int64_t *x = g_lbuf(c, n + 1, ew);
+    if (!x) return 0;
+    for (int j = 0; j < ew; j++) x[1 + j] = h[j];
+    g_lcopy(c, d, a, 1, 1 + n * ew, x + 1 + ew);
+    int64_t id = g_lnode(c, d, x, n + 1, ew);
     free(x);
     return id;
 }

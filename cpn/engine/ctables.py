@@ -146,15 +146,10 @@ class Interned(_Nodes):
         return _value(self.leaves, self.shape, flat)
 
 
-@dataclass
-class UnionDom(_Nodes):
-    """The interned colour ids of a union with data: a value is the node [tag, its data's leaves] of domain
-    `dom` (a constructor without data: [tag]); `cons` per tag: None, or its data's (leaves, shape)."""
+class _ByReference(_Nodes):
+    """What the domains of values held in C by their id share (unions with data, lists): their shape in a
+    product is ("u", domain), and a value in C is its id (`U`)."""
 
-    dom: int
-    cons: list
-    values: list = field(default_factory=list)
-    index: dict = field(default_factory=dict)
     interned = True
     size = None
 
@@ -162,12 +157,23 @@ class UnionDom(_Nodes):
     def shape(self):
         return ("u", self.dom)
 
+    def decode(self, code: str):
+        return U(code, self)
+
+
+@dataclass
+class UnionDom(_ByReference):
+    """The interned colour ids of a union with data: a value is the node [tag, its data's leaves] of domain
+    `dom` (a constructor without data: [tag]); `cons` per tag: None, or its data's (leaves, shape)."""
+
+    dom: int
+    cons: list
+    values: list = field(default_factory=list)
+    index: dict = field(default_factory=dict)
+
     @property
     def width(self) -> int:
         return 2 + max((len(c[0]) for c in self.cons if c is not None), default=0)
-
-    def decode(self, code: str):
-        return U(code, self)
 
     def payload(self, code: str, tag: int):
         """The data (as a C value) of node `code`, whose tag is `tag`."""
@@ -190,7 +196,7 @@ class UnionDom(_Nodes):
 
 
 @dataclass
-class ListDom(_Nodes):
+class ListDom(_ByReference):
     """The interned ids of the lists whose elements have leaves `leaves` and shape `shape` (their ranges
     dropped: one domain per element structure, so that `[]` of one type is one id): a list is the node
     [n, its n elements' leaves] of domain `dom`, an element being held as a product is (its scalars, and
@@ -202,33 +208,16 @@ class ListDom(_Nodes):
     elem_shape: object
     values: list = field(default_factory=list)
     index: dict = field(default_factory=dict)
-    interned = True
-    size = None
-
-    @property
-    def shape(self):
-        return ("u", self.dom)
 
     @property
     def ew(self) -> int:
         """The leaves of one element."""
         return len(self.leaves)
 
-    def decode(self, code: str):
-        return U(code, self)
-
     def element(self, code: str, i: str):
         """Element i (C code, from 0) of list `code`, as a C value (c->err if there is none)."""
-        j = iter(range(self.ew))
-        kinds = iter(self.leaves)
-
-        def build(sh):
-            if sh is None or sh[0] == "u":
-                x = f"g_lelem(c, {self.dom}, {self.ew}, {code}, {i}, {next(j)})"
-                kind = next(kinds)[2]
-                return kind.decode(x) if sh is not None else S(x)
-            return Tp([build(s) for s in sh])
-        return build(self.elem_shape)
+        return _decode_leaves(self.leaves, self.elem_shape,
+                              lambda j: f"g_lelem(c, {self.dom}, {self.ew}, {code}, {i}, {j})")
 
     def flat(self, v, cid=None) -> list[int]:
         out = [len(v)]
@@ -271,12 +260,18 @@ def list_key(leaves, shape) -> tuple:
 
 
 def _decode(leaves, shape, dom: int, width: int, code: str, at: int):
-    it = iter(range(at, at + len(leaves)))
+    return _decode_leaves(leaves, shape, lambda j: f"g_leaf(c, {dom}, {width}, {code}, {at + j})")
+
+
+def _decode_leaves(leaves, shape, leaf):
+    """The C value of shape `shape` whose leaf j is the C code `leaf(j)` (a value held by reference: its
+    domain's `decode`)."""
+    it = iter(range(len(leaves)))
     kinds = iter(leaves)
 
     def build(sh):
         if sh is None or sh[0] == "u":
-            x = f"g_leaf(c, {dom}, {width}, {code}, {next(it)})"
+            x = leaf(next(it))
             kind = next(kinds)[2]
             return kind.decode(x) if sh is not None else S(x)
         return Tp([build(s) for s in sh])
