@@ -88,24 +88,11 @@ class TimedGroups:
             from cpn.engine import ccodegen
 
             try:
-                code = ccodegen.timed_native_code(e, probe=True)
-                got = (code.left, None)
-                # the lines of the whole net's C, estimated from its instances' share of it
-                made = len(code.native) + len(code.left)
-                e._timed_native_lines = code.source.count("\n") * len(e.transitions) // max(made, 1)
+                got = (ccodegen.timed_native_code(e, probe=True).left, None)
             except ccodegen.NotNative as exc:
                 got = (None, str(exc))
             e._timed_native_left = got
         return got
-
-    def native_lines(self) -> int:
-        """The lines of the net's C (estimated by `native_left` where the whole was not made)."""
-        e = self._engine
-        got = getattr(e, "_timed_native_code", None)
-        if got is not None and got[0] is not None:
-            return got[0].source.count("\n")
-        self.native_left()
-        return getattr(e, "_timed_native_lines", 0)
 
     def transition_name(self, t: int) -> str:
         """The name of transition t (for the notes on transitions left to the engine)."""

@@ -81,17 +81,9 @@ def why_not_timed_auto(tg) -> str | None:
         why = "the net's C is switched off"
     else:
         left, why = tg.native_left()  # (one instance of each module's transition: the whole C comes later)
-        lines = tg.native_lines() if left == {} else 0
         if left:
             t, reason = min(left.items())
             why = f"transition '{tg.transition_name(t)}' is left to the Python engine: {reason}"
-        elif left is not None and native.GENERATE_PER_LINE * lines > native.GENERATE_AFTER:
-            # its C would be built only after more states than GENERATE_AFTER, and until then the engine
-            # computes the bindings, slower than the Python search (docs/performance.md)
-            return ("timed nets and nets with priorities are searched natively by `auto` only where the net's "
-                    f"generated C computes every transition and is small enough to build early: this net's is "
-                    f"about {lines:,} lines, built only past {native.GENERATE_PER_LINE * lines:,} states; "
-                    "--backend c builds it at once")
         elif left is not None:
             return None
     return ("timed nets and nets with priorities are searched natively by `auto` only where the net's "
