@@ -11,6 +11,7 @@ Imports `cpn.lang`, `cpn.engine`, `cpn.values` and layer 0.
 from __future__ import annotations
 
 import dataclasses
+import io
 import operator
 import pickle
 import re
@@ -36,22 +37,46 @@ from cpn.values.multiset import Multiset, MultisetError
 PREFIX = "val it = "
 
 #: the parses of property texts, pickled (the type checker annotates the tree it is given, so each use
-#: gets its own copy): a scenario's texts are the same in each of its runs and mutants
+#: gets its own copy): a scenario's texts are the same in each of its runs and mutants, and many scenario
+#: files share their texts. The file name the spans carry is pickled by reference (`_Pickler`), so one
+#: parse serves every file that has the text.
 _PARSES: OrderedDict = OrderedDict()
 PARSES_KEPT: int = 4096
 
 
+class _Pickler(pickle.Pickler):
+    def __init__(self, fh, filename: str):
+        super().__init__(fh, pickle.HIGHEST_PROTOCOL)
+        self.filename = filename
+
+    def persistent_id(self, obj):
+        return "file" if obj is self.filename else None
+
+
+class _Unpickler(pickle.Unpickler):
+    def __init__(self, data: bytes, filename: str):
+        super().__init__(io.BytesIO(data))
+        self.filename = filename
+
+    def persistent_load(self, pid):
+        return self.filename
+
+
 def _parse_text(text: str, filename: str) -> A.Model:
-    key = (text, filename)
-    kept = _PARSES.get(key)
+    kept = _PARSES.get(text)
     if kept is not None:
-        _PARSES.move_to_end(key)
-        return pickle.loads(kept)
+        _PARSES.move_to_end(text)
+        return _Unpickler(kept, filename).load()
     m = parse(text, filename)  # a syntax error is raised, not kept
+    out = io.BytesIO()
     try:
-        _PARSES[key] = pickle.dumps(m, pickle.HIGHEST_PROTOCOL)
+        _Pickler(out, filename).dump(m)
     except RecursionError:  # nested too deeply to pickle: parsed again the next time
         return m
+    _PARSES[text] = out.getvalue()
+    if len(_PARSES) > PARSES_KEPT:
+        _PARSES.popitem(last=False)
+    return m
     if len(_PARSES) > PARSES_KEPT:
         _PARSES.popitem(last=False)
     return m

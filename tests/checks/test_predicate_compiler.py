@@ -92,3 +92,22 @@ def test_a_text_is_parsed_once_and_each_check_types_its_own_copy(monkeypatch):
         with pytest.raises(cpn.ModelError):
             lang.check("size (", None, Span("<test>", 1, 1), T.BOOL, "the test's text")
     assert len(parses) == 3
+
+
+def test_scenario_files_with_the_same_text_share_its_parse_and_keep_their_own_positions(monkeypatch):
+    from cpn.properties import predicates
+
+    monkeypatch.setattr(predicates, "_PARSES", type(predicates._PARSES)())
+    parses = []
+    real = predicates.parse
+    monkeypatch.setattr(predicates, "parse", lambda *a, **k: parses.append(a) or real(*a, **k))
+    engine = cpn.load(ROOT / "models/examples/stations.cpnet").engine()
+    lang = PropertyLanguage(engine.net, engine, TransitionIndex(engine))
+    # the file name is also a string of the text: only the spans' file changes
+    text = f'{TEXTS[0]} andalso "a.toml" <> ""'
+    exprs = {f: lang.check(text, None, Span(f, 1, 1), T.BOOL, "the test's text") for f in ("a.toml", "b.toml")}
+    assert len(parses) == 1
+    for f, expr in exprs.items():
+        spans = {n.span.file for n in predicates.walk(expr) if getattr(n, "span", None) is not None}
+        strings = [n.value for n in predicates.walk(expr) if isinstance(getattr(n, "value", None), str)]
+        assert spans == {f} and "a.toml" in strings
