@@ -12,6 +12,7 @@ import argparse
 import json
 import os
 import sys
+from typing import NamedTuple
 
 from cpn.cli._common import (
     ExitStatus,
@@ -64,6 +65,10 @@ def add_parser(subparsers) -> argparse.ArgumentParser:
     add_set_option(p)  # over [set] and the parameter table of every scenario; the run's name shows it
     add_limit_options(p, default_seconds=DEFAULT_MAX_SECONDS)  # override every scenario's [explore] limits
     add_parallel_options(p)
+    p.add_argument("-j", "--jobs", type=int, metavar="N", default=None,
+                   help="check N scenario runs at once, each in a process of its own (default: one per "
+                   "processor of this machine, 1 with --workers or --ray); the output and the reports are "
+                   "those of one process, and each run keeps its limits (--max-memory is each process's)")
     p.add_argument("--stop-at-first-violation", action="store_true",
                    help="stop each search at the first violated invariant or dead marking (fail fast)")
     p.add_argument("--sweep-line", action="store_true",
@@ -86,7 +91,7 @@ def run(args) -> int:
 
 
 def _run(args) -> int:
-    from cpn.report.verdicts import report_name, run_report
+    from cpn.report.verdicts import report_name
 
     check_limits(args)
     check_parallel(args)
@@ -95,32 +100,39 @@ def _run(args) -> int:
     files = scenario_paths(args.paths or [DEFAULT_DIR], "" if args.paths else
                            " (name scenario files or folders, or run from the folder that holds specs/)")
     _prepare_folders(args)
-    overrides = _overrides(args, sets)
     pages: list = []
     stdout_taken = any(o.to_stdout for o in outputs.values())
     docs: list[dict] = []
     timings = not args.no_timings
     scenarios, bad_files = load_scenarios(files, sets)
-    usage_errors = 0
     for scenario in scenarios:
         if not scenario.properties:
             from cpn.diagnostics import render
 
             print(render(_no_property(scenario), scenario.source), file=sys.stderr)
-        for r in scenario.runs:
-            result, failure = _run_one(scenario, r, overrides, args.quiet)
-            if result is None:
+    tasks = [(scenario, r) for scenario in scenarios for r in scenario.runs]
+    jobs = _jobs(args, len(tasks))
+    settings = _Settings(_overrides(args, sets), args.quiet, timings, args.html)
+    usage_errors = 0
+    done = 0
+    interrupted = False
+    try:
+        for (_, r), (doc, page, failure) in zip(tasks, _outcomes(tasks, settings, jobs)):
+            done += 1
+            if doc is None:
                 usage_errors += failure == "usage"
                 bad_files += failure == "bad"
                 continue
-            doc = run_report(result, timings=timings)
             docs.append(doc)
             if not stdout_taken:  # --quiet keeps results: where a property fails, and its trace
                 _print_run(doc, args.trace_format)
             if not args.no_reports:
                 _write_reports(args.reports, report_name(r.name), doc)
-            if args.html and result.exploration.graph is not None:  # a sweep-line run has no graph to draw
-                pages.append(_write_html_page(args.html, result, report_name(r.name)))
+            if page is not None:
+                pages.append(page)
+    except KeyboardInterrupt:  # between searches, or with --jobs (a search itself ends with a partial report)
+        interrupted = True
+        print(f"interrupted: {len(tasks) - done} of {len(tasks)} runs not checked", file=sys.stderr)
     if not stdout_taken:
         _print_summary(docs, timings)
     _write_outputs(outputs, docs, timings)
@@ -135,7 +147,53 @@ def _run(args) -> int:
              ExitStatus.DATAERR if bad_files or "error" in statuses else ExitStatus.OK,
              ExitStatus.VIOLATED if "violated" in statuses else ExitStatus.OK,
              ExitStatus.UNKNOWN if "unknown" in statuses else ExitStatus.OK]
-    return ExitStatus.worst(found)
+    return ExitStatus.INTERRUPTED if interrupted else ExitStatus.worst(found)
+
+
+class _Settings(NamedTuple):
+    """What every run of one `check` shares."""
+
+    overrides: dict
+    quiet: bool
+    timings: bool
+    html: str | None
+
+
+def _jobs(args, n_runs: int) -> int:
+    """How many runs are checked at once (--jobs; cpn.cli._jobs)."""
+    from cpn.cli._jobs import default_jobs
+
+    if args.jobs is not None:
+        if args.jobs < 1:
+            raise UsageError(f"--jobs must be at least 1, got {args.jobs}")
+        return min(args.jobs, max(n_runs, 1))
+    if args.workers is not None or args.ray is not None:
+        return 1  # each search already uses the processors
+    return default_jobs(n_runs)
+
+
+def _outcomes(tasks: list, settings: _Settings, jobs: int):
+    """(report document, HTML index entry, failure) of each run, in order: in this process, or in `jobs`."""
+    from cpn.cli._jobs import ordered_map
+
+    items = [(scenario, r, settings) for scenario, r in tasks]
+    return map(_check_run, items) if jobs <= 1 else ordered_map(_check_run, items, jobs)
+
+
+def _check_run(item) -> tuple:
+    """Run one scenario run: (its report document, its HTML page's index entry or None, None), or
+    (None, None, "bad" or "usage") with the error printed."""
+    from cpn.report.verdicts import report_name, run_report
+
+    scenario, r, settings = item
+    result, failure = _run_one(scenario, r, settings.overrides, settings.quiet)
+    if result is None:
+        return None, None, failure
+    doc = run_report(result, timings=settings.timings)
+    page = None
+    if settings.html and result.exploration.graph is not None:  # a sweep-line run has no graph to draw
+        page = _write_html_page(settings.html, result, report_name(r.name))
+    return doc, page, None
 
 
 
