@@ -439,11 +439,13 @@ class TypeInference(FunctionDraws):
             e.right = self.infer_ms(e.right, elem, env, f"the right operand of '{op}'")
             return T.ms(elem)
         if op == "@+":
+            self.refuse_second_delay(e)
             elem = T.TVar()
             e.left = self.infer_ms(e.left, elem, env, "the tokens of '@+'")
             self.infer_delay(e, env)
             return T.ms(elem)
         if op == "@++":
+            self.refuse_second_delay(e)
             elem = T.TVar()
             e.left = self.infer_ms(e.left, elem, env, "the tokens of '@++'")
             self.real_delay(e, env)
@@ -476,8 +478,10 @@ class TypeInference(FunctionDraws):
                 if isinstance(pr, T.TCon) and pr.name == "ms":
                     node.right = self.ms_as_list(node.right, pr)
                     rt = T.lst(pr.args[0])
-            self.must(t, a, node.left.span, f"the left operand of '{op}'")
-            self.must(rt, b, node.right.span, f"the right operand of '{op}'")
+            if not (self.unify(t, a, node.left.span, f"the left operand of '{op}'")
+                    and self.unify(rt, b, node.right.span, f"the right operand of '{op}'")):
+                self.hint_delay_operand(node)
+                raise Abort()
             node.ty = t = r
         return t
 

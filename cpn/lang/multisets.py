@@ -42,6 +42,7 @@ class MultisetInference:
             e.ty = T.ms(elem)
             return e
         if isinstance(e, A.BinOp) and e.op in ("@+", "@++"):
+            self.refuse_second_delay(e)
             e.left = self.infer_ms(e.left, elem, env, f"the tokens of '{e.op}'")
             if e.op == "@++":
                 self.real_delay(e, env)
@@ -259,7 +260,22 @@ class MultisetInference:
             return
         dt = self.infer(e.right, env)
         if not self.unify(dt, T.INT, e.right.span, "a time delay (it must be an integer)"):
-            if isinstance(e.right, A.BinOp) and e.right.op in ("++", "--"):
-                self.diags[-1].hint = ("'e @+ d' delays all of e by everything after the '@+', as CPN Tools "
-                                       "reads it; to delay one term only, write '(e1 @+ d) ++ e2'.")
             raise Abort()
+
+    def refuse_second_delay(self, e: A.BinOp) -> None:
+        """`e @+ d1 @+ d2`: CPN Tools' '@+' delays an untimed multiset, so a delayed one is a type error there."""
+        if isinstance(e.left, A.BinOp) and e.left.op in ("@+", "@++"):
+            self.error("E0301", f"'{e.op}' delays a multiset that '{e.left.op}' has delayed already", e.span,
+                       hint="CPN ML's '@+' takes an untimed multiset (CPN Tools: 'ms @+ int' is a timed multiset). "
+                            "Write one delay, 'e @+ (d1 + d2)', or add delayed terms with '+++'.")
+            raise Abort()
+
+    def hint_delay_operand(self, node: A.BinOp) -> None:
+        """The hint for a type error at an operator one of whose operands is a delay written without
+        parentheses: `x @+ d + 1` is `(x @+ d) + 1`, as '@+' is CPN Tools' `infix 7`, tighter than '+'."""
+        for side in (node.left, node.right):
+            if isinstance(side, A.BinOp) and side.op in ("@+", "@++") and self.diags:
+                self.diags[-1].hint = (f"'{side.op}' is an operator of CPN ML as tight as '*' (CPN Tools' infix 7), "
+                                       f"so it takes one operand on each side of '{node.op}': put the delay or the "
+                                       f"delayed multiset in parentheses, e.g. 'e @+ (d + 1)'.")
+                return

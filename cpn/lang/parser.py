@@ -17,7 +17,7 @@ from cpn._util.resources import read_text
 from cpn.diagnostics import Diagnostic, Span, other_command_hint
 from cpn.errors import ModelSyntaxError
 from cpn.lang import ast as A
-from cpn.lang.syntax_errors import CASE_RULE_DELAY, SYNTAX_ERRORS, TERMINAL_NAMES
+from cpn.lang.syntax_errors import SYNTAX_ERRORS, TERMINAL_NAMES
 from cpn.lang.transform import ToAst, balance_chains
 from cpn.lang.uses import expand_uses
 
@@ -171,9 +171,6 @@ def _diagnose(exc: UnexpectedInput, text: str, filename: str) -> Diagnostic:
         prev = exc.token_history[-1] if exc.token_history else None
         if prev is not None and str(prev) == "=":
             label = next(i for i, row in enumerate(SYNTAX_ERRORS) if row[1].startswith("'=='"))
-    if isinstance(exc, UnexpectedToken) and _case_rule_delay(text, exc.pos_in_stream):
-        code, message, hint = CASE_RULE_DELAY
-        return Diagnostic(code, message, span, hint=hint, params={"found": found})
     missing_semi = _missing_semicolon(exc, text, filename)
     if missing_semi is not None:
         return missing_semi
@@ -231,17 +228,6 @@ def _non_ascii_hint(text: str, pos: int) -> str | None:
                 f"instances may be quoted to hold other characters.")
     return (f"Write the name in double quotes: \"{word}\". A place, transition or instance may have any name in "
             f"quotes; every use of it is quoted too (arc \"{word}\" -> ...; in a property, Mark \"Page'{word}\" 1).")
-
-
-_CASE_RULE_DELAY = re.compile(r"\bcase\b[^;]*=>[^;|]*@\+[^;|]*\|\s*_?\Z")
-
-
-def _case_rule_delay(text: str, pos: int | None) -> bool:
-    """The statement up to the error reads `case .. => e @+ d |`: the '@+' took the next rule as its delay."""
-    if pos is None:
-        return False
-    stmt = text[text.rfind(";", 0, pos) + 1:pos + 1]
-    return bool(_CASE_RULE_DELAY.search(stmt))
 
 
 def _missing_semicolon(exc: UnexpectedInput, text: str, filename: str) -> Diagnostic | None:

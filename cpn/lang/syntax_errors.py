@@ -21,22 +21,9 @@ SYNTAX_ERRORS: list[tuple[str, str, str, list[str]]] = [
     ),
     (
         "E0101",
-        "'@+' in the then-branch of an if-expression: 'e @+ d' delays all of e, as CPN Tools reads it",
-        "Delay the whole expression with '(if .. then .. else ..) @+ d', or parenthesise the branch: "
-        "'if b then (e @+ d) else ..'.",
-        ["val x = if a then b @+ 1 else c;", "arc T -> P : if ok then 1`n @+ d else empty;"],
-    ),
-    (
-        "E0101",
         "'+++' in the then-branch of an if-expression: '+++' (the sum of timed multisets) is looser than 'if'",
         "Parenthesise the branch: 'if b then (e1 +++ e2) else ..', or add with '++'.",
         ["val x = if a then b +++ c else d;"],
-    ),
-    (
-        "E0101",
-        "a second '@+': 'e @+ d' delays all of e by everything after the '@+', as CPN Tools reads it",
-        "To delay parts of a multiset differently, write '(e1 @+ d1) +++ (e2 @+ d2)'.",
-        ["val x = 1`a @+ 1 @+ 2;", "arc T -> P : 1`a @+ 1 ++ 1`b @+ 2;"],
     ),
     (
         "E0101",
@@ -92,10 +79,3 @@ TERMINAL_NAMES: dict[str, str] = {
     "IN": "'in'", "OF": "'of'", "DARROW": "'=>'", "QUALNAME": "a qualified name", "$END": "the end of the file",
     "VBAR": "'|'", "DOT": "'.'", "__ANON_0": "'..'",
 }
-
-# '@+' inside a rule of 'case' swallows the following rules: `case x of 0 => e @+ d | _ => ...`
-CASE_RULE_DELAY = (
-    "E0101",
-    "'@+' in a rule of 'case': 'e @+ d' delays all of e by everything after the '@+', as CPN Tools reads it",
-    "Parenthesise the delayed rule body: 'p => (e @+ d) | ..', or delay the whole case: '(case .. of ..) @+ d'.",
-)

@@ -43,6 +43,67 @@ ASSOCIATIVE_OPS: frozenset[str] = frozenset({"++", "+++", "^^", "@", "^"})
 LONG_CONS_CHAIN: int = 32
 
 
+# The operators looser than CPN Tools' `infix 7 @+` that an inscription's delay reaches over (delay_whole).
+_DELAY_REACHES_OVER: frozenset[str] = frozenset({"+", "-", "^", "::", "@", "^^", "++", "--"})
+
+
+def _ends_with(outer: Span, inner: Span) -> bool:
+    """inner ends where outer does: inner is the last operand of outer, not in parentheses of its own."""
+    return (outer.end_line, outer.end_col) == (inner.end_line, inner.end_col)
+
+
+def _has_delay(e) -> bool:
+    stack = [e]  # iterative: a sum may have thousands of terms
+    while stack:
+        x = stack.pop()
+        if isinstance(x, A.BinOp):
+            if x.op in ("@+", "@++"):
+                return True
+            stack += (x.left, x.right)
+        elif isinstance(x, A.If):
+            stack += (x.then, x.else_)
+    return False
+
+
+def delay_whole(e):
+    """An arc inscription or initial marking `e @+ d` as CPN Tools reads it: the delay of all of e.
+
+    In CPN ML '@+' is `infix 7`, tighter than `+ - ^ :: @ ++ --`, so `i+1 @+ d` alone would be `i + (1 @+ d)`.
+    CPN Tools' help writes an output inscription as `exp @+ arc-delay` and an initial marking as
+    `init-mark-exp @+ time-delay` (the delay appended "using @+ as a separator"), and models made with it
+    write `i+1@++exponential(1.0/4.0)` and ``1`0 ++ 1`1 @+ 2``: a delay that ends an inscription whose other
+    operators are looser delays everything before it, unless it is in parentheses or another delay comes
+    earlier. The same holds for each branch of an `if` and each rule of a `case` at the top, and for each term
+    of a '+++' sum. Anywhere else '@+' is the operator of its level: `f (x :: y @+ 2)` is `x :: (y @+ 2)`.
+    """
+    if isinstance(e, A.If):
+        e.then, e.else_ = delay_whole(e.then), delay_whole(e.else_)
+        return e
+    if isinstance(e, A.Case):
+        e.rules = [(p, delay_whole(b)) for p, b in e.rules]
+        return e
+    if not isinstance(e, A.BinOp):
+        return e
+    if e.op == "+++":
+        e.left, e.right = delay_whole(e.left), delay_whole(e.right)
+        return e
+    spine = []
+    node = e
+    while isinstance(node, A.BinOp) and node.op in _DELAY_REACHES_OVER and _ends_with(node.span, node.right.span):
+        spine.append(node)
+        node = node.right
+    delay = node
+    if not spine or not (isinstance(delay, A.BinOp) and delay.op in ("@+", "@++")) \
+            or any(_has_delay(n.left) for n in spine):
+        return e
+    spine[-1].right = delay.left
+    end = delay.left.span
+    for n in spine:
+        n.span = Span(n.span.file, n.span.line, n.span.col, end.end_line, end.end_col)
+    s = e.span
+    return A.BinOp(Span(s.file, s.line, s.col, delay.span.end_line, delay.span.end_col), delay.op, e, delay.right)
+
+
 def _chain_op(node) -> str | None:
     if isinstance(node, Tree) and node.data == "binop" and len(node.children) == 3:
         op = str(node.children[1])
@@ -337,13 +398,14 @@ class ToAst(Transformer_NonRecursive):
     @v_args(meta=True)
     def place_decl(self, meta, items):
         (name, nspan), cs, init, fus_kw, fus = items
-        return A.PlaceDecl(self.span(meta), name, nspan, str(cs), self.tspan(cs), init,
-                           fusion=fus[0] if fus else None)
+        return A.PlaceDecl(self.span(meta), name, nspan, str(cs), self.tspan(cs),
+                           None if init is None else delay_whole(init), fusion=fus[0] if fus else None)
 
     @v_args(meta=True)
     def port_decl(self, meta, items):
         kind, (name, nspan), cs, init = items
-        return A.PlaceDecl(self.span(meta), name, nspan, str(cs), self.tspan(cs), init, port=str(kind))
+        return A.PlaceDecl(self.span(meta), name, nspan, str(cs), self.tspan(cs),
+                           None if init is None else delay_whole(init), port=str(kind))
 
     @v_args(meta=True)
     def trans_decl(self, meta, items):
@@ -385,7 +447,8 @@ class ToAst(Transformer_NonRecursive):
     @v_args(meta=True)
     def arc_decl(self, meta, items):
         (src, sspan, skind), arrow, (dst, dspan, dkind), expr = items
-        return A.ArcDecl(self.span(meta), str(arrow), src, sspan, dst, dspan, expr, skind, dkind)
+        return A.ArcDecl(self.span(meta), str(arrow), src, sspan, dst, dspan,
+                         None if expr is None else delay_whole(expr), skind, dkind)
 
     @v_args(meta=True)
     def inhibitor_decl(self, meta, items):

@@ -109,6 +109,27 @@ trans T [x < 3] @+ discrete(0, 1);
 arc P -> T : x;
 arc T -> P : x + bernoulli(0.5) + 1;
 """,
+    # '@+' at CPN Tools' level (infix 7): each branch of an `if` its own delay, on an arc and in a function (an
+    # `if` with delays in the then-branch of another), and `e1 + e2 @+ d` at the top of an inscription
+    "delays_per_branch": """
+colset B = bool;
+colset C = int with 0..3 timed;
+colset U = unit;
+var b : B;
+var x : C;
+fun pick (b, x) = if b then if x < 2 then 1`x @+ 0 else 1`(x - 1) @+ 1 else 1`((x + 1) mod 4) @+ 2;
+place P : C = 1`0;
+place Q : C;
+place Go : U = 3`();
+trans T;
+arc Go -> T : ();
+arc P -> T : x;
+arc T -> Q : if b then 1`x @+ 2 else 1`((x + 1) mod 4) @+ 3;
+arc T -> P : pick (b, x);
+trans R;
+arc Q -> R : x;
+arc R -> P : if x < 3 then x + 1 @+ 1 else 0 @+ 4;
+""",
 }
 
 
@@ -118,3 +139,20 @@ def test_engines_agree(name):
     _compare(model, condensation=False, limit=80)
     if model.net.is_timed and not model.engine().reads_clock:
         _compare(model, condensation=True, limit=80)
+
+
+def test_delays_per_branch_explore_alike_in_c_and_python():
+    """The per-branch delays of "delays_per_branch" in the native search and the Python one: the same graph."""
+    from cpn.statespace import ExploreOptions, Explorer
+    from cpn.statespace.store import packed_unavailable
+    from tests.engine._explore import same_exploration
+
+    if packed_unavailable() is not None:
+        pytest.skip(f"native code unavailable: {packed_unavailable()}")
+    model = cpn.loads(CASES["delays_per_branch"], "delays_per_branch.cpnet")
+    c = Explorer(model.engine(), ExploreOptions(backend="c", max_states=5000)).run()
+    py = Explorer(model.engine(), ExploreOptions(backend="python", max_states=5000, packed_states=False)).run()
+    same_exploration(c, py)
+    stamps = {py.engine.format_marking(s, 1) for s in py.graph.states}
+    # the first occurrence of T with b = true puts 1`0 on Q at 2, with b = false 1`1 at 3
+    assert {"1`0@2", "1`1@3"} <= stamps

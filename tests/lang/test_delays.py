@@ -1,5 +1,6 @@
-"""Delays: the reach of `@+` over an output inscription (CPN Tools' reading, also from `.cpn` files), ambiguous
-delays refused with a hint to parenthesise, and delays into untimed places."""
+"""Delays: `@+` as CPN Tools' `infix 7` (each branch of an `if` its own delay), the reach of a delay that ends
+an inscription (CPN Tools' `exp @+ arc-delay`, also from `.cpn` files), delays of delayed multisets refused, and
+delays into untimed places."""
 
 import pytest
 
@@ -32,10 +33,17 @@ def _after_go(model, reference):
 
 
 @pytest.mark.parametrize("reference", [False, True])
-@pytest.mark.parametrize("insc", ["1`0 ++ 1`1 @+ 2", "if true then 1`0 ++ 1`1 else empty @+ 2",
-                                  "(1`0 ++ 1`1) @+ 2"])
-def test_a_delay_applies_to_the_whole_output_inscription(insc, reference):
+@pytest.mark.parametrize("insc", ["1`0 ++ 1`1 @+ 2", "(1`0 ++ 1`1) @+ 2", "if true then 1`0 ++ 1`1 @+ 2 else empty"])
+def test_a_delay_at_the_end_of_an_inscription_delays_all_of_it(insc, reference):
+    # CPN Tools' `exp @+ arc-delay`: the delay that ends an inscription (or a branch of its if) delays all before it
     assert _after_go(cpn.loads(DELAY_NET.format(insc=insc)), reference) == "1`0@2+++1`1@2"
+
+
+@pytest.mark.parametrize("reference", [False, True])
+@pytest.mark.parametrize("insc,after", [("0 + 1 @+ 2", "1`1@2"), ("2 - 1 :: [0] @+ 2", "1`0@2+++1`1@2")])
+def test_a_delay_reaches_over_looser_operators_at_the_top(insc, after, reference):
+    # `i+1@++exponential(1.0/4.0)`, as models made with CPN Tools write it: (i+1) delayed
+    assert _after_go(cpn.loads(DELAY_NET.format(insc=insc)), reference) == after
 
 
 @pytest.mark.parametrize("reference", [False, True])
@@ -48,24 +56,51 @@ def test_timed_sums_of_differently_delayed_terms():
     assert _after_go(m, False) == "1`0@1+++1`1@2"
 
 
-@pytest.mark.parametrize("src,message", [
-    ("val x = if true then 1`1 @+ 1 else empty;", "'@+' in the then-branch"),
-    ("val x = 1`1 @+ 1 @+ 2;", "a second '@+'"),
-    ("val x = if true then 1`1 +++ 1`2 else empty;", "'+++' in the then-branch"),
-    ("val x = case 1 of 0 => 1`1 @+ 1 | _ => empty;", "'@+' in a rule of 'case'"),
-    ("fun f x = case x of 0 => 1`1 @+ 1 | _ => empty;", "'@+' in a rule of 'case'"),
+# '@+' is CPN Tools' `infix 7`: an operator of its level, so each branch of an `if` takes its own delay (before,
+# `else e @+ d` delayed the whole `if`, and a delay in a then-branch was a syntax error)
+@pytest.mark.parametrize("reference", [False, True])
+@pytest.mark.parametrize("insc,after", [
+    ("if true then 1`0 @+ 2 else 1`1 @+ 3", "1`0@2"),
+    ("if false then 1`0 @+ 2 else 1`1 @+ 3", "1`1@3"),
+    ("if true then 1`0 ++ 1`1 else empty @+ 2", "1`0@0+++1`1@0"),
+    ("if true then if false then 1`0 @+ 0 else 1`1 @+ 1 else 1`1 @+ 1", "1`1@1"),
+    ("case 1 of 0 => 1`0 @+ 1 | _ => 1`1 @+ 2", "1`1@2"),
+    ("1`0 @+ 2 ++ 1`1", "1`0@2+++1`1@0"),
 ])
-def test_an_ambiguous_delay_is_refused_with_a_hint_to_parenthesise(src, message):
+def test_each_branch_has_its_own_delay(insc, after, reference):
+    assert _after_go(cpn.loads(DELAY_NET.format(insc=insc)), reference) == after
+
+
+@pytest.mark.parametrize("reference", [False, True])
+def test_a_function_whose_branches_are_delayed_differently(reference):
+    # the LEACH-HOP model's form: `if c then A @+ 0 else B @+ 1` in the then-branch of another `if`
+    src = DELAY_NET.replace("place S", "fun f (a, b) = if a then if b then 1`0 @+ 0 else 1`1 @+ 1 else empty;\n"
+                                       "place S", 1)
+    assert _after_go(cpn.loads(src.format(insc="f (true, false)")), reference) == "1`1@1"
+
+
+def test_a_delay_in_a_then_branch_parses():
+    parse("val x = if true then 1`1 @+ 1 else empty;\nval y = case 1 of 0 => 1`1 @+ 1 | _ => empty;", "m.cpnet")
+
+
+def test_a_plus_plus_plus_in_a_then_branch_is_still_refused_with_a_hint():
     with pytest.raises(ModelError) as info:
-        parse(src, "m.cpnet")
+        parse("val x = if true then 1`1 +++ 1`2 else empty;", "m.cpnet")
     [d] = info.value.diagnostics
-    assert d.code == "E0101" and message in d.message and "(" in d.hint
+    assert d.code == "E0101" and "'+++' in the then-branch" in d.message and "(" in d.hint
 
 
-def test_a_delay_that_swallows_a_sum_is_a_type_error_with_a_hint():
-    [d] = _diags(DELAY_NET.format(insc="1`0 @+ 2 ++ 1`1"))
-    assert (d.code, d.span.line, d.span.col) == ("E0301", 5, 50)
-    assert "'(e1 @+ d) ++ e2'" in d.hint
+def test_a_delay_of_a_delayed_multiset_is_a_type_error():
+    # CPN Tools: '@+' takes an untimed multiset ('a ms * int -> 'a tms)
+    [d] = _diags(DELAY_NET.format(insc="1`0 @+ 1 @+ 2"))
+    assert (d.code, d.span.line, d.span.col) == ("E0301", 5, 43)
+    assert "'e @+ (d1 + d2)'" in d.hint
+
+
+def test_a_delay_followed_by_an_addition_is_a_type_error_with_a_hint():
+    # `x @+ d + 1` is `(x @+ d) + 1`: '@+' is as tight as '*'
+    [d] = _diags("colset C = int timed; val d = 1; val m = 1`0 @+ d + 1;")
+    assert d.code == "E0301" and "'e @+ (d + 1)'" in d.hint
 
 
 def test_cpn_import_reads_the_delay_as_cpn_tools_does(tmp_path):

@@ -92,7 +92,7 @@ def test_an_unclosed_bracket_is_reported_where_it_opens(src, line, col, opener):
 
 def test_a_let_inside_brackets_over_lines_that_begin_with_val_is_one_statement():
     # the syntax error on line 1 is the only one: the action's `val` lines are inside its parentheses
-    src = ("val x = if true then 1 @+ 1 else 2;\ncolset U = unit; place P : U;\n"
+    src = ("val x = if true 1 else 2;\ncolset U = unit; place P : U;\n"
            "trans T action (let\n  val a = 1;\n  val b = 2\nin\n  a + b\nend);\narc P -> T;\n")
     with pytest.raises(ModelError) as info:
         parse(src, "m.cpnet")
