@@ -150,8 +150,15 @@ class PageChecks:
             elif pd.colset in self.colsets and self.colsets[pd.colset].kind == "unit":
                 expr = A.Const(d.span, (), "unit")
             else:
-                self.error("E0301", f"the arc between '{place}' and '{trans}' has no inscription", d.span,
-                           hint="Only arcs of unit places may omit the inscription (it means 1`()).")
+                # CPN Tools' syntax check leaves such an arc, and so its transition, unchecked: the transition
+                # cannot occur there either (cpntools.org, "Syntax checking" and "Arc inscriptions")
+                self.error("E0301", f"the arc between '{place}' and '{trans}' has no inscription, and place "
+                           f"'{place}' holds {pd.colset}, not a unit colour set: CPN Tools does not accept it either",
+                           d.span, place=place, transition=trans, colset=pd.colset,
+                           hint=f"Only an arc of a unit place may go without an inscription (it means 1`()); CPN "
+                                f"Tools leaves any other such arc and its transition unchecked, so the transition "
+                                f"cannot occur. Write the tokens the arc moves, e.g. a variable of colour set "
+                                f"{pd.colset}.")
                 return
         elif ak.empties:
             self.error("E0301", "reset arcs take no inscription", d.span)

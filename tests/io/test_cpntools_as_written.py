@@ -52,6 +52,9 @@ def test_an_arc_without_annot_element_of_a_non_unit_place_is_one_positioned_erro
         load(tmp_path, xml)
     [d] = info.value.diagnostics
     assert d.code == "E0301" and "has no inscription" in d.message
+    # CPN Tools refuses it too, and the message says so, naming the place's colour set
+    assert (d.params["place"], d.params["colset"]) == ("A", "S") and "CPN Tools does not accept it" in d.message
+    assert "a variable of colour set S" in d.hint
     line = xml.splitlines()[d.span.line - 1]
     assert line[d.span.col - 1:].startswith('<arc id="A1"')
 
