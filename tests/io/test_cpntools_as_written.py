@@ -74,6 +74,18 @@ def test_a_place_without_colour_set_is_unit_as_in_cpn_tools(tmp_path):
     assert explore_counts(tmp_path, xml) == (2, 1)
 
 
+def test_other_tokens_on_an_arc_to_a_place_without_colour_set_are_a_type_error_that_says_why(tmp_path):
+    # the mip model: 'satisfied student' has no colour set (UNIT in CPN Tools), its arc from 'eat' carries x : s
+    body = (place("P1", "A", "S", "1`0") + place("P2", "B", "") + trans("T1", "t")
+            + arc("A1", "PtoT", "T1", "P1", "x") + arc("A2", "TtoP", "T1", "P2", "x"))
+    xml = cpn_xml(DECLS, page("PG1", "Top", body))
+    with pytest.raises(ModelError) as info:
+        load(tmp_path, xml)
+    [d] = info.value.diagnostics
+    assert d.code == "E0301" and "type mismatch" in d.message
+    assert "Place 'B' has no colour set in the file" in d.hint and "type error in CPN Tools too" in d.hint
+
+
 def test_a_place_without_colour_set_uses_the_nets_own_unit(tmp_path):
     body = place("P1", "A", "", "1`()") + trans("T1", "t") + arc_without_annot("A1", "PtoT", "T1", "P1")
     t = translate_text(cpn_xml(DECLS, page("PG1", "Top", body)), "m.cpn")

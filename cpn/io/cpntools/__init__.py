@@ -54,6 +54,7 @@ class _Place:
     port: str | None
     fusion: str | None
     page: _Page
+    untyped: bool = False  # no colour-set inscription in the file: UNIT, as in CPN Tools
 
 
 @dataclass
@@ -114,6 +115,7 @@ class _Translator(_Declarations):
         self.raw_lines = data.decode("latin-1").splitlines()
         self.errors: list[Diagnostic] = []
         self.notes: list[str] = []
+        self.untyped_arcs: dict[str, str] = {}  # arc id -> the name of its place that has no colour set
         self.out = _Out()
         self.pages: dict[str, _Page] = {}
         self.places: dict[str, _Place] = {}
@@ -183,7 +185,8 @@ class _Translator(_Declarations):
             self.error(self.root, "the net has no page", hint="Add a page with places and transitions.")
         if self.errors:
             raise ModelError(self.errors)
-        return Translation(self.path, "\n".join(self.out.lines) + "\n", self.out.pieces, self.notes, self.raw_lines)
+        return Translation(self.path, "\n".join(self.out.lines) + "\n", self.out.pieces, self.notes, self.raw_lines,
+                           self.untyped_arcs)
 
     # -- options ---------------------------------------------------------------------------------
 
@@ -392,6 +395,7 @@ class _Translator(_Declarations):
             self.notes.append(f"place '{p.name}' ({p.id}) on page '{p.page.name}' has no colour set: "
                               "UNIT, as in CPN Tools")
             p.type = UNIT_NAME
+            p.untyped = True
         head = f"port {p.port} " if p.port else "place "
         parts: list[tuple[str, Origin | None]] = [
             (f"{head}{ml.quote(p.name)} : ", None),
@@ -603,6 +607,8 @@ class _Translator(_Declarations):
         t, p = ends
         if t.subpage is not None:
             return  # a socket arc of a substitution transition: drawn only; portsock carries the meaning
+        if p.untyped:
+            self.untyped_arcs[aid] = p.name
         annot = _clean(a.child_text("annot"))
         what = f"the inscription of the arc between '{p.name}' and '{t.name}' on page '{page.name}'"
         ao = _text_origin(a.find("annot"), aid, page.name, f"arc inscription {p.name}/{t.name}", owner=a)
@@ -654,9 +660,10 @@ class _Translator(_Declarations):
         missing = any(end is not None and found is None for end, found in ((te, t), (pe, p)))
         self.error(a, f"arc {a.attrs.get('id', '?')} on page '{page.name}' does not connect a place and a transition "
                    "of the page: " + "; ".join(why),
-                   hint=(f"CPN Tools does not load a file whose arc names a node the file does not hold either: "
-                         f"delete the <arc id=\"{a.attrs.get('id', '?')}\"> element from the file, or add the "
-                         "missing node to the page." if missing else
+                   hint=(f"The file is not as CPN Tools writes it: its loader joins an arc only to a node whose "
+                         f"id the file holds, so there this arc would join no {'transition' if t is None else 'place'} "
+                         f"and take part in no occurrence. Delete the <arc id=\"{a.attrs.get('id', '?')}\"> element "
+                         "from the file, or add the missing node to the page." if missing else
                          "Delete the arc in CPN Tools, or draw it again between a place and a transition of the page."))
         return None
 
@@ -729,7 +736,13 @@ def remap_error(error: ModelError, translation: Translation, generated_name: str
                 else:
                     note = f"in {origin.describe()}; line {s.line} of the translated text"
                     new_span = span
-                out.append(Diagnostic(d.code, d.message, new_span, d.hint, list(d.notes) + [note],
+                hint = d.hint
+                place = translation.untyped_arcs.get(origin.element)
+                if hint is None and place is not None and d.code == "E0301" and "type mismatch" in d.message:
+                    hint = (f"Place '{place}' has no colour set in the file, and CPN Tools gives such a place the "
+                            f"colour set UNIT, so an arc that moves other tokens is a type error in CPN Tools too: "
+                            f"give the place the colour set of the arc's tokens.")
+                out.append(Diagnostic(d.code, d.message, new_span, hint, list(d.notes) + [note],
                                       dict(d.params), d.severity))
                 continue
         out.append(d)

@@ -49,6 +49,7 @@ class Translation:
     pieces: list[_Piece] = field(default_factory=list)
     notes: list[str] = field(default_factory=list)
     raw_lines: list[str] = field(default_factory=list)  # the `.cpn` file's lines, entities not decoded
+    untyped_arcs: dict[str, str] = field(default_factory=dict)  # arc id -> its place without a colour set
 
     def origin(self, line: int, col: int = 1) -> Span | None:
         """The span in the `.cpn` file that position (line, col) of the text translates (`cpn.io.Translation`)."""
