@@ -257,7 +257,7 @@ class LoadCache:
     """
 
     TREES = 16  # parses kept (a mutant is a text of its own)
-    NETS = 8  # nets kept (the MODBUS model's is a few megabytes)
+    NETS = 2  # nets kept (the MODBUS model's is a few megabytes, some 15,000 objects the collector walks)
 
     def __init__(self):
         self.trees: OrderedDict = OrderedDict()

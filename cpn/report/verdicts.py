@@ -70,11 +70,12 @@ def end_marking(engine, state, sid: int, reads: tuple = ()) -> dict:
     return doc
 
 
-#: engines built to print traces, per net and kind, reused by every trace of the nets most recently reported on
-#: (a scenario's runs and a check's scenarios share their nets: `cpn.model.caching`): replaying a trace only
-#: reads an engine (what it interns grows, its successor function is the same)
+#: engines built to print traces, per net and kind, reused by every trace of the net last reported on (the
+#: traces of one run, and of runs that share their net: `cpn.model.caching`): replaying a trace only reads an
+#: engine (what it interns grows, its successor function is the same). One net: an engine holds its memo
+#: tables, some 30,000 objects for a MODBUS net, which every full collection of the garbage collector walks
 _PRINTING_ENGINES: OrderedDict = OrderedDict()
-PRINTING_NETS: int = 4
+PRINTING_NETS: int = 1
 
 
 def printing_engine(net, time_condensation: bool = False, reference: bool = False):
