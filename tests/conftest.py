@@ -1,9 +1,11 @@
 """Settings of the whole test suite."""
 
+import gc
 import os
 
 import pytest
 
+from cpn.cli.main import GC_THRESHOLDS
 from tests._shared import HAVE_SHARED, SHARED
 
 # The suite builds many small libraries (one per net whose C it tests), and what the tests check does not
@@ -12,6 +14,11 @@ from tests._shared import HAVE_SHARED, SHARED
 # each). Whole runs of the suite from a fresh clone and an empty cache varied more than that difference on
 # the same machine: 7 min 14 s and 8 min 45 s at -O0, 8 min 10 s at -O1.
 os.environ.setdefault("CPN_CC_OPT", "-O0")
+
+# The garbage collector's thresholds of the command line (cpn.cli.main.GC_THRESHOLDS), for the tests that run
+# it in this process: with Python's defaults, full collections walk every model, engine and graph the
+# tests of a process keep alive.
+gc.set_threshold(*GC_THRESHOLDS)
 
 
 def pytest_configure(config):

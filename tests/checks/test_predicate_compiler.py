@@ -72,13 +72,19 @@ def test_a_function_with_two_wildcards_in_its_tuple_pattern_compiles():
     assert got == [True, False] and got == _values(WithoutCompiler(engine), states, text)
 
 
-def test_a_text_is_parsed_once_and_each_check_types_its_own_copy(monkeypatch):
+@pytest.fixture
+def parses(monkeypatch) -> list:
+    """The parses of property texts made while the test runs (none kept from before)."""
     from cpn.properties import predicates
 
     monkeypatch.setattr(predicates, "_PARSES", type(predicates._PARSES)())
-    parses = []
+    made: list = []
     real = predicates.parse
-    monkeypatch.setattr(predicates, "parse", lambda *a, **k: parses.append(a) or real(*a, **k))
+    monkeypatch.setattr(predicates, "parse", lambda *a, **k: made.append(a) or real(*a, **k))
+    return made
+
+
+def test_a_text_is_parsed_once_and_each_check_types_its_own_copy(parses):
     engine = cpn.load(ROOT / "models/examples/stations.cpnet").engine()
     states = list(Explorer(engine, ExploreOptions()).run().graph.states)
     first = _values(engine, states, TEXTS[0])
@@ -94,13 +100,9 @@ def test_a_text_is_parsed_once_and_each_check_types_its_own_copy(monkeypatch):
     assert len(parses) == 3
 
 
-def test_scenario_files_with_the_same_text_share_its_parse_and_keep_their_own_positions(monkeypatch):
+def test_scenario_files_with_the_same_text_share_its_parse_and_keep_their_own_positions(parses):
     from cpn.properties import predicates
 
-    monkeypatch.setattr(predicates, "_PARSES", type(predicates._PARSES)())
-    parses = []
-    real = predicates.parse
-    monkeypatch.setattr(predicates, "parse", lambda *a, **k: parses.append(a) or real(*a, **k))
     engine = cpn.load(ROOT / "models/examples/stations.cpnet").engine()
     lang = PropertyLanguage(engine.net, engine, TransitionIndex(engine))
     # the file name is also a string of the text: only the spans' file changes
