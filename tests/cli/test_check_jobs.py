@@ -49,11 +49,14 @@ def _scenarios(tmp_path) -> list[str]:
 
 def _check(tmp_path, name: str, *args: str):
     reports = tmp_path / name
+    html = tmp_path / f"{name}-html"
     p = subprocess.run([sys.executable, "-m", "cpn", "check", *_scenarios(tmp_path), "--no-timings",
-                        "--reports", str(reports), "--junit", str(tmp_path / f"{name}.xml"), *args],
-                       cwd=ROOT, capture_output=True, text=True, timeout=600)
+                        "--reports", str(reports), "--junit", str(tmp_path / f"{name}.xml"), "--html", str(html),
+                        *args], cwd=ROOT, capture_output=True, text=True, timeout=600)
     files = {f.name: f.read_text(encoding="utf-8") for f in sorted(reports.iterdir())}
-    return p.returncode, p.stdout, p.stderr, files, (tmp_path / f"{name}.xml").read_text(encoding="utf-8")
+    pages = sorted(f.name for f in html.iterdir())  # the pages carry their run's time and date
+    return (p.returncode, p.stdout, p.stderr, files, (tmp_path / f"{name}.xml").read_text(encoding="utf-8"),
+            pages)
 
 
 def test_runs_in_several_processes_print_and_write_what_one_process_does(tmp_path):
@@ -63,6 +66,7 @@ def test_runs_in_several_processes_print_and_write_what_one_process_does(tmp_pat
     assert one[0] == 65 and "violated" in one[1] and "error" in one[2] and "Traceback" not in one[2]
     # three reports for each run that loads: 3 rows of 4, and the 6 runs of the 4 examples
     assert len(one[3]) == 3 * 9 and sum(name.startswith("rows") for name in one[3]) == 3 * 3
+    assert "index.html" in one[5] and len(one[5]) == 1 + 9  # a page per run that loads, and the index
     assert two == one and auto == one
 
 
