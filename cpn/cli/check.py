@@ -111,7 +111,7 @@ def _run(args) -> int:
 
             print(render(_no_property(scenario), scenario.source), file=sys.stderr)
     tasks = [(scenario, r) for scenario in scenarios for r in scenario.runs]
-    jobs = _jobs(args, len(tasks))
+    jobs = _jobs(args, tasks)
     settings = _Settings(_overrides(args, sets), args.quiet, timings, args.html)
     usage_errors = 0
     done = 0
@@ -159,17 +159,22 @@ class _Settings(NamedTuple):
     html: str | None
 
 
-def _jobs(args, n_runs: int) -> int:
-    """How many runs are checked at once (--jobs; cpn.cli._jobs)."""
+def _jobs(args, tasks: list) -> int:
+    """How many runs are checked at once (--jobs; cpn.cli._jobs): one at a time where a search of its own
+    spreads over the processors (--workers, --ray, or `workers`/`ray` in a scenario's [explore])."""
     from cpn.cli._jobs import default_jobs
 
-    if args.jobs is not None:
-        if args.jobs < 1:
-            raise UsageError(f"--jobs must be at least 1, got {args.jobs}")
-        return min(args.jobs, max(n_runs, 1))
-    if args.workers is not None or args.ray is not None:
-        return 1  # each search already uses the processors
-    return default_jobs(n_runs)
+    if args.jobs is not None and args.jobs < 1:
+        raise UsageError(f"--jobs must be at least 1, got {args.jobs}")
+    partitioned = sorted({s.path for s, _ in tasks if s.explore.get("workers") or s.explore.get("ray")})
+    why = ("--workers or --ray spread each search over the processors" if args.workers or args.ray
+           else f"{partitioned[0]} searches with workers of its own ([explore] workers or ray)" if partitioned
+           else None)
+    if why is not None:
+        if args.jobs is not None and args.jobs > 1 and not args.quiet:
+            print(f"note: the runs are checked one at a time: {why}", file=sys.stderr)
+        return 1
+    return min(args.jobs, max(len(tasks), 1)) if args.jobs is not None else default_jobs(len(tasks))
 
 
 def _outcomes(tasks: list, settings: _Settings, jobs: int):

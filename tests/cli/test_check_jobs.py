@@ -101,3 +101,17 @@ def test_ctrl_c_stops_the_processes_and_reports_the_runs_that_finished(tmp_path)
     finished = [line.split()[0] for line in out.splitlines() if line.startswith("long[")]
     assert finished == [f"long[N={i}]" for i in range(12 - int(m.group(1)))], (finished, err)
     assert len(list((tmp_path / "r").glob("*.json"))) == len(finished)
+
+
+@pytest.mark.parametrize("where", ["scenario", "command line"])
+def test_runs_whose_search_has_workers_of_its_own_are_checked_one_at_a_time(tmp_path, capsys, where):
+    # a pool's processes cannot start the partitioned search's own
+    explore = "[explore]\nworkers = 2\nbackend = \"python\"\n" if where == "scenario" else ""
+    (tmp_path / "ms.toml").write_text(
+        f'model = "{(ROOT / "bench/nets/ms.cpnet").as_posix()}"\n{explore}'
+        "[[parameters]]\nN = 2\n[[parameters]]\nN = 3\n"
+        '[[property]]\nname = "no dead marking"\nkind = "dead_markings"\ncount = 0\n', encoding="utf-8")
+    extra = ["--workers", "2"] if where == "command line" else []
+    assert main(["check", str(tmp_path / "ms.toml"), "--no-reports", "--jobs", "2", *extra]) == 0
+    out, err = capsys.readouterr()
+    assert "note: the runs are checked one at a time" in err and "ms[N=3]" in out
