@@ -197,7 +197,7 @@ def _check_run(item) -> tuple:
     doc = run_report(result, timings=settings.timings)
     page = None
     if settings.html and result.exploration.graph is not None:  # a sweep-line run has no graph to draw
-        page = _write_html_page(settings.html, result, report_name(r.name))
+        page = _write_html_page(settings.html, result, report_name(r.name), settings.timings)
     return doc, page, None
 
 
@@ -392,7 +392,7 @@ def _prepare_folder(folder: str, option: str, default: str = "") -> None:
         raise CannotCreate(f"cannot write {option} {folder}: {exc.strerror or exc}{default}") from None
 
 
-def _write_html_page(folder: str, result, stem: str):
+def _write_html_page(folder: str, result, stem: str, timings: bool = True):
     """The page of one run (its report, its verdicts and their traces); returns its index entry."""
     from cpn.properties.vacuity import warning_code
     from cpn.report import build_report
@@ -402,6 +402,7 @@ def _write_html_page(folder: str, result, stem: str):
     report = build_report(x, model=result.scenario.model,
                           options={"set": dict(result.run.values),
                                    "time_condensation": bool(result.options.get("time_condensation"))})
+    report.timings = timings
     verdicts = []
     for r in result.results:
         v = r.verdict

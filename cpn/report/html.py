@@ -206,7 +206,7 @@ def write_run_page(folder: str, stem: str, title: str, report: Report, verdicts:
         if not report.exploration.complete and status == "holds":
             status = "unknown"
     failed = [v.name for v, t in zip(verdicts or (), texts) if t == "violated"]
-    return IndexEntry(title, name, status, report.exploration.n_states, report.seconds,
+    return IndexEntry(title, name, status, report.exploration.n_states, report.seconds if report.timings else None,
                       ("violated: " + ", ".join(failed)) if failed else "")
 
 
@@ -309,14 +309,15 @@ def _header(r: Report, status: str, heading: str | None = None) -> str:
     facts = [f"{x.n_states:,} states", f"{x.n_arcs:,} arcs"] + (
         ["reduced by stubborn sets"] if r.reduced else ["quotient by symmetry"] if r.symmetric
         else [f"{r.scc.nodes:,} SCCs"]) + [
-             f"{dead:,} dead marking{'s' if dead != 1 else ''}", f"{r.seconds:.2f} s"]
+             f"{dead:,} dead marking{'s' if dead != 1 else ''}"] + ([f"{r.seconds:.2f} s"] if r.timings else [])
     if heading:
         facts.insert(0, os.path.basename(r.model))
     opts = ", ".join(f"{k}={v}" for k, v in sorted((r.options.get("set") or {}).items()))
     tc = " · time condensation" if r.options.get("time_condensation") else ""
     return (f'<header><h1>{S.esc(heading or os.path.basename(r.model))} {_pill(status)}</h1>'
             f'<p class="sub">{S.esc(" · ".join(facts))}{S.esc(tc)}{" · " + S.esc(opts) if opts else ""}</p>'
-            f'<p class="path">{S.esc(r.model)} · generated {S.esc(r.generated)} by cpn-verify</p></header>')
+            f'<p class="path">{S.esc(r.model)} · generated {S.esc(r.generated) + " " if r.timings else ""}'
+            'by cpn-verify</p></header>')
 
 
 def _verdicts(r: Report, verdicts: list, failed: list) -> str:
@@ -354,12 +355,14 @@ def _statistics(r: Report) -> str:
     ss = [["Nodes", f"{x.n_states:,}"], ["Arcs", f"{x.n_arcs:,}"], ["Seconds", f"{x.seconds:.3f}"],
           ["Status", S.esc(status)], ["BFS depth", f"{x.levels:,}"],
           ["Peak memory", f"{x.peak_memory_mb:,.0f} MiB"]]
+    if not r.timings:
+        ss = [row for row in ss if row[0] not in ("Seconds", "Peak memory")]
     if not x.complete:
         ss.append(["Unexpanded nodes", f"{x.unexpanded:,}"])
     if x.untimed_states is not None:
         ss.append(["Markings modulo time", f"{x.untimed_states:,}"])
     scc = [["Nodes", f"{r.scc.nodes:,}"], ["Arcs", f"{r.scc.arcs:,}"], ["Terminal", f"{r.scc.terminal:,}"],
-           ["With a cycle", f"{r.scc.nontrivial:,}"], ["Seconds", f"{r.scc.seconds:.3f}"]]
+           ["With a cycle", f"{r.scc.nontrivial:,}"]] + ([["Seconds", f"{r.scc.seconds:.3f}"]] if r.timings else [])
     home = ("unknown (partial)" if r.home.states is None else
             ("initial marking is a home marking" if r.home.initial_is_home else "initial marking is not a home "
              "marking") if r.timed else (f"{len(r.home.states):,} home markings"))

@@ -68,6 +68,9 @@ class Report:
     dead_listed_cap: int | None = DEAD_LISTED
     # seconds of each part of the analysis, in the order computed (see REPORT_PARTS)
     part_seconds: dict = field(default_factory=dict)
+    #: False: pages leave out what differs from run to run (seconds, peak memory, the date), as
+    #: `check --no-timings` asks, so that a rerun writes them byte for byte
+    timings: bool = True
 
     @property
     def engine(self):

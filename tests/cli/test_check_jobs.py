@@ -54,7 +54,7 @@ def _check(tmp_path, name: str, *args: str):
                         "--reports", str(reports), "--junit", str(tmp_path / f"{name}.xml"), "--html", str(html),
                         *args], cwd=ROOT, capture_output=True, text=True, timeout=600)
     files = {f.name: f.read_text(encoding="utf-8") for f in sorted(reports.iterdir())}
-    pages = sorted(f.name for f in html.iterdir())  # the pages carry their run's time and date
+    pages = {f.name: f.read_text(encoding="utf-8") for f in sorted(html.iterdir())}  # --no-timings: no date
     return (p.returncode, p.stdout, p.stderr, files, (tmp_path / f"{name}.xml").read_text(encoding="utf-8"),
             pages)
 
