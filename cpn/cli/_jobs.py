@@ -18,6 +18,7 @@ import os
 import signal
 import sys
 from collections.abc import Callable, Iterable, Iterator
+from concurrent.futures import ProcessPoolExecutor
 
 
 def usable_cpus() -> int:
@@ -55,20 +56,29 @@ def ordered_map(fn: Callable, items: Iterable, jobs: int) -> Iterator:
     yielded as soon as it and those before it are done, after what `fn` printed for it.
 
     `fn` must be a module-level function (where processes are not forked, it and the items are pickled).
-    An exception of `fn` is raised here, at its item. On KeyboardInterrupt the processes are stopped at
-    once and it is raised here.
+    An exception of `fn` is raised here, at its item; a process that ends without a result (killed, out of
+    memory, a crash) raises `BrokenProcessPool` here, at the first item it leaves undone. On
+    KeyboardInterrupt (and on any exception) the processes are stopped at once.
     """
-    items = list(items)
     method = "fork" if "fork" in multiprocessing.get_all_start_methods() else "spawn"
-    pool = multiprocessing.get_context(method).Pool(jobs, initializer=_ignore_interrupt)
+    pool = ProcessPoolExecutor(jobs, mp_context=multiprocessing.get_context(method), initializer=_ignore_interrupt)
+    captured = _Captured(fn)
     try:
-        for value, out, err in pool.imap(_Captured(fn), items, chunksize=1):
+        futures = [pool.submit(captured, item) for item in items]
+        for f in futures:
+            value, out, err = f.result()
             sys.stdout.write(out)
             sys.stderr.write(err)
             yield value
     except BaseException:
-        pool.terminate()
-        pool.join()
+        _stop(pool)
         raise
-    pool.close()
-    pool.join()
+    pool.shutdown()
+
+
+def _stop(pool: ProcessPoolExecutor) -> None:
+    """Stop the pool's processes now, the runs they are in the middle of included (the executor has no
+    public call for it before Python 3.14: its own record of its processes)."""
+    for process in list((getattr(pool, "_processes", None) or {}).values()):
+        process.terminate()
+    pool.shutdown(wait=True, cancel_futures=True)

@@ -12,6 +12,7 @@ import argparse
 import json
 import os
 import sys
+from concurrent.futures.process import BrokenProcessPool
 from typing import NamedTuple
 
 from cpn.cli._common import (
@@ -115,7 +116,7 @@ def _run(args) -> int:
     settings = _Settings(_overrides(args, sets), args.quiet, timings, args.html)
     usage_errors = 0
     done = 0
-    interrupted = False
+    interrupted = lost = False
     try:
         for (_, r), (doc, page, failure) in zip(tasks, _outcomes(tasks, settings, jobs)):
             done += 1
@@ -133,6 +134,11 @@ def _run(args) -> int:
     except KeyboardInterrupt:  # between searches, or with --jobs (a search itself ends with a partial report)
         interrupted = True
         print(f"interrupted: {len(tasks) - done} of {len(tasks)} runs not checked", file=sys.stderr)
+    except BrokenProcessPool:  # --jobs: a process ended without a result, and the pool with it
+        lost = True
+        print("error: a process checking the runs ended without a result (stopped by the system, out of memory, "
+              f"or a crash); {len(tasks) - done} of {len(tasks)} runs not checked, from '{tasks[done][1].name}' on\n"
+              "hint: check them with --jobs 1 to see which run stops its process", file=sys.stderr)
     if not stdout_taken:
         _print_summary(docs, timings)
     _write_outputs(outputs, docs, timings)
@@ -147,6 +153,8 @@ def _run(args) -> int:
              ExitStatus.DATAERR if bad_files or "error" in statuses else ExitStatus.OK,
              ExitStatus.VIOLATED if "violated" in statuses else ExitStatus.OK,
              ExitStatus.UNKNOWN if "unknown" in statuses else ExitStatus.OK]
+    if lost:
+        return ExitStatus.SOFTWARE
     return ExitStatus.INTERRUPTED if interrupted else ExitStatus.worst(found)
 
 

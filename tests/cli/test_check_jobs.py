@@ -115,3 +115,27 @@ def test_runs_whose_search_has_workers_of_its_own_are_checked_one_at_a_time(tmp_
     assert main(["check", str(tmp_path / "ms.toml"), "--no-reports", "--jobs", "2", *extra]) == 0
     out, err = capsys.readouterr()
     assert "note: the runs are checked one at a time" in err and "ms[N=3]" in out
+
+
+def _dies_at_the_second_row(item):
+    """A run whose process is killed (as the system's out-of-memory killer would), the others as they are."""
+    from cpn.cli import check
+
+    if item[1].name == "rows[M=2]":
+        os.kill(os.getpid(), signal.SIGKILL)
+    return check.__dict__["_real_check_run"](item)
+
+
+@pytest.mark.skipif(os.name != "posix", reason="forks the pool's processes")
+def test_a_process_that_dies_is_an_error_with_the_runs_not_checked(tmp_path, capsys, monkeypatch):
+    from cpn.cli import check
+
+    monkeypatch.setitem(check.__dict__, "_real_check_run", check._check_run)
+    monkeypatch.setattr(check, "_check_run", _dies_at_the_second_row)
+    code = main(["check", _scenarios(tmp_path)[0], "--no-reports", "--no-timings", "--jobs", "2"])
+    out, err = capsys.readouterr()
+    assert code == 70, err
+    assert "error: a process checking the runs ended without a result" in err and "Traceback" not in err
+    # the pool's other runs end with it; those reported before are kept
+    m = re.search(r"(\d) of 4 runs not checked, from '(rows\[M=\w+\])' on", err)
+    assert m and int(m.group(1)) >= 3 and m.group(2) in ("rows[M=3]", "rows[M=2]"), err
