@@ -7,6 +7,7 @@ per tuple of those ids (LTSmin's transition groups): most states reuse a result 
 
 from __future__ import annotations
 
+import copy
 import functools
 import operator
 from itertools import chain
@@ -269,6 +270,20 @@ class CompiledEngine(TimedSuccessors, EngineAPI):
         if self._flat:
             self._count = [0]
             self.successors = self._generate_successors()
+
+    def uncondensed(self) -> CompiledEngine:
+        """This engine without time condensation (itself if it has none): its twin sharing the compiled
+        transitions, the interned markings and the memo tables, none of which depends on condensation (it
+        only moves the successors' timestamps back by the occurrence time). What replays a condensed trace
+        to print its model times, without compiling the net again."""
+        if not self.time_condensation:
+            return self
+        twin = self.__dict__.get("_twin")
+        if twin is None:
+            twin = copy.copy(self)
+            twin.time_condensation = False
+            self._twin = twin
+        return twin
 
     # ------------------------------------------------------------------ protocol
     def initial_state(self) -> tuple:

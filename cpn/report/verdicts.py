@@ -97,7 +97,9 @@ def printing_engine(net, time_condensation: bool = False, reference: bool = Fals
 
 def _replay_absolute(engine, bes: list[int]):
     """(uncondensed engine, its states along the trace, binding element texts) or None if it diverges."""
-    plain = printing_engine(engine.net, reference=bool(capability(engine, "reference", False)))
+    twin = getattr(engine, "uncondensed", None)  # the compiled engine's, without compiling it again
+    plain = twin() if twin is not None else printing_engine(engine.net, reference=bool(capability(engine, "reference",
+                                                                                                   False)))
     state = plain.initial_state()
     states, texts = [state], []
     for be in bes:

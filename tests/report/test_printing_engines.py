@@ -45,3 +45,26 @@ def test_a_trace_prints_the_same_from_a_kept_engine():
     assert first[0] is again[0]
     assert first[2] == again[2] == [engine.format_binding_element(b) for b in bes]
     assert [first[0].clock(s) for s in first[1]] == [0, 0, 5, 10]
+
+
+def test_a_condensed_trace_replays_on_its_engines_twin_as_on_a_net_compiled_again():
+    # the twin shares the compiled transitions and the memo tables; a fresh uncondensed engine is the oracle
+    model = cpn.loads(TIMED, "t.cpnet")
+    engine = model.engine(time_condensation=True)
+    twin = engine.uncondensed()
+    assert twin is not engine and twin.store is engine.store and not twin.time_condensation
+    assert engine.time_condensation and model.engine().uncondensed().time_condensation is False
+    state, bes = engine.initial_state(), []
+    for _ in range(4):
+        be, state = next(iter(engine.successors(state)))
+        bes.append(be)
+    plain, states, texts = verdicts._replay_absolute(engine, bes)
+    assert plain.store is engine.store  # nothing compiled again
+    fresh = model.engine()
+    s, want = fresh.initial_state(), [fresh.initial_state()]
+    for text in texts:
+        s = next(t for b, t in fresh.successors(s) if fresh.format_binding_element(b) == text)
+        want.append(s)
+    assert [plain.clock(x) for x in states] == [fresh.clock(x) for x in want] == [0, 0, 5, 10, 15]
+    assert [[plain.format_marking(x, p) for p in range(len(plain.places))] for x in states] == \
+           [[fresh.format_marking(x, p) for p in range(len(fresh.places))] for x in want]
