@@ -46,6 +46,7 @@ from cpn.engine.ctables import (
     NotNative,
     RangedList,
     S,
+    StrDom,
     Tp,
     U,
     UnionDom,
@@ -57,7 +58,7 @@ from cpn.engine.ctables import (
 )
 from cpn.expr import binding as B
 from cpn.expr import nodes as A
-from cpn.values.colours import ListCS
+from cpn.values.colours import ListCS, StringCS
 
 #: a transition whose variables have more bindings than this is left to Python (one slot each)
 MAX_BINDINGS: int = 1 << 22
@@ -120,12 +121,17 @@ class Module:
         self.bind_doms: dict[int, int] = {}  # transition -> the domain of its binding keys
         self.ndoms = 0
         self.list_doms: dict[tuple, ListDom] = {}  # the lists' domains, by the structure of their elements
+        self._strings: StrDom | None = None  # the strings' domain
         self._globals: dict[tuple, object] = {}  # (uid, type, items) -> the C value of a global constant
 
     def layout(self, cs):
         """The colour ids of colour set cs: its finite layout, or else its values interned (one domain per
         colour set; for a list colour set, one per structure of its elements)."""
         base = base_colset(cs)
+        if isinstance(base, StringCS):
+            if base.chars is not None or base.lengths is not None:
+                raise NotNative(f"colour set {base.name} (string with restrictions) has no C layout")
+            return self.string_dom()
         if isinstance(base, ListCS):
             lv, sh = value_parts(base.elem, self.layout)
             lay = self.list_dom(lv, sh)
@@ -149,6 +155,13 @@ class Module:
                 self.by_colset[name] = lay
             return lay
 
+    def string_dom(self) -> StrDom:
+        """The domain of the strings (one for the net)."""
+        if self._strings is None:
+            self._strings = StrDom(self._new_dom(), [(None, None, "int")], None)
+            self.doms.append(self._strings)
+        return self._strings
+
     def list_dom(self, leaves, sh) -> ListDom:
         """The domain of the lists whose elements have leaves `leaves` and shape `sh` (ranges dropped)."""
         key = list_key(leaves, sh)
@@ -165,6 +178,9 @@ class Module:
             return [({"int": None, "bool": 0, "unit": 0}[k], {"int": None, "bool": 1, "unit": 0}[k], k)], None
         if k == "list":
             lay = self.list_of_type(ty)
+            return [(None, None, lay)], lay.shape
+        if k == "string":
+            lay = self.string_dom()
             return [(None, None, lay)], lay.shape
         if k in ("*", "{}"):
             out, shapes = [], []
@@ -213,6 +229,8 @@ class Module:
             return Tp([self.const(x, t if k == "*" else t[1]) for x, t in zip(v, ty[1])])
         if k in ("int", "bool", "unit"):
             return py_cv(v)
+        if k == "string":
+            return self.make_list(self.string_dom(), [py_cv(ord(ch)) for ch in v])
         cs = self.net.colsets.get(k)
         if cs is None or isinstance(v, tuple):
             raise NotNative(f"a constant of type {k}")
@@ -447,6 +465,8 @@ class ExprC:
     def _c_Const(self, e):
         if e.kind in ("int", "bool", "unit"):
             return py_cv(e.value)
+        if e.kind == "string":
+            return self.mod.const(e.value, ("string",))
         raise NotNative(f"{e.kind} constants")
 
     def _c_Name(self, e):
@@ -486,6 +506,13 @@ class ExprC:
             return x, self.mod.make_list(self.as_list(x).lay, [])
         return self.cx(a), self.cx(b)
 
+    def string(self, e) -> U:
+        """The C value of string expression e."""
+        cv = self.cx(e)
+        if not isinstance(cv, U) or not isinstance(cv.lay, StrDom):
+            raise NotNative("a string operation on a value that is not a string")
+        return cv
+
     def lst(self, e) -> U:
         """The C value of list expression e."""
         return self.as_list(self.cx(e))
@@ -514,6 +541,9 @@ class ExprC:
             lst = self.lst(arg)
             at = "0" if name != "List.last" else f"g_llen(c, {lst.lay.dom}, {lst.code}) - 1"
             return lst.lay.element(lst.code, at)
+        if name in ("size", "String.size"):
+            x = self.string(arg)
+            return S(f"g_llen(c, {x.lay.dom}, {x.code})")
         if name in ("length", "List.length", "null", "List.null"):
             items = self.items_of(arg)
             n = str(len(items)) if items is not None else None
@@ -735,6 +765,9 @@ class ExprC:
             if a.lay is not b.lay:
                 raise NotNative("an append of lists of different shapes")
             return U(f"g_lapp(c, {a.lay.dom}, {a.lay.ew}, {a.code}, {b.code})", a.lay)
+        if op == "^":
+            a, b = self.string(e.left), self.string(e.right)
+            return U(f"g_lapp(c, {a.lay.dom}, 1, {a.code}, {b.code})", a.lay)
         if op in ("=", "<>"):
             consts = self.constant(e.left), self.constant(e.right)
             if None not in consts:  # two constants the C cannot hold (strings: a model's switches)

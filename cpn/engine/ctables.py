@@ -24,6 +24,7 @@ from cpn.values.colours import (
     ListCS,
     ProductCS,
     RecordCS,
+    StringCS,
     UnionCS,
     UnitCS,
 )
@@ -236,6 +237,22 @@ class ListDom(_ByReference):
         return tuple(_value(self.leaves, self.elem_shape, flat[1 + k * w:1 + (k + 1) * w]) for k in range(n))
 
 
+class StrDom(ListDom):
+    """The interned ids of strings: a string is the list of its characters' code points (the node [n, its
+    n codes] of its own domain), so that `^` is the lists' append and `size` their length, and two strings
+    are equal where their ids are. One domain holds the strings of every string colour set without
+    restrictions (a restricted one, `string with "a".."z"`, is left to the engine)."""
+
+    def flat(self, v, cid=None) -> list[int]:
+        return [len(v), *map(ord, v)]
+
+    def c_flat(self, v, cid: int, child=None) -> list[int]:
+        return self.flat(v)
+
+    def value(self, flat) -> object:
+        return "".join(chr(int(x)) for x in flat[1:1 + int(flat[0])])
+
+
 class RangedList:
     """A list colour set with a length range or ranges in its elements (`list INT with 0..3`, `list N` for
     `N = int with 0..3`): its values are those of the lists' domain `base` (one id for one list, whatever
@@ -323,7 +340,7 @@ def _interned_parts(cs, ref=None):
     """(leaves, shape) of a colour set whose values are scalars, values held by reference (`ref(cs)`: the
     layout of a union with data) or products and records of them."""
     cs = _base(cs)
-    if ref is not None and (isinstance(cs, ListCS) or (isinstance(cs, UnionCS)
+    if ref is not None and (isinstance(cs, (ListCS, StringCS)) or (isinstance(cs, UnionCS)
                                                         and any(c is not None for _, c in cs.constructors))):
         lay = ref(cs)
         return [(None, None, lay)], lay.shape

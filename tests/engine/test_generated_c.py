@@ -121,7 +121,7 @@ def test_a_transition_outside_the_subset_is_left_to_python_with_a_note(returns):
 
 @needs_native
 def test_a_place_outside_the_subset_leaves_the_whole_net_to_python():
-    model = cpn.loads("colset S = string; var s : S; place P : S = 1`\"a\"; trans t; arc P -> t : s;"
+    model = cpn.loads("colset S = string with \"a\"..\"z\"; var s : S; place P : S = 1`\"a\"; trans t; arc P -> t : s;"
                       " arc t -> P : s ^ \"b\";", "strings.cpnet")
     c = Explorer(model.engine(), ExploreOptions(backend="c", max_states=5)).run()
     assert c.backend == "c"

@@ -175,7 +175,7 @@ def test_auto_searches_a_net_wholly_in_c_natively_building_its_c_on_the_way(fill
 
 UNBOUNDED = """
 colset N = int with 0..3 timed;
-colset I = string;
+colset I = string with "a".."z";
 var x : N;
 var i : I;
 place P : N = 1`0 ++ (1`1@+1);
@@ -200,16 +200,16 @@ def test_a_place_c_cannot_hold_leaves_only_its_transitions_to_python(condensatio
     code, _ = model.engine().timed_groups().native_code()
     assert code.native == [0] and code.layouts[1] is None
     c = _both(model, condensation, limit=3000)
-    assert c.notes == ["the Python engine computes the bindings of transition 'Top'count 1': colour set I (string) "
-                       "has no C layout"]
+    assert c.notes == ["the Python engine computes the bindings of transition 'Top'count 1': colour set I (string with "
+                       "restrictions) has no C layout"]
     assert 0 < fills[0] <= c.graph.expanded  # (count reads P, whose timed marking rarely recurs)
 
 
 def test_a_net_without_a_transition_in_c_has_one_reason():
-    model = cpn.loads("colset L = string timed; var l : L; place P : L = 1`\"\";"
+    model = cpn.loads("colset L = string with \"a\"..\"z\" timed; var l : L; place P : L = 1`\"\";"
                       " trans t [String.size l < 3]; arc P -> t : l; arc t -> P : (l ^ \"a\") @+ 1;", "strings.cpnet")
     code, why = model.engine().timed_groups().native_code()
-    assert code is None and why == "place 'Top'P 1': colour set L (string) has no C layout"
+    assert code is None and why == "place 'Top'P 1': colour set L (string with restrictions) has no C layout"
 
 
 STATES = """
