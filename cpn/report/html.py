@@ -156,17 +156,19 @@ def report_fragment(report: Report, verdicts: list | None = None, heading: str |
 def render_index(entries: list[IndexEntry], title: str = "cpn-verify check") -> str:
     """A page linking to one page per run, worst results first."""
     order = {"error": 0, "violated": 1, "unknown": 2, "holds": 3}
+    timed = any(e.seconds is not None for e in entries)  # none: `check --no-timings`, no column
     rows = []
     for e in sorted(entries, key=lambda e: (order.get(e.status, 3), e.title)):
+        secs = f'<td class="num">{"" if e.seconds is None else f"{e.seconds:.2f}"}</td>' if timed else ""
         rows.append(f'<tr><td><a href="{S.esc(e.href)}">{S.esc(e.title)}</a></td><td>{_pill(e.status)}</td>'
-                    f'<td class="num">{"" if e.states is None else f"{e.states:,}"}</td>'
-                    f'<td class="num">{"" if e.seconds is None else f"{e.seconds:.2f}"}</td>'
+                    f'<td class="num">{"" if e.states is None else f"{e.states:,}"}</td>{secs}'
                     f'<td>{S.esc(e.detail)}</td></tr>')
     counts = Counter(e.status for e in entries)
     summary = ", ".join(f"{counts[k]} {k}" for k in ("error", "violated", "unknown", "holds") if counts[k])
     body = (f'<header><h1>{S.esc(title)}</h1><p class="sub">{len(entries)} runs: {S.esc(summary)}</p></header>'
             '<section><div class="tablewrap"><table><thead><tr><th>Run</th><th>Result</th><th>States</th>'
-            f'<th>Seconds</th><th>Detail</th></tr></thead><tbody>{"".join(rows)}</tbody></table></div></section>')
+            f'{"<th>Seconds</th>" if timed else ""}<th>Detail</th></tr></thead><tbody>{"".join(rows)}</tbody></table>'
+            '</div></section>')
     return _page(title, _scoped(body))
 
 
