@@ -8,11 +8,8 @@ import os
 import pytest
 
 import cpn
-from cpn.errors import EvaluationError
-from cpn.statespace import ExploreOptions, Explorer, nativetimed
 from cpn.statespace.store import packed_unavailable
-from tests._shared import count_calls
-from tests.engine._explore import same_exploration
+from tests.statespace._native import both_searches, same_error
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(__file__)))
 NATIVE = packed_unavailable()
@@ -20,31 +17,13 @@ pytestmark = pytest.mark.skipif(NATIVE is not None, reason=f"native code unavail
 LISTS = os.path.join(ROOT, "tests", "statespace", "models", "lists_timed.cpnet")
 
 
-@pytest.fixture
-def fills(monkeypatch):
-    monkeypatch.setattr(nativetimed, "HAND_OVER_RATE", 1e9)
-    return count_calls(monkeypatch, nativetimed.TimedNativeSearch, "_fill")
-
-
-def _both(engine_c, engine_py, limit=3000):
-    c = Explorer(engine_c, ExploreOptions(backend="c", max_states=limit)).run()
-    py = Explorer(engine_py, ExploreOptions(backend="python", max_states=limit, packed_states=False)).run()
-    assert c.backend == "c" and py.backend == "python"
-    same_exploration(c, py)
-    return c
 
 
 def _same_error(model) -> str:
     """The error of the search of an untimed `model` wholly in C, the same as the Python search's."""
     code, why = model.engine().native_code()
     assert why is None and code.left == {}
-    errors = []
-    for backend in ("c", "python"):
-        with pytest.raises(EvaluationError) as got:
-            Explorer(model.engine(), ExploreOptions(backend=backend, max_states=1000)).run()
-        errors.append(str(got.value))
-    assert errors[0] == errors[1], errors
-    return errors[0]
+    return same_error(model)
 
 
 @pytest.mark.parametrize("condensation", [False, True], ids=["timed", "condensed"])
@@ -52,7 +31,7 @@ def test_a_timed_net_of_lists_runs_wholly_in_c(condensation, fills):
     model = cpn.load(LISTS)
     code, why = model.engine().timed_groups().native_code()
     assert why is None and code.left == {}
-    c = _both(model.engine(time_condensation=condensation), model.engine(time_condensation=condensation))
+    c = both_searches(model.engine(time_condensation=condensation), model.engine(time_condensation=condensation))
     assert c.complete and c.n_states == 2244 and c.notes == [] and fills[0] == 0
 
 
@@ -64,7 +43,7 @@ def test_the_untimed_net_of_lists_runs_wholly_in_c():
     assert not model.net.is_timed
     code, why = model.engine().native_code()
     assert code.left == {}
-    c = _both(model.engine(), model.engine())
+    c = both_searches(model.engine(), model.engine())
     assert c.n_states == 3000  # (its Got place grows without a bound)
 
 
@@ -76,7 +55,7 @@ def test_lists_of_equal_structure_share_one_domain():
     model = cpn.loads(text, "share.cpnet")
     code, why = model.engine().native_code()
     assert code.left == {} and code.layouts[0] is code.layouts[1]
-    c = _both(model.engine(), model.engine())
+    c = both_searches(model.engine(), model.engine())
     assert c.complete and c.n_states == 2  # ([], [1]), then ([1], [1]): 1 :: [] equals [1]
 
 
@@ -95,7 +74,7 @@ def test_a_list_of_integers_beyond_64_bits_is_the_engines():
     model = cpn.loads(text, "big.cpnet")
     code, why = model.engine().native_code()
     assert why is None and code.left == {}
-    c = _both(model.engine(), model.engine())
+    c = both_searches(model.engine(), model.engine())
     assert c.complete and c.n_states == 31
     assert any(abs(v) >= 1 << 63 for d in c.engine.marking(c.graph.states[-1]) for lst in d for v in lst)
 
@@ -128,7 +107,7 @@ def test_lists_with_ranges_are_checked_in_c(fills):
     model = cpn.loads(RANGED, "ranged.cpnet")
     code, why = model.engine().native_code()
     assert why is None and code.left == {}
-    c = _both(model.engine(), model.engine())
+    c = both_searches(model.engine(), model.engine())
     assert c.complete and c.n_states == 8  # 4 markings of P (its list grows to 3), 2 of Q
 
 

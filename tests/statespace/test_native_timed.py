@@ -13,7 +13,7 @@ import cpn
 from cpn.statespace import ExploreOptions, Explorer, chooser, native, nativetimed
 from cpn.statespace.store import packed_unavailable
 from tests._checkrun import check_reports, record_backends
-from tests._shared import count_calls, needs_shared
+from tests._shared import needs_shared
 from tests.engine._explore import same_exploration
 from tests.engine.randomnets import random_net, random_timed_net
 
@@ -26,11 +26,6 @@ TIMED_MODELS = [p for p in sorted(glob.glob(os.path.join(ROOT, "models", "**", "
 LEFT_NOTE = "the Python engine computes "
 
 
-@pytest.fixture
-def fills(monkeypatch):
-    """How many states the engine expanded for the C search; the C search never hands over here."""
-    monkeypatch.setattr(nativetimed, "HAND_OVER_RATE", 1e9)
-    return count_calls(monkeypatch, nativetimed.TimedNativeSearch, "_fill")
 
 
 def _both(model, condensation: bool, limit: int = 3000, **options):

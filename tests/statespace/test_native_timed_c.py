@@ -10,23 +10,17 @@ import random
 import pytest
 
 import cpn
-from cpn.errors import EvaluationError
 from cpn.statespace import ExploreOptions, Explorer, nativetimed
 from cpn.statespace.store import packed_unavailable
-from tests._shared import count_calls
 from tests.engine._explore import same_exploration
 from tests.engine.randomnets import random_net, random_timed_net
+from tests.statespace._native import same_error
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(__file__)))
 NATIVE = packed_unavailable()
 needs_native = pytest.mark.skipif(NATIVE is not None, reason=f"native code unavailable: {NATIVE}")
 
 
-@pytest.fixture
-def fills(monkeypatch):
-    """How many states the engine expanded for the C search; the C search never hands over here."""
-    monkeypatch.setattr(nativetimed, "HAND_OVER_RATE", 1e9)
-    return count_calls(monkeypatch, nativetimed.TimedNativeSearch, "_fill")
 
 
 def _both(model, condensation: bool, limit: int):
@@ -148,14 +142,8 @@ def test_an_error_in_c_is_the_python_engines_report():
     Python search does."""
     text = ("colset N = int with 0..3 timed; var x : N; place P : N = 1`2;"
             " trans t [x > 0]; arc P -> t : x; arc t -> P : (x - 1) @+ (6 div (x - 1));")
-    model = cpn.loads(text, "div.cpnet")
-    errors = []
-    for backend in ("c", "python"):
-        with pytest.raises(EvaluationError) as got:
-            Explorer(model.engine(), ExploreOptions(backend=backend, max_states=100)).run()
-        errors.append(str(got.value))
-    assert errors[0] == errors[1], errors
-    assert "the inscription of arc" in errors[0] and "x=1" in errors[0], errors[0]
+    error = same_error(cpn.loads(text, "div.cpnet"), max_states=100)
+    assert "the inscription of arc" in error and "x=1" in error, error
 
 
 @needs_native

@@ -11,17 +11,9 @@ import pytest
 
 import cpn
 from cpn.engine import ccodegen
-from cpn.statespace import ExploreOptions, Explorer, nativetimed
-from tests._shared import count_calls
+from cpn.statespace import ExploreOptions, Explorer
 from tests.engine._explore import same_exploration
 from tests.statespace.test_native_timed import ROOT, _both, needs_native
-
-
-@pytest.fixture
-def fills(monkeypatch):
-    """How many states the engine expanded for the C search; the C search never hands over here."""
-    monkeypatch.setattr(nativetimed, "HAND_OVER_RATE", 1e9)
-    return count_calls(monkeypatch, nativetimed.TimedNativeSearch, "_fill")
 
 ALL_SCENARIOS = sorted(os.path.basename(p)[:-5] for p in glob.glob(os.path.join(ROOT, "specs", "modbus", "*.toml")))
 #: the suite runs these (each compiles its own C: one serial-line scenario, Modbus-A, Modbus/TCP); `CPN_ALL_SCENARIOS=1` runs every scenario
