@@ -29,7 +29,7 @@ def test_a_timed_net_of_strings_runs_wholly_in_c(condensation, fills):
     assert why is None and code.left == {}
     c = both_searches(model.engine(time_condensation=condensation), model.engine(time_condensation=condensation))
     assert c.complete and c.notes == [] and fills[0] == 0
-    assert c.n_states == 131  # the same with condensation: every transition occurs at its earliest time
+    assert c.n_states == 131  # with and without condensation alike
 
 
 def test_the_untimed_net_of_strings_runs_wholly_in_c():
