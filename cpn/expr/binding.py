@@ -108,6 +108,20 @@ def children(e: N.Expr) -> list[N.Expr]:
     return [] if form is None else form.children(e)
 
 
+def has_delay(e: N.Expr) -> bool:
+    """Whether `e` delays tokens: an `@+` or `@++` in it, through operators and the branches of an `if`."""
+    stack = [e]  # iterative: an inscription may be a sum thousands of terms long
+    while stack:
+        x = stack.pop()
+        if isinstance(x, N.BinOp):
+            if x.op in ("@+", "@++"):
+                return True
+            stack += (x.left, x.right)
+        elif isinstance(x, N.If):
+            stack += (x.then, x.else_)
+    return False
+
+
 def guard_conjuncts(guards: list[N.Expr]) -> list[N.Expr]:
     """Split guards into conjuncts: `[a, b andalso c]` gives a, b, c."""
     out = []

@@ -12,7 +12,7 @@ import re
 from cpn._util import did_you_mean
 from cpn.arcs import ArcKind
 from cpn.diagnostics import Span
-from cpn.expr.binding import all_vars, children, guard_binder, guard_conjuncts, pattern_vars
+from cpn.expr.binding import all_vars, children, guard_binder, guard_conjuncts, has_delay, pattern_vars
 from cpn.expr.evaluate import run_deep
 from cpn.lang import ast as A
 from cpn.lang import types as T
@@ -179,7 +179,7 @@ class PageChecks:
                 self.ran_sink = None
             expr = _replace_ran(expr)  # CS.ran() and the calls of functions that draw, written out
             self.take_choices(info, sink)
-            if ak.reads and _has_delay(expr):
+            if ak.reads and has_delay(expr):
                 self.error("E0206", "delays on input arcs ('preemption') are not supported", expr.span)
                 return
             delay = _delay_node(expr) if ak == "out" else None
@@ -566,17 +566,6 @@ def _not_constant(e: A.Expr) -> A.Name | None:
     return None
 
 
-def _has_delay(e) -> bool:
-    stack = [e]  # iterative: an inscription may be a chain thousands of terms long
-    while stack:
-        x = stack.pop()
-        if isinstance(x, A.BinOp):
-            if x.op in ("@+", "@++"):
-                return True
-            stack += (x.right, x.left)
-        elif isinstance(x, A.If):
-            stack += (x.else_, x.then)
-    return False
 
 
 def _delay_node(e):

@@ -7,6 +7,7 @@ from lark import Token, Transformer_NonRecursive, Tree, v_args
 from lark.tree import Meta
 
 from cpn.diagnostics import Span
+from cpn.expr.binding import has_delay
 from cpn.expr.forms import BY_RULE
 from cpn.lang import ast as A
 
@@ -52,17 +53,6 @@ def _ends_with(outer: Span, inner: Span) -> bool:
     return (outer.end_line, outer.end_col) == (inner.end_line, inner.end_col)
 
 
-def _has_delay(e) -> bool:
-    stack = [e]  # iterative: a sum may have thousands of terms
-    while stack:
-        x = stack.pop()
-        if isinstance(x, A.BinOp):
-            if x.op in ("@+", "@++"):
-                return True
-            stack += (x.left, x.right)
-        elif isinstance(x, A.If):
-            stack += (x.then, x.else_)
-    return False
 
 
 def delay_whole(e):
@@ -94,7 +84,7 @@ def delay_whole(e):
         node = node.right
     delay = node
     if not spine or not (isinstance(delay, A.BinOp) and delay.op in ("@+", "@++")) \
-            or any(_has_delay(n.left) for n in spine):
+            or any(has_delay(n.left) for n in spine):
         return e
     spine[-1].right = delay.left
     end = delay.left.span
