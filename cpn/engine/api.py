@@ -39,6 +39,9 @@ class EngineAPI:
         # which it is examined, besides the state's clock)
         self.timed_inputs = [sorted({a.place for a in t.arcs if a.kind.consumes and a.expr is not None
                                      and self.places[a.place].timed}) for t in self.transitions]
+        # per transition: place -> how long before their timestamps its input arcs may remove tokens from
+        # it (`e @+ k` on an input arc, CPN Tools' preempting time stamps; the net has one k per place)
+        self.preemption = [{a.place: a.preemption for a in t.arcs if a.preemption} for t in self.transitions]
         self.ev = Evaluator(net.colsets, net.globals)
         self._be_index: dict = {}
         self._be: list[tuple[int, tuple]] = []  # binding element id -> (transition, values of its variables)

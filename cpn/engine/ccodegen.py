@@ -1535,6 +1535,8 @@ class TimedTransitionC(TransitionC):
         self.clock = bool(timed_places) or clock  # the net is timed (else: an untimed net with priorities)
         self.views = {p for p in read if p in timed_places}
         self.resets = {a.place for a in t.arcs if a.kind.empties}
+        # per place: its input arcs' delay `e @+ k` (CPN Tools' preemption), as `_TInfo.early`
+        self.early = {a.place: a.preemption for a in t.arcs if a.preemption}
         for p in (*read, *writes):
             if isinstance(place_layouts[p], NotNative):  # a place whose markings C cannot hold
                 raise place_layouts[p]
@@ -1592,7 +1594,9 @@ class TimedTransitionC(TransitionC):
         for i, p in enumerate(self.read):
             if p in self.timed_places and consumed.get(i):
                 buf, cnt = cons[i]
-                self.emit(f"if ({cnt}) {{ int64_t q = g_ready(c, {p}, key[{i}], {buf}, {cnt}); if (q > r) r = q; }}")
+                early = f" q = g_sub(c, q, {self.early[p]});" if self.early.get(p) else ""
+                self.emit(f"if ({cnt}) {{ int64_t q = g_ready(c, {p}, key[{i}], {buf}, {cnt});{early} "
+                          "if (q > r) r = q; }")
         self.emit("*ready = r;")
         self.emit("if (c->err || mode == 1) goto done;")
         nr = len(self.read)
@@ -1628,8 +1632,9 @@ class TimedTransitionC(TransitionC):
             pb, pn = prod.get(p, ("NULL", "0"))
             if timed and p in prod:
                 self.emit(f"  for (int32_t j = 0; j < {pn}; j++) {pb}[3 * j + 2] = g_add(c, base, {pb}[3 * j + 2]);")
+            latest = f"g_add(c, f, {self.early[p]})" if self.early.get(p) else "f"  # the latest stamp taken
             self.emit(f"  int64_t nid = g_rewrite(c, {p}, {1 if timed else 0}, key[{i}], {buf}, {cnt}, "
-                      f"{1 if p in self.resets else 0}, {pb}, {pn}, f);")
+                      f"{1 if p in self.resets else 0}, {pb}, {pn}, {latest});")
             self.emit(f"  if (c->err) goto done; e[{1 + i}] = (int32_t)nid; }}")
         for w, p in enumerate(self.writes):
             if p not in prod:

@@ -261,6 +261,7 @@ class CompiledEngine(TimedSuccessors, EngineAPI):
             resets = {a.place for a in t.arcs if a.kind.empties}
             info = _TInfo(t, fn, read, writes, getter, {}, timed_t, uses_time, resets, gen.blame, filename)
             info.inputs = [read.index(p) for p in self.timed_inputs[t.index]]
+            info.early = [self.preemption[t.index].get(p, 0) for p in read]
             self._plan.append(info)
         self._fast = [(i.getter, i.memo.get, i) for i in self._plan]
         self._fixed = [i for i in self._plan if not i.uses_time]
@@ -673,7 +674,7 @@ class CompiledEngine(TimedSuccessors, EngineAPI):
                 for i, p in enumerate(read):
                     c = consumed[i]
                     if c and self.store.timed[p]:
-                        r = ready_time(self.store.dicts[p][keys[i]], c)
+                        r = ready_time(self.store.dicts[p][keys[i]], c) - info.early[i]
                         if r > ready:
                             ready = r
                 # the priority travels with the entry: for a transition that reads the clock it may
@@ -690,7 +691,7 @@ class CompiledEngine(TimedSuccessors, EngineAPI):
 
 class _TInfo:
     __slots__ = ("t", "fn", "read", "writes", "getter", "memo", "timed", "uses_time", "resets", "blame",
-                 "filename", "lookups", "store_results", "frecipes", "inputs")
+                 "filename", "lookups", "store_results", "frecipes", "inputs", "early")
 
     def __init__(self, t, fn, read, writes, getter, memo, timed, uses_time, resets, blame, filename):
         self.t, self.fn, self.read, self.writes, self.getter = t, fn, read, writes, getter
@@ -700,6 +701,7 @@ class _TInfo:
         self.store_results = True
         self.frecipes: dict = {}  # binding values -> flat recipe (generated successor function)
         self.inputs: list[int] = []  # positions in `read` of the timed places it removes tokens from
+        self.early: list[int] = []  # per read place: its input arcs' delay `e @+ k` (CPN Tools' preemption)
 
 
 def _const_key(_s):

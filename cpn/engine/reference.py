@@ -211,11 +211,12 @@ class ReferenceEngine(EngineAPI):
                             view.get(v, 0) >= n for v, n in inh.items())):
                         return None
         ready = NEG_INF
+        early = self.preemption[t.index]
         for p, d in need.items():
             if self.places[p].timed:
                 for v, n in d.items():
                     stamps = sorted(ts for (w, ts), k in marking[p].items() if w == v for _ in range(k))
-                    ready = max(ready, stamps[n - 1])
+                    ready = max(ready, stamps[n - 1] - early.get(p, 0))
         return need, ready
 
     def successors(self, s, lazy: bool = False):
@@ -260,22 +261,27 @@ class ReferenceEngine(EngineAPI):
         return out
 
     def _examined_at(self, t, marking, clock) -> set:
-        """The times at which transition t is examined: the clock and the later timestamps of the tokens
-        on the timed places it removes tokens from."""
+        """The times at which transition t is examined: the clock and the later times at which the tokens
+        on the timed places it removes tokens from become ready (their timestamps, less the delay of an
+        input arc `e @+ k`)."""
         times = {clock}
+        early = self.preemption[t.index]
         for p in self.timed_inputs[t.index]:
-            times.update(ts for (_v, ts) in marking[p] if ts > clock)
+            k = early.get(p, 0)
+            times.update(ts - k for (_v, ts) in marking[p] if ts - k > clock)
         return times
 
     def _fire(self, t, marking, assignment, need, f):
         self.ev.time = f
         env = self.binding_env(t, assignment)
         m = [dict(d) for d in marking]
+        early = self.preemption[t.index]
         for p, d in need.items():
             if self.places[p].timed:
+                latest = f + early.get(p, 0)  # the largest timestamp available at f
                 for v, n in d.items():
                     while n:
-                        ts = max(ts for (w, ts) in m[p] if w == v and ts <= f)
+                        ts = max(ts for (w, ts) in m[p] if w == v and ts <= latest)
                         m[p][(v, ts)] -= 1
                         if not m[p][(v, ts)]:
                             del m[p][(v, ts)]

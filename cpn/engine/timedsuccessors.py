@@ -56,7 +56,7 @@ class TimedSuccessors:
             d = dict(store.dicts[p][cur])
             if c:
                 if timed:
-                    _remove_timed(d, c, f)
+                    _remove_timed(d, c, f + info.early[i])
                 else:
                     for v, n in c.items():
                         left = d[v] - n
@@ -191,8 +191,9 @@ class TimedSuccessors:
         return INF, []
 
     def _stamps(self, info, rkey, clock) -> frozenset:
-        """The timestamps later than the clock of the tokens on the timed places a transition removes
-        tokens from (`rkey`: the ids of the places it reads)."""
+        """The times later than the clock at which the tokens on the timed places a transition removes
+        tokens from become ready: their timestamps, less an input arc's delay `e @+ k` (`rkey`: the ids of
+        the places it reads)."""
         if not info.inputs:
             return frozenset()
         keys = rkey if len(info.read) > 1 else (rkey,)
@@ -203,7 +204,8 @@ class TimedSuccessors:
             got = memo.get(keys[i])
             if got is None:
                 got = memo[keys[i]] = frozenset(ts for (_v, ts) in self.store.dicts[p][keys[i]])
-            out.update(got)
+            k = info.early[i]
+            out.update(got if not k else (ts - k for ts in got))
         return frozenset(t for t in out if t > clock)
 
     def _shift(self, p: int, i: int, f: int) -> int:
@@ -236,7 +238,8 @@ def ready_time(d: dict, need: dict) -> float:
 
 
 def _remove_timed(d: dict, need: dict, f) -> None:
-    """Remove, for each value, the tokens with the largest timestamps not after f."""
+    """Remove, for each value, the tokens with the largest timestamps not after f (the occurrence time plus
+    the input arcs' delay `e @+ k`)."""
     for v, n in need.items():
         stamps = sorted((ts for (w, ts) in d if w == v and ts <= f), reverse=True)
         for ts in stamps:

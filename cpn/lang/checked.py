@@ -23,6 +23,8 @@ class ArcInfo:
     place: str
     trans: str
     expr: A.Expr | None
+    # an input arc's `e @+ k` (CPN Tools' preempting time stamps): k, a constant the lowering evaluates
+    preempt: A.Expr | None = None
 
 
 @dataclass(eq=False)

@@ -16,7 +16,7 @@ from cpn.expr.binding import all_vars, children, guard_binder, guard_conjuncts, 
 from cpn.expr.evaluate import run_deep
 from cpn.lang import ast as A
 from cpn.lang import types as T
-from cpn.lang.builtins import MLError
+from cpn.lang.builtins import RANDOM_BUILTINS, TIME_BUILTINS, MLError
 from cpn.lang.checked import Abort, ArcInfo, Env, PageInfo, TransInfo
 from cpn.lang.resolve import suggestion
 from cpn.lang.symbols import Symbol
@@ -163,6 +163,7 @@ class PageChecks:
         elif ak.empties:
             self.error("E0301", "reset arcs take no inscription", d.span)
             return
+        preempt = None
         if expr is not None and pd.colset in self.cstypes:
             elem = self.cstypes[pd.colset]
             sink: list = []
@@ -180,8 +181,12 @@ class PageChecks:
             expr = _replace_ran(expr)  # CS.ran() and the calls of functions that draw, written out
             self.take_choices(info, sink)
             if ak.reads and has_delay(expr):
-                self.error("E0206", "delays on input arcs ('preemption') are not supported", expr.span)
-                return
+                got = self._input_delay(d, ak, place, pd.colset, expr)
+                if got is None:  # refused: the arc still binds its variables (no echo of the error)
+                    if isinstance(expr, A.BinOp) and expr.op in ("@+", "@++"):
+                        info.arcs.append(ArcInfo(d, ak, place, trans, expr.left))
+                    return
+                expr, preempt = got
             delay = _delay_node(expr) if ak == "out" else None
             if delay is not None and not self.colsets[pd.colset].timed:
                 # CPN Tools: 'e @+ d' is a timed multiset, which an untimed place cannot hold
@@ -190,7 +195,52 @@ class PageChecks:
                            hint=f"Declare the colour set timed ('colset {pd.colset} = ... timed;'), or remove "
                                 "the '@+': tokens of an untimed place carry no time stamp.", place=place)
                 return
-        info.arcs.append(ArcInfo(d, ak, place, trans, expr))
+        info.arcs.append(ArcInfo(d, ak, place, trans, expr, preempt))
+
+    def _input_delay(self, d: A.ArcDecl, ak: ArcKind, place: str, colset: str, expr: A.Expr):
+        """(the inscription without its delay, the delay) of an input arc `e @+ k` (CPN Tools' preempting
+        time stamps: the tokens may be removed up to k time units before their timestamps), or None after
+        an error. k is a constant (numbers, 'val' constants, module parameters), evaluated when the net is
+        lowered; it must end the inscription, delaying all of it, and the place must be timed."""
+        where = f"arc '{d.src}' -> '{d.dst}'"
+        top = expr if isinstance(expr, A.BinOp) and expr.op in ("@+", "@++") else None
+        if ak != ArcKind.IN:
+            what = "a double arc" if ak.produces else f"an {ak.value} arc"
+            self.error("E0206", f"the inscription of {what} ('{place}' {ak.syntax} '{d.dst}') has a time delay",
+                       (top or expr).span, place=place,
+                       hint=f"Only an input arc may remove tokens ahead of their timestamps ('e @+ k'). For a "
+                            f"double arc, write an input arc 'arc {place} -> {d.dst} : e @+ k;' and an output arc "
+                            f"'arc {d.dst} -> {place} : e;' (with the output's own delay, if any)."
+                       if ak.produces else "Remove the '@+': this arc removes no tokens.")
+            return None
+        if top is None or has_delay(top.left):
+            self.error("E0206", f"the delay on input {where} does not end its inscription: an input arc "
+                       "has one delay, for all the tokens it removes", expr.span, place=place,
+                       hint="Write the delay once, at the end: 'e @+ k' (e.g. '1`x ++ 1`y @+ 5'); different "
+                            "delays need different arcs.")
+            return None
+        if top.op == "@++":
+            self.error("E0206", f"the input {where} has a real-valued delay '@++'", top.span, place=place,
+                       hint="An input arc's delay is an integer: write '@+ k' with a constant k.")
+            return None
+        if not self.colsets[colset].timed:
+            self.error("E0301", f"the inscription of {where} has a time delay, but place '{place}' holds "
+                       f"{colset}, which is not timed", top.span, place=place,
+                       hint=f"Declare the colour set timed ('colset {colset} = ... timed;'), or remove the "
+                            "'@+': tokens of an untimed place carry no time stamp.")
+            return None
+        culprit = _not_fixed(top.right)
+        if culprit is not None:
+            uses = {"var": f"uses the variable '{culprit.name}'", "fun": f"calls the function '{culprit.name}'"}.get(
+                culprit.ref.kind, f"reads the clock ('{culprit.name}')" if culprit.name in TIME_BUILTINS
+                else f"draws a random value ('{culprit.name}')")
+            self.error("E0206", f"the delay of input {where} is not a constant: it {uses}",
+                       culprit.span, place=place, name=culprit.name,
+                       hint="An input arc's delay (how long before their timestamps the tokens may be removed) "
+                            "is fixed: write it with numbers, 'val' constants and module parameters "
+                            "(e.g. 'val D = 5;' then 'x @+ D'); a 'val' may call a function.")
+            return None
+        return top.left, top.right
 
     def transition(self, page: PageInfo, info: TransInfo, env: Env) -> None:
         d = info.decl
@@ -566,6 +616,21 @@ def _not_constant(e: A.Expr) -> A.Name | None:
     return None
 
 
+
+
+def _not_fixed(e: A.Expr) -> A.Name | None:
+    """The first name in e that makes it other than a constant of the net instance: a transition variable,
+    the clock, a random draw (`CS.ran()`, `uniform`, ...) or a function of the model (which may read the
+    clock or draw); None if there is none."""
+    stack = [e]
+    while stack:
+        x = stack.pop()
+        if isinstance(x, A.Name) and x.ref is not None and (
+                x.ref.kind in ("var", "fun") or (x.ref.kind == "csop" and x.name.endswith(".ran"))
+                or (x.ref.kind == "builtin" and x.name in TIME_BUILTINS | RANDOM_BUILTINS)):
+            return x
+        stack.extend(reversed(children(x)))
+    return None
 
 
 def _delay_node(e):

@@ -34,7 +34,9 @@ class _Lowerer:
         self.instances: list[PageInstance] = []
 
     def error(self, code, msg, span, hint=None):
-        self.diags.append(Diagnostic(code, msg, span, hint=hint))
+        d = Diagnostic(code, msg, span, hint=hint)
+        if not any((x.code, x.message, x.span) == (code, msg, span) for x in self.diags):  # once, not per instance
+            self.diags.append(d)
 
     def run(self) -> Net:
         self.instantiate(self.cm.top, {}, {}, [self.cm.top.name], None, None)
@@ -111,8 +113,9 @@ class _Lowerer:
             info = page.transitions[tname]
             d = info.decl
             tr = self.tr
-            arcs = [ArcInstance(local[a.place], a.kind, tr.expr(a.expr), a.decl.span, _arc_label(a))
-                    for a in info.arcs]
+            arcs = [ArcInstance(local[a.place], a.kind, tr.expr(a.expr), a.decl.span, _arc_label(a),
+                                self.preemption(a, params)) for a in info.arcs]
+            self.one_preemption(tname, arcs, info.arcs)
             variables = sorted(set(info.variables) | {v for v, _ in info.ran})
             free = sorted(set(info.free) | {v for v, _ in info.ran})
             me.transitions[tname] = len(self.transitions)
@@ -144,6 +147,39 @@ class _Lowerer:
                                f"{_fmt(cs, cparams[psym.uid])}, outside colour set {cs.name}", expr.span)
             cbinds = {port: local[sock] for port, _, sock, _ in inst.binds if sock in local}
             self.instantiate(child, cparams, cbinds, path + [inst.module], me.index, inst)
+
+    def preemption(self, a, params: dict) -> int:
+        """The value of an input arc's delay `e @+ k` (0 without one): an integer constant, not negative."""
+        if a.preempt is None:
+            return 0
+        where = f"the delay of input arc {_arc_label(a)}"
+        try:
+            k = run_deep(self.cm.evaluator.eval, a.preempt, params)
+        except (MLError, ArithmeticError, RecursionError) as exc:
+            self.error("E0401", f"evaluating {where} failed: {exc}", a.preempt.span)
+            return 0
+        if k < 0:
+            self.error("E0301", f"{where} is {k}: it must not be negative", a.preempt.span,
+                       hint="'e @+ k' on an input arc lets the transition remove the tokens up to k time units "
+                            "before their timestamps (CPN Tools' preempting time stamps); k is 0 or more.")
+            return 0
+        return k
+
+    def one_preemption(self, tname: str, arcs: list[ArcInstance], infos) -> None:
+        """Refuse two arcs that remove tokens from one place for one transition with different delays: which
+        tokens each may take would depend on the order the arcs are matched in."""
+        first: dict[int, tuple] = {}
+        for arc, info in zip(arcs, infos):
+            if not arc.kind.consumes or arc.expr is None:
+                continue
+            seen = first.setdefault(arc.place, (arc, info))
+            if seen[0].preemption != arc.preemption:
+                span = (info.preempt or seen[1].preempt).span
+                self.error("E0206", f"transition '{tname}' removes tokens from place '{info.place}' by two arcs "
+                           f"with different delays ({seen[0].preemption} and {arc.preemption})", span,
+                           hint="Give both arcs the same delay, or join them into one arc: 'e1 ++ e2 @+ k'"
+                                + (" (a double arc takes its tokens with no delay)."
+                                   if seen[0].kind.produces or arc.kind.produces else "."))
 
 
 def _fmt(cs, v) -> str:

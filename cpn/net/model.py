@@ -47,6 +47,9 @@ class ArcInstance:
     expr: E.Expr | None
     span: Span | None = None
     label: str = ""  # "'Send' -> 'Bus'" for messages
+    # an input arc's `e @+ k` (CPN Tools' preempting time stamps): its tokens may be removed up to k time
+    # units before their timestamps (docs/semantics.md, Time); `expr` is e
+    preemption: int = 0
 
 
 @dataclass(eq=False)

@@ -94,15 +94,17 @@ fun tm(u) = intTime() mod 3;
 TIMED_KINDS = ("TC", "TU", "TP")
 
 
-def random_timed_net(seed: int) -> str:
+def random_timed_net(seed: int, preempt: bool = False) -> str:
     """A random timed net using every timed construct of the language: timed colour sets (int, unit,
     product), initial-marking delays, transition delays and output-arc delays (constant or reading the
     clock), `intTime()` in guards, input and output inscriptions, delays and priorities (directly and
     through a function), double, inhibitor and reset arcs on timed places, delayed conditional and summed
-    outputs, and priorities. About half of the nets read the clock."""
+    outputs, and priorities. About half of the nets read the clock. With `preempt`, about half of the input
+    arcs of timed places have a delay `e @+ k` (CPN Tools' preemption; a number or a `val`); without it the
+    nets are those of the seeds before input delays existed."""
     rng = random.Random(seed)
     clock = rng.random() < 0.5  # whether intTime() may appear at all
-    lines = [TIMED_HEADER]
+    lines = [TIMED_HEADER + ("val K = 2;\n" if preempt else "")]
     places = []
 
     def d():
@@ -159,7 +161,10 @@ def random_timed_net(seed: int) -> str:
             kind = rng.choice(["->", "->", "->", "<->", "<->", "inhibitor", "reset"])
             pat = pattern(k)
             if kind == "->":
-                lines.append(f"arc {name} -> t{t} : {rng.choice(['', '', '2`'])}{pat};")
+                early = ""
+                if preempt and k in TIMED_KINDS and rng.random() < 0.5:
+                    early = f" @+ {rng.choice(['0', '1', '2', '3', '5', 'K', '(K + 1)'])}"
+                lines.append(f"arc {name} -> t{t} : {rng.choice(['', '', '2`'])}{pat}{early};")
             elif kind == "<->":
                 lines.append(f"arc {name} <-> t{t} : {pat};")
             elif kind == "inhibitor":

@@ -615,7 +615,7 @@ class _Translator(_Declarations):
         o = Origin(a.line, a.col, aid, page.name, f"arc between '{p.name}' and '{t.name}'")
         if annot:
             annot = self._inscription(self._code_reads(t, annot) if orient == "ttop" else annot, ao, what)
-        if orient in ("ptot", "bothdir") and self._refuse_input_delay(annot, ao, what):
+        if orient == "bothdir" and self._refuse_input_delay(annot, ao, what):
             return
         pq, tq = ml.quote(p.name), ml.quote(t.name)
         if (p.name in {x.name for x in page.transs if x.subpage is None}
@@ -668,15 +668,16 @@ class _Translator(_Declarations):
         return None
 
     def _refuse_input_delay(self, annot: str, ao: Origin, what: str) -> bool:
-        """One error at an input arc's inscription that delays (CPN Tools' preemption), rather than the front
-        end's, after which the arc's variables would be unbound; True if refused."""
+        """One error at a double arc's inscription that delays, rather than the front end's, after which the
+        arc's variables would be unbound; True if refused. (An input arc's delay, CPN Tools' preempting time
+        stamps, goes to the front end, which checks it.)"""
         if not re.search(r"@\+", re.sub(r'"(?:[^"\\]|\\.)*"', '""', ml.strip_comments(annot))):
             return False
         self.error(Origin(ao.line, ao.col, ao.element, ao.page, ao.what),
-                   f"{what} ('{_short(annot)}') delays the token that the transition consumes: delays on "
-                   "input arcs (CPN Tools' preemption) are not supported",
-                   hint="Remove the delay from the arc that consumes the token, or put it on the arc or the "
-                        "transition that produces the token.")
+                   f"{what} ('{_short(annot)}') is a double arc with a time delay: whether the delay lets the "
+                   "transition take the token early, delays the token it puts back, or both, is not supported",
+                   hint="Draw the double arc as two arcs in CPN Tools: an input arc ('e @+ k' removes the token "
+                        "up to k time units early) and an output arc ('e @+ d' puts it back d time units later).")
         return True
 
 
