@@ -134,6 +134,21 @@ class _Monitor:
         # else is waiting for the rest of the graph
         return violated or (self.only_witnesses and all(c.found is not None for c in self.checks))
 
+    def observe_many(self, states) -> None:
+        """`self(state)` for each of `states` in turn, a check at a time (the native search shows the states
+        it stored a batch at a time, and only to be observed: it does not stop at a violation)."""
+        sid = self.sid
+        self.sid += len(states)
+        for c in self.checks:
+            if c.error is not None:
+                continue
+            try:
+                c.observe_many(sid, states)
+            except PredicateError as exc:
+                c.error = exc
+        if self.lasso is not None:
+            self.lasso.difference_update(states)
+
 
 def run_scenario(scenario: Scenario, run: Run, overrides: dict | None = None, progress=None,
                  model=None) -> RunResult:

@@ -103,6 +103,14 @@ class Check:
     def observe(self, sid: int, state) -> bool:
         return False
 
+    def observe_many(self, sid: int, states) -> bool:
+        """`observe` of each of `states` in turn (the first has id `sid`); whether one violated (or
+        witnessed) the property."""
+        hit = False
+        for i, state in enumerate(states):
+            hit = self.observe(sid + i, state) or hit
+        return hit
+
     def decide(self, view: GraphView) -> Verdict:
         raise NotImplementedError
 
@@ -135,6 +143,15 @@ class _MarkingSearch(Check):
             self.found = sid
             return True
         return False
+
+    def observe_many(self, sid, states):
+        if self.found is not None:
+            return False
+        i = self.pred.first_where(sid, states, self.wanted)
+        if i is None:
+            return False
+        self.found = sid + i
+        return True
 
     def search(self, view) -> int | None:
         """The first marking found (the first expanded one in the graph's order, over the graph)."""

@@ -17,6 +17,7 @@ import pickle
 import re
 from collections import OrderedDict
 from collections.abc import Callable
+from itertools import repeat
 
 from cpn._util import did_you_mean
 from cpn.diagnostics import Diagnostic, Span
@@ -187,6 +188,9 @@ def _exists(a):
     return lambda f: any(f(a.ctx.mk(a.ctx.state, p)) for p in a.places)
 
 
+_MISS = object()  # no value memoised for a key yet
+
+
 @dataclasses.dataclass
 class Compiled:
     """A compiled property text: `fn(state_id, state)` returns its value; `uses_enabled` says it reads
@@ -198,6 +202,20 @@ class Compiled:
     uses_enabled: bool
     span: Span | None
     reads: tuple = ()  # the place instances whose markings the text reads (indices)
+    # `first(sid, states, wanted)`: the position in `states` (whose first has id `sid`) of the first state
+    # where the value is `wanted` (a bool), or None; the states before it are evaluated in order, so an
+    # error is raised at the first state that fails, as calling `fn` on each would
+    first: Callable | None = None
+
+    def first_where(self, sid: int, states, wanted: bool) -> int | None:
+        """`first`, or `fn` on each state in turn where there is none."""
+        if self.first is not None:
+            return self.first(sid, states, wanted)
+        fn = self.fn
+        for i, s in enumerate(states):
+            if bool(fn(sid + i, s)) is wanted:
+                return i
+        return None
 
 
 class PropertyLanguage:
@@ -481,7 +499,7 @@ class PropertyLanguage:
             # memoised by their intern ids, as the engine memoises a transition's bindings.
             if uses_time and getattr(self.engine, "is_timed", False):
                 reads.append(len(self.engine.places))  # the clock, the last item of a timed state
-            key_of = (lambda s: ()) if not reads else (lambda s, g=operator.itemgetter(*reads): (g(s),))
+            key_of = operator.itemgetter(*reads) if reads else (lambda s: ())
             memo: dict = {}
             get = memo.get
 
@@ -496,6 +514,36 @@ class PropertyLanguage:
                     memo[key] = v
                 return v
 
+            def first(sid, states, wanted, raw=raw):
+                # the keys and the values known are looked up in C (map); Python evaluates only the states
+                # whose key is new, in order, up to the first known `wanted` value
+                keys = list(map(key_of, states))
+                vals = list(map(get, keys, repeat(_MISS, len(keys))))
+                n = len(vals)
+                try:
+                    w = vals.index(wanted)  # (the values are bools: the text's type is bool)
+                except ValueError:
+                    w = n
+                i = 0
+                while True:
+                    try:
+                        m = vals.index(_MISS, i, w)
+                    except ValueError:
+                        return w if w < n else None
+                    key = keys[m]
+                    v = get(key, _MISS)
+                    if v is _MISS:
+                        try:
+                            v = raw(sid + m, states[m])
+                        except errors as exc:
+                            raise PredicateError(f"evaluating '{text}' failed: {exc}", sid + m, span) from None
+                        memo[key] = v
+                    if bool(v) is wanted:
+                        return m
+                    i = m + 1
+
+            return Compiled(text, expr, fn, uses_enabled, span, places_read, first)
+        return Compiled(text, expr, fn, uses_enabled, span, places_read)
         return Compiled(text, expr, fn, uses_enabled, span, places_read)
 
     def _reads_clock(self, expr: A.Expr) -> bool:
