@@ -21,12 +21,6 @@ SYNTAX_ERRORS: list[tuple[str, str, str, list[str]]] = [
     ),
     (
         "E0101",
-        "'+++' in the then-branch of an if-expression: '+++' (the sum of timed multisets) is looser than 'if'",
-        "Parenthesise the branch: 'if b then (e1 +++ e2) else ..', or add with '++'.",
-        ["val x = if a then b +++ c else d;"],
-    ),
-    (
-        "E0101",
         "expected 'else': every if-expression in CPN ML needs an else branch",
         "Add 'else E2'; for multisets 'else empty' is common.",
         ["val x = if a then b;"],

@@ -83,11 +83,36 @@ def test_a_delay_in_a_then_branch_parses():
     parse("val x = if true then 1`1 @+ 1 else empty;\nval y = case 1 of 0 => 1`1 @+ 1 | _ => empty;", "m.cpnet")
 
 
-def test_a_plus_plus_plus_in_a_then_branch_is_still_refused_with_a_hint():
-    with pytest.raises(ModelError) as info:
-        parse("val x = if true then 1`1 +++ 1`2 else empty;", "m.cpnet")
-    [d] = info.value.diagnostics
-    assert d.code == "E0101" and "'+++' in the then-branch" in d.message and "(" in d.hint
+# '+++' is CPN Tools' `infix 6`, as tight as '+' (before, it was looser than every operator and than `if`: a
+# '+++' in a then-branch was a syntax error, and one in an else-branch summed the whole `if`)
+@pytest.mark.parametrize("src, tree", [
+    ("if a then b +++ c else d", "(if a then (b +++ c) else d)"),
+    ("if a then b else c +++ d", "(if a then b else (c +++ d))"),
+    ("fn y => y +++ z", "(fn y => (y +++ z))"),
+    ("case y of 0 => p +++ q | _ => r", "(case y of 0 => (p +++ q) | _ => r)"),
+    ("a = b +++ c", "(a = (b +++ c))"),
+    ("a :: b +++ c", "(a :: (b +++ c))"),
+    ("a ++ b +++ c -- d", "((a ++ (b +++ c)) -- d)"),
+    ("a + b +++ c - d", "(((a + b) +++ c) - d)"),
+    ("a +++ b * c @+ 2", "(a +++ ((b * c) @+ 2))"),
+])
+def test_plus_plus_plus_is_infix_6(src, tree):
+    from cpn.expr.pretty import expr
+
+    assert expr(parse(f"val x = {src};", "m.cpnet").decls[0].expr) == tree
+
+
+@pytest.mark.parametrize("reference", [False, True])
+@pytest.mark.parametrize("insc,after", [
+    ("if true then 1`0 @+ 1 +++ 1`1 @+ 2 else empty", "1`0@1+++1`1@2"),
+    ("if false then empty else 1`0 @+ 1 +++ 1`1 @+ 2", "1`0@1+++1`1@2"),
+    ("1`0 +++ 1`1 @+ 2", "1`0@0+++1`1@2"),
+    ("1`0 ++ 1`1 @+ 2 +++ 1`2 @+ 3", "1`0@0+++1`1@2+++1`2@3"),
+    ("(1`0 ++ 1`1) @+ 2 +++ 1`2 @+ 3", "1`0@2+++1`1@2+++1`2@3"),
+    ("0 + 1 @+ 2 +++ 1`2 @+ 3", "1`1@2+++1`2@3"),
+])
+def test_timed_sums_in_branches_and_beside_looser_operators(insc, after, reference):
+    assert _after_go(cpn.loads(DELAY_NET.format(insc=insc)), reference) == after
 
 
 def test_a_delay_of_a_delayed_multiset_is_a_type_error():
