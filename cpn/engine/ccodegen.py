@@ -58,7 +58,7 @@ from cpn.engine.ctables import (
 )
 from cpn.expr import binding as B
 from cpn.expr import nodes as A
-from cpn.values.colours import ListCS, StringCS
+from cpn.values.colours import EnumCS, ListCS, StringCS
 
 #: a transition whose variables have more bindings than this is left to Python (one slot each)
 MAX_BINDINGS: int = 1 << 22
@@ -251,7 +251,7 @@ class Module:
             a, b = self.inline_ms(e.then, depth), self.inline_ms(e.else_, depth)
             return e if a is e.then and b is e.else_ else replace(e, then=a, else_=b)
         if isinstance(e, A.Case):
-            got = _case_as_if(e)
+            got = _case_as_if(e, self.enum_constants)
             return e if got is None else self.inline_ms(got, depth)
         if isinstance(e, A.App) and isinstance(e.fn, A.Name) and e.fn.ref.kind == "fun":
             fd = self.fun_decls.get(e.fn.ref.uid)
@@ -260,6 +260,29 @@ class Module:
                 if names is not None:
                     return self.inline_ms(_substitute(fd.clauses[0].body, names), depth + 1)
         return e
+
+    def enum_constants(self, name: str) -> int:
+        """How many constants enumeration colour set `name` has (0 where it is no enumeration)."""
+        cs = self.net.colsets.get(name)
+        return len(cs.constants) if isinstance(cs, EnumCS) else 0
+
+    def input_terms(self, t, read: list[int]) -> list:
+        """`plan.input_terms`, with an input inscription's `case` over constants as conditional terms
+        (`_case_as_if`) where each of them has a condition: such terms bind no variable (`plan` loops over
+        no conditional term), so the binding plan is the engine's, for which the `case` is one multiset
+        that the transition's tokens must hold."""
+        out = []
+        for it in plan.input_terms(t, read):
+            e = it.term.opaque
+            if isinstance(e, A.Case) and it.term.coef is None:
+                got = _case_as_if(e, self.enum_constants)
+                if got is not None:
+                    split = plan.terms(got, it.term.cond)
+                    if all(tm.opaque is None and tm.cond for tm in split):
+                        out.extend(plan.InputTerm(it.place, tm, it.arc) for tm in split)
+                        continue
+            out.append(it)
+        return out
 
     def _new_dom(self) -> int:
         self.ndoms += 1
@@ -809,11 +832,21 @@ def _param_names(p, arg) -> dict | None:
     return None
 
 
-def _case_as_if(e):
-    """`case` e as `if`s where each rule but a last catch-all tests a constant or `[]` (its subject is then
-    evaluated once per test), else None."""
+def _case_as_if(e, constants=None):
+    """`case` e as `if`s where each rule but a last catch-all tests a constant, `[]` or a constant of an
+    enumeration colour set (its subject is then evaluated once per test), else None. Without a catch-all,
+    rules that name every constant of an enumeration (`constants(colour set)`: how many it has) need no
+    test in the last rule: no value escapes them, as no value escapes the `case`."""
     rest = None
-    for pat, body in reversed(e.rules):
+    rules = list(e.rules)
+    if rules and constants is not None and not any(isinstance(p, (A.PWild, A.PConst)) or
+                                                   (isinstance(p, A.PVar) and p.ref.kind != "con")
+                                                   for p, _b in rules):
+        seen = {(p.ref.data.colset, p.ref.data.tag) for p, _b in rules if _enum_constant(p)}
+        sets = {cs for cs, _tag in seen}
+        if len(seen) == len(rules) and len(sets) == 1 and len(seen) == constants(next(iter(sets))):
+            rest = rules.pop()[1]  # the last rule matches every value the others leave
+    for pat, body in reversed(rules):
         if isinstance(pat, A.PWild):
             rest = body
             continue
@@ -826,10 +859,18 @@ def _case_as_if(e):
             other = A.ListE(pat.span, [], None)
         elif isinstance(pat, A.PConst) and pat.kind in ("int", "bool", "unit"):
             other = A.Const(pat.span, pat.value, pat.kind)
+        elif _enum_constant(pat):
+            other = A.Name(pat.span, pat.name, None, pat.ref)
         else:
             return None
         rest = A.If(e.span, A.BinOp(pat.span, "=", e.subject, other), body, rest)
     return rest
+
+
+def _enum_constant(p) -> bool:
+    """Whether pattern p is a constant of an enumeration colour set."""
+    return isinstance(p, A.PVar) and p.ref is not None and p.ref.kind == "con" \
+        and getattr(p.ref.data, "kind", None) == "enum"
 
 
 def _substitute(x, names: dict):
@@ -1135,7 +1176,7 @@ class TransitionC:
     def bind_source(self) -> str:
         """`bind<k>(c, key)`: the enabled bindings on the read places' markings `key` into `c->bind`."""
         t = self.t
-        self.in_terms = plan.input_terms(t, self.read)
+        self.in_terms = self.mod.input_terms(t, self.read)
         for it in self.in_terms:
             if it.term.opaque is not None:
                 raise NotNative("an input arc's inscription is a multiset expression")
@@ -1352,7 +1393,7 @@ class TransitionC:
             for tm in terms:
                 self.accumulate(tm, self.pl[p], buf, cnt, "FAIL", check_all=True)
         consumed: dict[int, list] = {}
-        for it in plan.input_terms(t, self.read):
+        for it in self.mod.input_terms(t, self.read):
             consumed.setdefault(it.place, []).append(it.term)
         width = 3 * len(self.read) + len(self.writes)
         self.emit(f"if (g_pool(c, {max(width, 1)})) {{ c->err = 2; goto done; }}")
@@ -1545,7 +1586,7 @@ class TimedTransitionC(TransitionC):
 
     def generate(self) -> str:
         t = self.t
-        for it in plan.input_terms(t, self.read):
+        for it in self.mod.input_terms(t, self.read):
             if it.term.opaque is not None:
                 raise NotNative("an input arc's inscription is a multiset expression")
         return "\n".join([self.bind_source(), self.one(), self.ready_fn(), self.effect_fn()])
@@ -1561,7 +1602,7 @@ class TimedTransitionC(TransitionC):
         for i in range(len(t.variables)):
             self.emit(f"const int64_t v{i} = v[{i}]; (void)v{i};")
         consumed: dict[int, list] = {}
-        for it in plan.input_terms(t, self.read):
+        for it in self.mod.input_terms(t, self.read):
             consumed.setdefault(it.place, []).append(it.term)
         cons: dict[int, tuple[str, str]] = {}
         for i, p in enumerate(self.read):
