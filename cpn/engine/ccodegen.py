@@ -129,9 +129,17 @@ class Module:
         colour set; for a list colour set, one per structure of its elements)."""
         base = base_colset(cs)
         if isinstance(base, StringCS):
-            if base.chars is not None or base.lengths is not None:
-                raise NotNative(f"colour set {base.name} (string with restrictions) has no C layout")
-            return self.string_dom()
+            if base.chars is None and base.lengths is None:
+                return self.string_dom()
+            got = self.by_colset.get(base.name)  # the strings' domain, its tokens checked (a ranged list)
+            if got is None:
+                chars = base.chars
+                if chars is not None and not all(isinstance(ch, str) and len(ch) == 1 for ch in chars):
+                    raise NotNative(f"colour set {base.name} restricts its characters by strings of other lengths")
+                got = self.by_colset[base.name] = RangedList(
+                    self.string_dom(), base.name, [] if chars is None else [(0, ord(chars[0]), ord(chars[1]))], [],
+                    None if base.lengths is None else (base.lengths[0], base.lengths[1]))
+            return got
         if isinstance(base, ListCS):
             lv, sh = value_parts(base.elem, self.layout)
             lay = self.list_dom(lv, sh)
@@ -1283,7 +1291,9 @@ class TransitionC:
     def check_member(self, var: str) -> None:
         i = self.t.variables.index(var)
         lay = self.var_lay[i]
-        if lay.interned:
+        if isinstance(lay, RangedList):  # a restricted string or list: its length and elements
+            self.emit(f"if ({self.mod.list_check(lay)}(c, v{i}) < 0) continue;")
+        elif lay.interned:
             if lay.shape is None and lay.leaves[0][0] is not None:
                 lo, hi, _kind = lay.leaves[0]
                 self.emit(f"if (v{i} < {_c_int(lo)} || v{i} > {_c_int(hi)}) continue;")

@@ -240,8 +240,8 @@ class ListDom(_ByReference):
 class StrDom(ListDom):
     """The interned ids of strings: a string is the list of its characters' code points (the node [n, its
     n codes] of its own domain), so that `^` is the lists' append and `size` their length, and two strings
-    are equal where their ids are. One domain holds the strings of every string colour set without
-    restrictions (a restricted one, `string with "a".."z"`, is left to the engine)."""
+    are equal where their ids are. One domain holds the strings of every string colour set (a restricted one,
+    `string with "a".."z" and 1..8`, checks its tokens: a `RangedList` over this domain)."""
 
     def flat(self, v, cid=None) -> list[int]:
         return [len(v), *map(ord, v)]

@@ -134,10 +134,10 @@ def test_bad_model_65(monkeypatch, tmp_path, capsys):
     assert "unknown colour set 'Phil'" in capsys.readouterr().err
 
 
-# a timed net a transition of which is left to the Python engine (a list): `auto` keeps the Python search
-HALFWAY = """colset N = int with 0..3 timed; colset L = string with "a".."z"; var x : N; var l : L;
-place P : N = 1`0; place Q : L = 1`""; trans t [x < 3] @+ 1; arc P -> t : x; arc t -> P : (x + 1) @+ 1;
-trans u [String.size l < 2]; arc Q -> u : l; arc u -> Q : l ^ "a";
+# a timed net a transition of which is left to the Python engine (reals): `auto` keeps the Python search
+HALFWAY = """colset N = int with 0..3 timed; colset L = real; var x : N; var l : L;
+place P : N = 1`0; place Q : L = 1`0.0; trans t [x < 3] @+ 1; arc P -> t : x; arc t -> P : (x + 1) @+ 1;
+trans u [l < 2.0]; arc Q -> u : l; arc u -> Q : l + 1.0;
 """
 
 

@@ -1,8 +1,8 @@
 """Strings in the generated C (`ctables.StrDom`: a string is the list of its characters' codes, interned):
 tokens, variables, strings in products, literals and constants, `^`, `String.size`, `=` and `<>`. The native
 search's graph must be the Python search's own, with every transition in C (the engine expands no state);
-what C does not evaluate (a restricted string colour set, the other string functions) stays with the
-engine, transition by transition."""
+a restricted colour set (`string with "a".."z" and 1..5`) is the strings' domain with its tokens checked in C;
+what C does not evaluate (the other string functions) stays with the engine, transition by transition."""
 
 import os
 
@@ -12,7 +12,7 @@ import cpn
 from cpn.statespace import ExploreOptions, Explorer
 from cpn.statespace.store import packed_unavailable
 from tests.engine._explore import same_exploration
-from tests.statespace._native import both_searches
+from tests.statespace._native import both_searches, same_error
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(__file__)))
 NATIVE = packed_unavailable()
@@ -55,13 +55,44 @@ def test_characters_beyond_ascii_and_the_empty_string_round_trip():
     assert {v for s in c.graph.states for v in engine.marking(s)[0]} >= {"", "\u00e9t\u00e9\u00e0"}
 
 
-@pytest.mark.parametrize("colset,use", [
-    ('string with "a".."z"', 'x ^ "c"'),  # a restricted colour set: its members are the engine's to check
-    ("string", "x ^ Int.toString (String.size x)"),  # a string function C does not know
-])
-def test_what_c_does_not_evaluate_stays_with_the_engine(colset, use):
-    text = (f"colset S = {colset}; var x : S;\nplace P : S = 1`\"ab\";\n"
-            f"trans t [String.size x < 4]; arc P -> t : x; arc t -> P : {use};")
+RESTRICTED = {
+    # tokens of a restricted colour set made in C, checked there (length and characters)
+    "tokens": 'colset S = string with "a".."c" and 0..3; var x : S;\nplace P : S = 1`"a" ++ 1`"";\n'
+              'trans t [String.size x < 3]; arc P -> t : x; arc t -> P : x ^ "b";',
+    # a guard binds a restricted string: only the members of its colour set bind it ("bz" and "abcd" do not)
+    "guard": 'colset S = string with "a".."c" and 1..3; colset T = string; var x : S; var y : T;\n'
+             'place P : T = 1`"a" ++ 1`"bz" ++ 1`"abcd" ++ 1`"cc";\nplace Q : S;\n'
+             'trans t [x = y]; arc P -> t : y; arc t -> Q : x;',
+    # in a product, timed
+    "timed": 'colset S = string with "a".."b" and 0..2; colset I = int with 0..3;'
+             ' colset P = product S * I timed; var x : S; var i : I;\nplace A : P = 1`("", 0);\n'
+             'trans t [i < 3 andalso String.size x < 2] @+ 1; arc A -> t : (x, i);'
+             ' arc t -> A : (x ^ "a", i + 1) ++ (x ^ "b", i + 1) @+ 1;',
+}
+
+
+@pytest.mark.parametrize("name", sorted(RESTRICTED))
+def test_a_restricted_string_colour_set_runs_wholly_in_c(name, fills):
+    model = cpn.loads(RESTRICTED[name], f"{name}.cpnet")
+    engine = model.engine()
+    code, why = engine.timed_groups().native_code() if engine.is_timed else engine.native_code()
+    assert why is None and code.left == {}
+    c = both_searches(engine, model.engine())
+    assert c.complete and c.notes == [] and fills[0] == 0
+    if name == "guard":
+        words = {v for s in c.graph.states for v in engine.marking(s)[1]}
+        assert words == {"a", "cc"} and c.n_states == 4
+
+
+def test_a_string_outside_its_colour_set_is_the_same_error_in_c():
+    model = cpn.loads('colset S = string with "a".."c"; var x : S;\nplace P : S = 1`"a";\n'
+                      'trans t [String.size x < 3]; arc P -> t : x; arc t -> P : x ^ "z";', "bad.cpnet")
+    assert 'puts "az" on place' in same_error(model)
+
+
+def test_a_string_function_c_does_not_know_stays_with_the_engine():
+    text = ("colset S = string; var x : S;\nplace P : S = 1`\"ab\";\n"
+            "trans t [String.size x < 4]; arc P -> t : x; arc t -> P : x ^ Int.toString (String.size x);")
     model = cpn.loads(text, "left.cpnet")
     code, why = model.engine().native_code()
     assert (why is not None) or code.left, "the transition should be left to the engine"

@@ -272,9 +272,9 @@ def test_auto_leaves_timed_nets_to_the_python_search_with_a_note():
     """The native search of a timed net whose bindings come from the engine is slower than the Python one:
     `auto` keeps the Python search and says why; `--backend c` asks for the native one. A net wholly in
     the generated C: `auto` searches it natively (tests/statespace/test_native_timed_c.py)."""
-    model = cpn.loads("colset N = int with 0..3 timed; colset L = string with \"a\"..\"z\"; var x : N; var l : L;"
-                      " place P : N = 1`0; place Q : L = 1`\"\"; trans t [x < 3] @+ 1; arc P -> t : x;"
-                      " arc t -> P : (x + 1) @+ 1; trans u [String.size l < 2]; arc Q -> u : l; arc u -> Q : l ^ \"a\";",
+    model = cpn.loads("colset N = int with 0..3 timed; colset L = real; var x : N; var l : L;"
+                      " place P : N = 1`0; place Q : L = 1`0.0; trans t [x < 3] @+ 1; arc P -> t : x;"
+                      " arc t -> P : (x + 1) @+ 1; trans u [l < 2.0]; arc Q -> u : l; arc u -> Q : l + 1.0;",
                       "halfway.cpnet")
     auto = Explorer(model.engine(time_condensation=True), ExploreOptions(max_states=200)).run()
     assert auto.backend == "python"

@@ -163,18 +163,18 @@ def test_auto_searches_a_net_wholly_in_c_natively_building_its_c_on_the_way(fill
 
 UNBOUNDED = """
 colset N = int with 0..3 timed;
-colset I = string with "a".."z";
+colset I = real;
 var x : N;
 var i : I;
 place P : N = 1`0 ++ (1`1@+1);
-place C : I = 1`"";
+place C : I = 1`0.0;
 trans inc [x < 3] @+ 1;
 arc P -> inc : x;
 arc inc -> P : (x + 1) @+ 1;
-trans count [String.size i < 4];
+trans count [i < 4.0];
 arc P -> count : x;
 arc C -> count : i;
-arc count -> C : i ^ "a";
+arc count -> C : i + 1.0;
 arc count -> P : 0 @+ 2;
 """
 
@@ -182,22 +182,22 @@ arc count -> P : 0 @+ 2;
 @needs_native
 @pytest.mark.parametrize("condensation", [False, True], ids=["timed", "condensed"])
 def test_a_place_c_cannot_hold_leaves_only_its_transitions_to_python(condensation, fills):
-    """Place C's colour set (strings) has no C representation: `count`, which reads it, is the
+    """Place C's colour set (reals) has no C representation: `count`, which reads it, is the
     engine's, `inc` runs in C; the markings of C are the engine's alone."""
     model = cpn.loads(UNBOUNDED, "unbounded.cpnet")
     code, _ = model.engine().timed_groups().native_code()
     assert code.native == [0] and code.layouts[1] is None
     c = _both(model, condensation, limit=3000)
-    assert c.notes == ["the Python engine computes the bindings of transition 'Top'count 1': colour set I (string with "
-                       "restrictions) has no C layout"]
+    assert c.notes == ["the Python engine computes the bindings of transition 'Top'count 1': colour set I (real) has "
+                       "no C layout"]
     assert 0 < fills[0] <= c.graph.expanded  # (count reads P, whose timed marking rarely recurs)
 
 
 def test_a_net_without_a_transition_in_c_has_one_reason():
-    model = cpn.loads("colset L = string with \"a\"..\"z\" timed; var l : L; place P : L = 1`\"\";"
-                      " trans t [String.size l < 3]; arc P -> t : l; arc t -> P : (l ^ \"a\") @+ 1;", "strings.cpnet")
+    model = cpn.loads("colset L = real timed; var l : L; place P : L = 1`0.0;"
+                      " trans t [l < 3.0]; arc P -> t : l; arc t -> P : (l + 1.0) @+ 1;", "reals.cpnet")
     code, why = model.engine().timed_groups().native_code()
-    assert code is None and why == "place 'Top'P 1': colour set L (string with restrictions) has no C layout"
+    assert code is None and why == "place 'Top'P 1': colour set L (real) has no C layout"
 
 
 STATES = """

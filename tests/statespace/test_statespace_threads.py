@@ -173,9 +173,9 @@ def test_where_threads_do_not_apply_the_processes_run_with_a_note(options, why):
 
 
 def test_a_transition_left_to_python_keeps_the_processes():
-    # a string colour set is not held in C: the net has a transition left to the Python engine
-    model = cpn.loads("colset L = string with \"a\"..\"z\"; var l : L;"
-                      " place P : L = 1`\"\"; trans t [String.size l < 3]; arc P -> t : l; arc t -> P : l ^ \"a\";")
+    # a real colour set is not held in C: the net has a transition left to the Python engine
+    model = cpn.loads("colset L = real; var l : L;"
+                      " place P : L = 1`0.0; trans t [l < 3.0]; arc P -> t : l; arc t -> P : l + 1.0;")
     engine = model.engine()
     why, _ = why_not_threaded(engine, ExploreOptions(workers=2), engine.initial_state())
     assert why is not None
