@@ -111,6 +111,13 @@ def _unit_for(units: dict, key: tuple, top_key, net) -> Unit:
     return u
 
 
+def arc_inscription(net, a) -> str:
+    """Arc instance a's inscription, with its delay on an input arc (`@+ k`, which the net keeps apart from
+    the inscription: `ArcInstance.preemption`, its value in this instance)."""
+    text = inscription(net, a.expr)
+    return f"{text} @+ {a.preemption}" if getattr(a, "preemption", 0) else text
+
+
 def inscription(net, expr) -> str:
     """An arc inscription as the modeller wrote it (from the source), else in canonical form."""
     if expr is None:
@@ -364,7 +371,7 @@ class _Sheet:
         roots = [("p", i) for i in u.places if net.places[i].initial]
         # the gap between layers leaves room for the widest (wrapped) inscription of the unit's arcs
         widest = max([S.text_width(line, 12, True) for i in u.transitions for a in net.transitions[i].arcs
-                      for line in wrap(inscription(net, a.expr))] + [0])
+                      for line in wrap(arc_inscription(net, a))] + [0])
         gap = min(190.0, max(84.0, widest + 36))
         lay = layered_layout(flow, edges, {n: (nodes[n].w, nodes[n].h) for n in flow}, roots=roots,
                              gap_x=gap, gap_y=30, margin=0, direction="LR")
@@ -734,7 +741,7 @@ def _arc_svg(net, g: _Drawn, node_boxes: list, taken: list) -> tuple[str, float]
     of the inscriptions placed so far."""
     a = g.a
     bx, by = g.end
-    label = inscription(net, a.expr)
+    label = arc_inscription(net, a)
     dash = ""
     m_end = 'marker-end="url(#na-line)"'
     m_start = ""

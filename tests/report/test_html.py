@@ -158,6 +158,17 @@ def test_a_multi_line_inscription_is_shown_without_what_follows_it(tmp_path):
     assert [inscription(net, a.expr) for a in net.transitions[0].arcs] == ["k", "if k < 3 then k + 1 else 0"]
 
 
+def test_an_input_arcs_delay_is_drawn_with_its_inscription(tmp_path):
+    src = tmp_path / "early.cpnet"
+    src.write_text("net E;\ncolset U = int with 0..3 timed;\nval EARLY = 5;\nvar k : U;\nplace P : U = 1`0 @+ 8;\n"
+                   "trans T;\narc P -> T : k @+ EARLY;\narc T -> P : (k + 1) mod 4;\n")
+    net = _explore(src).engine.net
+    from cpn.report.netdraw import arc_inscription
+
+    assert [arc_inscription(net, a) for a in net.transitions[0].arcs] == ["k @+ 5", "(k + 1) mod 4"]
+    assert "k @+ 5" in draw_net(net)
+
+
 WORKERS = """net Pool;
 colset ID = int with 1..6;
 var i : ID;
