@@ -1098,6 +1098,8 @@ class TransitionC:
             # a variable's slot: its colour id, or its value if it is a scalar (`slot`)
             self.vars[v] = S(f"v{i}") if lay.shape is None else lay.decode(f"v{i}")
         self.ex = ExprC(mod, self.vars, t.params)
+        # its consuming arcs' terms (a `case` over constants split, `Module.input_terms`), made once
+        self.in_terms = mod.input_terms(t, read)
         self.views: set[int] = set()  # timed places read: bound on their untimed views
         self.lines: list[str] = []
         self.depth = 1
@@ -1184,7 +1186,6 @@ class TransitionC:
     def bind_source(self) -> str:
         """`bind<k>(c, key)`: the enabled bindings on the read places' markings `key` into `c->bind`."""
         t = self.t
-        self.in_terms = self.mod.input_terms(t, self.read)
         for it in self.in_terms:
             if it.term.opaque is not None:
                 raise NotNative("an input arc's inscription is a multiset expression")
@@ -1403,7 +1404,7 @@ class TransitionC:
             for tm in terms:
                 self.accumulate(tm, self.pl[p], buf, cnt, "FAIL", check_all=True)
         consumed: dict[int, list] = {}
-        for it in self.mod.input_terms(t, self.read):
+        for it in self.in_terms:
             consumed.setdefault(it.place, []).append(it.term)
         width = 3 * len(self.read) + len(self.writes)
         self.emit(f"if (g_pool(c, {max(width, 1)})) {{ c->err = 2; goto done; }}")
@@ -1595,10 +1596,6 @@ class TimedTransitionC(TransitionC):
             raise NotNative("a reset arc on a place it does not read")
 
     def generate(self) -> str:
-        t = self.t
-        for it in self.mod.input_terms(t, self.read):
-            if it.term.opaque is not None:
-                raise NotNative("an input arc's inscription is a multiset expression")
         return "\n".join([self.bind_source(), self.one(), self.ready_fn(), self.effect_fn()])
 
     def one(self) -> str:
@@ -1612,7 +1609,7 @@ class TimedTransitionC(TransitionC):
         for i in range(len(t.variables)):
             self.emit(f"const int64_t v{i} = v[{i}]; (void)v{i};")
         consumed: dict[int, list] = {}
-        for it in self.mod.input_terms(t, self.read):
+        for it in self.in_terms:
             consumed.setdefault(it.place, []).append(it.term)
         cons: dict[int, tuple[str, str]] = {}
         for i, p in enumerate(self.read):

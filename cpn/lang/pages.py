@@ -189,13 +189,17 @@ class PageChecks:
                 expr, preempt = got
             delay = _delay_node(expr) if ak == "out" else None
             if delay is not None and not self.colsets[pd.colset].timed:
-                # CPN Tools: 'e @+ d' is a timed multiset, which an untimed place cannot hold
-                self.error("E0301", f"the inscription of arc '{d.src}' -> '{d.dst}' has a time delay, but place "
-                           f"'{place}' holds {pd.colset}, which is not timed", delay.span,
-                           hint=f"Declare the colour set timed ('colset {pd.colset} = ... timed;'), or remove "
-                                "the '@+': tokens of an untimed place carry no time stamp.", place=place)
+                self._untimed_delay(f"arc '{d.src}' -> '{d.dst}'", place, pd.colset, delay.span)
                 return
         info.arcs.append(ArcInfo(d, ak, place, trans, expr, preempt))
+
+    def _untimed_delay(self, arc: str, place: str, colset: str, span) -> None:
+        """E0301 at the delay of an arc whose place is not timed (CPN Tools: 'e @+ d' is a timed multiset,
+        which an untimed place cannot hold, and an untimed token has no stamp to take early)."""
+        self.error("E0301", f"the inscription of {arc} has a time delay, but place '{place}' holds {colset}, "
+                   "which is not timed", span, place=place,
+                   hint=f"Declare the colour set timed ('colset {colset} = ... timed;'), or remove the '@+': "
+                        "tokens of an untimed place carry no time stamp.")
 
     def _input_delay(self, d: A.ArcDecl, ak: ArcKind, place: str, colset: str, expr: A.Expr):
         """(the inscription without its delay, the delay) of an input arc `e @+ k` (CPN Tools' preempting
@@ -224,10 +228,7 @@ class PageChecks:
                        hint="An input arc's delay is an integer: write '@+ k' with a constant k.")
             return None
         if not self.colsets[colset].timed:
-            self.error("E0301", f"the inscription of {where} has a time delay, but place '{place}' holds "
-                       f"{colset}, which is not timed", top.span, place=place,
-                       hint=f"Declare the colour set timed ('colset {colset} = ... timed;'), or remove the "
-                            "'@+': tokens of an untimed place carry no time stamp.")
+            self._untimed_delay(where, place, colset, top.span)
             return None
         culprit = _not_fixed(top.right)
         if culprit is not None:
@@ -605,32 +606,28 @@ def _label(inst: A.InstanceDecl) -> str:
     return f"instance '{inst.name}'"
 
 
-def _not_constant(e: A.Expr) -> A.Name | None:
-    """The first name in e that is a module parameter or a transition variable (None: e is a constant)."""
+def _first_name(e: A.Expr, wanted) -> A.Name | None:
+    """The first name in e (depth first, left to right) for whose symbol `wanted` holds, or None."""
     stack = [e]
     while stack:
         x = stack.pop()
-        if isinstance(x, A.Name) and x.ref is not None and x.ref.kind in ("param", "var"):
+        if isinstance(x, A.Name) and x.ref is not None and wanted(x):
             return x
         stack.extend(reversed(children(x)))
     return None
 
 
+def _not_constant(e: A.Expr) -> A.Name | None:
+    """The first name in e that is a module parameter or a transition variable (None: e is a constant)."""
+    return _first_name(e, lambda x: x.ref.kind in ("param", "var"))
 
 
 def _not_fixed(e: A.Expr) -> A.Name | None:
     """The first name in e that makes it other than a constant of the net instance: a transition variable,
     the clock, a random draw (`CS.ran()`, `uniform`, ...) or a function of the model (which may read the
     clock or draw); None if there is none."""
-    stack = [e]
-    while stack:
-        x = stack.pop()
-        if isinstance(x, A.Name) and x.ref is not None and (
-                x.ref.kind in ("var", "fun") or (x.ref.kind == "csop" and x.name.endswith(".ran"))
-                or (x.ref.kind == "builtin" and x.name in TIME_BUILTINS | RANDOM_BUILTINS)):
-            return x
-        stack.extend(reversed(children(x)))
-    return None
+    return _first_name(e, lambda x: x.ref.kind in ("var", "fun") or (x.ref.kind == "csop" and x.name.endswith(".ran"))
+                       or (x.ref.kind == "builtin" and x.name in TIME_BUILTINS | RANDOM_BUILTINS))
 
 
 def _delay_node(e):

@@ -16,6 +16,19 @@ def both_searches(engine_c, engine_py, limit: int = 3000):
     return c
 
 
+def net_code(model):
+    """(the net's generated C, why there is none), as the native search makes it: a timed net's from its
+    transition groups."""
+    engine = model.engine()
+    return engine.timed_groups().native_code() if engine.is_timed else engine.native_code()
+
+
+def wholly_in_c(model) -> None:
+    """Check that the generated C of `model` leaves no transition to the engine."""
+    code, why = net_code(model)
+    assert why is None and code.left == {}, (why, code and code.left)
+
+
 def same_error(model, max_states: int = 1000) -> str:
     """The error of `model`'s C search, the same as the Python search's."""
     errors = []

@@ -10,7 +10,7 @@ import cpn
 from cpn.statespace import ExploreOptions, Explorer
 from cpn.statespace.store import packed_unavailable
 from tests.engine._explore import same_exploration
-from tests.statespace._native import both_searches, same_error
+from tests.statespace._native import both_searches, net_code, same_error, wholly_in_c
 
 NATIVE = packed_unavailable()
 pytestmark = pytest.mark.skipif(NATIVE is not None, reason=f"native code unavailable: {NATIVE}")
@@ -45,16 +45,10 @@ arc t2 -> A : case x of q => 1`(x, i + 1) | _ => 1`(x, i) @+ 3;
 }
 
 
-def _engine_code(model):
-    engine = model.engine()
-    return engine.timed_groups().native_code() if engine.is_timed else engine.native_code()
-
-
 @pytest.mark.parametrize("name", sorted(NETS))
 def test_a_case_over_constants_runs_in_c_with_the_python_searchs_graph(name):
     model = cpn.loads(NETS[name], f"{name}.cpnet")
-    code, why = _engine_code(model)
-    assert why is None and code.left == {}, (why, code and code.left)
+    wholly_in_c(model)
     condensed = name == "timed"  # (its clock grows without end: condensed, its state space is finite)
     c = both_searches(model.engine(time_condensation=condensed), model.engine(time_condensation=condensed))
     assert c.complete and c.notes == [] and c.n_states > 5
@@ -64,7 +58,7 @@ def _left(arc):
     """A net whose transition t1 has input inscription `arc`, and its C, which leaves t1 to the engine."""
     text = HEAD.replace("3`e;", "3`e;\nvar j : I;") + f"trans t1; arc A -> t1 : (x, i); {arc}\narc t1 -> B : (x, i);"
     model = cpn.loads(text, "left.cpnet")
-    code, why = _engine_code(model)
+    code, why = net_code(model)
     assert why is None and [model.engine().transitions[t].name for t in code.left] == ["Top't1 1"]
     return model
 

@@ -9,7 +9,7 @@ import pytest
 
 import cpn
 from cpn.statespace.store import packed_unavailable
-from tests.statespace._native import both_searches, same_error
+from tests.statespace._native import both_searches, same_error, wholly_in_c
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(__file__)))
 NATIVE = packed_unavailable()
@@ -21,16 +21,14 @@ LISTS = os.path.join(ROOT, "tests", "statespace", "models", "lists_timed.cpnet")
 
 def _same_error(model) -> str:
     """The error of the search of an untimed `model` wholly in C, the same as the Python search's."""
-    code, why = model.engine().native_code()
-    assert why is None and code.left == {}
+    wholly_in_c(model)
     return same_error(model)
 
 
 @pytest.mark.parametrize("condensation", [False, True], ids=["timed", "condensed"])
 def test_a_timed_net_of_lists_runs_wholly_in_c(condensation, fills):
     model = cpn.load(LISTS)
-    code, why = model.engine().timed_groups().native_code()
-    assert why is None and code.left == {}
+    wholly_in_c(model)
     c = both_searches(model.engine(time_condensation=condensation), model.engine(time_condensation=condensation))
     assert c.complete and c.n_states == 2244 and c.notes == [] and fills[0] == 0
 
@@ -72,8 +70,7 @@ def test_a_list_of_integers_beyond_64_bits_is_the_engines():
     text = ("colset INT = int; colset L = list INT; var l : L; var x : INT; place P : L = 1`[1];"
             " trans t [length l < 30]; arc P -> t : x :: l; arc t -> P : (x * 1000) :: x :: l;")
     model = cpn.loads(text, "big.cpnet")
-    code, why = model.engine().native_code()
-    assert why is None and code.left == {}
+    wholly_in_c(model)
     c = both_searches(model.engine(), model.engine())
     assert c.complete and c.n_states == 31
     assert any(abs(v) >= 1 << 63 for d in c.engine.marking(c.graph.states[-1]) for lst in d for v in lst)
@@ -105,8 +102,7 @@ def test_lists_with_ranges_are_checked_in_c(fills):
     """A list colour set with a length range and a ranged element type (alone, in a product, in a list of
     lists): every transition in C, its tokens checked against the ranges; the Python search's graph."""
     model = cpn.loads(RANGED, "ranged.cpnet")
-    code, why = model.engine().native_code()
-    assert why is None and code.left == {}
+    wholly_in_c(model)
     c = both_searches(model.engine(), model.engine())
     assert c.complete and c.n_states == 8  # 4 markings of P (its list grows to 3), 2 of Q
 

@@ -12,7 +12,7 @@ import cpn
 from cpn.statespace import ExploreOptions, Explorer
 from cpn.statespace.store import packed_unavailable
 from tests.engine._explore import same_exploration
-from tests.statespace._native import both_searches, same_error
+from tests.statespace._native import both_searches, same_error, wholly_in_c
 
 ROOT = os.path.dirname(os.path.dirname(os.path.dirname(__file__)))
 NATIVE = packed_unavailable()
@@ -20,13 +20,10 @@ pytestmark = pytest.mark.skipif(NATIVE is not None, reason=f"native code unavail
 STRINGS = os.path.join(ROOT, "tests", "statespace", "models", "strings_timed.cpnet")
 
 
-
-
 @pytest.mark.parametrize("condensation", [False, True], ids=["timed", "condensed"])
 def test_a_timed_net_of_strings_runs_wholly_in_c(condensation, fills):
     model = cpn.load(STRINGS)
-    code, why = model.engine().timed_groups().native_code()
-    assert why is None and code.left == {}
+    wholly_in_c(model)
     c = both_searches(model.engine(time_condensation=condensation), model.engine(time_condensation=condensation))
     assert c.complete and c.notes == [] and fills[0] == 0
     assert c.n_states == 131  # with and without condensation alike
@@ -36,8 +33,7 @@ def test_the_untimed_net_of_strings_runs_wholly_in_c():
     text = open(STRINGS, encoding="utf-8").read().replace(" timed;", ";").replace(" @+ 1", "").replace(
         " @+ 2", "").replace(" @+ 3", "")
     model = cpn.loads(text, "strings.cpnet")
-    code, why = model.engine().native_code()
-    assert why is None and code.left == {}
+    wholly_in_c(model)
     engine = model.engine()
     c = both_searches(engine, model.engine())
     words = {v for s in c.graph.states for v in engine.marking(s)[0]}
@@ -48,8 +44,7 @@ def test_characters_beyond_ascii_and_the_empty_string_round_trip():
     text = ('colset S = string; var x : S;\nplace P : S = 1`"\u00e9t\u00e9" ++ 1`"";\n'
             'trans t [String.size x < 4]; arc P -> t : x; arc t -> P : x ^ "\u00e0";')
     model = cpn.loads(text, "u.cpnet")
-    code, why = model.engine().native_code()
-    assert why is None and code.left == {}
+    wholly_in_c(model)
     engine = model.engine()
     c = both_searches(engine, model.engine())
     assert {v for s in c.graph.states for v in engine.marking(s)[0]} >= {"", "\u00e9t\u00e9\u00e0"}
@@ -74,9 +69,8 @@ RESTRICTED = {
 @pytest.mark.parametrize("name", sorted(RESTRICTED))
 def test_a_restricted_string_colour_set_runs_wholly_in_c(name, fills):
     model = cpn.loads(RESTRICTED[name], f"{name}.cpnet")
+    wholly_in_c(model)
     engine = model.engine()
-    code, why = engine.timed_groups().native_code() if engine.is_timed else engine.native_code()
-    assert why is None and code.left == {}
     c = both_searches(engine, model.engine())
     assert c.complete and c.notes == [] and fills[0] == 0
     if name == "guard":
