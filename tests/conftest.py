@@ -21,8 +21,25 @@ os.environ.setdefault("CPN_CC_OPT", "-O0")
 gc.set_threshold(*GC_THRESHOLDS)
 
 
+def pytest_addoption(parser):
+    parser.addoption("--slow", action="store_true",
+                     help="run the long tests too (marked `slow`; `pytest --slow -m slow` runs only them)")
+
+
 def pytest_configure(config):
     config.addinivalue_line("markers", "needs_shared: the test reads the shared data (tests/_shared.py)")
+    config.addinivalue_line("markers", "slow: a long test, deselected unless --slow is given (README.md)")
+
+
+def pytest_collection_modifyitems(config, items):
+    """Without --slow, the tests marked `slow` are deselected: each repeats on a larger instance what a
+    test of the suite checks, or runs what CI's installation check runs (.ci/install-check)."""
+    if config.getoption("--slow"):
+        return
+    slow = [item for item in items if item.get_closest_marker("slow") is not None]
+    if slow:
+        config.hook.pytest_deselected(items=slow)
+        items[:] = [item for item in items if item.get_closest_marker("slow") is None]
 
 
 @pytest.hookimpl(tryfirst=True)  # before the skip marks, whose empty parameter sets would hide it

@@ -4,6 +4,8 @@ import json
 import os
 import pathlib
 
+import pytest
+
 from cpn.cli.main import main
 
 ROOT = pathlib.Path(__file__).resolve().parents[2]
@@ -89,6 +91,7 @@ def _run_elsewhere(spec: str):
     return TCP_MUTANTS_TEST if pathlib.Path(spec).name.startswith("tcp_") else MUTANTS_TEST
 
 
+@pytest.mark.slow  # 21 s; in CI, the installation check runs the gate as the README's main command
 def test_the_repository_gate_passes(tmp_path, capsys, monkeypatch):
     # `check` with no argument finds every scenario under specs/ (examples, MODBUS, Modbus-A) and every
     # mutant; every scenario holds, and each mutant's bug is caught. It runs them all but those another test

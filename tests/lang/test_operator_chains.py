@@ -87,10 +87,11 @@ def load(family: str, n: int, lang: str, tmp_path):
     return cpn.load(path)
 
 
-# Every family at 600 terms (E0206 before) in both languages, and at 5,000 in `.cpnet`; a `.cpn` file's
-# text goes through the same walkers, so two families at 5,000 show that its import keeps chains flat too.
+# Every family at 600 terms (E0206 before) in both languages, and at 5,000 in `.cpnet` (long tests: `--slow`);
+# a `.cpn` file's text goes through the same walkers, so two families at 5,000 show that its import keeps
+# chains flat too, in the suite.
 CASES = ([(family, 600, lang) for family in FAMILIES for lang in ("cpnet", "cpn")]
-         + [(family, 5000, "cpnet") for family in FAMILIES]
+         + [pytest.param(family, 5000, "cpnet", marks=pytest.mark.slow) for family in FAMILIES]
          + [("+", 5000, "cpn"), ("::", 5000, "cpn")])
 
 

@@ -49,6 +49,7 @@ def test_the_mutant_hands_out_the_reserved_ids():
     assert slaves[98][1] == 98 and slaves[99][1] == 99 and 98 in polled
 
 
+@pytest.mark.slow  # 13 s; CI's installation check runs the scenario too, in the README's main command
 def test_the_100_slave_scenario_holds_and_exercises_the_reserved_ids():
     scenario = load_scenario(os.path.join(ROOT, "specs", "modbus", "modbus_a_100.toml"))
     (run,) = scenario.runs

@@ -16,10 +16,11 @@ from tests.engine._explore import same_exploration
 from tests.statespace.test_native_timed import ROOT, _both, needs_native
 
 ALL_SCENARIOS = sorted(os.path.basename(p)[:-5] for p in glob.glob(os.path.join(ROOT, "specs", "modbus", "*.toml")))
-#: the suite runs these (each compiles its own C: one serial-line scenario, Modbus-A, Modbus/TCP); `CPN_ALL_SCENARIOS=1` runs every scenario
-#: file of the gate
+#: the suite runs these (each compiles its own C: one serial-line scenario, a long test (`--slow`; the serial-line
+#: model's C is compared in the suite by the broadcast test below), Modbus-A, Modbus/TCP); `CPN_ALL_SCENARIOS=1`
+#: runs every scenario file of the gate
 SCENARIOS = ALL_SCENARIOS if os.environ.get("CPN_ALL_SCENARIOS") else \
-    ["B_5", "modbus_a", "tcp_mixed"]
+    [pytest.param("B_5", marks=pytest.mark.slow), "modbus_a", "tcp_mixed"]
 
 
 @needs_native

@@ -77,7 +77,7 @@ def test_modbus_timed_scenario_held_states_are_a_fraction():
     assert len(y.dead) == 13 and y.peak_states < y.states // 5
 
 
-@pytest.mark.parametrize("name", ["B_6", "D_2"])
+@pytest.mark.parametrize("name", ["B_6", pytest.param("D_2", marks=pytest.mark.slow)])
 def test_modbus_timed_scenarios_with_quiet_spells_are_not_cut_short(name):
     # B.6 without condensation has a quiet spell of 34 clock values (no new marking modulo time) before
     # its last states: the time-growth watch must not stop the sweep there

@@ -46,7 +46,10 @@ def _numbered_once(engine) -> None:
     assert len(set(engine._be)) == len(engine._be), "a binding element has two ids"
 
 
-@pytest.mark.parametrize("spec", ["bench/nets/dp.cpnet:7", "bench/nets/ms.cpnet:5"])
+#: two larger nets; MS(5) is a long test (`--slow`, about 8 s each on a 2-core machine)
+LARGER = ["bench/nets/dp.cpnet:7", pytest.param("bench/nets/ms.cpnet:5", marks=pytest.mark.slow)]
+
+@pytest.mark.parametrize("spec", LARGER)
 def test_more_threads_than_cores_give_the_one_process_graph(spec):
     want = summary(Explorer(_load(spec).engine(), ExploreOptions()).run())
     for n in (4, 6, 6):
@@ -72,7 +75,7 @@ def test_random_nets_with_six_threads(seed):
     _numbered_once(engine)
 
 
-@pytest.mark.parametrize("spec", ["bench/nets/dp.cpnet:7", "bench/nets/ms.cpnet:5"])
+@pytest.mark.parametrize("spec", LARGER)
 def test_threads_computing_results_anew_give_the_cached_graph(spec, monkeypatch):
     want = summary(Explorer(_load(spec).engine(), ExploreOptions()).run())  # every result cached
     monkeypatch.setattr(native, "UNCACHED_AFTER", 2)  # a cache that misses once of two stops storing
