@@ -2,9 +2,9 @@
 
 A property text, typed by the language and closed into the net's expression form, is compiled with the
 engine's expression compiler (`cpn.engine.codegen.ExprCompiler`) and the model's compiled functions, plus
-two things of its own: a place read with a constant instance (`Page'place 1`) becomes `MK(S, index)`,
-and a one-clause `fn` becomes a Python lambda, so that `forall P (fn m => ...)` does not run in the
-tree-walking evaluator (20x faster on DP(10)). The property layer (`cpn.properties.predicates`) reaches
+things of its own: a place read with a constant instance (`Page'place 1`) becomes `MK(S, index)`, a
+one-clause `fn` becomes a Python lambda, so that `forall P (fn m => ...)` does not run in the
+tree-walking evaluator (20x faster on DP(10)), and so do the values and functions a `let` declares. The property layer (`cpn.properties.predicates`) reaches
 it through the engine's protocol only. Imports the engine's code generator and run-time library, and
 `cpn.expr`.
 """
@@ -74,23 +74,63 @@ class _PredicateExprCompiler(ExprCompiler):
         if len(e.rules) != 1:
             raise Unsupported()
         pat, body = e.rules[0]
+        return self._lambda(pat, body)
+
+    def _lambda(self, pat, body) -> str:
+        """A Python lambda of one argument matched by `pat`, a pattern of plain variables (or a tuple of
+        them), returning `body`."""
         names = _pattern_names(pat)
         if names is None:
             raise Unsupported()
         saved = dict(self.locals)
+        params = self._params(names)
+        try:
+            code = self.expr(body)
+        finally:
+            self.locals = saved
+        if len(params) > 1 or _is_tuple(pat):
+            return f"(lambda _t: (lambda {', '.join(params)}: {code})(*_t))"
+        return f"(lambda {params[0]}: {code})"
+
+    def _params(self, names: list) -> list[str]:
+        """Python parameter names for the symbols `names` (None: '_'), now known as locals."""
         params = []
         for i, uid in enumerate(names):
             py = f"_L{uid}" if uid is not None else f"_W{i}"  # one name per '_': Python refuses a repeated one
             params.append(py)
             if uid is not None:
                 self.locals[uid] = py
+        return params
+
+    def _c_Let(self, e):
+        """`let val p = v ... fun f p = b ... in body end`, where each pattern is plain variables and each
+        function has one clause of one argument and does not call itself: each declaration binds the
+        parameter of a Python lambda applied at once, so values are computed in order, before the body,
+        as SML does. Other declarations leave the whole `let` to the evaluator."""
+        saved = dict(self.locals)
+        frames: list[tuple[list[str], str, bool]] = []  # (parameters, value, value is a tuple to spread)
         try:
-            code = self.expr(body)
+            for d in e.decls:
+                if isinstance(d, E.ValDecl):
+                    names = _pattern_names(d.pat)
+                    if names is None:
+                        raise Unsupported()
+                    value = self.expr(d.expr)
+                    frames.append((self._params(names), value, len(names) > 1 or _is_tuple(d.pat)))
+                elif isinstance(d, E.FunDecl):
+                    if len(d.clauses) != 1 or len(d.clauses[0].params) != 1 or d.ref.uid in _local_uids(d.clauses[0].body):
+                        raise Unsupported()
+                    value = self._lambda(d.clauses[0].params[0], d.clauses[0].body)
+                    frames.append((self._params([d.ref.uid]), value, False))
+                else:
+                    raise Unsupported()
+            code = self.expr(e.body)
         finally:
             self.locals = saved
-        if isinstance(pat, E.PTuple):
-            return f"(lambda _t: (lambda {', '.join(params)}: {code})(*_t))"
-        return f"(lambda {params[0]}: {code})"
+        for params, value, spread in reversed(frames):
+            code = (f"(lambda _t: (lambda {', '.join(params)}: {code})(*_t))({value})" if spread
+                    else f"(lambda {params[0]}: {code})({value})")
+        return code
 
     def _c_App(self, e):
         if isinstance(e.fn, E.Name) and isinstance(e.arg, E.Const):
@@ -116,7 +156,10 @@ def _local_uids(e) -> set[int]:
 
 
 def _pattern_names(pat) -> list | None:
-    """Symbol uids bound by a pattern of plain variables (None for '_'), or None for other patterns."""
+    """Symbol uids bound by a pattern of plain variables (None for '_'), or None for other patterns; a type
+    annotation (`f : FRAME`) binds what its pattern binds."""
+    while isinstance(pat, E.PAnnot):
+        pat = pat.pat
     if isinstance(pat, E.PWild):
         return [None]
     if isinstance(pat, E.PVar) and pat.ref.kind == "local":
@@ -125,11 +168,17 @@ def _pattern_names(pat) -> list | None:
         out = []
         for p in pat.items:
             got = _pattern_names(p)
-            if got is None or len(got) != 1 or isinstance(p, E.PTuple):
+            if got is None or len(got) != 1 or _is_tuple(p):
                 return None
             out.extend(got)
         return out
     return None
+
+
+def _is_tuple(pat) -> bool:
+    while isinstance(pat, E.PAnnot):
+        pat = pat.pat
+    return isinstance(pat, E.PTuple)
 
 
 __all__ = ["PredicateCompiler"]

@@ -113,3 +113,34 @@ def test_scenario_files_with_the_same_text_share_its_parse_and_keep_their_own_po
         spans = {n.span.file for n in predicates.walk(expr) if getattr(n, "span", None) is not None}
         strings = [n.value for n in predicates.walk(expr) if isinstance(getattr(n, "value", None), str)]
         assert spans == {f} and "a.toml" in strings
+
+
+# The values and functions a `let` declares are compiled (Python lambdas applied at once); a function that
+# calls itself leaves its `let` to the evaluator
+LETS = [
+    ("let val n = size (sum Station'Busy) in n * n < 9 end", True),
+    ("let val (a, b) = (size (sum Station'Busy), size (sum Station'Idle)) in a < b end", True),
+    ("let val (_, n) = (0, size (Office'Replies 1)) in n < 2 end", True),
+    ("let fun idle m = size m = 1 in forall Station'Idle idle end", True),
+    ("let fun served (i : ID) = cf (i, Office'Log 1) = 1 in List.all served [1, 2] orelse served 3 end", True),
+    ("let val k = 2 fun over (x, y : int) = x + y > k in over (size (Office'Log 1), size (Office'Replies 1)) end",
+     True),
+    ("let val n = 1 val n = n + size (Office'Log 1) in n > 1 end", True),
+    ("List.all (fn (x, y : int) => x <= y) [(size (Office'Log 1), 2)]", True),
+    ("let fun count n = if n = 0 then 0 else 1 + count (n - 1) in count (size (Office'Log 1)) < 3 end", False),
+]
+
+
+@pytest.mark.parametrize(("text", "compiled"), LETS, ids=range(len(LETS)))
+def test_let_declarations_are_compiled_with_the_evaluators_values(text, compiled, monkeypatch):
+    from cpn.expr.evaluate import Evaluator
+
+    engine = cpn.load(ROOT / "models/examples/stations.cpnet").engine()
+    states = list(Explorer(engine, ExploreOptions()).run().graph.states)
+    expected = _values(WithoutCompiler(engine), states, text)
+    calls = []
+    real = Evaluator.eval
+    monkeypatch.setattr(Evaluator, "eval", lambda self, *a: calls.append(a) or real(self, *a))
+    assert _values(engine, states, text) == expected
+    assert (not calls) is compiled, calls[:1]
+    assert len(set(expected)) > 1  # a text that tells states apart
