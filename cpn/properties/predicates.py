@@ -300,7 +300,33 @@ class PropertyLanguage:
         ts = self.resolve_transitions(text)
         if ts is not None:
             wanted = set(ts)
-            return lambda: any(ctx.transition_of(be) in wanted for be in ctx.enabled_bes())
+            t_of = ctx.transition_of
+            known: dict[int, int] = {}  # binding element -> 1 if it is one of a wanted transition, else 0
+
+            def is_wanted(be: int) -> int:
+                got = known.get(be)
+                if got is None:
+                    got = known[be] = 1 if t_of(be) in wanted else 0
+                return got
+
+            # per arc of the graph read last (arcs are only appended): 1 where its binding element is one of
+            # a wanted transition, so that a state of the graph is tested by a slice, not a call per arc
+            marks: list = [None, bytearray()]
+
+            def test() -> bool:
+                g, sid = ctx.graph, ctx.sid
+                if g is None or sid is None or not g.is_expanded(sid):
+                    return any(t_of(be) in wanted for be in ctx.enabled_bes())
+                m, n = marks[1], len(g.bes)
+                if marks[0] is not g or len(m) > n:
+                    marks[0], m = g, bytearray()
+                    marks[1] = m
+                if len(m) < n:
+                    m.extend(map(is_wanted, g.bes[len(m):n]))
+                offsets = g.offsets
+                return any(m[offsets[sid]:offsets[sid + 1]])
+
+            return test
         match = self.binding_pattern(text)
         return lambda: any(match(be) for be in ctx.enabled_bes())
 
@@ -543,7 +569,6 @@ class PropertyLanguage:
                     i = m + 1
 
             return Compiled(text, expr, fn, uses_enabled, span, places_read, first)
-        return Compiled(text, expr, fn, uses_enabled, span, places_read)
         return Compiled(text, expr, fn, uses_enabled, span, places_read)
 
     def _reads_clock(self, expr: A.Expr) -> bool:

@@ -144,3 +144,25 @@ def test_let_declarations_are_compiled_with_the_evaluators_values(text, compiled
     assert _values(engine, states, text) == expected
     assert (not calls) is compiled, calls[:1]
     assert len(set(expected)) > 1  # a text that tells states apart
+
+
+def test_enabled_reads_the_finished_graph_as_it_reads_the_engine():
+    # on the finished graph, `enabled` tests a state's arcs (marked once per arc); elsewhere, the engine's
+    # successors: the same values, and those of the transitions' own enabling
+    engine = cpn.load(ROOT / "models/examples/stations.cpnet").engine()
+    g = Explorer(engine, ExploreOptions()).run().graph
+    lang = PropertyLanguage(engine.net, engine, TransitionIndex(engine))
+    text = "enabled \"Station'Take\" andalso not (enabled \"Office'Archive\")"
+    compiled = lang.compile(text, None, Span("<test>", 1, 1), T.BOOL, "the test's text")
+    states = list(g.states)
+    lang.ctx.graph = g
+    by_graph = [compiled.fn(i, s) for i, s in enumerate(states)]
+    lang.ctx.graph = None
+    by_engine = [compiled.fn(i, s) for i, s in enumerate(states)]
+
+    def fires(s, name):
+        return any(engine.transitions[engine.binding_element(be).transition].name.startswith(name + " ")
+                   for be, _ in engine.successors(s))
+
+    expected = [fires(s, "Station'Take") and not fires(s, "Office'Archive") for s in states]
+    assert by_graph == expected and by_engine == expected and True in expected and False in expected
