@@ -47,10 +47,12 @@ def trace_steps(engine, graph, evidence: Evidence | None, reads: tuple = ()) -> 
             shown, states, texts = replayed
     arcs = _ArcTokens(engine)
     out = []
+    after = shown.marking(states[0])  # each state's marking read once: it ends one step and begins the next
     for i, (u, v, be) in enumerate(pairs):
         text = texts[i] if texts is not None else engine.format_binding_element(be)
         tokens = arcs(engine.binding_element(be), shown.clock(states[i + 1]))
-        out.append(_step(shown, states[i], states[i + 1], i + 1, u, v, text, tokens))
+        before, after = after, shown.marking(states[i + 1])
+        out.append(_step(shown, before, after, shown.clock(states[i + 1]), i + 1, u, v, text, tokens))
     n = len(evidence.path) - 1
     return {"steps": out[:n], "cycle": out[n:], "target": evidence.path[-1] + 1,
             "marking": end_marking(shown, states[n], evidence.path[-1], reads)}
@@ -143,8 +145,8 @@ class _ArcTokens:
         return {p: d for p, d in out.items() if p not in resets}
 
 
-def _step(engine, su, sv, k: int, u: int, v: int, text: str, tokens: dict | None = None) -> dict:
-    mu, mv = engine.marking(su), engine.marking(sv)
+def _step(engine, mu: list, mv: list, time, k: int, u: int, v: int, text: str, tokens: dict | None = None) -> dict:
+    """Step k, from state u (marking mu) to state v (marking mv, at `time`)."""
     consumed, produced = {}, {}
     for p, place in enumerate(engine.places):
         a, b = mu[p], mv[p]
@@ -169,7 +171,7 @@ def _step(engine, su, sv, k: int, u: int, v: int, text: str, tokens: dict | None
     for item in _split_binding(rest):
         name, _, value = item.partition("=")
         binding[name] = value
-    return {"step": k, "time": engine.clock(sv), "binding_element": text, "transition": tname,
+    return {"step": k, "time": time, "binding_element": text, "transition": tname,
             "binding": binding, "consumed": consumed, "produced": produced, "from": u + 1, "to": v + 1}
 
 
