@@ -124,6 +124,24 @@ def build(name: str, generated: str = "") -> Library | None:
     return load_library(r.source, r.cdef, r.flags, r.headers)
 
 
+def built(name: str, generated: str = "") -> bool:
+    """Whether library `name` with the net's C `generated` is already built: loaded in this process or in
+    the compile cache (then `build` only loads it)."""
+    if switched_off() is not None:
+        return False
+    try:
+        import cffi
+
+        r = recipe(name, generated)
+    except (ImportError, ResourceMissing):
+        return False
+    cc = compiler()
+    if cc is None:
+        return False
+    key = cache_key(r.source, r.cdef, cc[1], cflags() + list(r.flags), r.headers, cffi.__version__)
+    return key in _loaded or os.path.exists(os.path.join(cache_dir(), f"cpn_{key}.so"))
+
+
 def why_unavailable() -> str | None:
     """Why the last `load_library` returned None (None if it did not)."""
     return _reason[-1] if _reason else None

@@ -25,7 +25,7 @@ import gc
 import os
 from array import array
 
-from cpn._util.cbuild import build, switched_off, why_unavailable
+from cpn._util.cbuild import build, built, switched_off, why_unavailable
 from cpn.engine.protocol import capability
 from cpn.statespace.options import Backend, StopReason
 from cpn.statespace.store import PackedStore
@@ -35,6 +35,10 @@ from cpn.statespace.store import PackedStore
 #: engine more than once on average (its results rarely recur: DP)
 GENERATE_AFTER: int = 16_384
 GENERATE_PER_LINE: int = 4
+#: `auto` in a timed search makes the net's C (without building it) once the search has expanded this many
+#: states, and goes on with it at once if its library is already built (a run before built it: the compile
+#: cache), else at GENERATE_AFTER as above
+LOOK_FOR_BUILT_AFTER: int = 4096
 #: with the net's C, a transition whose cached results missed more than half of its first this many
 #: lookups (its input places' markings rarely recur: DP) has them computed anew each time, not stored;
 #: the same for the written places' new ids (0: every result is cached)
@@ -52,6 +56,11 @@ def library(code=None, timed: bool = False):
     if code is None:
         return build("search-timed" if timed else "search")
     return build("search-timed-net" if timed else "search-net-threads", code.source)
+
+
+def library_built(code, timed: bool = False) -> bool:
+    """Whether `library(code, timed)` is already built (then it only loads)."""
+    return built("search-timed-net" if timed else "search-net-threads", code.source)
 
 
 def generated(engine, options) -> tuple[object | None, list[str]]:

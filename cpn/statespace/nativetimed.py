@@ -24,6 +24,7 @@ from cpn.engine.compiled import NEG_INF
 from cpn.statespace.native import (
     GENERATE_AFTER,
     GENERATE_PER_LINE,
+    LOOK_FOR_BUILT_AFTER,
     ND_CHECK,
     ND_DONE,
     ND_MAX_ARCS,
@@ -34,6 +35,7 @@ from cpn.statespace.native import (
     NativeSearch,
     _Snapshot,
     library,
+    library_built,
 )
 from cpn.statespace.options import Backend, StopReason
 
@@ -148,15 +150,8 @@ class TimedNativeSearch(NativeSearch):
     def _upgrade(self) -> None:
         """Go on with the net's C compiled in (the states so far copied; the caches are filled anew); under
         `auto`, the C is made first, and built once the search has more states than it has lines."""
-        if self._later:
-            self._later = False
-            self.code, code_notes = timed_generated(self.tg, self.options)
-            if self.code is None:
-                self.notes.extend(code_notes)
-                return
-            self.generate_after = max(GENERATE_AFTER, GENERATE_PER_LINE * self.code.source.count("\n"))
-            if self.head < self.generate_after:
-                return
+        if self._later and (not self._make_code() or self.head < self.generate_after):
+            return
         lib = self._timed_library()
         if lib is None:
             return
@@ -165,6 +160,25 @@ class TimedNativeSearch(NativeSearch):
         old = _Snapshot(self)
         self._attach(lib, self.graph.states[0], old)
         self.round_trips = 0
+
+    def _look_for_built(self) -> None:
+        """`auto`, past LOOK_FOR_BUILT_AFTER states: the net's C is made now (not built), and the search goes
+        on with it at once if its library is already built (in the compile cache), else once the search is
+        large enough to repay building it (`_upgrade`)."""
+        if self._make_code() and library_built(self.code, timed=True):
+            self.generate_after = self.head
+            self._upgrade()
+
+    def _make_code(self) -> bool:
+        """`auto`: the net's C made at last (not built), and when to build it; False (with the notes) where
+        there is none."""
+        self._later = False
+        self.code, code_notes = timed_generated(self.tg, self.options)
+        if self.code is None:
+            self.notes.extend(code_notes)
+            return False
+        self.generate_after = max(GENERATE_AFTER, GENERATE_PER_LINE * self.code.source.count("\n"))
+        return True
 
     def _pending(self) -> bool:
         """Whether the net's C is to be built later in the search (`generate_after`)."""
@@ -205,8 +219,11 @@ class TimedNativeSearch(NativeSearch):
                 raise MemoryError("the native search cannot grow any more")
             else:
                 self.flush()
-                if status == ND_CHECK and self._pending() and self.head >= self.generate_after:
-                    self._upgrade()
+                if status == ND_CHECK and self._pending():
+                    if self.head >= self.generate_after:
+                        self._upgrade()
+                    elif self._later and self.head >= LOOK_FOR_BUILT_AFTER:
+                        self._look_for_built()
                 return {ND_CHECK: None, ND_DONE: StopReason.COMPLETE, ND_MAX_STATES: StopReason.MAX_STATES,
                         ND_MAX_ARCS: StopReason.MAX_ARCS}[status]
 

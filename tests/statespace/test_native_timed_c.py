@@ -161,6 +161,37 @@ def test_auto_searches_a_net_wholly_in_c_natively_building_its_c_on_the_way(fill
     assert 0 < fills[0] < 400  # the engine expanded states before the C was built, none after
 
 
+
+@needs_native
+def test_auto_goes_on_in_c_at_once_where_the_nets_library_is_already_built(fills, monkeypatch, tmp_path):
+    """Past `LOOK_FOR_BUILT_AFTER` states `auto` makes the net's C: with an empty compile cache it builds
+    nothing then and the engine goes on filling the caches (up to `GENERATE_AFTER`, here never); with the
+    net's library in the cache (a run before built it) the search goes on in C from there. The Python
+    search's graph both ways."""
+    from cpn.statespace.native import library, library_built
+
+    monkeypatch.setenv("CPN_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(nativetimed, "LOOK_FOR_BUILT_AFTER", 100)
+    monkeypatch.setattr(nativetimed, "GENERATE_AFTER", 10**9)
+    attached: list[int] = []  # the search's head where it went on with the net's C
+    upgrade = nativetimed.TimedNativeSearch._timed_library
+    monkeypatch.setattr(nativetimed.TimedNativeSearch, "_timed_library",
+                        lambda self: attached.append(self.head) or upgrade(self))
+    model = cpn.load(os.path.join(ROOT, "bench", "nets", "ms_timed.cpnet"), set={"N": "4"})
+    py = Explorer(model.engine(time_condensation=True), ExploreOptions(backend="python", packed_states=False)).run()
+    cold = Explorer(model.engine(time_condensation=True), ExploreOptions()).run()
+    same_exploration(cold, py)
+    assert attached == []
+    code, _ = model.engine(time_condensation=True).timed_groups().native_code()
+    assert not library_built(code, timed=True)  # the search did not build it
+    assert library(code, timed=True) is not None and library_built(code, timed=True)
+    before = fills[0]
+    warm = Explorer(model.engine(time_condensation=True), ExploreOptions()).run()
+    same_exploration(warm, py)
+    assert warm.backend == "c" and warm.notes == [] and warm.complete and warm.n_states == 729
+    assert len(attached) == 1 and 100 <= attached[0] < 729
+    assert fills[0] > before  # the engine filled the caches up to there
+
 UNBOUNDED = """
 colset N = int with 0..3 timed;
 colset I = real;
