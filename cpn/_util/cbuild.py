@@ -142,6 +142,22 @@ def built(name: str, generated: str = "") -> bool:
     return key in _loaded or os.path.exists(os.path.join(cache_dir(), f"cpn_{key}.so"))
 
 
+def note_built(hint: str) -> None:
+    """Record in the compile cache that the library named by `hint` (a caller's name for what it built,
+    not the library's key) was built; nothing where the cache cannot be written."""
+    try:
+        os.makedirs(cache_dir(), exist_ok=True)
+        with open(os.path.join(cache_dir(), f"built_{hint}"), "w", encoding="ascii"):
+            pass
+    except OSError:
+        pass
+
+
+def noted_built(hint: str) -> bool:
+    """Whether `note_built(hint)` was called, in this process or an earlier one sharing the compile cache."""
+    return os.path.exists(os.path.join(cache_dir(), f"built_{hint}"))
+
+
 def why_unavailable() -> str | None:
     """Why the last `load_library` returned None (None if it did not)."""
     return _reason[-1] if _reason else None

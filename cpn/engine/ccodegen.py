@@ -428,7 +428,9 @@ class Module:
         fd = self.fun_decls.get(uid)
         if fd is None or len(fd.clauses[0].params) != 1:
             raise NotNative("a function of several curried arguments")
-        name = self.functions[key] = f"uf{uid}_{len(self.functions)}"
+        # a name that does not depend on the process (uids are numbered per process): the same net gives the
+        # same C, one library in the compile cache
+        name = self.functions[key] = self.fresh("uf")
         nargs = len(leaves(arg))
         params = "".join(f", int64_t a{i}" for i in range(nargs))
         self.protos.append(f"static int64_t {name}(gctx *c{params});")

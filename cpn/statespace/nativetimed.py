@@ -16,10 +16,11 @@ time past 2^32 - 1) hands the search over to Python (`HandOver`) with the states
 
 from __future__ import annotations
 
+import hashlib
 import os
 from array import array
 
-from cpn._util.cbuild import switched_off, why_unavailable
+from cpn._util.cbuild import note_built, noted_built, switched_off, why_unavailable
 from cpn.engine.compiled import NEG_INF
 from cpn.statespace.native import (
     GENERATE_AFTER,
@@ -67,6 +68,7 @@ class TimedNativeSearch(NativeSearch):
         self.code, self.gen = None, None
         self.generate_after = 1 << 62
         self._later = False  # `auto`: the net's C is made once the search is large enough (`_upgrade`)
+        self._looked = False  # `auto`: whether the compile cache was looked at for the net's C (`_look_for_built`)
         self.options = options
         lib = None
         if options is not None and options.backend is not Backend.C and options.backend is not Backend.PYTHON \
@@ -121,6 +123,8 @@ class TimedNativeSearch(NativeSearch):
     def _timed_library(self):
         """The library with the net's C, or None (then the code is dropped, with a note)."""
         lib = library(self.code, timed=True)
+        if lib is not None:
+            note_built(self._hint())
         if lib is None:
             self.notes.append(f"the C of the net's transitions could not be built ({why_unavailable()}): the "
                               "Python engine computes every transition's bindings")
@@ -162,12 +166,24 @@ class TimedNativeSearch(NativeSearch):
         self.round_trips = 0
 
     def _look_for_built(self) -> None:
-        """`auto`, past LOOK_FOR_BUILT_AFTER states: the net's C is made now (not built), and the search goes
-        on with it at once if its library is already built (in the compile cache), else once the search is
-        large enough to repay building it (`_upgrade`)."""
-        if self._make_code() and library_built(self.code, timed=True):
+        """`auto`, past LOOK_FOR_BUILT_AFTER states, once: where the compile cache records that a run built
+        this net's C (`_hint`), the C is made now and the search goes on with it at once if its library is
+        there; else nothing is made until the search is large enough to repay building it (`_upgrade`)."""
+        self._looked = True
+        if noted_built(self._hint()) and self._make_code() and library_built(self.code, timed=True):
             self.generate_after = self.head
             self._upgrade()
+
+    def _hint(self) -> str:
+        """A name of this net with its constants' values and the search's kind, under which the compile
+        cache records that a run built the net's C (`cbuild.note_built`). Only a hint: the library's own key,
+        a hash of the C made, is checked before it is used (`_look_for_built`)."""
+        e = self.engine
+        # the constants' values in the order of their declarations (uids are numbered per process)
+        values = [repr(v) for _uid, v in sorted(e.ev.globals.items()) if not callable(v)]
+        text = "\0".join([e.net.source_file, e.net.source, repr(values), repr(self.tg.condensation),
+                          repr(self.tg.priorities)])
+        return hashlib.sha256(text.encode()).hexdigest()[:24]
 
     def _make_code(self) -> bool:
         """`auto`: the net's C made at last (not built), and when to build it; False (with the notes) where
@@ -222,7 +238,7 @@ class TimedNativeSearch(NativeSearch):
                 if status == ND_CHECK and self._pending():
                     if self.head >= self.generate_after:
                         self._upgrade()
-                    elif self._later and self.head >= LOOK_FOR_BUILT_AFTER:
+                    elif self._later and not self._looked and self.head >= LOOK_FOR_BUILT_AFTER:
                         self._look_for_built()
                 return {ND_CHECK: None, ND_DONE: StopReason.COMPLETE, ND_MAX_STATES: StopReason.MAX_STATES,
                         ND_MAX_ARCS: StopReason.MAX_ARCS}[status]

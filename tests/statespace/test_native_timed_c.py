@@ -12,6 +12,7 @@ import pytest
 import cpn
 from cpn.statespace import ExploreOptions, Explorer, nativetimed
 from cpn.statespace.store import packed_unavailable
+from tests._shared import count_calls
 from tests.engine._explore import same_exploration
 from tests.engine.randomnets import random_net, random_timed_net
 from tests.statespace._native import same_error
@@ -163,34 +164,45 @@ def test_auto_searches_a_net_wholly_in_c_natively_building_its_c_on_the_way(fill
 
 
 @needs_native
-def test_auto_goes_on_in_c_at_once_where_the_nets_library_is_already_built(fills, monkeypatch, tmp_path):
-    """Past `LOOK_FOR_BUILT_AFTER` states `auto` makes the net's C: with an empty compile cache it builds
-    nothing then and the engine goes on filling the caches (up to `GENERATE_AFTER`, here never); with the
-    net's library in the cache (a run before built it) the search goes on in C from there. The Python
-    search's graph both ways."""
-    from cpn.statespace.native import library, library_built
+def test_auto_goes_on_in_c_at_once_where_a_run_before_built_the_nets_c(fills, monkeypatch, tmp_path):
+    """Past `LOOK_FOR_BUILT_AFTER` states `auto` looks in the compile cache: where a run before built this
+    net's C (with the same constants), the search goes on in C from there; else it makes and builds nothing
+    then, and the engine goes on filling the caches up to `GENERATE_AFTER`. The Python search's graph
+    every time."""
+    from cpn.statespace import explore
+    from cpn.statespace.native import library_built
 
     monkeypatch.setenv("CPN_CACHE_DIR", str(tmp_path))
+    monkeypatch.setattr(explore, "CHECK_EVERY", 64)  # the search looks at its limits every 64 states
     monkeypatch.setattr(nativetimed, "LOOK_FOR_BUILT_AFTER", 100)
-    monkeypatch.setattr(nativetimed, "GENERATE_AFTER", 10**9)
+    monkeypatch.setattr(nativetimed, "GENERATE_PER_LINE", 0)
     attached: list[int] = []  # the search's head where it went on with the net's C
     upgrade = nativetimed.TimedNativeSearch._timed_library
     monkeypatch.setattr(nativetimed.TimedNativeSearch, "_timed_library",
                         lambda self: attached.append(self.head) or upgrade(self))
-    model = cpn.load(os.path.join(ROOT, "bench", "nets", "ms_timed.cpnet"), set={"N": "4"})
-    py = Explorer(model.engine(time_condensation=True), ExploreOptions(backend="python", packed_states=False)).run()
-    cold = Explorer(model.engine(time_condensation=True), ExploreOptions()).run()
-    same_exploration(cold, py)
-    assert attached == []
-    code, _ = model.engine(time_condensation=True).timed_groups().native_code()
-    assert not library_built(code, timed=True)  # the search did not build it
-    assert library(code, timed=True) is not None and library_built(code, timed=True)
+    made = count_calls(monkeypatch, nativetimed.TimedNativeSearch, "_make_code")
+
+    def search(n: str, generate_after: int):
+        monkeypatch.setattr(nativetimed, "GENERATE_AFTER", generate_after)
+        model = cpn.load(os.path.join(ROOT, "bench", "nets", "ms_timed.cpnet"), set={"N": n})
+        x = Explorer(model.engine(time_condensation=True), ExploreOptions()).run()
+        same_exploration(x, Explorer(model.engine(time_condensation=True),
+                                     ExploreOptions(backend="python", packed_states=False)).run())
+        assert x.backend == "c" and x.notes == [] and x.complete
+        return model
+
+    search("4", 10**9)  # an empty cache: nothing made at the look, nothing built
+    assert attached == [] and made[0] == 0
+    model = search("4", 300)  # the C built past 300 states
+    assert len(attached) == 1 and 300 <= attached[0] < 729
+    assert library_built(model.engine(time_condensation=True).timed_groups().native_code()[0], timed=True)
+    attached.clear()
     before = fills[0]
-    warm = Explorer(model.engine(time_condensation=True), ExploreOptions()).run()
-    same_exploration(warm, py)
-    assert warm.backend == "c" and warm.notes == [] and warm.complete and warm.n_states == 729
-    assert len(attached) == 1 and 100 <= attached[0] < 729
-    assert fills[0] > before  # the engine filled the caches up to there
+    search("4", 10**9)  # the same net and constants: in C from the look on
+    assert len(attached) == 1 and 100 <= attached[0] < 300 and fills[0] > before
+    attached.clear()
+    search("3", 10**9)  # other constants: another net, whose C no run built
+    assert attached == []
 
 UNBOUNDED = """
 colset N = int with 0..3 timed;
@@ -270,3 +282,17 @@ def test_a_union_without_data_is_an_enumeration_in_c(condensation, fills):
     assert why is None and code.left == {}
     same_exploration(Explorer(untimed.engine(), ExploreOptions(backend="c")).run(),
                      Explorer(untimed.engine(), ExploreOptions(backend="python", packed_states=False)).run())
+
+
+@pytest.mark.parametrize("path", ["bench/nets/ms_timed.cpnet", "bench/nets/dp.cpnet"])
+def test_the_same_net_loaded_again_in_a_process_gives_the_same_c(path):
+    """The net's C names nothing by the process's symbol numbers (which grow with every load): loaded again,
+    the same net is the same C, one library in the compile cache (the C of a model's functions included)."""
+    from cpn.engine.protocol import capability
+
+    sources = []
+    for _ in range(2):
+        e = cpn.load(os.path.join(ROOT, path)).engine()
+        code = e.timed_groups().native_code()[0] if e.is_timed else capability(e, "native_code")()[0]
+        sources.append(code.source)
+    assert sources[0] == sources[1] and "static int64_t uf" in sources[0]  # (a function of the model in C)
