@@ -151,7 +151,15 @@ def test_an_error_in_c_is_the_python_engines_report():
 def test_auto_searches_a_net_wholly_in_c_natively_building_its_c_on_the_way(fills, monkeypatch):
     """`auto` on a timed net whose transitions are all in C: the native timed search, the engine filling
     its caches up to `GENERATE_AFTER` states, the net's C from there on; the Python search's graph."""
+    from cpn.statespace import explore
+
+    monkeypatch.setattr(explore, "CHECK_EVERY", 64)  # (else the search looks at its limits at 512 states only)
     monkeypatch.setattr(nativetimed, "GENERATE_AFTER", 200)
+    monkeypatch.setattr(nativetimed, "GENERATE_PER_LINE", 0)  # (else 4 per line of its C: past the 729 states)
+    built: list[int] = []  # the search's head where it went on with the net's C
+    upgrade = nativetimed.TimedNativeSearch._timed_library
+    monkeypatch.setattr(nativetimed.TimedNativeSearch, "_timed_library",
+                        lambda self: built.append(self.head) or upgrade(self))
     model = cpn.load(os.path.join(ROOT, "bench", "nets", "ms_timed.cpnet"), set={"N": "4"})
     auto = Explorer(model.engine(time_condensation=True), ExploreOptions()).run()
     py = Explorer(model.engine(time_condensation=True), ExploreOptions(backend="python", packed_states=False)).run()
@@ -159,6 +167,7 @@ def test_auto_searches_a_net_wholly_in_c_natively_building_its_c_on_the_way(fill
     same_exploration(auto, py)
     assert auto.untimed_states == py.untimed_states  # the watch's count across the C being built
     assert auto.complete and auto.n_states == 729
+    assert len(built) == 1 and 200 <= built[0] < 729
     assert 0 < fills[0] < 400  # the engine expanded states before the C was built, none after
 
 
