@@ -7,7 +7,8 @@ library takes it) and declares to cffi what its headers declare between their cf
 Nothing is compiled at install time: a library is built the first time it is needed, in the user's
 cache directory (``$CPN_CACHE_DIR``, else ``$XDG_CACHE_HOME/cpn-verify``, else ``~/.cache/cpn-verify``),
 named by a hash of the source, the headers, the declarations and the compiler's version, and reused from
-there. Where a build cannot happen (CPN_NO_NATIVE is set, cffi or a compiler is missing, the compiler
+there. The cache is bounded (`CACHE_MAX_MB`, 1,024 MiB, or CPN_CACHE_MAX_MB; 0: none): a build removes the
+libraries used longest ago past it (`trim_cache`). Where a build cannot happen (CPN_NO_NATIVE is set, cffi or a compiler is missing, the compiler
 fails, a C file of the package is missing, the cache cannot be written), `build` and `load_library`
 return None and `why_unavailable` says why, so that callers fall back to pure Python and say so.
 
@@ -158,6 +159,55 @@ def noted_built(hint: str) -> bool:
     return os.path.exists(os.path.join(cache_dir(), f"built_{hint}"))
 
 
+#: the compile cache's bound in MiB, unless CPN_CACHE_MAX_MB gives another (0: none): past it, a build
+#: removes the libraries used longest ago (a net's C is a library per net and constants: a cache grows)
+CACHE_MAX_MB: int = 1024
+
+
+def cache_max_mb() -> float:
+    """The compile cache's bound in MiB (0: none): CPN_CACHE_MAX_MB, else CACHE_MAX_MB."""
+    try:
+        return max(0.0, float(os.environ.get("CPN_CACHE_MAX_MB", CACHE_MAX_MB)))
+    except ValueError:
+        return float(CACHE_MAX_MB)
+
+
+def trim_cache(directory: str, keep: str = "") -> int:
+    """Remove the libraries of `directory` used longest ago (by their modification time, which a load
+    refreshes) until it holds at most `cache_max_mb()`, never `keep`; the number removed. A library removed
+    while a process has it loaded stays loaded there (its file is only unlinked)."""
+    limit = cache_max_mb() * 1048576
+    if not limit:
+        return 0
+    entries = []
+    try:
+        names = os.listdir(directory)
+    except OSError:
+        return 0
+    for name in names:
+        if name.startswith("cpn_") and name.endswith(".so"):
+            path = os.path.join(directory, name)
+            try:
+                st = os.stat(path)
+            except OSError:
+                continue
+            entries.append((st.st_mtime, path, st.st_size))
+    total = sum(size for _t, _p, size in entries)
+    removed = 0
+    for _mtime, path, size in sorted(entries):
+        if total <= limit:
+            break
+        if path == keep:
+            continue
+        try:
+            os.remove(path)
+        except OSError:
+            continue
+        total -= size
+        removed += 1
+    return removed
+
+
 def why_unavailable() -> str | None:
     """Why the last `load_library` returned None (None if it did not)."""
     return _reason[-1] if _reason else None
@@ -201,7 +251,12 @@ def load_library(source: str, cdef: str, flags: tuple[str, ...] = (),
         return _loaded[key]
     directory = cache_dir()
     path = os.path.join(directory, f"cpn_{key}.so")
-    if not os.path.exists(path):
+    if os.path.exists(path):
+        try:
+            os.utime(path)  # used now: the last the cache's bound removes (`trim_cache`)
+        except OSError:
+            pass
+    else:
         try:
             os.makedirs(directory, exist_ok=True)
         except OSError as err:
@@ -222,6 +277,7 @@ def load_library(source: str, cdef: str, flags: tuple[str, ...] = (),
                     first = (res.stderr.strip().splitlines() or ["no message"])[0]
                     return _unavailable(f"the C compiler failed: {first}")
                 os.replace(out, path)  # atomic: a concurrent build of the same key is harmless
+            trim_cache(directory, keep=path)
         except (OSError, subprocess.SubprocessError) as err:
             where = f" in the compile cache {directory}" if isinstance(err, OSError) else ""
             return _unavailable(f"could not build native code{where}: {getattr(err, 'strerror', None) or err}"
