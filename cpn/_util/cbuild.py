@@ -7,10 +7,11 @@ library takes it) and declares to cffi what its headers declare between their cf
 Nothing is compiled at install time: a library is built the first time it is needed, in the user's
 cache directory (``$CPN_CACHE_DIR``, else ``$XDG_CACHE_HOME/cpn-verify``, else ``~/.cache/cpn-verify``),
 named by a hash of the source, the headers, the declarations and the compiler's version, and reused from
-there. The cache is bounded (`CACHE_MAX_MB`, 1,024 MiB, or CPN_CACHE_MAX_MB; 0: none): a build removes the
-libraries used longest ago past it (`trim_cache`). Where a build cannot happen (CPN_NO_NATIVE is set, cffi or a compiler is missing, the compiler
-fails, a C file of the package is missing, the cache cannot be written), `build` and `load_library`
-return None and `why_unavailable` says why, so that callers fall back to pure Python and say so.
+there. The cache is bounded (`CACHE_MAX_MB`, 1,024 MiB, or CPN_CACHE_MAX_MB; 0: none): a build removes
+the libraries used longest ago past it (`trim_cache`). Where a build cannot happen (CPN_NO_NATIVE is set,
+cffi or a compiler is missing, the compiler fails, a C file of the package is missing, the cache cannot be
+written), `build` and `load_library` return None and `why_unavailable` says why, so that callers fall back
+to pure Python and say so.
 
 Examples
 --------
@@ -131,16 +132,11 @@ def built(name: str, generated: str = "") -> bool:
     if switched_off() is not None:
         return False
     try:
-        import cffi
-
         r = recipe(name, generated)
-    except (ImportError, ResourceMissing):
+    except ResourceMissing:
         return False
-    cc = compiler()
-    if cc is None:
-        return False
-    key = cache_key(r.source, r.cdef, cc[1], cflags() + list(r.flags), r.headers, cffi.__version__)
-    return key in _loaded or os.path.exists(os.path.join(cache_dir(), f"cpn_{key}.so"))
+    found = _cached(r.source, r.cdef, r.flags, r.headers)
+    return not isinstance(found, str) and (found[0] in _loaded or os.path.exists(found[1]))
 
 
 def note_built(hint: str) -> None:
@@ -230,6 +226,20 @@ def cache_key(source: str, cdef: str, compiler_version: str, flags: list[str], h
     return hashlib.sha256("\0".join(parts).encode()).hexdigest()[:24]
 
 
+def _cached(source: str, cdef: str, flags, headers: dict[str, str]) -> tuple[str, str] | str:
+    """(the cache key, the path in the compile cache) of the library built from these, or why it cannot be
+    built (cffi or a compiler missing)."""
+    try:
+        import cffi
+    except ImportError:
+        return "cffi is not installed"
+    cc = compiler()
+    if cc is None:
+        return "no C compiler found (set CC or install cc/gcc/clang)"
+    key = cache_key(source, cdef, cc[1], cflags() + list(flags), headers, cffi.__version__)
+    return key, os.path.join(cache_dir(), f"cpn_{key}.so")
+
+
 def load_library(source: str, cdef: str, flags: tuple[str, ...] = (),
                  headers: dict[str, str] | None = None) -> Library | None:
     """The library built from C `source` whose functions `cdef` declares (built once, then cached);
@@ -239,18 +249,16 @@ def load_library(source: str, cdef: str, flags: tuple[str, ...] = (),
     off = switched_off()
     if off is not None:
         return _unavailable(off)
-    try:
-        import cffi
-    except ImportError:
-        return _unavailable("cffi is not installed")
-    cc = compiler()
-    if cc is None:
-        return _unavailable("no C compiler found (set CC or install cc/gcc/clang)")
-    key = cache_key(source, cdef, cc[1], cflags() + list(flags), headers, cffi.__version__)
+    found = _cached(source, cdef, flags, headers)
+    if isinstance(found, str):
+        return _unavailable(found)
+    key, path = found
     if key in _loaded:
         return _loaded[key]
-    directory = cache_dir()
-    path = os.path.join(directory, f"cpn_{key}.so")
+    import cffi
+
+    cc = compiler()
+    directory = os.path.dirname(path)
     if os.path.exists(path):
         try:
             os.utime(path)  # used now: the last the cache's bound removes (`trim_cache`)

@@ -4,8 +4,8 @@ A property text, typed by the language and closed into the net's expression form
 engine's expression compiler (`cpn.engine.codegen.ExprCompiler`) and the model's compiled functions, plus
 things of its own: a place read with a constant instance (`Page'place 1`) becomes `MK(S, index)`, a
 one-clause `fn` becomes a Python lambda, so that `forall P (fn m => ...)` does not run in the
-tree-walking evaluator (20x faster on DP(10)), and so do the values and functions a `let` declares. The property layer (`cpn.properties.predicates`) reaches
-it through the engine's protocol only. Imports the engine's code generator and run-time library, and
+tree-walking evaluator (20x faster on DP(10)), and so do the values and functions a `let` declares. The
+property layer (`cpn.properties.predicates`) reaches it through the engine's protocol only. Imports the engine's code generator and run-time library, and
 `cpn.expr`.
 """
 
@@ -88,9 +88,7 @@ class _PredicateExprCompiler(ExprCompiler):
             code = self.expr(body)
         finally:
             self.locals = saved
-        if len(params) > 1 or _is_tuple(pat):
-            return f"(lambda _t: (lambda {', '.join(params)}: {code})(*_t))"
-        return f"(lambda {params[0]}: {code})"
+        return _function(params, _is_tuple(pat), code)
 
     def _params(self, names: list) -> list[str]:
         """Python parameter names for the symbols `names` (None: '_'), now known as locals."""
@@ -116,11 +114,12 @@ class _PredicateExprCompiler(ExprCompiler):
                     if names is None:
                         raise Unsupported()
                     value = self.expr(d.expr)
-                    frames.append((self._params(names), value, len(names) > 1 or _is_tuple(d.pat)))
+                    frames.append((self._params(names), value, _is_tuple(d.pat)))
                 elif isinstance(d, E.FunDecl):
-                    if len(d.clauses) != 1 or len(d.clauses[0].params) != 1 or d.ref.uid in _local_uids(d.clauses[0].body):
+                    clause = d.clauses[0]
+                    if len(d.clauses) != 1 or len(clause.params) != 1 or d.ref.uid in _local_uids(clause.body):
                         raise Unsupported()
-                    value = self._lambda(d.clauses[0].params[0], d.clauses[0].body)
+                    value = self._lambda(clause.params[0], clause.body)
                     frames.append((self._params([d.ref.uid]), value, False))
                 else:
                     raise Unsupported()
@@ -128,8 +127,7 @@ class _PredicateExprCompiler(ExprCompiler):
         finally:
             self.locals = saved
         for params, value, spread in reversed(frames):
-            code = (f"(lambda _t: (lambda {', '.join(params)}: {code})(*_t))({value})" if spread
-                    else f"(lambda {params[0]}: {code})({value})")
+            code = f"{_function(params, spread, code)}({value})"
         return code
 
     def _c_App(self, e):
@@ -155,11 +153,25 @@ def _local_uids(e) -> set[int]:
     return out
 
 
+def _function(params: list[str], spread: bool, code: str) -> str:
+    """A Python lambda of one argument returning `code`: the argument is `params[0]`, or, with `spread`, a
+    tuple whose items are `params`."""
+    if spread:
+        return f"(lambda _t: (lambda {', '.join(params)}: {code})(*_t))"
+    return f"(lambda {params[0]}: {code})"
+
+
+def _bare(pat):
+    """The pattern under its type annotations (`f : FRAME` binds what `f` binds)."""
+    while isinstance(pat, E.PAnnot):
+        pat = pat.pat
+    return pat
+
+
 def _pattern_names(pat) -> list | None:
     """Symbol uids bound by a pattern of plain variables (None for '_'), or None for other patterns; a type
     annotation (`f : FRAME`) binds what its pattern binds."""
-    while isinstance(pat, E.PAnnot):
-        pat = pat.pat
+    pat = _bare(pat)
     if isinstance(pat, E.PWild):
         return [None]
     if isinstance(pat, E.PVar) and pat.ref.kind == "local":
@@ -176,9 +188,7 @@ def _pattern_names(pat) -> list | None:
 
 
 def _is_tuple(pat) -> bool:
-    while isinstance(pat, E.PAnnot):
-        pat = pat.pat
-    return isinstance(pat, E.PTuple)
+    return isinstance(_bare(pat), E.PTuple)
 
 
 __all__ = ["PredicateCompiler"]

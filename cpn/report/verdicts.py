@@ -50,9 +50,9 @@ def trace_steps(engine, graph, evidence: Evidence | None, reads: tuple = ()) -> 
     after = shown.marking(states[0])  # each state's marking read once: it ends one step and begins the next
     for i, (u, v, be) in enumerate(pairs):
         text = texts[i] if texts is not None else engine.format_binding_element(be)
-        tokens = arcs(engine.binding_element(be), shown.clock(states[i + 1]))
+        time = shown.clock(states[i + 1])
         before, after = after, shown.marking(states[i + 1])
-        out.append(_step(shown, before, after, shown.clock(states[i + 1]), i + 1, u, v, text, tokens))
+        out.append(_step(shown, before, after, time, i + 1, u, v, text, arcs(engine.binding_element(be), time)))
     n = len(evidence.path) - 1
     return {"steps": out[:n], "cycle": out[n:], "target": evidence.path[-1] + 1,
             "marking": end_marking(shown, states[n], evidence.path[-1], reads)}

@@ -55,12 +55,17 @@ def library(code=None, timed: bool = False):
     their units are the build manifest's (`cpn._native.manifest`)."""
     if code is None:
         return build("search-timed" if timed else "search")
-    return build("search-timed-net" if timed else "search-net-threads", code.source)
+    return build(_net_library(timed), code.source)
 
 
 def library_built(code, timed: bool = False) -> bool:
     """Whether `library(code, timed)` is already built (then it only loads)."""
-    return built("search-timed-net" if timed else "search-net-threads", code.source)
+    return built(_net_library(timed), code.source)
+
+
+def _net_library(timed: bool) -> str:
+    """The manifest's library that takes a net's C."""
+    return "search-timed-net" if timed else "search-net-threads"
 
 
 def generated(engine, options) -> tuple[object | None, list[str]]:

@@ -125,7 +125,7 @@ class TimedNativeSearch(NativeSearch):
         lib = library(self.code, timed=True)
         if lib is not None:
             note_built(self._hint())
-        if lib is None:
+        else:
             self.notes.append(f"the C of the net's transitions could not be built ({why_unavailable()}): the "
                               "Python engine computes every transition's bindings")
             self.code = None

@@ -128,6 +128,7 @@ LETS = [
     ("let val n = 1 val n = n + size (Office'Log 1) in n > 1 end", True),
     ("List.all (fn (x, y : int) => x <= y) [(size (Office'Log 1), 2)]", True),
     ("let fun count n = if n = 0 then 0 else 1 + count (n - 1) in count (size (Office'Log 1)) < 3 end", False),
+    ("let fun one 1 = true | one _ = false in one (size (Office'Log 1)) end", False),  # two clauses
 ]
 
 
