@@ -8,6 +8,7 @@ apply to such a model.
 
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass
 
 from cpn.diagnostics import Diagnostic, Span
@@ -29,7 +30,20 @@ class ClockRead:
 
 
 def clock_reads(net) -> dict[int, ClockRead]:
-    """Transition index -> its first read of the clock, for every transition instance that reads it."""
+    """Transition index -> its first read of the clock, for every transition instance that reads it;
+    found once per net (a net is not changed once made; every engine of it asks: the one that searches,
+    those that print its traces), a copy each time."""
+    found = _READS.get(net)
+    if found is None:
+        found = _READS[net] = _clock_reads(net)
+    return dict(found)
+
+
+#: the clock reads of the nets engines were built for, while the nets live
+_READS: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
+
+
+def _clock_reads(net) -> dict[int, ClockRead]:
     globals_ = global_readers(net.globals.decls)
     out: dict[int, ClockRead] = {}
     for t in net.transitions:
@@ -78,8 +92,11 @@ def first_read(e, readers: dict[int, Span]) -> Span | None:
     stack = [e]
     while stack:
         x = stack.pop()
-        if isinstance(x, A.App) and first_read(x.fn, readers) is not None:
-            return x.span  # the whole call: `intTime()`, `late(x)`
+        if isinstance(x, A.App):
+            if first_read(x.fn, readers) is not None:
+                return x.span  # the whole call: `intTime()`, `late(x)`
+            stack.append(x.arg)  # its function was just read
+            continue
         if isinstance(x, A.Name):
             if x.ref.kind == "builtin" and x.ref.name in TIME_BUILTINS:
                 return x.span

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import os
 from collections import OrderedDict
+from operator import itemgetter
 
 from cpn.checks.verdict import Evidence
 from cpn.engine.protocol import capability, has
@@ -102,11 +103,14 @@ def _replay_absolute(engine, bes: list[int]):
     twin = getattr(engine, "uncondensed", None)  # the compiled engine's, without compiling it again
     plain = twin() if twin is not None else printing_engine(engine.net, reference=bool(capability(engine, "reference",
                                                                                                    False)))
+    # the twin numbers binding elements as the engine does (it shares its table): compared by number
+    same = twin is not None
     state = plain.initial_state()
     states, texts = [state], []
     for be in bes:
         want = engine.format_binding_element(be)
-        nxt = next((t for b, t in plain.successors(state) if plain.format_binding_element(b) == want), None)
+        nxt = next((t for b, t in plain.successors(state)
+                    if (b == be if same else plain.format_binding_element(b) == want)), None)
         if nxt is None:
             return None
         state = nxt
@@ -322,7 +326,7 @@ def _integer_bounds(result) -> dict:
         states = list(states)  # (a store decodes a state each time it is read: once, not once per place)
     for p, place in enumerate(engine.places):
         if columns:
-            ids = {s[p]: s for s in states}
+            ids = dict(zip(map(itemgetter(p), states), states))  # a state for each marking id of the place
             sizes = [sum(engine.place_view(s, p).values()) for s in ids.values()]
         else:
             sizes = [sum(engine.marking(s)[p].values()) for s in states]

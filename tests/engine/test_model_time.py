@@ -91,6 +91,25 @@ def test_refusal_names_the_function_that_reads_the_clock():
     assert "note: 'late' reads it at m.cpnet:2:15" in info.value.render()
 
 
+def test_the_engines_of_one_net_find_its_clock_reads_once(monkeypatch):
+    """Every engine of a net (the search's, those printing its traces) asks where it reads the clock: the
+    net's transitions are walked once, and each engine gets a dict of its own."""
+    from cpn.engine import clock
+
+    walked = []
+    real = clock._clock_reads
+    monkeypatch.setattr(clock, "_clock_reads", lambda net: walked.append(net) or real(net))
+    src = "colset TU = unit timed;\nfun late(u) = intTime() > 5;\nplace P : TU = 1`();\ntrans T [late()];\n" \
+          "arc P -> T : ();\narc T -> P : () @+ 1;\ntrans U; arc P -> U : (); arc U -> P : () @+ 2;\n"
+    m = cpn.loads(src, filename="m.cpnet")
+    a, b = m.engine(), m.engine(reference=True)
+    assert len(walked) == 1 and a.clock_reads == b.clock_reads and list(a.clock_reads) == [0]
+    assert a.clock_reads[0].via == "'late' reads it at m.cpnet:2:15"
+    a.clock_reads.clear()
+    assert list(m.engine().clock_reads) == [0] and len(walked) == 1
+    assert list(cpn.loads(src, filename="m.cpnet").engine().clock_reads) == [0] and len(walked) == 2
+
+
 @pytest.mark.parametrize("reference", ENGINES)
 def test_guard_false_at_the_clock_true_at_a_later_own_timestamp(reference):
     """At 0 the binding x=1 is ready but its guard is false; T is examined again at 5, the timestamp of

@@ -180,3 +180,30 @@ def test_mutate_loads_the_original_once_for_the_runs_of_its_gate(monkeypatch):
     report = mutate([load_scenario(here / "weak.toml"), load_scenario(here / "strong.toml")], max_mutants=1, seed=1)
     assert report.models[0].runs == 2 and len(report.models[0].outcomes) == 1
     assert counts["parse"].count(source) == 1 and len(counts["check"]) == 1  # not once per run
+
+
+def _flat(tree) -> bytes:
+    """The tree's pickle without the pickler's memo: the values of its nodes, whatever shares what."""
+    import io
+    import pickle
+
+    out = io.BytesIO()
+    pickler = pickle.Pickler(out)
+    pickler.fast = True
+    pickler.dump(tree)
+    return out.getvalue()
+
+
+def test_a_kept_parse_is_copied_with_nodes_of_its_own_and_the_same_spans(tmp_path):
+    path = _gate(tmp_path) / "retry.cpnet"
+    text, name = path.read_text(encoding="utf-8"), str(path)
+    cache = cpn.model.LoadCache()
+    used = cpn.model._used_files(text, name)
+    first, a, b = (cache.parse(text, name, used) for _ in range(3))
+    assert len(cache.trees) == 1
+    assert _flat(a) == _flat(b) == _flat(first)  # the same tree
+    for x, y in zip(a.decls, b.decls):
+        assert x is not y and x.span is y.span  # (the checker writes into the nodes; spans are immutable)
+    arc = next(d for d in a.decls if type(d).__name__ == "ArcDecl")
+    twin = b.decls[a.decls.index(arc)]
+    assert arc.expr is not twin.expr and arc.expr.span is twin.expr.span
