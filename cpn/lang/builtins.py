@@ -21,8 +21,20 @@ def _tokens(text):
 
 
 def parse_type(text: str | T.Scheme) -> T.Scheme:
+    """The type scheme a library type text writes, read once per process: a scheme is only instantiated,
+    never written into (its variables are replaced by fresh ones at each use), so every checker shares it."""
     if isinstance(text, T.Scheme):  # a type the notation cannot write (Date.date's record argument)
         return text
+    got = _SCHEMES.get(text)
+    if got is None:
+        got = _SCHEMES[text] = _parse_type(text)
+    return got
+
+
+_SCHEMES: dict[str, T.Scheme] = {}
+
+
+def _parse_type(text: str) -> T.Scheme:
     toks = _tokens(text)
     tvars: dict[str, T.TVar] = {}
     pos = 0

@@ -24,6 +24,7 @@ class FunctionDraws:
 
     def init_draws(self) -> None:
         self.ran_counter = 0
+        self.ran_marked = False  # an App node was marked to be replaced (`ran_var`): see pages._replace_ran
         self.ran_sink: list | None = None
         self.random_draws: list = []  # (name, span): calls of random distribution functions (simulate only)
         self.choice_draws: list = []  # (call, span): discrete, bernoulli explored as a choice (our extension)
@@ -99,6 +100,7 @@ class FunctionDraws:
             self.must(self.infer(c.body, self.genv.child(binds)), rt, c.body.span, f"the result of '{fn.name}'")
             rules.append((pat, c.body))
         e.ran_var = A.Case(e.span, subject, rules, ty=rt)  # put in place of the call by `_replace_ran`
+        self.ran_marked = True
         return rt
 
     def _draws_without_recursion(self, name: str) -> bool:

@@ -333,6 +333,7 @@ class TypeInference(FunctionDraws):
                 e.fn.ref = self.builtin_syms["ignore"]
                 # rewrite in place: App(ignore, ()) is replaced by the variable through the parent
                 e.ran_var = vsym
+                self.ran_marked = True
                 return self.cstypes[cs]
         ft = self.infer(e.fn, env)
         at = self.infer(e.arg, env)

@@ -201,6 +201,7 @@ class MultisetInference:
         node.fn.ref = self.builtin_syms["ignore"]
         node.arg = A.Const(node.span, (), "unit", ty=T.UNIT)
         node.ran_var = vsym
+        self.ran_marked = True
 
     def finite_draw(self, e: A.App, env: Env) -> T.Type:
         """`discrete(a, b)` and `bernoulli(p)`, CPN Tools' random draws over finitely many integers, where

@@ -28,6 +28,11 @@ _NAME_PART = re.compile(r"[A-Za-z0-9_']*")
 class PageChecks:
     """Checks of pages, transitions, arcs and instances (mixed into the Checker)."""
 
+    def replace_ran(self, e):
+        """`_replace_ran(e)`, where the checker marked a node to be replaced (`ran_marked`): else e is left
+        as it is, without walking it."""
+        return _replace_ran(e) if self.ran_marked else e
+
     def page(self, name: str, mdecl: A.ModuleDecl | None, decls: list[A.Decl]) -> PageInfo:
         params = []
         penv = {}
@@ -178,7 +183,7 @@ class PageChecks:
                 return
             finally:
                 self.ran_sink = None
-            expr = _replace_ran(expr)  # CS.ran() and the calls of functions that draw, written out
+            expr = self.replace_ran(expr)  # CS.ran() and the calls of functions that draw, written out
             self.take_choices(info, sink)
             if ak.reads and has_delay(expr):
                 got = self._input_delay(d, ak, place, pd.colset, expr)
@@ -262,7 +267,7 @@ class PageChecks:
             interval = isinstance(d.delay, A.ListE) and len(d.delay.items) == 2
             if interval:  # a time interval @+[a,b]
                 try:
-                    d.delay = _replace_ran(self.time_interval(d.delay, env))
+                    d.delay = self.replace_ran(self.time_interval(d.delay, env))
                     self.resolve_pending()
                 except Abort:
                     self.pending.clear()
@@ -271,7 +276,7 @@ class PageChecks:
                 try:
                     self.real_delay(d.delay, env)
                     self.resolve_pending()
-                    d.delay = _replace_ran(d.delay.right)
+                    d.delay = self.replace_ran(d.delay.right)
                 except Abort:
                     self.pending.clear()
                     ok = False
@@ -281,7 +286,7 @@ class PageChecks:
                     ok = False
                 else:
                     ok = self.unify(t, T.INT, d.delay.span, f"the delay of transition '{d.name}' (an integer)") and ok
-                    d.delay = _replace_ran(d.delay)
+                    d.delay = self.replace_ran(d.delay)
         finally:
             self.ran_sink = None
         self.take_choices(info, sink)
@@ -394,7 +399,7 @@ class PageChecks:
             t = self.infer_top(g, env)
         finally:
             self.ran_sink = None
-        info.decl.guards[i] = _replace_ran(g)
+        info.decl.guards[i] = self.replace_ran(g)
         self.take_choices(info, sink)
         if sink:  # the variables it binds are functions of its draws: simulate draws them with the draws
             left = g.left.items if isinstance(g.left, A.TupleE) else [g.left]

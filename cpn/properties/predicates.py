@@ -637,15 +637,20 @@ def walk(e):
     stack = [e]
     while stack:
         n = stack.pop()
-        if dataclasses.is_dataclass(n) and not isinstance(n, type):
+        cls = type(n)
+        names = _WALKED.get(cls, _MISS)
+        if names is _MISS:  # per class: the fields walked into, or None (not a node)
+            names = _WALKED[cls] = tuple(f.name for f in dataclasses.fields(cls) if f.name not in ("span", "ty", "ref")) \
+                if dataclasses.is_dataclass(cls) else None
+        if names is not None:
             if isinstance(n, (A.Expr, E.Expr)):  # the checked text, or its form in the net's expressions
                 yield n
-            for f in dataclasses.fields(n):
-                if f.name in ("span", "ty", "ref"):
-                    continue
-                stack.append(getattr(n, f.name))
+            stack.extend([getattr(n, name) for name in names])
         elif isinstance(n, (list, tuple)):
             stack.extend(n)
+
+
+_WALKED: dict[type, tuple[str, ...] | None] = {}
 
 
 def _checker_for(checked) -> Checker:
