@@ -252,7 +252,7 @@ class LoadCache:
     A key holds everything the result depends on: the name the text is loaded under (positions and the
     paths of `use` name it), the text, the bytes of every file it uses (recursively) and, for a net, the
     constant values. A parse is kept pickled and each type check gets its own copy: the checker annotates
-    and rewrites the tree it is given. A net is shared by the models loaded from it (nothing writes into a
+    and rewrites the tree it is given (the copies share the spans, which nothing writes into: `_TreeCopy`). A net is shared by the models loaded from it (nothing writes into a
     net); every `Model.engine()` builds a fresh engine from it (its stores and memo tables are its own), and
     the compiled engine compiles the same generated code once per process (`cpn.engine.compiled`).
     """

@@ -240,6 +240,37 @@ def _cached(source: str, cdef: str, flags, headers: dict[str, str]) -> tuple[str
     return key, os.path.join(cache_dir(), f"cpn_{key}.so")
 
 
+def _build(source: str, headers: dict[str, str], flags: tuple[str, ...], path: str, directory: str) -> str | None:
+    """Build the library at `path` (in a folder of its own, moved in place at once), then bound the cache;
+    why it could not be built, or None."""
+    try:
+        os.makedirs(directory, exist_ok=True)
+    except OSError as err:
+        return (f"the compile cache {directory} cannot be made ({err.strerror or err}); "
+                "set CPN_CACHE_DIR to a writable folder")
+    try:
+        with tempfile.TemporaryDirectory(dir=directory) as tmp:
+            src = os.path.join(tmp, "lib.c")
+            with open(src, "w") as f:
+                f.write(source)
+            for name, text in headers.items():
+                with open(os.path.join(tmp, name), "w") as f:
+                    f.write(text)
+            out = os.path.join(tmp, "lib.so")
+            res = subprocess.run([compiler()[0], *cflags(), *flags, "-I", tmp, "-o", out, src], capture_output=True,
+                                 text=True, timeout=300)
+            if res.returncode != 0:
+                first = (res.stderr.strip().splitlines() or ["no message"])[0]
+                return f"the C compiler failed: {first}"
+            os.replace(out, path)  # atomic: a concurrent build of the same key is harmless
+        trim_cache(directory, keep=path)
+    except (OSError, subprocess.SubprocessError) as err:
+        where = f" in the compile cache {directory}" if isinstance(err, OSError) else ""
+        return (f"could not build native code{where}: {getattr(err, 'strerror', None) or err}"
+                + ("; set CPN_CACHE_DIR to a writable folder" if where else ""))
+    return None
+
+
 def load_library(source: str, cdef: str, flags: tuple[str, ...] = (),
                  headers: dict[str, str] | None = None) -> Library | None:
     """The library built from C `source` whose functions `cdef` declares (built once, then cached);
@@ -257,44 +288,25 @@ def load_library(source: str, cdef: str, flags: tuple[str, ...] = (),
         return _loaded[key]
     import cffi
 
-    cc = compiler()
     directory = os.path.dirname(path)
-    if os.path.exists(path):
+    for attempt in (1, 2):
+        if os.path.exists(path):
+            try:
+                os.utime(path)  # used now: the last the cache's bound removes (`trim_cache`)
+            except OSError:
+                pass
+        else:
+            why = _build(source, headers, flags, path, directory)
+            if why is not None:
+                return _unavailable(why)
+        ffi = cffi.FFI()
+        ffi.cdef(cdef)
         try:
-            os.utime(path)  # used now: the last the cache's bound removes (`trim_cache`)
-        except OSError:
-            pass
-    else:
-        try:
-            os.makedirs(directory, exist_ok=True)
+            lib = ffi.dlopen(path)
+            break
         except OSError as err:
-            return _unavailable(f"the compile cache {directory} cannot be made ({err.strerror or err}); "
-                                "set CPN_CACHE_DIR to a writable folder")
-        try:
-            with tempfile.TemporaryDirectory(dir=directory) as tmp:
-                src = os.path.join(tmp, "lib.c")
-                with open(src, "w") as f:
-                    f.write(source)
-                for name, text in headers.items():
-                    with open(os.path.join(tmp, name), "w") as f:
-                        f.write(text)
-                out = os.path.join(tmp, "lib.so")
-                res = subprocess.run([cc[0], *cflags(), *flags, "-I", tmp, "-o", out, src], capture_output=True,
-                                     text=True, timeout=300)
-                if res.returncode != 0:
-                    first = (res.stderr.strip().splitlines() or ["no message"])[0]
-                    return _unavailable(f"the C compiler failed: {first}")
-                os.replace(out, path)  # atomic: a concurrent build of the same key is harmless
-            trim_cache(directory, keep=path)
-        except (OSError, subprocess.SubprocessError) as err:
-            where = f" in the compile cache {directory}" if isinstance(err, OSError) else ""
-            return _unavailable(f"could not build native code{where}: {getattr(err, 'strerror', None) or err}"
-                                + ("; set CPN_CACHE_DIR to a writable folder" if where else ""))
-    ffi = cffi.FFI()
-    ffi.cdef(cdef)
-    try:
-        lib = ffi.dlopen(path)
-    except OSError as err:
-        return _unavailable(f"could not load native code: {err}")
+            if attempt == 1 and not os.path.exists(path):
+                continue  # removed meanwhile by another process's bound on the cache (`trim_cache`): built again
+            return _unavailable(f"could not load native code: {err}")
     _loaded[key] = loaded = Library(ffi, lib, path)
     return loaded

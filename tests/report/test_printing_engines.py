@@ -53,6 +53,7 @@ def test_a_condensed_trace_replays_on_its_engines_twin_as_on_a_net_compiled_agai
     engine = model.engine(time_condensation=True)
     twin = engine.uncondensed()
     assert twin is not engine and twin.store is engine.store and not twin.time_condensation
+    assert twin._be is engine._be  # binding elements numbered alike: a replay matches them by number
     assert engine.time_condensation and model.engine().uncondensed().time_condensation is False
     state, bes = engine.initial_state(), []
     for _ in range(4):

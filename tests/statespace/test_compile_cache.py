@@ -53,3 +53,27 @@ def test_a_build_trims_and_a_load_marks_its_library_used(tmp_path, monkeypatch):
     monkeypatch.setattr(cbuild, "_loaded", {})  # as a new process would
     assert cbuild.load_library(source, "int thrice_for_the_cache_test(int x);") is not None
     assert os.stat(path).st_mtime > 100
+
+
+def test_a_library_another_process_removes_before_it_is_loaded_is_built_again(tmp_path, monkeypatch):
+    monkeypatch.setenv("CPN_CACHE_DIR", str(tmp_path))
+    source = "int twice_for_the_race_test(int x) { return 2 * x; }"
+    cdef = "int twice_for_the_race_test(int x);"
+    found = cbuild._cached(source, cdef, (), {})
+    if isinstance(found, str):  # no compiler here: nothing to race for
+        return
+    _key, path = found
+    assert cbuild._build(source, {}, (), path, str(tmp_path)) is None  # built by a run before, never loaded here
+    builds = []
+    real_build, real_utime = cbuild._build, os.utime
+
+    def removed_once_seen(where, *args, **kw):  # another process's bound on the cache, right after the look
+        real_utime(where, *args, **kw)
+        if where == path and not builds:
+            os.remove(where)
+
+    monkeypatch.setattr(cbuild, "_build", lambda *a: builds.append(a) or real_build(*a))
+    monkeypatch.setattr(cbuild.os, "utime", removed_once_seen)
+    lib = cbuild.load_library(source, cdef)
+    assert lib is not None and lib.lib.twice_for_the_race_test(21) == 42
+    assert len(builds) == 1 and os.path.exists(path)
