@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import os
 from collections import OrderedDict
-from operator import itemgetter
 
 from cpn.checks.verdict import Evidence
 from cpn.engine.protocol import capability, has
@@ -326,7 +325,7 @@ def _integer_bounds(result) -> dict:
         states = list(states)  # (a store decodes a state each time it is read: once, not once per place)
     for p, place in enumerate(engine.places):
         if columns:
-            ids = dict(zip(map(itemgetter(p), states), states))  # a state for each marking id of the place
+            ids = {s[p]: s for s in states}
             sizes = [sum(engine.place_view(s, p).values()) for s in ids.values()]
         else:
             sizes = [sum(engine.marking(s)[p].values()) for s in states]
