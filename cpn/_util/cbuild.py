@@ -139,13 +139,14 @@ def built(name: str, generated: str = "") -> bool:
     return not isinstance(found, str) and (found[0] in _loaded or os.path.exists(found[1]))
 
 
-def note_built(hint: str) -> None:
-    """Record in the compile cache that the library named by `hint` (a caller's name for what it built,
-    not the library's key) was built; nothing where the cache cannot be written."""
+def note_built(hint: str, library: Library) -> None:
+    """Record in the compile cache that `library` was built for what `hint` names (a caller's name for what
+    it built, not the library's key): a file `built_<hint>` holding the library's file name, removed with
+    the library (`trim_cache`); nothing where the cache cannot be written."""
     try:
         os.makedirs(cache_dir(), exist_ok=True)
-        with open(os.path.join(cache_dir(), f"built_{hint}"), "w", encoding="ascii"):
-            pass
+        with open(os.path.join(cache_dir(), f"built_{hint}"), "w", encoding="ascii") as fh:
+            fh.write(os.path.basename(library.path))
     except OSError:
         pass
 
@@ -170,8 +171,9 @@ def cache_max_mb() -> float:
 
 def trim_cache(directory: str, keep: str = "") -> int:
     """Remove the libraries of `directory` used longest ago (by their modification time, which a load
-    refreshes) until it holds at most `cache_max_mb()`, never `keep`; the number removed. A library removed
-    while a process has it loaded stays loaded there (its file is only unlinked)."""
+    refreshes) until it holds at most `cache_max_mb()`, never `keep`, and the records of `note_built` whose
+    library is gone; the number of libraries removed. A library removed while a process has it loaded stays
+    loaded there (its file is only unlinked)."""
     limit = cache_max_mb() * 1048576
     if not limit:
         return 0
@@ -201,7 +203,25 @@ def trim_cache(directory: str, keep: str = "") -> int:
             continue
         total -= size
         removed += 1
+    if removed:
+        _forget_removed(directory, names)
     return removed
+
+
+def _forget_removed(directory: str, names: list[str]) -> None:
+    """Remove the records of `note_built` in `directory` (among `names`) that name a library no longer there
+    (a record that names none, written before records named their library, is left)."""
+    for name in names:
+        if not name.startswith("built_"):
+            continue
+        path = os.path.join(directory, name)
+        try:
+            with open(path, encoding="ascii") as fh:
+                library = fh.read().strip()
+            if library and not os.path.exists(os.path.join(directory, library)):
+                os.remove(path)
+        except (OSError, ValueError):
+            continue
 
 
 def why_unavailable() -> str | None:

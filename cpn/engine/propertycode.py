@@ -5,8 +5,8 @@ engine's expression compiler (`cpn.engine.codegen.ExprCompiler`) and the model's
 things of its own: a place read with a constant instance (`Page'place 1`) becomes `MK(S, index)`, a
 one-clause `fn` becomes a Python lambda, so that `forall P (fn m => ...)` does not run in the
 tree-walking evaluator (20x faster on DP(10)), and so do the values and functions a `let` declares. The
-property layer (`cpn.properties.predicates`) reaches it through the engine's protocol only. Imports the engine's code generator and run-time library, and
-`cpn.expr`.
+property layer (`cpn.properties.predicates`) reaches it through the engine's protocol only. Imports the
+engine's code generator and run-time library, and `cpn.expr`.
 """
 
 from __future__ import annotations

@@ -124,7 +124,7 @@ class TimedNativeSearch(NativeSearch):
         """The library with the net's C, or None (then the code is dropped, with a note)."""
         lib = library(self.code, timed=True)
         if lib is not None:
-            note_built(self._hint())
+            note_built(self._hint(), lib)
         else:
             self.notes.append(f"the C of the net's transitions could not be built ({why_unavailable()}): the "
                               "Python engine computes every transition's bindings")

@@ -28,6 +28,19 @@ def test_the_libraries_used_longest_ago_go_first_down_to_the_bound(tmp_path, mon
     assert not os.path.exists(old) and not os.path.exists(older) and os.path.exists(new)
 
 
+
+def test_the_records_of_what_was_built_go_with_their_libraries(tmp_path, monkeypatch):
+    monkeypatch.setenv("CPN_CACHE_DIR", str(tmp_path))
+    monkeypatch.setenv("CPN_CACHE_MAX_MB", "1")
+    mib = 1048576
+    old, new = _library(tmp_path, "old", mib, 100), _library(tmp_path, "new", mib, 200)
+    cbuild.note_built("a", cbuild.Library(None, None, old))
+    cbuild.note_built("b", cbuild.Library(None, None, new))
+    assert cbuild.noted_built("a") and cbuild.noted_built("b") and not cbuild.noted_built("c")
+    assert cbuild.trim_cache(str(tmp_path), keep=new) == 1
+    assert not cbuild.noted_built("a") and cbuild.noted_built("b")  # the record of the removed library too
+    assert sorted(os.listdir(tmp_path)) == ["built_b", "cpn_new.so"]
+
 def test_no_bound_and_a_bad_bound(tmp_path, monkeypatch):
     _library(tmp_path, "a", 2 * 1048576, 100)
     monkeypatch.setenv("CPN_CACHE_MAX_MB", "0")

@@ -171,7 +171,6 @@ def test_auto_searches_a_net_wholly_in_c_natively_building_its_c_on_the_way(fill
     assert 0 < fills[0] < 400  # the engine expanded states before the C was built, none after
 
 
-
 @needs_native
 def test_auto_goes_on_in_c_at_once_where_a_run_before_built_the_nets_c(fills, monkeypatch, tmp_path):
     """Past `LOOK_FOR_BUILT_AFTER` states `auto` looks in the compile cache: where a run before built this
